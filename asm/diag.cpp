@@ -1,0 +1,163 @@
+// Collecting and rendering diagnostics: location, source line, caret, include chain, notes.
+#include "tmcl/asm/diag.hpp"
+
+#include <algorithm>
+#include <cctype>
+#include <cstdint>
+#include <tuple>
+
+namespace tmcl {
+
+std::string_view SourceFile::line(int number) const {
+  if (number < 1 || static_cast<std::size_t>(number) > line_starts.size()) return {};
+  std::size_t begin = line_starts[static_cast<std::size_t>(number - 1)];
+  std::size_t end = text.find('\n', begin);
+  if (end == std::string::npos) end = text.size();
+  if (end > begin && text[end - 1] == '\r') --end;
+  return std::string_view(text).substr(begin, end - begin);
+}
+
+int SourceSet::add(SourceFile f) {
+  f.line_starts.clear();
+  f.line_starts.push_back(0);
+  for (std::size_t i = 0; i < f.text.size(); ++i)
+    if (f.text[i] == '\n' && i + 1 <= f.text.size()) f.line_starts.push_back(static_cast<std::uint32_t>(i + 1));
+  // A final newline does not start another line.
+  if (!f.text.empty() && f.text.back() == '\n') f.line_starts.pop_back();
+  files.push_back(std::move(f));
+  return static_cast<int>(files.size() - 1);
+}
+
+Diagnostic& Diagnostics::error(SourceLoc loc, std::string message) {
+  ++errors_;
+  list_.push_back({Severity::Error, loc, std::move(message), {}});
+  return list_.back();
+}
+
+Diagnostic& Diagnostics::warning(SourceLoc loc, std::string message) {
+  if (werror_) return error(loc, std::move(message));
+  ++warnings_;
+  list_.push_back({Severity::Warning, loc, std::move(message), {}});
+  return list_.back();
+}
+
+void Diagnostics::note(Diagnostic& d, SourceLoc loc, std::string message) {
+  d.notes.push_back({Severity::Note, loc, std::move(message), {}});
+}
+
+namespace {
+
+const char* severity_word(Severity s) {
+  switch (s) {
+    case Severity::Note: return "note";
+    case Severity::Warning: return "warning";
+    case Severity::Error: return "error";
+  }
+  return "?";
+}
+
+// Shows the line with non-printable bytes replaced, so the caret stays under the right column.
+std::string printable(std::string_view line) {
+  std::string out(line);
+  for (auto& c : out) {
+    auto u = static_cast<unsigned char>(c);
+    if (c == '\t') continue;
+    if (u < 0x20 || u >= 0x7f) c = '?';
+  }
+  return out;
+}
+
+void render_one(std::string& out, const Diagnostic& d, const SourceSet& sources, bool with_chain) {
+  const SourceFile* f = (d.loc.file >= 0 && static_cast<std::size_t>(d.loc.file) < sources.files.size())
+                            ? &sources.files[static_cast<std::size_t>(d.loc.file)]
+                            : nullptr;
+  if (f && with_chain) {
+    // "In file included from" lines, innermost includer first.
+    for (const SourceFile* c = f; c->includer >= 0;) {
+      const SourceFile& parent = sources.files[static_cast<std::size_t>(c->includer)];
+      out += "In file included from " + parent.name + ":" + std::to_string(c->include_line) + ":\n";
+      c = &parent;
+    }
+  }
+  if (f)
+    out += f->name + ":" + std::to_string(d.loc.line) + ":" + std::to_string(d.loc.col) + ": ";
+  else
+    out += "tmclasm: ";
+  out += severity_word(d.severity);
+  out += ": " + d.message + "\n";
+  if (f && d.loc.line > 0) {
+    std::string_view line = f->line(d.loc.line);
+    if (!line.empty() || d.loc.col <= 1) {
+      out += " " + printable(line) + "\n ";
+      int col = std::max(1, d.loc.col);
+      for (int i = 1; i < col; ++i) {
+        bool tab = static_cast<std::size_t>(i - 1) < line.size() && line[static_cast<std::size_t>(i - 1)] == '\t';
+        out += tab ? '\t' : ' ';
+      }
+      out += '^';
+      int room = static_cast<int>(line.size()) - col;
+      for (int i = 1; i < std::min(d.loc.len, room + 1); ++i) out += '~';
+      out += "\n";
+    }
+  }
+}
+
+}  // namespace
+
+std::string render_diagnostic(const Diagnostic& d, const SourceSet& sources) {
+  std::string out;
+  render_one(out, d, sources, true);
+  for (const auto& n : d.notes) render_one(out, n, sources, false);
+  return out;
+}
+
+std::string Diagnostics::render(const SourceSet& sources) const {
+  // In source order, whichever phase found them; location-less ones (limits, files) last.
+  std::vector<const Diagnostic*> order;
+  for (const auto& d : list_) order.push_back(&d);
+  std::stable_sort(order.begin(), order.end(), [](const Diagnostic* a, const Diagnostic* b) {
+    auto key = [](const Diagnostic* d) {
+      return std::make_tuple(d->loc.file < 0 ? INT32_MAX : d->loc.file, d->loc.line, d->loc.col);
+    };
+    return key(a) < key(b);
+  });
+  std::string out;
+  for (const auto* d : order) out += render_diagnostic(*d, sources);
+  return out;
+}
+
+namespace {
+int edit_distance(std::string_view a, std::string_view b) {
+  std::vector<int> prev(b.size() + 1), cur(b.size() + 1);
+  for (std::size_t j = 0; j <= b.size(); ++j) prev[j] = static_cast<int>(j);
+  for (std::size_t i = 1; i <= a.size(); ++i) {
+    cur[0] = static_cast<int>(i);
+    for (std::size_t j = 1; j <= b.size(); ++j) {
+      bool same = std::toupper(static_cast<unsigned char>(a[i - 1])) == std::toupper(static_cast<unsigned char>(b[j - 1]));
+      cur[j] = std::min({prev[j] + 1, cur[j - 1] + 1, prev[j - 1] + (same ? 0 : 1)});
+    }
+    std::swap(prev, cur);
+  }
+  return prev[b.size()];
+}
+}  // namespace
+
+std::string closest_match(std::string_view word, const std::vector<std::string_view>& candidates) {
+  if (word.size() > 64) return {};
+  std::string_view best;
+  int best_d = 1 << 30;
+  for (auto c : candidates) {
+    if (c.size() > 64) continue;
+    int d = edit_distance(word, c);
+    if (d < best_d) {
+      best_d = d;
+      best = c;
+    }
+  }
+  // Close enough: at most a third of the word wrong, and never the whole word.
+  int limit = std::max(1, static_cast<int>(word.size()) / 3);
+  if (best_d == 0 || best_d > limit) return {};
+  return std::string(best);
+}
+
+}  // namespace tmcl

@@ -1,0 +1,76 @@
+// The assembler's public interface: TMCL source files in, a program (instructions with their
+// source lines, labels and constants) and diagnostics out.
+//
+// Pipeline (assembler.cpp): read -> lex -> parse (one unit per root file, includes inlined)
+//   -> resolve (constants, labels, expressions) -> encode -> link (place units, resolve imports)
+//   -> check against the module profile.
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "tmcl/asm/diag.hpp"
+#include "tmcl/isa.hpp"
+#include "tmcl/profile.hpp"
+
+namespace tmcl {
+
+// Files are read through this interface so that tests and fuzzers can serve them from memory.
+class FileReader {
+ public:
+  virtual ~FileReader() = default;
+  // Reads `path` into `out`; false when it does not exist or cannot be read.
+  virtual bool read(const std::string& path, std::string& out) = 0;
+};
+
+// Reads from the file system; "-" is standard input.
+class DiskReader final : public FileReader {
+ public:
+  bool read(const std::string& path, std::string& out) override;
+};
+
+// The include files bundled with tmcl (include_files/), compiled into the library.
+const std::map<std::string, std::string_view>& bundled_includes();
+
+struct AsmOptions {
+  const Profile* profile = nullptr;             // nullptr: generic
+  std::vector<std::string> include_dirs;        // -I, searched after the including file's folder
+  std::vector<std::pair<std::string, std::string>> defines;  // -D NAME=VALUE (VALUE an expression)
+  bool warnings_are_errors = false;             // -Werror
+  bool append_stop = true;                      // append STOP unless the program ends in one
+};
+
+// Where an instruction came from.
+struct LineInfo {
+  int file = -1;  // index into AsmResult::sources.files
+  int line = 0;
+};
+
+enum class SymbolKind : std::uint8_t { Label, Constant };
+
+struct Symbol {
+  std::string name;     // as spelt at its definition
+  SymbolKind kind;
+  std::int64_t value;   // address for labels
+  SourceLoc defined_at;
+  bool exported = false;
+};
+
+struct AsmResult {
+  std::vector<Instruction> program;
+  std::vector<LineInfo> lines;      // one per instruction; file -1 for the appended STOP
+  std::vector<Symbol> symbols;      // labels and constants of every unit, in definition order
+  SourceSet sources;
+  Diagnostics diags;
+  bool ok() const { return !diags.has_errors(); }
+};
+
+// Assembles the root files (each its own unit: labels and constants are local to it) and links
+// them in order from address 0.
+AsmResult assemble(const std::vector<std::string>& files, const AsmOptions& options, FileReader& reader);
+
+}  // namespace tmcl

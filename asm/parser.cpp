@@ -1,0 +1,511 @@
+// The parser: tokens of a root file and everything it includes into one Unit of statements,
+// label and constant definitions, exports and imports. One mistake costs one diagnostic: after
+// an error the rest of the line is skipped (panic mode), and an instruction that fails to parse
+// still takes its address so that later labels stay where the programmer expects them.
+#include <algorithm>
+#include <filesystem>
+
+#include "internal.hpp"
+
+namespace tmcl::detail {
+namespace {
+
+std::vector<std::string_view> mnemonic_names() {
+  std::vector<std::string_view> v;
+  for (const auto& op : all_ops())
+    if (!op.mnemonic.empty()) v.push_back(op.mnemonic);
+  return v;
+}
+
+std::string operand_names(const OpInfo& op) {
+  std::string s;
+  for (const auto& o : op.operands) {
+    if (!s.empty()) s += ", ";
+    s += o.keywords != KwSet::None ? std::string(kwset_name(o.keywords)) : std::string(role_name(o.role));
+  }
+  return s;
+}
+
+class Parser {
+ public:
+  Parser(const AsmOptions& o, FileReader& r, SourceSet& s, Diagnostics& d, Unit& u)
+      : opts_(o), reader_(r), sources_(s), diags_(d), unit_(u) {}
+
+  void define_command_line(const std::string& name, const std::string& value) {
+    SourceFile f;
+    f.name = "<command line: -D " + name + ">";
+    f.path = f.name;
+    f.text = value;
+    int idx = sources_.add(std::move(f));
+    toks_ = lex(sources_.files[static_cast<std::size_t>(idx)], idx, diags_);
+    i_ = 0;
+    int e = expr(0);
+    if (e >= 0 && at_eol()) {
+      SymDef d;
+      d.name = name;
+      d.kind = SymbolKind::Constant;
+      d.expr = e;
+      d.loc = SourceLoc{idx, 1, 1, static_cast<int>(value.size())};
+      d.from_command_line = true;
+      unit_.by_name[upper(name)] = static_cast<int>(unit_.defs.size());
+      unit_.defs.push_back(std::move(d));
+    } else if (e >= 0) {
+      diags_.error(loc(cur()), "unexpected text after the value of -D " + name);
+    }
+  }
+
+  void parse_root(const std::string& path) {
+    std::string text;
+    if (!reader_.read(path, text)) {
+      diags_.error(SourceLoc{}, "cannot read '" + path + "'");
+      return;
+    }
+    SourceFile f;
+    f.name = path == "-" ? "<stdin>" : path;
+    f.path = path;
+    f.text = std::move(text);
+    if (f.text.size() > kMaxFileBytes) {
+      diags_.error(SourceLoc{}, "'" + path + "' is larger than the limit of " + std::to_string(kMaxFileBytes >> 20) + " MiB");
+      return;
+    }
+    int idx = sources_.add(std::move(f));
+    unit_.root_file = idx;
+    std::string key = key_for(path);
+    included_.push_back(key);
+    parse_file(idx, 0, key);
+  }
+
+ private:
+  // ---- token cursor ----
+  const Token& cur() const { return toks_[i_]; }
+  const Token& next() const { return toks_[std::min(i_ + 1, toks_.size() - 1)]; }
+  bool at_eol() const { return cur().kind == Tok::Newline || cur().kind == Tok::End; }
+  bool is_punct(P p) const { return cur().kind == Tok::Punct && cur().punct == p; }
+  SourceLoc loc(const Token& t) const {
+    return SourceLoc{file_, t.line, t.col, std::max(1, static_cast<int>(t.text.size()))};
+  }
+  void skip_line() {
+    while (!at_eol()) ++i_;
+  }
+  // Reports an error at the current token unless the lexer already did (a Bad token).
+  void fail(const std::string& msg) {
+    if (cur().kind != Tok::Bad) diags_.error(loc(cur()), msg);
+    skip_line();
+  }
+  std::string describe(const Token& t) const {
+    switch (t.kind) {
+      case Tok::Newline:
+      case Tok::End: return "end of line";
+      default: return "'" + std::string(t.text) + "'";
+    }
+  }
+
+  // ---- files ----
+  void parse_file(int file, int depth, const std::string& key) {
+    stack_.push_back(key);
+    auto saved_toks = std::move(toks_);
+    auto saved_i = i_;
+    int saved_file = file_;
+    toks_ = lex(sources_.files[static_cast<std::size_t>(file)], file, diags_);
+    i_ = 0;
+    file_ = file;
+    while (cur().kind != Tok::End) {
+      statement(depth);
+      if (!at_eol()) fail("unexpected " + describe(cur()) + " at the end of the statement");
+      if (cur().kind == Tok::Newline) ++i_;
+    }
+    toks_ = std::move(saved_toks);
+    i_ = saved_i;
+    file_ = saved_file;
+    stack_.pop_back();
+  }
+
+  std::string key_for(const std::string& path) const {
+    return std::filesystem::path(path).lexically_normal().generic_string();
+  }
+
+  void include(int depth) {
+    Token dir = cur();
+    ++i_;
+    if (cur().kind != Tok::IncludeName || cur().text.empty()) return fail("#include needs a file name");
+    Token nt = cur();
+    ++i_;
+    std::string name(nt.text);
+    if (name.front() == '"' || name.front() == '<') name = name.substr(1, name.size() - 2);
+    if (name.empty()) return diags_.error(loc(nt), "#include needs a file name"), void();
+    if (depth + 1 >= kMaxIncludeDepth) {
+      diags_.error(loc(nt), "includes nested more than " + std::to_string(kMaxIncludeDepth) + " deep");
+      return;
+    }
+    std::string text, path, key;
+    bool found = false;
+    auto try_path = [&](const std::string& p) {
+      if (found || !reader_.read(p, text)) return;
+      found = true;
+      path = p;
+      key = key_for(p);
+    };
+    namespace fs = std::filesystem;
+    const std::string& here = sources_.files[static_cast<std::size_t>(file_)].path;
+    if (fs::path(name).is_absolute()) {
+      try_path(name);
+    } else {
+      if (here.rfind("<bundled>/", 0) != 0 && here != "-") try_path((fs::path(here).parent_path() / name).string());
+      for (const auto& dirp : opts_.include_dirs) try_path((fs::path(dirp) / name).string());
+      if (!found) {
+        for (const auto& [bname, btext] : bundled_includes()) {
+          if (upper(bname) == upper(name)) {
+            found = true;
+            text = std::string(btext);
+            path = "<bundled>/" + bname;
+            key = path;
+            break;
+          }
+        }
+      }
+    }
+    if (!found) {
+      auto& d = diags_.error(loc(nt), "cannot find include file '" + name + "'");
+      std::vector<std::string_view> names;
+      for (const auto& b : bundled_includes()) names.push_back(b.first);
+      std::string hint = closest_match(name, names);
+      if (!hint.empty()) diags_.note(d, loc(nt), "did you mean '" + hint + "'?");
+      return;
+    }
+    if (std::find(stack_.begin(), stack_.end(), key) != stack_.end()) {
+      std::string chain;
+      auto it = std::find(stack_.begin(), stack_.end(), key);
+      for (; it != stack_.end(); ++it) chain += *it + " -> ";
+      chain += key;
+      diags_.error(loc(nt), "include cycle: " + chain);
+      return;
+    }
+    if (std::find(included_.begin(), included_.end(), key) != included_.end()) return;  // once only
+    included_.push_back(key);
+    (void)dir;
+    if (text.size() > kMaxFileBytes) {
+      diags_.error(loc(nt), "'" + path + "' is larger than the limit of " + std::to_string(kMaxFileBytes >> 20) + " MiB");
+      return;
+    }
+    SourceFile f;
+    f.name = path.rfind("<bundled>/", 0) == 0 ? path : key;
+    f.path = path;
+    f.text = std::move(text);
+    f.includer = file_;
+    f.include_line = nt.line;
+    int idx = sources_.add(std::move(f));
+    parse_file(idx, depth + 1, key);
+  }
+
+  // #export NAME, NAME... / #import NAME, NAME...
+  void name_list(bool exporting) {
+    std::string what = exporting ? "#export" : "#import";
+    ++i_;
+    if (at_eol()) return fail(what + " needs at least one name");
+    while (true) {
+      if (cur().kind != Tok::Ident) return fail(what + " expects a name, found " + describe(cur()));
+      SourceLoc l = loc(cur());
+      std::string name(cur().text);
+      if (exporting)
+        unit_.exports.emplace_back(name, l);
+      else
+        unit_.imports.emplace(upper(name), l);
+      ++i_;
+      if (at_eol()) return;
+      if (!is_punct(P::Comma)) return fail("expected ',' between names, found " + describe(cur()));
+      ++i_;
+    }
+  }
+
+  void directive(int depth) {
+    std::string d = upper(cur().text);
+    if (d == "#INCLUDE") return include(depth);
+    if (d == "#EXPORT") return name_list(true);
+    if (d == "#IMPORT") return name_list(false);
+    auto& diag = diags_.error(loc(cur()), "unknown directive '" + std::string(cur().text) + "'");
+    std::string hint = closest_match(cur().text, {"#include", "#export", "#import"});
+    if (!hint.empty()) diags_.note(diag, loc(cur()), "did you mean '" + hint + "'?");
+    skip_line();
+  }
+
+  // ---- statements ----
+  void statement(int depth) {
+    // Labels: NAME ':' (any number of them).
+    while (cur().kind == Tok::Ident && next().kind == Tok::Punct && next().punct == P::Colon) {
+      define_label(cur());
+      i_ += 2;
+    }
+    if (at_eol()) return;
+    const Token& t = cur();
+    if (t.kind == Tok::Directive) return directive(depth);
+    if (t.kind != Tok::Ident) return fail("expected an instruction, a label or a constant, found " + describe(t));
+    if (next().kind == Tok::Punct && next().punct == P::Assign) return constant();
+    if (t.text.front() == '.') return raw();
+    instruction();
+  }
+
+  void define_label(const Token& t) {
+    std::string key = upper(t.text);
+    auto it = unit_.by_name.find(key);
+    if (it != unit_.by_name.end()) {
+      const SymDef& first = unit_.defs[static_cast<std::size_t>(it->second)];
+      auto& d = diags_.error(loc(t), first.kind == SymbolKind::Label
+                                         ? "duplicate label '" + std::string(t.text) + "'"
+                                         : "'" + std::string(t.text) + "' is already defined as a constant");
+      diags_.note(d, first.loc, "first defined here");
+      return;
+    }
+    SymDef d;
+    d.name = std::string(t.text);
+    d.kind = SymbolKind::Label;
+    d.address = static_cast<int>(unit_.stmts.size());
+    d.loc = loc(t);
+    unit_.by_name.emplace(key, static_cast<int>(unit_.defs.size()));
+    unit_.defs.push_back(std::move(d));
+  }
+
+  void constant() {
+    Token name = cur();
+    i_ += 2;
+    if (at_eol()) return fail("expected a value after '='");
+    int e = expr(0);
+    if (e < 0) return skip_line();
+    std::string key = upper(name.text);
+    auto it = unit_.by_name.find(key);
+    if (it != unit_.by_name.end()) {
+      const SymDef& first = unit_.defs[static_cast<std::size_t>(it->second)];
+      if (first.kind == SymbolKind::Label) {
+        auto& d = diags_.error(loc(name), "'" + std::string(name.text) + "' is already defined as a label");
+        diags_.note(d, first.loc, "first defined here");
+        return;
+      }
+      unit_.redefinitions.push_back({it->second, e, loc(name)});
+      return;
+    }
+    SymDef d;
+    d.name = std::string(name.text);
+    d.kind = SymbolKind::Constant;
+    d.expr = e;
+    d.loc = loc(name);
+    unit_.by_name.emplace(key, static_cast<int>(unit_.defs.size()));
+    unit_.defs.push_back(std::move(d));
+  }
+
+  // .raw OPCODE, TYPE, MOTOR, VALUE: any record, for what the mnemonic form cannot express.
+  void raw() {
+    Stmt s;
+    s.loc = loc(cur());
+    s.address = static_cast<int>(unit_.stmts.size());
+    if (upper(cur().text) != ".RAW") {
+      auto& d = diags_.error(loc(cur()), "unknown directive '" + std::string(cur().text) + "'");
+      diags_.note(d, loc(cur()), "the raw instruction form is '.raw OPCODE, TYPE, MOTOR, VALUE'");
+      unit_.stmts.push_back(s);
+      return skip_line();
+    }
+    ++i_;
+    for (int k = 0; k < 4; ++k) {
+      if (k > 0) {
+        if (!is_punct(P::Comma)) {
+          unit_.stmts.push_back(s);
+          return fail(".raw expects 4 operands (opcode, type, motor, value), found " + describe(cur()));
+        }
+        ++i_;
+      }
+      Operand o;
+      o.loc = loc(cur());
+      o.expr = expr(0);
+      if (o.expr < 0) {
+        unit_.stmts.push_back(s);
+        return skip_line();
+      }
+      s.operands[static_cast<std::size_t>(k)] = o;
+      s.count = k + 1;
+    }
+    unit_.stmts.push_back(s);
+  }
+
+  void instruction() {
+    const Token& mn = cur();
+    Stmt s;
+    s.loc = loc(mn);
+    s.address = static_cast<int>(unit_.stmts.size());
+    s.op = op_by_mnemonic(mn.text);
+    if (!s.op) {
+      auto& d = diags_.error(loc(mn), "unknown instruction mnemonic '" + std::string(mn.text) + "'");
+      std::string hint = closest_match(mn.text, mnemonic_names());
+      if (!hint.empty()) diags_.note(d, loc(mn), "did you mean '" + hint + "'?");
+      if (next().kind == Tok::Newline || next().kind == Tok::End)
+        diags_.note(d, loc(mn), "a label needs a ':' after its name");
+      s.op = nullptr;
+      s.count = -1;  // poisoned: takes its address, encodes nothing
+      unit_.stmts.push_back(s);
+      return skip_line();
+    }
+    ++i_;
+    const auto& specs = s.op->operands;
+    std::size_t want = specs.size();
+    for (std::size_t k = 0; k < want; ++k) {
+      if (k > 0) {
+        if (at_eol()) {
+          s.count = -1;
+          unit_.stmts.push_back(s);
+          auto& d = diags_.error(loc(cur()), std::string(s.op->mnemonic) + " expects " + std::to_string(want) +
+                                                 " operands (" + operand_names(*s.op) + "), found " +
+                                                 std::to_string(k));
+          (void)d;
+          return;
+        }
+        if (!is_punct(P::Comma)) {
+          s.count = -1;
+          unit_.stmts.push_back(s);
+          return fail("expected ',' after operand " + std::to_string(k) + " of " + std::string(s.op->mnemonic) +
+                      ", found " + describe(cur()));
+        }
+        ++i_;
+      }
+      if (at_eol()) {
+        s.count = -1;
+        unit_.stmts.push_back(s);
+        diags_.error(loc(cur()), std::string(s.op->mnemonic) + " expects " + std::to_string(want) +
+                                     (want == 1 ? " operand (" : " operands (") + operand_names(*s.op) + "), found " +
+                                     std::to_string(k));
+        return;
+      }
+      Operand o;
+      o.loc = loc(cur());
+      const OperandSpec& spec = specs[k];
+      bool lone_ident = cur().kind == Tok::Ident && (next().kind == Tok::Newline || next().kind == Tok::End ||
+                                                     (next().kind == Tok::Punct && next().punct == P::Comma));
+      if (spec.keywords != KwSet::None && lone_ident) {
+        if (auto v = keyword_value(spec.keywords, cur().text)) {
+          o.keyword = *v;
+          ++i_;
+          s.operands[k] = o;
+          continue;
+        }
+      }
+      o.lone_symbol = lone_ident;
+      o.expr = expr(0);
+      if (o.expr < 0) {
+        s.count = -1;
+        unit_.stmts.push_back(s);
+        return skip_line();
+      }
+      s.operands[k] = o;
+    }
+    if (!at_eol()) {
+      if (is_punct(P::Comma)) {
+        s.count = -1;
+        unit_.stmts.push_back(s);
+        std::string msg = std::string(s.op->mnemonic) + " takes " +
+                          (want == 0 ? std::string("no operands")
+                                     : std::to_string(want) + (want == 1 ? " operand (" : " operands (") +
+                                           operand_names(*s.op) + ")");
+        return fail("too many operands: " + msg);
+      }
+      if (want == 0) {
+        s.count = -1;
+        unit_.stmts.push_back(s);
+        return fail(std::string(s.op->mnemonic) + " takes no operands, found " + describe(cur()));
+      }
+    }
+    s.count = static_cast<int>(want);
+    unit_.stmts.push_back(s);
+  }
+
+  // ---- expressions: precedence climbing, C precedence (| ^ & << >> + - * / %) ----
+  static int precedence(P p) {
+    switch (p) {
+      case P::Pipe: return 1;
+      case P::Caret: return 2;
+      case P::Amp: return 3;
+      case P::Shl:
+      case P::Shr: return 4;
+      case P::Plus:
+      case P::Minus: return 5;
+      case P::Star:
+      case P::Slash:
+      case P::Percent: return 6;
+      default: return 0;
+    }
+  }
+
+  int node(ExprNode n) {
+    unit_.nodes.push_back(n);
+    return static_cast<int>(unit_.nodes.size() - 1);
+  }
+
+  // Returns the node index, or -1 after reporting an error.
+  int expr(int depth, int min_prec = 1) {
+    int lhs = unary(depth);
+    if (lhs < 0) return -1;
+    while (cur().kind == Tok::Punct && precedence(cur().punct) >= min_prec) {
+      Token op = cur();
+      int prec = precedence(op.punct);
+      ++i_;
+      int rhs = expr(depth + 1, prec + 1);
+      if (rhs < 0) return -1;
+      ExprNode n{ExprKind::Binary, op.punct, 0, {}, lhs, rhs, loc(op)};
+      lhs = node(n);
+    }
+    return lhs;
+  }
+
+  int unary(int depth) {
+    if (depth > kMaxExprDepth) {
+      diags_.error(loc(cur()), "expression nested more than " + std::to_string(kMaxExprDepth) + " levels deep");
+      return -1;
+    }
+    const Token t = cur();
+    if (t.kind == Tok::Punct && (t.punct == P::Minus || t.punct == P::Plus || t.punct == P::Tilde)) {
+      ++i_;
+      int operand = unary(depth + 1);
+      if (operand < 0) return -1;
+      return node(ExprNode{ExprKind::Unary, t.punct, 0, {}, operand, -1, loc(t)});
+    }
+    if (t.kind == Tok::Punct && t.punct == P::LParen) {
+      ++i_;
+      int inner = expr(depth + 1);
+      if (inner < 0) return -1;
+      if (!is_punct(P::RParen)) {
+        auto& d = diags_.error(loc(cur()), "expected ')', found " + describe(cur()));
+        diags_.note(d, loc(t), "to match this '('");
+        return -1;
+      }
+      ++i_;
+      return inner;
+    }
+    if (t.kind == Tok::Number) {
+      ++i_;
+      return node(ExprNode{ExprKind::Number, P::None, t.number, {}, -1, -1, loc(t)});
+    }
+    if (t.kind == Tok::Ident && t.text.front() != '.') {
+      ++i_;
+      return node(ExprNode{ExprKind::Symbol, P::None, 0, t.text, -1, -1, loc(t)});
+    }
+    if (t.kind != Tok::Bad) diags_.error(loc(t), "expected a value, found " + describe(t));
+    return -1;
+  }
+
+  const AsmOptions& opts_;
+  FileReader& reader_;
+  SourceSet& sources_;
+  Diagnostics& diags_;
+  Unit& unit_;
+  std::vector<Token> toks_;
+  std::size_t i_ = 0;
+  int file_ = -1;
+  std::vector<std::string> stack_;     // include chain (keys)
+  std::vector<std::string> included_;  // every file included so far (keys)
+};
+
+}  // namespace
+
+void parse_unit(const std::string& root, const AsmOptions& options, FileReader& reader, SourceSet& sources,
+                Diagnostics& diags, Unit& unit) {
+  Parser p(options, reader, sources, diags, unit);
+  for (const auto& [name, value] : options.defines) p.define_command_line(name, value);
+  p.parse_root(root);
+}
+
+}  // namespace tmcl::detail

@@ -1,0 +1,145 @@
+// Checks an encoded instruction against a module profile. A command the module lacks is an
+// error (the module would answer "invalid command"); everything the module would accept but
+// probably not as meant — an unknown parameter, a write to a read-only one, a value outside the
+// documented range, a motor or variable that does not exist — is a warning.
+#include "internal.hpp"
+
+namespace tmcl::detail {
+namespace {
+
+SourceLoc operand_loc(const Stmt& s, Field f) {
+  for (std::size_t k = 0; k < s.op->operands.size(); ++k)
+    if (s.op->operands[k].field == f) return s.operands[k].loc;
+  return s.loc;
+}
+
+bool has_role(const OpInfo& op, Role r) {
+  for (const auto& o : op.operands)
+    if (o.role == r) return true;
+  return false;
+}
+
+std::string range_text(const ParamInfo& p) { return std::to_string(p.min) + " to " + std::to_string(p.max); }
+
+std::string param_text(const char* kind, int number, const ParamInfo* p) {
+  std::string s = std::string(kind) + " " + std::to_string(number);
+  if (p && !p->name.empty()) s += " (" + std::string(p->name) + ")";
+  return s;
+}
+
+bool writes(Op op) {
+  switch (op) {
+    case Op::SAP: case Op::AAP: case Op::SAPX: case Op::AAPX: case Op::SGP: case Op::AGP: return true;
+    default: return false;
+  }
+}
+
+// A 32-bit field holds a signed or an unsigned number; either reading may be the meant one.
+bool in_range(std::int32_t v, std::int64_t min, std::int64_t max) {
+  auto u = static_cast<std::int64_t>(static_cast<std::uint32_t>(v));
+  return (v >= min && v <= max) || (u >= min && u <= max);
+}
+
+bool writes_immediate(Op op) { return op == Op::SAP || op == Op::SAPX || op == Op::SGP; }
+
+class Checker {
+ public:
+  Checker(const Profile& p, const Stmt& s, const Instruction& ins, Diagnostics& d) : p_(p), s_(s), ins_(ins), d_(d) {}
+
+  void run() {
+    if (!p_.has_command(ins_.op)) {
+      d_.error(s_.loc, std::string(s_.op->mnemonic) + " is not available on " + std::string(p_.title));
+      return;
+    }
+    if (p_.any_parameter) return;
+    Op op = static_cast<Op>(ins_.op);
+    const OpInfo& info = *s_.op;
+    bool coord_op = has_role(info, Role::Coord);
+    if (has_role(info, Role::Motor) && ins_.motor >= p_.motors && !(coord_op && ins_.motor == 255))
+      d_.warning(operand_loc(s_, Field::Motor), "motor " + std::to_string(ins_.motor) + " does not exist on " +
+                                                    std::string(p_.title) + " (motors 0 to " +
+                                                    std::to_string(p_.motors - 1) + ")");
+    if (has_role(info, Role::AxisParam)) axis(op);
+    if (has_role(info, Role::GlobalParam)) global(op);
+    for (const auto& spec : info.operands) {
+      int v = spec.field == Field::Type ? ins_.type : spec.field == Field::Motor ? ins_.motor : 0;
+      if (spec.role == Role::Var && v >= p_.user_vars)
+        d_.warning(operand_loc(s_, spec.field), "user variable " + std::to_string(v) + " does not exist on " +
+                                                    std::string(p_.title) + " (0 to " +
+                                                    std::to_string(p_.user_vars - 1) + ")");
+      if (spec.role == Role::Coord && v >= p_.coords)
+        d_.warning(operand_loc(s_, spec.field), "coordinate " + std::to_string(v) + " does not exist on " +
+                                                    std::string(p_.title) +
+                                                    (p_.coords > 0 ? " (0 to " + std::to_string(p_.coords - 1) + ")"
+                                                                   : std::string(" (it has no coordinates)")));
+      if (spec.role == Role::Interrupt && !p_.vector(v) && !(v == 255 && op != Op::VECT))
+        d_.warning(operand_loc(s_, spec.field),
+                   "interrupt " + std::to_string(v) + " does not exist on " + std::string(p_.title));
+    }
+    if ((op == Op::ROR || op == Op::ROL))
+      if (const ParamInfo* speed = p_.axis_param(2); speed && !in_range(ins_.value, speed->min, speed->max))
+        d_.warning(operand_loc(s_, Field::Value), "velocity " + std::to_string(ins_.value) +
+                                                      " is outside the range of " + std::string(p_.title) + " (" +
+                                                      range_text(*speed) + ")");
+  }
+
+ private:
+  void axis(Op op) {
+    const ParamInfo* p = p_.axis_param(ins_.type);
+    SourceLoc at = operand_loc(s_, Field::Type);
+    if (!p) {
+      d_.warning(at, "axis parameter " + std::to_string(ins_.type) + " does not exist on " + std::string(p_.title));
+      return;
+    }
+    check_param(op, *p, param_text("axis parameter", ins_.type, p), at);
+  }
+
+  void global(Op op) {
+    int bank = ins_.motor;
+    SourceLoc at = operand_loc(s_, Field::Type);
+    if (bank == 2) {
+      if (ins_.type >= p_.user_vars)
+        d_.warning(at, "user variable " + std::to_string(ins_.type) + " does not exist on " + std::string(p_.title) +
+                           " (0 to " + std::to_string(p_.user_vars - 1) + ")");
+      else if ((op == Op::STGP || op == Op::RSGP) && ins_.type >= p_.eeprom_user_vars)
+        d_.warning(at, "user variable " + std::to_string(ins_.type) + " cannot be stored in the EEPROM of " +
+                           std::string(p_.title) + " (only 0 to " + std::to_string(p_.eeprom_user_vars - 1) + ")");
+      return;
+    }
+    if (bank != 0 && !(bank == 3 && !p_.bank3.empty())) {
+      d_.warning(operand_loc(s_, Field::Motor), "bank " + std::to_string(bank) + " does not exist on " +
+                                                    std::string(p_.title) +
+                                                    (p_.bank3.empty() ? " (banks 0 and 2)" : " (banks 0, 2 and 3)"));
+      return;
+    }
+    const ParamInfo* p = p_.global_param(bank, ins_.type);
+    if (!p) {
+      d_.warning(at, "global parameter " + std::to_string(ins_.type) + " of bank " + std::to_string(bank) +
+                         " does not exist on " + std::string(p_.title));
+      return;
+    }
+    check_param(op, *p, param_text("global parameter", ins_.type, p), at);
+  }
+
+  void check_param(Op op, const ParamInfo& p, const std::string& what, SourceLoc at) {
+    if (writes(op) && !(p.access & kWrite)) d_.warning(at, what + " is read-only");
+    if ((op == Op::GAP || op == Op::GGP || op == Op::GAPX) && !(p.access & kRead))
+      d_.warning(at, what + " cannot be read");
+    if (writes_immediate(op) && (p.access & kWrite) && !in_range(ins_.value, p.min, p.max))
+      d_.warning(operand_loc(s_, Field::Value),
+                 "value " + std::to_string(ins_.value) + " is outside the range of " + what + " (" + range_text(p) + ")");
+  }
+
+  const Profile& p_;
+  const Stmt& s_;
+  const Instruction& ins_;
+  Diagnostics& d_;
+};
+
+}  // namespace
+
+void check_against_profile(const Profile& profile, const Stmt& stmt, const Instruction& ins, Diagnostics& diags) {
+  Checker(profile, stmt, ins, diags).run();
+}
+
+}  // namespace tmcl::detail

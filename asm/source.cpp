@@ -1,0 +1,32 @@
+// Reading source files from disk (or standard input) for the assembler.
+#include <cstdio>
+#include <iostream>
+#include <iterator>
+#include <sys/stat.h>
+
+#include "internal.hpp"
+
+namespace tmcl {
+
+bool DiskReader::read(const std::string& path, std::string& out) {
+  if (path == "-") {
+    out.assign(std::istreambuf_iterator<char>(std::cin), std::istreambuf_iterator<char>());
+    return !std::cin.bad();
+  }
+  struct stat st {};
+  if (::stat(path.c_str(), &st) != 0 || !S_ISREG(st.st_mode)) return false;
+  std::FILE* f = std::fopen(path.c_str(), "rb");
+  if (!f) return false;
+  out.clear();
+  char buf[65536];
+  std::size_t n;
+  while ((n = std::fread(buf, 1, sizeof buf, f)) > 0) {
+    out.append(buf, n);
+    if (out.size() > detail::kMaxFileBytes) break;  // the caller reports the size limit
+  }
+  bool ok = !std::ferror(f);
+  std::fclose(f);
+  return ok;
+}
+
+}  // namespace tmcl

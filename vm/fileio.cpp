@@ -1,0 +1,79 @@
+// Whole-file reading and crash-safe writing (temporary file + fsync + rename).
+#include "tmcl/fileio.hpp"
+
+#include <cerrno>
+#include <cstdio>
+#include <cstring>
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+namespace tmcl {
+
+bool read_file(const std::string& path, std::vector<std::uint8_t>& out, std::string& error) {
+  int fd = path == "-" ? 0 : ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
+  if (fd < 0) {
+    error = "cannot open '" + path + "': " + std::strerror(errno);
+    return false;
+  }
+  struct stat st {};
+  if (::fstat(fd, &st) == 0 && S_ISDIR(st.st_mode)) {
+    error = "'" + path + "' is a directory";
+    ::close(fd);
+    return false;
+  }
+  out.clear();
+  std::uint8_t buf[65536];
+  while (true) {
+    ssize_t n = ::read(fd, buf, sizeof buf);
+    if (n < 0 && errno == EINTR) continue;
+    if (n < 0) {
+      error = "cannot read '" + path + "': " + std::strerror(errno);
+      if (fd != 0) ::close(fd);
+      return false;
+    }
+    if (n == 0) break;
+    out.insert(out.end(), buf, buf + n);
+  }
+  if (fd != 0) ::close(fd);
+  return true;
+}
+
+static bool write_all(int fd, const std::vector<std::uint8_t>& data) {
+  std::size_t done = 0;
+  while (done < data.size()) {
+    ssize_t n = ::write(fd, data.data() + done, data.size() - done);
+    if (n < 0 && errno == EINTR) continue;
+    if (n <= 0) return false;
+    done += static_cast<std::size_t>(n);
+  }
+  return true;
+}
+
+bool write_file_atomic(const std::string& path, const std::vector<std::uint8_t>& data, std::string& error) {
+  if (path == "-") {
+    if (!write_all(1, data)) {
+      error = std::string("cannot write to standard output: ") + std::strerror(errno);
+      return false;
+    }
+    return true;
+  }
+  std::string tmp = path + ".tmp." + std::to_string(::getpid());
+  int fd = ::open(tmp.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0666);
+  if (fd < 0) {
+    error = "cannot create '" + tmp + "': " + std::strerror(errno);
+    return false;
+  }
+  bool ok = write_all(fd, data) && ::fsync(fd) == 0;
+  int saved = errno;
+  ok = (::close(fd) == 0) && ok;
+  if (!ok || ::rename(tmp.c_str(), path.c_str()) != 0) {
+    if (ok) saved = errno;
+    ::unlink(tmp.c_str());
+    error = "cannot write '" + path + "': " + std::strerror(saved);
+    return false;
+  }
+  return true;
+}
+
+}  // namespace tmcl

@@ -1,0 +1,36 @@
+// Program images on disk: the TMCL-IDE .bin format (8 bytes per instruction: opcode, type,
+// motor/bank, value MSB first, checksum = 8-bit sum of the first 7) and 9-byte datagrams.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "tmcl/isa.hpp"
+
+namespace tmcl {
+
+// One problem found while reading an image, at a byte offset.
+struct ImageIssue {
+  std::size_t offset;
+  bool error;  // false: warning (a bad record checksum)
+  std::string message;
+};
+
+struct ImageReadResult {
+  std::vector<Instruction> program;
+  std::vector<ImageIssue> issues;
+  bool ok() const;
+};
+
+std::vector<std::uint8_t> write_bin(const std::vector<Instruction>& program);
+// Reads a .bin: a size that is not a multiple of 8 is an error; a record whose checksum byte
+// does not match is a warning naming the record and both checksums.
+ImageReadResult read_bin(const std::vector<std::uint8_t>& bytes);
+
+// A 9-byte TMCL request: address, op, type, motor, value (MSB first), checksum of the first 8.
+std::array<std::uint8_t, 9> datagram(std::uint8_t address, const Instruction& ins);
+std::uint8_t sum8(const std::uint8_t* bytes, std::size_t n);
+
+}  // namespace tmcl

@@ -1,0 +1,155 @@
+// Expands opcodes.def and keywords.def into the lookup tables declared in isa.hpp.
+#include "tmcl/isa.hpp"
+
+#include <algorithm>
+#include <cctype>
+
+namespace tmcl {
+namespace {
+
+#define NUM(f, r) OperandSpec{Field::f, Role::r, KwSet::None}
+#define KW(f, s) OperandSpec{Field::f, Role::Keyword, KwSet::s}
+#define LABEL(f) OperandSpec{Field::f, Role::Address, KwSet::None}
+
+// One operand array per opcode, so that OpInfo can hold a span.
+#define TMCL_OP(code, id, mn, meaning, ...) constexpr OperandSpec operands_##id[] = {__VA_ARGS__ __VA_OPT__(, ) NUM(Type, Data)};
+#define TMCL_CTL(code, id, meaning)
+#include "tmcl/opcodes.def"
+#undef TMCL_OP
+#undef TMCL_CTL
+
+// The trailing NUM(Type, Data) above only keeps zero-operand arrays legal; it is cut off here.
+template <std::size_t N>
+constexpr std::span<const OperandSpec> real_operands(const OperandSpec (&a)[N]) {
+  return std::span<const OperandSpec>(a, N - 1);
+}
+
+constexpr OpInfo kOps[] = {
+#define TMCL_OP(code, id, mn, meaning, ...) OpInfo{code, #id, mn, meaning, real_operands(operands_##id), false},
+#define TMCL_CTL(code, id, meaning) OpInfo{code, #id, "", meaning, {}, true},
+#include "tmcl/opcodes.def"
+#undef TMCL_OP
+#undef TMCL_CTL
+};
+
+#undef NUM
+#undef KW
+#undef LABEL
+
+constexpr Keyword kKeywords[] = {
+#define KEYWORD(set, name, value) Keyword{KwSet::set, name, value},
+#include "tmcl/keywords.def"
+#undef KEYWORD
+};
+
+// Each opcode number may appear only once in the table.
+constexpr bool opcodes_unique() {
+  for (std::size_t i = 0; i < std::size(kOps); ++i)
+    for (std::size_t j = i + 1; j < std::size(kOps); ++j)
+      if (kOps[i].code == kOps[j].code) return false;
+  return true;
+}
+static_assert(opcodes_unique(), "an opcode is declared twice in opcodes.def");
+
+// Each field may be filled by at most one operand.
+constexpr bool fields_unique() {
+  for (const auto& op : kOps)
+    for (std::size_t i = 0; i < op.operands.size(); ++i)
+      for (std::size_t j = i + 1; j < op.operands.size(); ++j)
+        if (op.operands[i].field == op.operands[j].field) return false;
+  return true;
+}
+static_assert(fields_unique(), "an opcode fills one field twice");
+
+struct OpIndex {
+  std::array<const OpInfo*, 256> by_code{};
+  OpIndex() {
+    for (const auto& op : kOps) by_code[op.code] = &op;
+  }
+};
+const OpIndex& index() {
+  static const OpIndex idx;
+  return idx;
+}
+
+bool iequals(std::string_view a, std::string_view b) {
+  return a.size() == b.size() && std::equal(a.begin(), a.end(), b.begin(), [](char x, char y) {
+           return std::toupper(static_cast<unsigned char>(x)) == std::toupper(static_cast<unsigned char>(y));
+         });
+}
+
+}  // namespace
+
+std::span<const OpInfo> all_ops() { return kOps; }
+
+const OpInfo* op_info(std::uint8_t code) { return index().by_code[code]; }
+
+const OpInfo* op_by_mnemonic(std::string_view mnemonic) {
+  for (const auto& op : kOps)
+    if (!op.mnemonic.empty() && iequals(op.mnemonic, mnemonic)) return &op;
+  return nullptr;
+}
+
+std::span<const Keyword> all_keywords() { return kKeywords; }
+
+std::optional<std::uint8_t> keyword_value(KwSet set, std::string_view name) {
+  for (const auto& k : kKeywords)
+    if (k.set == set && iequals(k.name, name)) return k.value;
+  return std::nullopt;
+}
+
+std::optional<std::string_view> keyword_name(KwSet set, std::uint8_t value) {
+  for (const auto& k : kKeywords)
+    if (k.set == set && k.value == value) return k.name;
+  return std::nullopt;
+}
+
+std::string_view kwset_name(KwSet set) {
+  switch (set) {
+    case KwSet::None: return "none";
+    case KwSet::Move: return "move type";
+    case KwSet::CalcA: return "CALC operation";
+    case KwSet::CalcX: return "CALCX operation";
+    case KwSet::CalcV: return "CALCV operation";
+    case KwSet::CalcVV: return "CALCVV/VA/AV/VX/XV operation";
+    case KwSet::Cond: return "condition";
+    case KwSet::Wait: return "WAIT condition";
+    case KwSet::Cle: return "error flag";
+    case KwSet::Rfs: return "RFS action";
+  }
+  return "?";
+}
+
+std::string_view role_name(Role role) {
+  switch (role) {
+    case Role::Data: return "value";
+    case Role::Motor: return "motor";
+    case Role::Bank: return "bank";
+    case Role::AxisParam: return "axis parameter";
+    case Role::GlobalParam: return "global parameter";
+    case Role::Var: return "user variable";
+    case Role::Coord: return "coordinate";
+    case Role::Interrupt: return "interrupt";
+    case Role::Port: return "port";
+    case Role::Velocity: return "velocity";
+    case Role::Position: return "position";
+    case Role::Ticks: return "ticks";
+    case Role::Address: return "address";
+    case Role::Keyword: return "keyword";
+  }
+  return "?";
+}
+
+std::array<std::uint8_t, 7> encode7(const Instruction& ins) {
+  auto v = static_cast<std::uint32_t>(ins.value);
+  return {ins.op, ins.type, ins.motor, static_cast<std::uint8_t>(v >> 24), static_cast<std::uint8_t>(v >> 16),
+          static_cast<std::uint8_t>(v >> 8), static_cast<std::uint8_t>(v)};
+}
+
+std::uint8_t record_checksum(const Instruction& ins) {
+  std::uint8_t sum = 0;
+  for (auto b : encode7(ins)) sum = static_cast<std::uint8_t>(sum + b);
+  return sum;
+}
+
+}  // namespace tmcl
