@@ -200,6 +200,7 @@ AsmResult assemble(const std::vector<std::string>& files, const AsmOptions& opti
       std::int64_t value = def.kind == SymbolKind::Label ? units[static_cast<std::size_t>(u)].base + def.address
                                                          : def.state == EvalState::Done ? def.value
                                                                                         : 0;
+      if (def.kind == SymbolKind::Constant && def.state == EvalState::Failed) continue;
       if (def.kind == SymbolKind::Constant && def.state != EvalState::Done) {
         auto v = resolver.eval_def(u, d);  // an unused constant is still checked
         if (!v) continue;

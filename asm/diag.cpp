@@ -155,7 +155,7 @@ std::string closest_match(std::string_view word, const std::vector<std::string_v
     }
   }
   // Close enough: at most a third of the word wrong, and never the whole word.
-  int limit = std::max(1, static_cast<int>(word.size()) / 3);
+  int limit = static_cast<int>(word.size()) / 3;  // names of one or two letters get no guess
   if (best_d == 0 || best_d > limit) return {};
   return std::string(best);
 }

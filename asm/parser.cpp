@@ -269,8 +269,20 @@ class Parser {
     i_ += 2;
     if (at_eol()) return fail("expected a value after '='");
     int e = expr(0);
-    if (e < 0) return skip_line();
     std::string key = upper(name.text);
+    if (e < 0) {
+      // Define it anyway, poisoned, so that its uses do not report it as undefined.
+      if (!unit_.by_name.count(key)) {
+        SymDef d;
+        d.name = std::string(name.text);
+        d.kind = SymbolKind::Constant;
+        d.loc = loc(name);
+        d.state = EvalState::Failed;
+        unit_.by_name.emplace(key, static_cast<int>(unit_.defs.size()));
+        unit_.defs.push_back(std::move(d));
+      }
+      return skip_line();
+    }
     auto it = unit_.by_name.find(key);
     if (it != unit_.by_name.end()) {
       const SymDef& first = unit_.defs[static_cast<std::size_t>(it->second)];

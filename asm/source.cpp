@@ -29,4 +29,11 @@ bool DiskReader::read(const std::string& path, std::string& out) {
   return ok;
 }
 
+bool MemoryReader::read(const std::string& path, std::string& out) {
+  auto it = files.find(path);
+  if (it == files.end()) return false;
+  out = it->second;
+  return true;
+}
+
 }  // namespace tmcl

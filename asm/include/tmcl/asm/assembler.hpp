@@ -33,6 +33,13 @@ class DiskReader final : public FileReader {
   bool read(const std::string& path, std::string& out) override;
 };
 
+// Serves files from memory (tests, fuzzers, embedders); paths are compared as given.
+class MemoryReader final : public FileReader {
+ public:
+  std::map<std::string, std::string> files;
+  bool read(const std::string& path, std::string& out) override;
+};
+
 // The include files bundled with tmcl (include_files/), compiled into the library.
 const std::map<std::string, std::string_view>& bundled_includes();
 
