@@ -1,5 +1,7 @@
 // The assembler pipeline in one place: read and parse every root file into a unit, place the
 // units one after another, resolve names across them, encode, append STOP, check the target.
+#include <algorithm>
+
 #include "internal.hpp"
 
 namespace tmcl {
@@ -140,8 +142,17 @@ AsmResult assemble(const std::vector<std::string>& files, const AsmOptions& opti
   const Profile& profile = options.profile ? *options.profile : generic_profile();
 
   // read, lex, parse
-  std::vector<Unit> units(files.size());
-  for (std::size_t i = 0; i < files.size(); ++i) parse_unit(files[i], options, reader, out.sources, out.diags, units[i]);
+  std::vector<Unit> units;
+  std::vector<std::string> seen;
+  for (const auto& file : files) {
+    if (std::find(seen.begin(), seen.end(), file) != seen.end()) {
+      out.diags.error(SourceLoc{}, "'" + file + "' is named twice on the command line");
+      continue;
+    }
+    seen.push_back(file);
+    units.emplace_back();
+    parse_unit(file, options, reader, out.sources, out.diags, units.back());
+  }
 
   // place the units one after another
   int base = 0;
@@ -151,7 +162,7 @@ AsmResult assemble(const std::vector<std::string>& files, const AsmOptions& opti
   }
 
   // resolve names
-  Resolver resolver(units, out.diags);
+  Resolver resolver(units, out.diags, out.sources);
   resolver.link_exports();
   resolver.check_redefinitions();
 
@@ -167,7 +178,9 @@ AsmResult assemble(const std::vector<std::string>& files, const AsmOptions& opti
     }
   }
 
+  bool appended = false;
   if (options.append_stop && (out.program.empty() || out.program.back().op != static_cast<std::uint8_t>(Op::STOP))) {
+    appended = true;
     out.program.push_back(Instruction{static_cast<std::uint8_t>(Op::STOP), 0, 0, 0});
     out.lines.push_back(LineInfo{-1, 0});
   }
@@ -189,7 +202,8 @@ AsmResult assemble(const std::vector<std::string>& files, const AsmOptions& opti
   }
 
   if (profile.program_memory > 0 && static_cast<int>(out.program.size()) > profile.program_memory)
-    out.diags.error(SourceLoc{}, "the program needs " + std::to_string(out.program.size()) + " instructions but " +
+    out.diags.error(SourceLoc{}, "the program needs " + std::to_string(out.program.size()) + " instructions" +
+                                     (appended ? " (with the appended STOP)" : "") + " but " +
                                      std::string(profile.title) + " has room for " +
                                      std::to_string(profile.program_memory));
 

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cctype>
 #include <cstdint>
+#include <cstring>
 #include <tuple>
 
 namespace tmcl {
@@ -20,8 +21,10 @@ std::string_view SourceFile::line(int number) const {
 int SourceSet::add(SourceFile f) {
   f.line_starts.clear();
   f.line_starts.push_back(0);
-  for (std::size_t i = 0; i < f.text.size(); ++i)
-    if (f.text[i] == '\n' && i + 1 <= f.text.size()) f.line_starts.push_back(static_cast<std::uint32_t>(i + 1));
+  for (const char* p = f.text.data(); (p = static_cast<const char*>(std::memchr(p, '\n', static_cast<std::size_t>(f.text.data() + f.text.size() - p)))) != nullptr;) {
+    ++p;
+    f.line_starts.push_back(static_cast<std::uint32_t>(p - f.text.data()));
+  }
   // A final newline does not start another line.
   if (!f.text.empty() && f.text.back() == '\n') f.line_starts.pop_back();
   files.push_back(std::move(f));
@@ -35,7 +38,7 @@ Diagnostic& Diagnostics::error(SourceLoc loc, std::string message) {
 }
 
 Diagnostic& Diagnostics::warning(SourceLoc loc, std::string message) {
-  if (werror_) return error(loc, std::move(message));
+  if (werror_) return error(loc, std::move(message) + " [-Werror]");
   ++warnings_;
   list_.push_back({Severity::Warning, loc, std::move(message), {}});
   return list_.back();
@@ -115,27 +118,54 @@ std::string Diagnostics::render(const SourceSet& sources) const {
   // In source order, whichever phase found them; location-less ones (limits, files) last.
   std::vector<const Diagnostic*> order;
   for (const auto& d : list_) order.push_back(&d);
-  std::stable_sort(order.begin(), order.end(), [](const Diagnostic* a, const Diagnostic* b) {
-    auto key = [](const Diagnostic* d) {
-      return std::make_tuple(d->loc.file < 0 ? INT32_MAX : d->loc.file, d->loc.line, d->loc.col);
-    };
-    return key(a) < key(b);
-  });
+  // The key of a place is the path to it from its root file: the root's index, then the line of
+  // each #include on the way, then line and column, so included files sort where they are included.
+  auto key = [&sources](const Diagnostic* d) {
+    std::vector<int> k;
+    if (d->loc.file < 0) return std::vector<int>{INT32_MAX};
+    k.push_back(d->loc.col);
+    k.push_back(d->loc.line);
+    int f = d->loc.file;
+    while (sources.files[static_cast<std::size_t>(f)].includer >= 0) {
+      k.push_back(sources.files[static_cast<std::size_t>(f)].include_line);
+      f = sources.files[static_cast<std::size_t>(f)].includer;
+    }
+    k.push_back(f);
+    std::reverse(k.begin(), k.end());
+    return k;
+  };
+  std::vector<std::vector<int>> keys;
+  for (const auto* d : order) keys.push_back(key(d));
+  std::vector<std::size_t> idx(order.size());
+  for (std::size_t i = 0; i < idx.size(); ++i) idx[i] = i;
+  std::stable_sort(idx.begin(), idx.end(), [&keys](std::size_t a, std::size_t b) { return keys[a] < keys[b]; });
+  std::vector<const Diagnostic*> sorted;
+  for (auto i : idx) sorted.push_back(order[i]);
+  order.swap(sorted);
   std::string out;
   for (const auto* d : order) out += render_diagnostic(*d, sources);
   return out;
 }
 
 namespace {
+bool upper_eq(char x, char y) {
+  return std::toupper(static_cast<unsigned char>(x)) == std::toupper(static_cast<unsigned char>(y));
+}
+
+// Optimal string alignment distance, case-insensitive.
 int edit_distance(std::string_view a, std::string_view b) {
-  std::vector<int> prev(b.size() + 1), cur(b.size() + 1);
+  std::vector<int> before(b.size() + 1), prev(b.size() + 1), cur(b.size() + 1);
   for (std::size_t j = 0; j <= b.size(); ++j) prev[j] = static_cast<int>(j);
   for (std::size_t i = 1; i <= a.size(); ++i) {
     cur[0] = static_cast<int>(i);
     for (std::size_t j = 1; j <= b.size(); ++j) {
       bool same = std::toupper(static_cast<unsigned char>(a[i - 1])) == std::toupper(static_cast<unsigned char>(b[j - 1]));
       cur[j] = std::min({prev[j] + 1, cur[j - 1] + 1, prev[j - 1] + (same ? 0 : 1)});
+      // Two swapped letters (SPA for SAP) count as one edit, not two.
+      if (i > 1 && j > 1 && upper_eq(a[i - 1], b[j - 2]) && upper_eq(a[i - 2], b[j - 1]))
+        cur[j] = std::min(cur[j], before[j - 2] + 1);
     }
+    before = prev;
     std::swap(prev, cur);
   }
   return prev[b.size()];

@@ -7,7 +7,17 @@
 
 namespace tmcl::detail {
 
-Resolver::Resolver(std::vector<Unit>& units, Diagnostics& diags) : units_(units), diags_(diags) {}
+Resolver::Resolver(std::vector<Unit>& units, Diagnostics& diags, const SourceSet& sources)
+    : units_(units), diags_(diags), sources_(sources) {}
+
+// The name written at a location (imports keep only their location and upper-cased key).
+std::string Resolver::name_at(SourceLoc loc) const {
+  if (loc.file < 0) return "?";
+  std::string_view line = sources_.files[static_cast<std::size_t>(loc.file)].line(loc.line);
+  auto start = static_cast<std::size_t>(loc.col - 1);
+  if (start >= line.size()) return "?";
+  return std::string(line.substr(start, static_cast<std::size_t>(loc.len)));
+}
 
 void Resolver::link_exports() {
   for (int u = 0; u < static_cast<int>(units_.size()); ++u) {
@@ -37,7 +47,10 @@ void Resolver::link_exports() {
         diags_.note(d, unit.defs[static_cast<std::size_t>(local->second)].loc, "defined here");
         continue;
       }
-      if (!exported_.count(key)) diags_.error(loc, "imported symbol is not exported by any input file");
+      if (!exported_.count(key)) {
+        diags_.error(loc, "imported symbol '" + name_at(loc) + "' is not exported by any input file");
+        unit.failed_imports.insert(key);  // its uses are not reported again
+      }
     }
   }
 }
@@ -81,7 +94,12 @@ std::optional<std::int64_t> Resolver::eval_symbol(int unit, int def, int depth, 
     case EvalState::Todo: break;
   }
   if (depth > kMaxEvalDepth) {
-    diags_.error(use, "constants refer to constants more than " + std::to_string(kMaxEvalDepth) + " levels deep");
+    // Reported once: every constant of the chain fails with it, and so would the rest.
+    if (!depth_reported_)
+      diags_.error(use.file >= 0 ? use : d.loc,
+                   "constants refer to constants more than " + std::to_string(kMaxEvalDepth) + " levels deep");
+    depth_reported_ = true;
+    for (const auto& [bu, bd] : busy_) units_[static_cast<std::size_t>(bu)].defs[static_cast<std::size_t>(bd)].state = EvalState::Failed;
     d.state = EvalState::Failed;
     return std::nullopt;
   }
@@ -107,6 +125,7 @@ std::optional<std::int64_t> Resolver::eval_node(int unit, int index, int depth) 
       std::string key = upper(n.name);
       auto [su, sd] = lookup(unit, key);
       if (su >= 0) return eval_symbol(su, sd, depth, n.loc);
+      if (units_[static_cast<std::size_t>(unit)].failed_imports.count(key)) return std::nullopt;
       auto& d = diags_.error(n.loc, "use of undefined symbol '" + std::string(n.name) + "'");
       std::vector<std::string_view> names;
       const Unit& u = units_[static_cast<std::size_t>(unit)];
@@ -131,37 +150,61 @@ std::optional<std::int64_t> Resolver::eval_node(int unit, int index, int depth) 
       }
     }
     case ExprKind::Binary: {
-      auto a = eval_node(unit, n.lhs, depth);
-      auto b = eval_node(unit, n.rhs, depth);
-      if (!a || !b) return std::nullopt;
-      auto ua = static_cast<std::uint64_t>(*a), ub = static_cast<std::uint64_t>(*b);
-      switch (n.op) {
-        case P::Plus: return static_cast<std::int64_t>(ua + ub);
-        case P::Minus: return static_cast<std::int64_t>(ua - ub);
-        case P::Star: return static_cast<std::int64_t>(ua * ub);
-        case P::Slash:
-        case P::Percent:
-          if (*b == 0) {
-            diags_.error(n.loc, n.op == P::Slash ? "division by zero" : "modulo by zero");
-            return std::nullopt;
-          }
-          if (*b == -1) return n.op == P::Slash ? static_cast<std::int64_t>(0 - ua) : 0;
-          return n.op == P::Slash ? *a / *b : *a % *b;
-        case P::Amp: return static_cast<std::int64_t>(ua & ub);
-        case P::Pipe: return static_cast<std::int64_t>(ua | ub);
-        case P::Caret: return static_cast<std::int64_t>(ua ^ ub);
-        case P::Shl:
-        case P::Shr:
-          if (*b < 0 || *b > 63) {
-            diags_.error(n.loc, "shift count " + std::to_string(*b) + " is outside 0 to 63");
-            return std::nullopt;
-          }
-          return n.op == P::Shl ? static_cast<std::int64_t>(ua << ub) : (*a >> *b);
-        default: return std::nullopt;
+      // Left-associative chains (a + b + c + ...) are evaluated along their left spine in a
+      // loop, so a long flat expression costs no native stack.
+      std::vector<int> spine;
+      int bottom = index;
+      while (true) {
+        const ExprNode& b = units_[static_cast<std::size_t>(unit)].nodes[static_cast<std::size_t>(bottom)];
+        if (b.kind != ExprKind::Binary) break;
+        spine.push_back(bottom);
+        bottom = b.lhs;
       }
+      auto acc = eval_node(unit, bottom, depth);
+      bool ok = acc.has_value();
+      for (auto it = spine.rbegin(); it != spine.rend(); ++it) {
+        const ExprNode op = units_[static_cast<std::size_t>(unit)].nodes[static_cast<std::size_t>(*it)];
+        auto rhs = eval_node(unit, op.rhs, depth);
+        if (!ok || !rhs) {
+          ok = false;
+          continue;
+        }
+        acc = apply(op, *acc, *rhs);
+        ok = acc.has_value();
+      }
+      return ok ? acc : std::nullopt;
     }
   }
   return std::nullopt;
+}
+
+// One binary operation, wrapping like the 64-bit two's complement machine it models.
+std::optional<std::int64_t> Resolver::apply(const ExprNode& n, std::int64_t a, std::int64_t b) {
+  auto ua = static_cast<std::uint64_t>(a), ub = static_cast<std::uint64_t>(b);
+  switch (n.op) {
+    case P::Plus: return static_cast<std::int64_t>(ua + ub);
+    case P::Minus: return static_cast<std::int64_t>(ua - ub);
+    case P::Star: return static_cast<std::int64_t>(ua * ub);
+    case P::Slash:
+    case P::Percent:
+      if (b == 0) {
+        diags_.error(n.loc, n.op == P::Slash ? "division by zero" : "modulo by zero");
+        return std::nullopt;
+      }
+      if (b == -1) return n.op == P::Slash ? static_cast<std::int64_t>(0 - ua) : 0;
+      return n.op == P::Slash ? a / b : a % b;
+    case P::Amp: return static_cast<std::int64_t>(ua & ub);
+    case P::Pipe: return static_cast<std::int64_t>(ua | ub);
+    case P::Caret: return static_cast<std::int64_t>(ua ^ ub);
+    case P::Shl:
+    case P::Shr:
+      if (b < 0 || b > 63) {
+        diags_.error(n.loc, "shift count " + std::to_string(b) + " is outside 0 to 63");
+        return std::nullopt;
+      }
+      return n.op == P::Shl ? static_cast<std::int64_t>(ua << ub) : (a >> b);
+    default: return std::nullopt;
+  }
 }
 
 void Resolver::check_redefinitions() {

@@ -9,6 +9,7 @@
 #include <string>
 #include <string_view>
 #include <unordered_map>
+#include <unordered_set>
 #include <vector>
 
 #include "tmcl/asm/assembler.hpp"
@@ -30,7 +31,11 @@ enum class P : std::uint8_t {
 };
 
 struct Token {
-  Tok kind;
+  Token() = default;
+  explicit Token(Tok k) : kind(k) {}
+  Token(Tok k, P p, std::string_view t, std::int64_t n, int l, int c)
+      : kind(k), punct(p), text(t), number(n), line(l), col(c) {}
+  Tok kind = Tok::End;
   P punct = P::None;
   std::string_view text;  // points into the SourceFile text
   std::int64_t number = 0;
@@ -38,8 +43,40 @@ struct Token {
   int col = 0;
 };
 
-// Splits one file into tokens; reports bad characters and malformed numbers to diags.
-std::vector<Token> lex(const SourceFile& file, int file_index, Diagnostics& diags);
+// Splits one file into tokens on demand (the parser pulls them, so a file is never held as a
+// token array); reports bad characters and malformed numbers to diags.
+class Lexer {
+ public:
+  Lexer(const SourceFile& f, int index, Diagnostics& d) : src_(f.text), file_(index), diags_(d) {}
+  Token next_token();
+
+ private:
+  void step();
+  SourceLoc loc_at(std::size_t p, int len) const;
+  void push(Tok k, std::size_t p, std::size_t len, P punct = P::None, std::int64_t num = 0);
+  bool after_operand() const;
+  char peek(std::size_t k) const { return pos_ + k < src_.size() ? src_[pos_ + k] : '\0'; }
+  void skip_to_eol();
+  void block_comment();
+  void ident();
+  void directive();
+  void include_name();
+  void number();
+  void digits(std::size_t start, std::size_t prefix, int base);
+  bool punct();
+
+  std::string_view src_;
+  int file_;
+  Diagnostics& diags_;
+  Token pending_[2];  // a step produces at most two tokens (#include and its name)
+  int pending_count_ = 0;
+  int pending_head_ = 0;
+  Token last_ = Token(Tok::Newline);
+  std::size_t pos_ = 0;
+  std::size_t line_start_ = 0;
+  int line_ = 1;
+  int finished_ = 0;  // 1: final Newline sent, 2: End sent
+};
 
 // ---- expressions --------------------------------------------------------------------------
 enum class ExprKind : std::uint8_t { Number, Symbol, Unary, Binary };
@@ -99,6 +136,7 @@ struct Unit {
   std::vector<Redefinition> redefinitions;
   std::vector<std::pair<std::string, SourceLoc>> exports;
   std::unordered_map<std::string, SourceLoc> imports;  // upper-cased name -> where imported
+  std::unordered_set<std::string> failed_imports;      // imported but exported by nobody
   int base = 0;  // address of the unit's first instruction after linking
 };
 
@@ -111,7 +149,7 @@ void parse_unit(const std::string& root, const AsmOptions& options, FileReader& 
 // Resolves symbols across units and evaluates expressions.
 class Resolver {
  public:
-  Resolver(std::vector<Unit>& units, Diagnostics& diags);
+  Resolver(std::vector<Unit>& units, Diagnostics& diags, const SourceSet& sources);
   // Value of an expression in a unit; nullopt after reporting an error (or a poisoned symbol).
   std::optional<std::int64_t> eval(int unit, int node);
   // Looks up a symbol as `unit` sees it: its own, then imported exports.
@@ -128,8 +166,12 @@ class Resolver {
  private:
   std::optional<std::int64_t> eval_node(int unit, int node, int depth);
   std::optional<std::int64_t> eval_symbol(int unit, int def, int depth, SourceLoc use);
+  std::optional<std::int64_t> apply(const ExprNode& op, std::int64_t a, std::int64_t b);
+  std::string name_at(SourceLoc loc) const;
   std::vector<Unit>& units_;
   Diagnostics& diags_;
+  const SourceSet& sources_;
+  bool depth_reported_ = false;
   std::unordered_map<std::string, std::pair<int, int>> exported_;  // upper name -> (unit, def)
   std::vector<std::pair<int, int>> busy_;  // constants being evaluated, for cycle messages
 };

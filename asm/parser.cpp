@@ -4,6 +4,7 @@
 // still takes its address so that later labels stay where the programmer expects them.
 #include <algorithm>
 #include <filesystem>
+#include <unordered_set>
 
 #include "internal.hpp"
 
@@ -26,6 +27,15 @@ std::string operand_names(const OpInfo& op) {
   return s;
 }
 
+bool is_keyword_name(const std::string& upper_name) {
+  static const std::unordered_set<std::string> names = [] {
+    std::unordered_set<std::string> n;
+    for (const auto& k : all_keywords()) n.insert(upper(k.name));
+    return n;
+  }();
+  return names.count(upper_name) > 0;
+}
+
 class Parser {
  public:
   Parser(const AsmOptions& o, FileReader& r, SourceSet& s, Diagnostics& d, Unit& u)
@@ -33,31 +43,39 @@ class Parser {
 
   void define_command_line(const std::string& name, const std::string& value) {
     SourceFile f;
-    f.name = "<command line: -D " + name + ">";
+    f.name = "<command line -D " + name + ">";
     f.path = f.name;
     f.text = value;
     int idx = sources_.add(std::move(f));
-    toks_ = lex(sources_.files[static_cast<std::size_t>(idx)], idx, diags_);
-    i_ = 0;
+    Lexer lexer(sources_.files[static_cast<std::size_t>(idx)], idx, diags_);
+    start(lexer, idx);
     int e = expr(0);
-    if (e >= 0 && at_eol()) {
+    if (e >= 0 && !at_eol()) {
+      diags_.error(loc(cur()), "unexpected " + describe(cur()) + " after the value of -D " + name);
+      e = -1;
+    }
+    std::string key = upper(name);
+    if (auto it = unit_.by_name.find(key); it != unit_.by_name.end()) {
+      if (e >= 0) unit_.redefinitions.push_back({it->second, e, SourceLoc{idx, 1, 1, static_cast<int>(value.size())}});
+      return;
+    }
+    {
       SymDef d;
       d.name = name;
       d.kind = SymbolKind::Constant;
       d.expr = e;
       d.loc = SourceLoc{idx, 1, 1, static_cast<int>(value.size())};
       d.from_command_line = true;
-      unit_.by_name[upper(name)] = static_cast<int>(unit_.defs.size());
+      if (e < 0) d.state = EvalState::Failed;  // reported once, here; its uses stay quiet
+      unit_.by_name[key] = static_cast<int>(unit_.defs.size());
       unit_.defs.push_back(std::move(d));
-    } else if (e >= 0) {
-      diags_.error(loc(cur()), "unexpected text after the value of -D " + name);
     }
   }
 
   void parse_root(const std::string& path) {
     std::string text;
     if (!reader_.read(path, text)) {
-      diags_.error(SourceLoc{}, "cannot read '" + path + "'");
+      diags_.error(SourceLoc{}, "cannot read '" + path + "': " + reader_.last_error());
       return;
     }
     SourceFile f;
@@ -68,7 +86,11 @@ class Parser {
       diags_.error(SourceLoc{}, "'" + path + "' is larger than the limit of " + std::to_string(kMaxFileBytes >> 20) + " MiB");
       return;
     }
-    int idx = sources_.add(std::move(f));
+    // Rough sizes from the file's length save most regrowing on large programs.
+    unit_.stmts.reserve(f.text.size() / 40);
+    unit_.nodes.reserve(f.text.size() / 20);
+    int idx = add_source(std::move(f));
+    if (idx < 0) return;
     unit_.root_file = idx;
     std::string key = key_for(path);
     included_.push_back(key);
@@ -77,15 +99,31 @@ class Parser {
 
  private:
   // ---- token cursor ----
-  const Token& cur() const { return toks_[i_]; }
-  const Token& next() const { return toks_[std::min(i_ + 1, toks_.size() - 1)]; }
+  const Token& cur() const { return win_[0]; }
+  const Token& next() const { return win_[1]; }
+  void advance() {
+    prev_ = win_[0];
+    win_[0] = win_[1];
+    if (win_[1].kind != Tok::End) win_[1] = lexer_->next_token();
+  }
+  void start(Lexer& lexer, int file) {
+    lexer_ = &lexer;
+    file_ = file;
+    win_[0] = lexer.next_token();
+    win_[1] = win_[0].kind == Tok::End ? win_[0] : lexer.next_token();
+  }
   bool at_eol() const { return cur().kind == Tok::Newline || cur().kind == Tok::End; }
   bool is_punct(P p) const { return cur().kind == Tok::Punct && cur().punct == p; }
   SourceLoc loc(const Token& t) const {
     return SourceLoc{file_, t.line, t.col, std::max(1, static_cast<int>(t.text.size()))};
   }
+  // Stretches a location to the end of the last consumed token, when on the same line.
+  void extend_to_previous(SourceLoc& l) const {
+    if (prev_.line == l.line && prev_.col >= l.col)
+      l.len = prev_.col + static_cast<int>(prev_.text.size()) - l.col;
+  }
   void skip_line() {
-    while (!at_eol()) ++i_;
+    while (!at_eol()) advance();
   }
   // Reports an error at the current token unless the lexer already did (a Bad token).
   void fail(const std::string& msg) {
@@ -103,21 +141,38 @@ class Parser {
   // ---- files ----
   void parse_file(int file, int depth, const std::string& key) {
     stack_.push_back(key);
-    auto saved_toks = std::move(toks_);
-    auto saved_i = i_;
+    Lexer* saved_lexer = lexer_;
+    Token saved_win[2] = {win_[0], win_[1]};
     int saved_file = file_;
-    toks_ = lex(sources_.files[static_cast<std::size_t>(file)], file, diags_);
-    i_ = 0;
-    file_ = file;
+    Lexer lexer(sources_.files[static_cast<std::size_t>(file)], file, diags_);
+    start(lexer, file);
     while (cur().kind != Tok::End) {
       statement(depth);
       if (!at_eol()) fail("unexpected " + describe(cur()) + " at the end of the statement");
-      if (cur().kind == Tok::Newline) ++i_;
+      if (cur().kind == Tok::Newline) advance();
     }
-    toks_ = std::move(saved_toks);
-    i_ = saved_i;
+    lexer_ = saved_lexer;
+    win_[0] = saved_win[0];
+    win_[1] = saved_win[1];
     file_ = saved_file;
     stack_.pop_back();
+  }
+
+  // Adds a loaded file; a UTF-8 byte-order mark (Windows editors write one) is dropped. Returns
+  // -1 when a line is too long to be a source line (the file is then not parsed).
+  int add_source(SourceFile f) {
+    if (f.text.rfind("\xEF\xBB\xBF", 0) == 0) f.text.erase(0, 3);
+    int idx = sources_.add(std::move(f));
+    const SourceFile& added = sources_.files[static_cast<std::size_t>(idx)];
+    for (std::size_t l = 0; l < added.line_starts.size(); ++l) {
+      std::size_t end = l + 1 < added.line_starts.size() ? added.line_starts[l + 1] : added.text.size();
+      if (end - added.line_starts[l] > kMaxLineBytes) {
+        diags_.error(SourceLoc{idx, static_cast<int>(l + 1), 1, 1},
+                     "line is longer than " + std::to_string(kMaxLineBytes) + " bytes");
+        return -1;
+      }
+    }
+    return idx;
   }
 
   std::string key_for(const std::string& path) const {
@@ -126,14 +181,14 @@ class Parser {
 
   void include(int depth) {
     Token dir = cur();
-    ++i_;
+    advance();
     if (cur().kind != Tok::IncludeName || cur().text.empty()) return fail("#include needs a file name");
     Token nt = cur();
-    ++i_;
+    advance();
     std::string name(nt.text);
     if (name.front() == '"' || name.front() == '<') name = name.substr(1, name.size() - 2);
     if (name.empty()) return diags_.error(loc(nt), "#include needs a file name"), void();
-    if (depth + 1 >= kMaxIncludeDepth) {
+    if (depth + 1 > kMaxIncludeDepth) {
       diags_.error(loc(nt), "includes nested more than " + std::to_string(kMaxIncludeDepth) + " deep");
       return;
     }
@@ -193,14 +248,14 @@ class Parser {
     f.text = std::move(text);
     f.includer = file_;
     f.include_line = nt.line;
-    int idx = sources_.add(std::move(f));
-    parse_file(idx, depth + 1, key);
+    int idx = add_source(std::move(f));
+    if (idx >= 0) parse_file(idx, depth + 1, key);
   }
 
   // #export NAME, NAME... / #import NAME, NAME...
   void name_list(bool exporting) {
     std::string what = exporting ? "#export" : "#import";
-    ++i_;
+    advance();
     if (at_eol()) return fail(what + " needs at least one name");
     while (true) {
       if (cur().kind != Tok::Ident) return fail(what + " expects a name, found " + describe(cur()));
@@ -210,10 +265,10 @@ class Parser {
         unit_.exports.emplace_back(name, l);
       else
         unit_.imports.emplace(upper(name), l);
-      ++i_;
+      advance();
       if (at_eol()) return;
       if (!is_punct(P::Comma)) return fail("expected ',' between names, found " + describe(cur()));
-      ++i_;
+      advance();
     }
   }
 
@@ -233,7 +288,8 @@ class Parser {
     // Labels: NAME ':' (any number of them).
     while (cur().kind == Tok::Ident && next().kind == Tok::Punct && next().punct == P::Colon) {
       define_label(cur());
-      i_ += 2;
+      advance();
+      advance();
     }
     if (at_eol()) return;
     const Token& t = cur();
@@ -266,7 +322,8 @@ class Parser {
 
   void constant() {
     Token name = cur();
-    i_ += 2;
+    advance();
+    advance();
     if (at_eol()) return fail("expected a value after '='");
     int e = expr(0);
     std::string key = upper(name.text);
@@ -294,6 +351,9 @@ class Parser {
       unit_.redefinitions.push_back({it->second, e, loc(name)});
       return;
     }
+    if (is_keyword_name(key))
+      diags_.warning(loc(name), "constant '" + std::string(name.text) + "' has the name of a keyword; where " +
+                                    "that keyword may stand, the keyword wins");
     SymDef d;
     d.name = std::string(name.text);
     d.kind = SymbolKind::Constant;
@@ -311,28 +371,35 @@ class Parser {
     if (upper(cur().text) != ".RAW") {
       auto& d = diags_.error(loc(cur()), "unknown directive '" + std::string(cur().text) + "'");
       diags_.note(d, loc(cur()), "the raw instruction form is '.raw OPCODE, TYPE, MOTOR, VALUE'");
+      s.count = -1;
       unit_.stmts.push_back(s);
       return skip_line();
     }
-    ++i_;
+    advance();
+    s.count = -1;  // until all four operands have parsed
     for (int k = 0; k < 4; ++k) {
       if (k > 0) {
         if (!is_punct(P::Comma)) {
           unit_.stmts.push_back(s);
           return fail(".raw expects 4 operands (opcode, type, motor, value), found " + describe(cur()));
         }
-        ++i_;
+        advance();
       }
       Operand o;
       o.loc = loc(cur());
       o.expr = expr(0);
+      extend_to_previous(o.loc);
       if (o.expr < 0) {
         unit_.stmts.push_back(s);
         return skip_line();
       }
       s.operands[static_cast<std::size_t>(k)] = o;
-      s.count = k + 1;
     }
+    if (is_punct(P::Comma)) {
+      unit_.stmts.push_back(s);
+      return fail("too many operands: .raw takes 4 (opcode, type, motor, value)");
+    }
+    s.count = 4;
     unit_.stmts.push_back(s);
   }
 
@@ -343,17 +410,23 @@ class Parser {
     s.address = static_cast<int>(unit_.stmts.size());
     s.op = op_by_mnemonic(mn.text);
     if (!s.op) {
-      auto& d = diags_.error(loc(mn), "unknown instruction mnemonic '" + std::string(mn.text) + "'");
       std::string hint = closest_match(mn.text, mnemonic_names());
-      if (!hint.empty()) diags_.note(d, loc(mn), "did you mean '" + hint + "'?");
-      if (next().kind == Tok::Newline || next().kind == Tok::End)
+      bool alone = next().kind == Tok::Newline || next().kind == Tok::End;
+      if (alone && hint.empty()) {
+        // Most likely a label without its ':'; define it so that its uses are not errors too.
+        auto& d = diags_.error(loc(mn), "unknown instruction mnemonic '" + std::string(mn.text) + "'");
         diags_.note(d, loc(mn), "a label needs a ':' after its name");
+        define_label(mn);
+        return skip_line();
+      }
+      auto& d = diags_.error(loc(mn), "unknown instruction mnemonic '" + std::string(mn.text) + "'");
+      if (!hint.empty()) diags_.note(d, loc(mn), "did you mean '" + hint + "'?");
       s.op = nullptr;
       s.count = -1;  // poisoned: takes its address, encodes nothing
       unit_.stmts.push_back(s);
       return skip_line();
     }
-    ++i_;
+    advance();
     const auto& specs = s.op->operands;
     std::size_t want = specs.size();
     for (std::size_t k = 0; k < want; ++k) {
@@ -373,7 +446,7 @@ class Parser {
           return fail("expected ',' after operand " + std::to_string(k) + " of " + std::string(s.op->mnemonic) +
                       ", found " + describe(cur()));
         }
-        ++i_;
+        advance();
       }
       if (at_eol()) {
         s.count = -1;
@@ -391,13 +464,14 @@ class Parser {
       if (spec.keywords != KwSet::None && lone_ident) {
         if (auto v = keyword_value(spec.keywords, cur().text)) {
           o.keyword = *v;
-          ++i_;
+          advance();
           s.operands[k] = o;
           continue;
         }
       }
       o.lone_symbol = lone_ident;
       o.expr = expr(0);
+      extend_to_previous(o.loc);
       if (o.expr < 0) {
         s.count = -1;
         unit_.stmts.push_back(s);
@@ -454,7 +528,7 @@ class Parser {
     while (cur().kind == Tok::Punct && precedence(cur().punct) >= min_prec) {
       Token op = cur();
       int prec = precedence(op.punct);
-      ++i_;
+      advance();
       int rhs = expr(depth + 1, prec + 1);
       if (rhs < 0) return -1;
       ExprNode n{ExprKind::Binary, op.punct, 0, {}, lhs, rhs, loc(op)};
@@ -470,13 +544,13 @@ class Parser {
     }
     const Token t = cur();
     if (t.kind == Tok::Punct && (t.punct == P::Minus || t.punct == P::Plus || t.punct == P::Tilde)) {
-      ++i_;
+      advance();
       int operand = unary(depth + 1);
       if (operand < 0) return -1;
       return node(ExprNode{ExprKind::Unary, t.punct, 0, {}, operand, -1, loc(t)});
     }
     if (t.kind == Tok::Punct && t.punct == P::LParen) {
-      ++i_;
+      advance();
       int inner = expr(depth + 1);
       if (inner < 0) return -1;
       if (!is_punct(P::RParen)) {
@@ -484,15 +558,15 @@ class Parser {
         diags_.note(d, loc(t), "to match this '('");
         return -1;
       }
-      ++i_;
+      advance();
       return inner;
     }
     if (t.kind == Tok::Number) {
-      ++i_;
+      advance();
       return node(ExprNode{ExprKind::Number, P::None, t.number, {}, -1, -1, loc(t)});
     }
     if (t.kind == Tok::Ident && t.text.front() != '.') {
-      ++i_;
+      advance();
       return node(ExprNode{ExprKind::Symbol, P::None, 0, t.text, -1, -1, loc(t)});
     }
     if (t.kind != Tok::Bad) diags_.error(loc(t), "expected a value, found " + describe(t));
@@ -504,8 +578,9 @@ class Parser {
   SourceSet& sources_;
   Diagnostics& diags_;
   Unit& unit_;
-  std::vector<Token> toks_;
-  std::size_t i_ = 0;
+  Lexer* lexer_ = nullptr;
+  Token win_[2];
+  Token prev_;  // the token consumed last, for the extent of an operand  // the current token and the one after it
   int file_ = -1;
   std::vector<std::string> stack_;     // include chain (keys)
   std::vector<std::string> included_;  // every file included so far (keys)

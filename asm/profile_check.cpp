@@ -57,8 +57,9 @@ class Checker {
     bool coord_op = has_role(info, Role::Coord);
     if (has_role(info, Role::Motor) && ins_.motor >= p_.motors && !(coord_op && ins_.motor == 255))
       d_.warning(operand_loc(s_, Field::Motor), "motor " + std::to_string(ins_.motor) + " does not exist on " +
-                                                    std::string(p_.title) + " (motors 0 to " +
-                                                    std::to_string(p_.motors - 1) + ")");
+                                                    std::string(p_.title) +
+                                                    (p_.motors == 1 ? std::string(" (it has motor 0 only)")
+                                                                    : " (motors 0 to " + std::to_string(p_.motors - 1) + ")"));
     if (has_role(info, Role::AxisParam)) axis(op);
     if (has_role(info, Role::GlobalParam)) global(op);
     for (const auto& spec : info.operands) {
@@ -127,7 +128,7 @@ class Checker {
       d_.warning(at, what + " cannot be read");
     if (writes_immediate(op) && (p.access & kWrite) && !in_range(ins_.value, p.min, p.max))
       d_.warning(operand_loc(s_, Field::Value),
-                 "value " + std::to_string(ins_.value) + " is outside the range of " + what + " (" + range_text(p) + ")");
+                 "value " + std::to_string(ins_.value) + " is outside the range of " + what + ": " + range_text(p));
   }
 
   const Profile& p_;

@@ -1,5 +1,7 @@
 // Reading source files from disk (or standard input) for the assembler.
+#include <cerrno>
 #include <cstdio>
+#include <cstring>
 #include <iostream>
 #include <iterator>
 #include <sys/stat.h>
@@ -14,9 +16,19 @@ bool DiskReader::read(const std::string& path, std::string& out) {
     return !std::cin.bad();
   }
   struct stat st {};
-  if (::stat(path.c_str(), &st) != 0 || !S_ISREG(st.st_mode)) return false;
+  if (::stat(path.c_str(), &st) != 0) {
+    error_ = std::strerror(errno);
+    return false;
+  }
+  if (S_ISDIR(st.st_mode)) {
+    error_ = "it is a directory";
+    return false;
+  }
   std::FILE* f = std::fopen(path.c_str(), "rb");
-  if (!f) return false;
+  if (!f) {
+    error_ = std::strerror(errno);
+    return false;
+  }
   out.clear();
   char buf[65536];
   std::size_t n;
@@ -25,6 +37,7 @@ bool DiskReader::read(const std::string& path, std::string& out) {
     if (out.size() > detail::kMaxFileBytes) break;  // the caller reports the size limit
   }
   bool ok = !std::ferror(f);
+  if (!ok) error_ = "read error";
   std::fclose(f);
   return ok;
 }

@@ -149,6 +149,7 @@ int main(int argc, char** argv) {
       std::string line, record;
       int runs = 0;
       while (std::getline(lines, line)) {
+        if (!line.empty() && line.back() == '\r') line.pop_back();  // CRLF case files
         std::size_t at = line.find("RUN:");
         if (at == std::string::npos || !(line.rfind("//", 0) == 0 || line.rfind(";", 0) == 0)) continue;
         std::string cmd = line.substr(at + 4);
@@ -160,7 +161,7 @@ int main(int argc, char** argv) {
         std::string stdin_file;
         auto lt = cmd.find(" < ");
         if (lt != std::string::npos) {
-          stdin_file = (c.parent_path() / split_args(cmd.substr(lt + 3))[0]).string();
+          stdin_file = fs::absolute(c.parent_path() / split_args(cmd.substr(lt + 3))[0]).string();
           cmd = cmd.substr(0, lt);
         }
         auto args = split_args(cmd);

@@ -1,4 +1,4 @@
-// Whole-file reading and crash-safe writing (temporary file + fsync + rename).
+// Whole-file reading and crash-safe writing (temporary file + rename, fsync on request).
 #include "tmcl/fileio.hpp"
 
 #include <cerrno>
@@ -50,7 +50,8 @@ static bool write_all(int fd, const std::vector<std::uint8_t>& data) {
   return true;
 }
 
-bool write_file_atomic(const std::string& path, const std::vector<std::uint8_t>& data, std::string& error) {
+bool write_file_atomic(const std::string& path, const std::vector<std::uint8_t>& data, std::string& error,
+                       bool durable) {
   if (path == "-") {
     if (!write_all(1, data)) {
       error = std::string("cannot write to standard output: ") + std::strerror(errno);
@@ -58,13 +59,26 @@ bool write_file_atomic(const std::string& path, const std::vector<std::uint8_t>&
     }
     return true;
   }
+  // A device or pipe (-o /dev/null, a FIFO) is written into, never replaced by a regular file.
+  struct stat st {};
+  if (::stat(path.c_str(), &st) == 0 && !S_ISREG(st.st_mode)) {
+    if (S_ISDIR(st.st_mode)) {
+      error = "cannot write '" + path + "': it is a directory";
+      return false;
+    }
+    int dev = ::open(path.c_str(), O_WRONLY | O_CLOEXEC);
+    bool ok = dev >= 0 && write_all(dev, data);
+    if (!ok) error = "cannot write '" + path + "': " + std::strerror(errno);
+    if (dev >= 0) ::close(dev);
+    return ok;
+  }
   std::string tmp = path + ".tmp." + std::to_string(::getpid());
   int fd = ::open(tmp.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0666);
   if (fd < 0) {
-    error = "cannot create '" + tmp + "': " + std::strerror(errno);
+    error = "cannot write '" + path + "': " + std::strerror(errno);
     return false;
   }
-  bool ok = write_all(fd, data) && ::fsync(fd) == 0;
+  bool ok = write_all(fd, data) && (!durable || ::fsync(fd) == 0);
   int saved = errno;
   ok = (::close(fd) == 0) && ok;
   if (!ok || ::rename(tmp.c_str(), path.c_str()) != 0) {

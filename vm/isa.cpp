@@ -3,6 +3,8 @@
 
 #include <algorithm>
 #include <cctype>
+#include <unordered_map>
+#include <vector>
 
 namespace tmcl {
 namespace {
@@ -61,10 +63,31 @@ constexpr bool fields_unique() {
 }
 static_assert(fields_unique(), "an opcode fills one field twice");
 
+constexpr char ascii_upper(char c) { return c >= 'a' && c <= 'z' ? static_cast<char>(c - 'a' + 'A') : c; }
+
+// Mnemonics and keywords are short: lookups copy the word upper-cased into a small key.
+struct Key {
+  char text[8]{};
+  std::size_t size = 0;
+  static bool make(std::string_view s, Key& k) {
+    if (s.size() > sizeof k.text) return false;
+    for (std::size_t i = 0; i < s.size(); ++i) k.text[i] = ascii_upper(s[i]);
+    k.size = s.size();
+    return true;
+  }
+  std::string_view view() const { return {text, size}; }
+};
+
 struct OpIndex {
   std::array<const OpInfo*, 256> by_code{};
+  std::unordered_map<std::string_view, const OpInfo*> by_mnemonic;
+  std::array<std::vector<const Keyword*>, 16> by_set;
   OpIndex() {
-    for (const auto& op : kOps) by_code[op.code] = &op;
+    for (const auto& op : kOps) {
+      by_code[op.code] = &op;
+      if (!op.mnemonic.empty()) by_mnemonic.emplace(op.mnemonic, &op);
+    }
+    for (const auto& k : kKeywords) by_set[static_cast<std::size_t>(k.set)].push_back(&k);
   }
 };
 const OpIndex& index() {
@@ -85,16 +108,17 @@ std::span<const OpInfo> all_ops() { return kOps; }
 const OpInfo* op_info(std::uint8_t code) { return index().by_code[code]; }
 
 const OpInfo* op_by_mnemonic(std::string_view mnemonic) {
-  for (const auto& op : kOps)
-    if (!op.mnemonic.empty() && iequals(op.mnemonic, mnemonic)) return &op;
-  return nullptr;
+  Key k;
+  if (!Key::make(mnemonic, k)) return nullptr;
+  auto it = index().by_mnemonic.find(k.view());
+  return it == index().by_mnemonic.end() ? nullptr : it->second;
 }
 
 std::span<const Keyword> all_keywords() { return kKeywords; }
 
 std::optional<std::uint8_t> keyword_value(KwSet set, std::string_view name) {
-  for (const auto& k : kKeywords)
-    if (k.set == set && iequals(k.name, name)) return k.value;
+  for (const Keyword* k : index().by_set[static_cast<std::size_t>(set)])
+    if (iequals(k->name, name)) return k->value;
   return std::nullopt;
 }
 

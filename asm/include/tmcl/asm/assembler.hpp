@@ -25,12 +25,18 @@ class FileReader {
   virtual ~FileReader() = default;
   // Reads `path` into `out`; false when it does not exist or cannot be read.
   virtual bool read(const std::string& path, std::string& out) = 0;
+  // Why the last read failed ("No such file or directory"), for messages.
+  virtual std::string last_error() const { return "cannot be read"; }
 };
 
 // Reads from the file system; "-" is standard input.
 class DiskReader final : public FileReader {
  public:
   bool read(const std::string& path, std::string& out) override;
+  std::string last_error() const override { return error_; }
+
+ private:
+  std::string error_;
 };
 
 // Serves files from memory (tests, fuzzers, embedders); paths are compared as given.
@@ -38,6 +44,7 @@ class MemoryReader final : public FileReader {
  public:
   std::map<std::string, std::string> files;
   bool read(const std::string& path, std::string& out) override;
+  std::string last_error() const override { return "No such file or directory"; }
 };
 
 // The include files bundled with tmcl (include_files/), compiled into the library.

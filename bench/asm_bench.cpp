@@ -1,0 +1,149 @@
+// Assembler benchmarks (issue 2): throughput on a generated program of about a million lines
+// (labels, constants, expressions, comments) compared with GNU as on an x86 file of the same
+// line count, and the wall time of a whole tmclasm process on a 500-line program.
+// Prints "figure<TAB>goal<TAB>measured" rows for bench/run_all.sh.
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <fstream>
+#include <string>
+
+#include "tmcl/asm/assembler.hpp"
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double seconds_since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
+
+// A TMCL program of `lines` lines in the style of real programs, with every construct the
+// assembler has to handle on its hot path.
+std::string tmcl_program(int lines) {
+  std::string s;
+  s.reserve(static_cast<std::size_t>(lines) * 40);
+  int n = 0;
+  for (int i = 0; n < lines; ++i) {
+    s += "// block " + std::to_string(i) + ": move and wait\n";
+    s += "Speed" + std::to_string(i) + " = " + std::to_string(i % 5000) + " * 16 + (Base & 0xFF)\n";
+    s += "L" + std::to_string(i) + ":\n";
+    s += "  SAP 4, 0, Speed" + std::to_string(i) + " + 1   // maximum speed\n";
+    s += "  MVP ABS, 0, -" + std::to_string(i * 7) + "\n";
+    s += "  WAIT POS, 0, 0\n";
+    s += "  CALC MUL, (1 << 4) | %101\n";
+    s += "  JC GE, L" + std::to_string(i) + "\n";
+    n += 8;
+  }
+  s += "Base = $1F\n";
+  return s;
+}
+
+// An x86 file of the same shape for GNU as.
+std::string x86_program(int lines) {
+  std::string s;
+  s.reserve(static_cast<std::size_t>(lines) * 40);
+  int n = 0;
+  for (int i = 0; n < lines; ++i) {
+    s += "# block " + std::to_string(i) + ": move and wait\n";
+    s += ".set Speed" + std::to_string(i) + ", " + std::to_string(i % 5000) + " * 16 + (Base & 0xFF)\n";
+    s += "L" + std::to_string(i) + ":\n";
+    s += "  movl $Speed" + std::to_string(i) + " + 1, %eax   # maximum speed\n";
+    s += "  movl $-" + std::to_string(i * 7) + ", %ebx\n";
+    s += "  cmpl %eax, %ebx\n";
+    s += "  orl $((1 << 4) | 5), %ecx\n";
+    s += "  jge L" + std::to_string(i) + "\n";
+    n += 8;
+  }
+  s += ".set Base, 0x1F\n";
+  return s;
+}
+
+// Wall time of running argv to completion (output discarded); negative when it could not run.
+double run_process(const std::vector<std::string>& argv) {
+  auto t = Clock::now();
+  pid_t pid = ::fork();
+  if (pid == 0) {
+    std::FILE* null = std::fopen("/dev/null", "w");
+    if (null) {
+      ::dup2(fileno(null), 1);
+      ::dup2(fileno(null), 2);
+    }
+    std::vector<char*> args;
+    for (const auto& a : argv) args.push_back(const_cast<char*>(a.c_str()));
+    args.push_back(nullptr);
+    ::execvp(args[0], args.data());
+    _exit(127);
+  }
+  int st = 0;
+  ::waitpid(pid, &st, 0);
+  if (!WIFEXITED(st) || WEXITSTATUS(st) != 0) return -1;
+  return seconds_since(t);
+}
+
+}  // namespace
+
+int main() {
+  const int lines = 1'000'000;
+  std::string source = tmcl_program(lines);
+  int counted = static_cast<int>(std::count(source.begin(), source.end(), '\n'));
+
+  tmcl::MemoryReader reader;
+  reader.files["bench.tmc"] = source;
+  tmcl::AsmOptions opts;
+  double best = 1e9;
+  std::size_t instructions = 0;
+  for (int rep = 0; rep < 3; ++rep) {
+    auto t = Clock::now();
+    auto r = tmcl::assemble({"bench.tmc"}, opts, reader);
+    best = std::min(best, seconds_since(t));
+    if (!r.ok()) {
+      std::fprintf(stderr, "%s", r.diags.render(r.sources).c_str());
+      return 1;
+    }
+    instructions = r.program.size();
+  }
+  double rate = counted / best;
+  std::printf("tmclasm throughput, %d-line program (%zu instructions)\t>= 10e6 lines/s\t%.1fe6 lines/s (%.0f ms)\n",
+              counted, instructions, rate / 1e6, best * 1e3);
+
+  // GNU as on the same number of lines, whole process.
+  std::string dir = "/tmp/tmcl-bench-" + std::to_string(::getpid());
+  std::string mkdir = "mkdir -p " + dir;
+  if (std::system(mkdir.c_str()) != 0) return 1;
+  std::ofstream(dir + "/bench.s") << x86_program(lines);
+  std::ofstream(dir + "/bench.tmc") << source;
+  double as_best = 1e9;
+  for (int rep = 0; rep < 3; ++rep) {
+    double t = run_process({"as", "-o", dir + "/bench.o", dir + "/bench.s"});
+    if (t < 0) {
+      as_best = -1;
+      break;
+    }
+    as_best = std::min(as_best, t);
+  }
+  double cli_best = 1e9;
+  for (int rep = 0; rep < 3; ++rep) {
+    double t = run_process({TMCL_TMCLASM_PATH, "-o", dir + "/bench.bin", dir + "/bench.tmc"});
+    cli_best = std::min(cli_best, t);
+  }
+  if (as_best > 0)
+    std::printf("tmclasm vs GNU as, %d lines, whole process\t>= 5x faster\t%.1fx (tmclasm %.0f ms, as %.0f ms)\n",
+                counted, as_best / cli_best, cli_best * 1e3, as_best * 1e3);
+  else
+    std::printf("tmclasm vs GNU as, %d lines, whole process\t>= 5x faster\tGNU as not available\n", counted);
+
+  // A 500-line program, process start included.
+  std::ofstream(dir + "/small.tmc") << tmcl_program(500);
+  const int runs = 200;
+  std::vector<double> times;
+  for (int i = 0; i < runs; ++i)
+    times.push_back(run_process({TMCL_TMCLASM_PATH, "-o", dir + "/small.bin", dir + "/small.tmc"}));
+  std::sort(times.begin(), times.end());
+  std::printf("tmclasm, 500-line program, process start included (median of %d)\t< 5 ms\t%.2f ms\n", runs,
+              times[times.size() / 2] * 1e3);
+  std::string rm = "rm -rf " + dir;
+  if (std::system(rm.c_str()) != 0) return 1;
+  return 0;
+}
