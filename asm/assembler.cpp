@@ -1,5 +1,7 @@
-// The assembler pipeline in one place: read and parse every root file into a unit, place the
-// units one after another, resolve names across them, encode, append STOP, check the target.
+// The assembler pipeline in one place: read the inputs (sources into units, objects, libraries),
+// choose library members, place the units one after another, choose the target, resolve names
+// across units, encode sources and relocate objects, append STOP, check the target; with -c,
+// build the object instead of a program.
 #include <algorithm>
 
 #include "internal.hpp"
@@ -43,26 +45,40 @@ class Encoder {
  public:
   Encoder(Resolver& r, Diagnostics& d) : resolver_(r), diags_(d) {}
 
-  // Encodes statement `s` of unit `u`; false when it could not be encoded.
-  bool encode(int u, const Stmt& s, Instruction& ins) {
+  // Encodes statement `s` of unit `u`; false when it could not be encoded. In an object (-c) an
+  // operand that depends on the unit's base or an import becomes a relocation in `relocs` and
+  // its field stays 0; its range is checked when linking.
+  bool encode(int u, const Stmt& s, Instruction& ins, std::vector<ObjReloc>& relocs) {
     if (s.count < 0) return false;
     bool ok = true;
     if (!s.op) {  // .raw
       static constexpr const char* names[] = {"opcode", "type", "motor", "value"};
+      static constexpr Field fields[] = {Field::Type, Field::Type, Field::Motor, Field::Value};
       std::int64_t v[4]{};
       for (int k = 0; k < 4; ++k) {
-        auto r = resolver_.eval(u, s.operands[static_cast<std::size_t>(k)].expr);
+        const Operand& o = s.operands[static_cast<std::size_t>(k)];
+        std::optional<Value> r;
+        if (k == 0) {
+          auto n = resolver_.eval(u, o.expr);
+          if (n) r = Value{*n, kAbsolute};
+        } else {
+          r = resolver_.eval_value(u, o.expr, o.loc);
+        }
         if (!r) {
           ok = false;
           continue;
         }
+        if (r->term != kAbsolute) {
+          relocs.push_back(reloc(s, fields[k], *r));
+          continue;
+        }
         FieldRange fr = k == 3 ? range_of(Field::Value) : range_of(Field::Type);
-        if (*r < fr.min || *r > fr.max) {
-          diags_.error(s.operands[static_cast<std::size_t>(k)].loc, "value " + std::to_string(*r) + " does not fit the " +
-                                                                        names[k] + " field (" + fr.text + ")");
+        if (r->k < fr.min || r->k > fr.max) {
+          diags_.error(o.loc, "value " + std::to_string(r->k) + " does not fit the " + names[k] + " field (" +
+                                  fr.text + ")");
           ok = false;
         }
-        v[k] = *r;
+        v[k] = r->k;
       }
       if (!ok) return false;
       ins.op = static_cast<std::uint8_t>(v[0]);
@@ -84,12 +100,16 @@ class Encoder {
         ok = false;
         continue;
       } else {
-        auto r = resolver_.eval(u, o.expr);
+        auto r = resolver_.eval_value(u, o.expr, o.loc);
         if (!r) {
           ok = false;
           continue;
         }
-        v = *r;
+        if (r->term != kAbsolute) {
+          relocs.push_back(reloc(s, spec.field, *r));
+          continue;
+        }
+        v = r->k;
       }
       FieldRange fr = range_of(spec.field);
       if (v < fr.min || v > fr.max) {
@@ -110,7 +130,17 @@ class Encoder {
   }
 
  private:
-  bool unknown_name(int u, const Operand& o) { return resolver_.lookup(u, upper(resolver_.name_of(u, o.expr))).first < 0; }
+  static ObjReloc reloc(const Stmt& s, Field f, Value v) {
+    ObjReloc r;
+    r.index = static_cast<std::uint32_t>(s.address);
+    r.field = f;
+    r.term = v.term == kBaseTerm ? ObjTerm::Base : ObjTerm::Symbol;
+    r.symbol = v.term == kBaseTerm ? kNoIndex : static_cast<std::uint32_t>(v.term);  // import index for now
+    r.addend = v.k;
+    return r;
+  }
+
+  bool unknown_name(int u, const Operand& o) { return !resolver_.known(u, upper(resolver_.name_of(u, o.expr))); }
 
   // A name in a keyword position that is neither a keyword nor a symbol: say which keywords fit.
   void unknown_keyword(int u, KwSet set, const Operand& o) {
@@ -139,70 +169,109 @@ AsmResult assemble(const std::vector<std::string>& files, const AsmOptions& opti
   using namespace detail;
   AsmResult out;
   out.diags.set_warnings_are_errors(options.warnings_are_errors);
-  const Profile& profile = options.profile ? *options.profile : generic_profile();
+  const bool reloc = options.relocatable;
+  if (reloc && files.size() != 1) {
+    out.diags.error(SourceLoc{}, "-c assembles one source file into one object at a time");
+    return out;
+  }
 
-  // read, lex, parse
+  // read: parse sources into units, read objects and libraries
+  Storage store;
+  std::vector<InputSlot> slots;
+  read_inputs(files, options, reader, out, store, slots);
+
+  // link only the library members that resolve an import
+  choose_members(slots, out.sources);
+
+  // place the units one after another, in command-line order
   std::vector<Unit> units;
-  std::vector<std::string> seen;
-  for (const auto& file : files) {
-    if (std::find(seen.begin(), seen.end(), file) != seen.end()) {
-      out.diags.error(SourceLoc{}, "'" + file + "' is named twice on the command line");
-      continue;
-    }
-    seen.push_back(file);
-    units.emplace_back();
-    parse_unit(file, options, reader, out.sources, out.diags, units.back());
-  }
-
-  // place the units one after another
   int base = 0;
-  for (auto& u : units) {
-    u.base = base;
-    base += static_cast<int>(u.stmts.size());
+  for (auto& slot : slots) {
+    for (std::size_t k = 0; k < slot.units.size(); ++k) {
+      Unit& u = units.emplace_back(std::move(slot.units[k]));
+      u.base = base;
+      base += u.size();
+      out.inputs.push_back(LinkedInput{u.input_name, u.base, u.size(), slot.library ? slot.reasons[k] : ""});
+    }
+    out.unused_members.insert(out.unused_members.end(), slot.unused.begin(), slot.unused.end());
   }
+  const Profile& profile = choose_target(options, units, out.diags);
+  out.profile = &profile;
 
   // resolve names
-  Resolver resolver(units, out.diags, out.sources);
+  Resolver resolver(units, out.diags, out.sources, reloc);
   resolver.link_exports();
   resolver.check_redefinitions();
 
-  // encode and check against the target
+  // encode sources, relocate objects, check against the target
   Encoder encoder(resolver, out.diags);
+  std::vector<ObjReloc> relocs;
+  std::vector<std::uint8_t> raw_flags;
   for (int u = 0; u < static_cast<int>(units.size()); ++u) {
-    for (const Stmt& s : units[static_cast<std::size_t>(u)].stmts) {
+    const Unit& unit = units[static_cast<std::size_t>(u)];
+    if (unit.object) {
+      link_object(resolver, u, unit, profile, out);
+      continue;
+    }
+    for (const Stmt& s : unit.stmts) {
       Instruction ins;
-      bool ok = encoder.encode(u, s, ins);
-      if (ok && s.op) check_against_profile(profile, s, ins, out.diags);
+      std::size_t before = relocs.size();
+      bool ok = encoder.encode(u, s, ins, relocs);
+      // An operand completed at link time is checked against the target there.
+      bool relocated_operand = false;
+      for (std::size_t r = before; r < relocs.size(); ++r)
+        if (s.op)
+          for (const auto& spec : s.op->operands)
+            if (spec.field == relocs[r].field && spec.role != Role::Address) relocated_operand = true;
+      if (ok && s.op && !relocated_operand) check_against_profile(profile, s, ins, out.diags);
       out.program.push_back(ok ? ins : Instruction{});
       out.lines.push_back(LineInfo{s.loc.file, s.loc.line});
+      raw_flags.push_back(s.op ? 0 : kInsRaw);
     }
   }
 
   bool appended = false;
-  if (options.append_stop && (out.program.empty() || out.program.back().op != static_cast<std::uint8_t>(Op::STOP))) {
+  bool append = options.append_stop && !reloc &&
+                std::none_of(units.begin(), units.end(), [](const Unit& u) { return u.no_append_stop; });
+  if (append && (out.program.empty() || out.program.back().op != static_cast<std::uint8_t>(Op::STOP))) {
     appended = true;
     out.program.push_back(Instruction{static_cast<std::uint8_t>(Op::STOP), 0, 0, 0});
     out.lines.push_back(LineInfo{-1, 0});
   }
+  out.appended_stop = appended;
 
-  // jump targets must lie inside the program
+  // jump targets must lie inside the program (known only once it is linked)
+  auto check_target = [&](const Instruction& ins, SourceLoc at) {
+    auto target = static_cast<std::int64_t>(ins.value);
+    if (target < 0 || target >= static_cast<std::int64_t>(out.program.size()))
+      out.diags.warning(at, "address " + std::to_string(target) + " is outside the program (addresses 0 to " +
+                                std::to_string(out.program.size() - 1) + ")");
+  };
   for (const auto& u : units) {
+    if (reloc) break;
+    if (u.object) {
+      const ObjectFile& obj = *u.object;
+      for (std::size_t i = 0; i < obj.code.size(); ++i) {
+        const OpInfo* info = (obj.code_flags[i] & kInsRaw) ? nullptr : op_info(obj.code[i].op);
+        if (!info || info->control) continue;
+        for (const auto& spec : info->operands)
+          if (spec.role == Role::Address)
+            check_target(out.program[static_cast<std::size_t>(u.base) + i],
+                         u.object_loc(obj.lines[i].file, obj.lines[i].line));
+      }
+      continue;
+    }
     for (const Stmt& s : u.stmts) {
       if (!s.op || s.count < 0) continue;
-      const Instruction& ins = out.program[static_cast<std::size_t>(u.base + s.address)];
-      for (std::size_t k = 0; k < s.op->operands.size(); ++k) {
-        if (s.op->operands[k].role != Role::Address) continue;
-        auto target = static_cast<std::int64_t>(ins.value);
-        if (target < 0 || target >= static_cast<std::int64_t>(out.program.size()))
-          out.diags.warning(s.operands[k].loc, "address " + std::to_string(target) +
-                                                   " is outside the program (addresses 0 to " +
-                                                   std::to_string(out.program.size() - 1) + ")");
-      }
+      for (std::size_t k = 0; k < s.op->operands.size(); ++k)
+        if (s.op->operands[k].role == Role::Address)
+          check_target(out.program[static_cast<std::size_t>(u.base + s.address)], s.operands[k].loc);
     }
   }
 
   if (profile.program_memory > 0 && static_cast<int>(out.program.size()) > profile.program_memory)
-    out.diags.error(SourceLoc{}, "the program needs " + std::to_string(out.program.size()) + " instructions" +
+    out.diags.error(SourceLoc{}, std::string(reloc ? "the object needs " : "the program needs ") +
+                                     std::to_string(out.program.size()) + " instructions" +
                                      (appended ? " (with the appended STOP)" : "") + " but " +
                                      std::string(profile.title) + " has room for " +
                                      std::to_string(profile.program_memory));
@@ -211,18 +280,14 @@ AsmResult assemble(const std::vector<std::string>& files, const AsmOptions& opti
     for (int d = 0; d < static_cast<int>(units[static_cast<std::size_t>(u)].defs.size()); ++d) {
       const SymDef& def = units[static_cast<std::size_t>(u)].defs[static_cast<std::size_t>(d)];
       if (def.from_command_line) continue;
-      std::int64_t value = def.kind == SymbolKind::Label ? units[static_cast<std::size_t>(u)].base + def.address
-                                                         : def.state == EvalState::Done ? def.value
-                                                                                        : 0;
       if (def.kind == SymbolKind::Constant && def.state == EvalState::Failed) continue;
-      if (def.kind == SymbolKind::Constant && def.state != EvalState::Done) {
-        auto v = resolver.eval_def(u, d);  // an unused constant is still checked
-        if (!v) continue;
-        value = *v;
-      }
-      out.symbols.push_back(Symbol{def.name, def.kind, value, def.loc, def.exported});
+      auto v = resolver.eval_def(u, d);  // an unused constant is still checked
+      if (!v) continue;
+      out.symbols.push_back(Symbol{def.name, def.kind, v->k, def.loc, def.exported});
     }
   }
+  if (reloc && !units.empty() && !out.diags.has_errors())
+    out.object = build_object(units[0], resolver, out, relocs, raw_flags, profile);
   return out;
 }
 

@@ -82,13 +82,16 @@ void render_one(std::string& out, const Diagnostic& d, const SourceSet& sources,
       c = &parent;
     }
   }
-  if (f)
+  // Column 0: a place known only by file and line (an object's instruction), with no text to show.
+  if (f && d.loc.col <= 0)
+    out += f->name + ":" + std::to_string(d.loc.line) + ": ";
+  else if (f)
     out += f->name + ":" + std::to_string(d.loc.line) + ":" + std::to_string(d.loc.col) + ": ";
   else
     out += "tmclasm: ";
   out += severity_word(d.severity);
   out += ": " + d.message + "\n";
-  if (f && d.loc.line > 0) {
+  if (f && d.loc.line > 0 && d.loc.col > 0) {
     std::string_view line = f->line(d.loc.line);
     if (!line.empty() || d.loc.col <= 1) {
       out += " " + printable(line) + "\n ";

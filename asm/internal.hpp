@@ -5,6 +5,7 @@
 
 #include <array>
 #include <cstdint>
+#include <deque>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -13,15 +14,17 @@
 #include <vector>
 
 #include "tmcl/asm/assembler.hpp"
+#include "tmcl/asm/object.hpp"
 
 namespace tmcl::detail {
 
 // Limits that keep hostile input from exhausting memory or the native stack (docs/limits.md).
 inline constexpr int kMaxIncludeDepth = 64;
 inline constexpr int kMaxExprDepth = 256;       // nesting of parentheses and unary operators
-inline constexpr int kMaxEvalDepth = 2000;      // constants referring to constants, transitively
+inline constexpr int kMaxEvalDepth = 3000;      // evaluation frames: constants entered + operators
 inline constexpr std::size_t kMaxFileBytes = 64u << 20;
 inline constexpr std::size_t kMaxLineBytes = 1u << 16;
+inline constexpr std::size_t kMaxSymbols = 1u << 20;  // labels and constants per unit
 
 enum class Tok : std::uint8_t { Ident, Number, Punct, Directive, IncludeName, Newline, Bad, End };
 
@@ -91,6 +94,17 @@ struct ExprNode {
   SourceLoc loc;
 };
 
+// A value during resolution. When linking, every value is a number (term kAbsolute). In an
+// object (-c) the unit's base address and imported names are unknown, so a value is a number
+// plus at most one such term with coefficient 1: what a relocation can complete at link time.
+inline constexpr int kAbsolute = -1;
+inline constexpr int kBaseTerm = -2;  // the address of the unit's first instruction
+struct Value {
+  std::int64_t k = 0;
+  int term = kAbsolute;  // >= 0: index into Unit::import_order
+  friend bool operator==(const Value&, const Value&) = default;
+};
+
 // ---- statements and symbols ---------------------------------------------------------------
 struct Operand {
   int expr = -1;          // node index, or -1 for a keyword
@@ -119,6 +133,8 @@ struct SymDef {
   std::int64_t value = 0;
   bool exported = false;
   bool from_command_line = false;
+  int term = kAbsolute;  // with value: the constant's Value (objects, -c)
+  int obj_symbol = -1;   // a linked object's symbol (index into its symbol table)
 };
 
 struct Redefinition {
@@ -136,26 +152,78 @@ struct Unit {
   std::vector<Redefinition> redefinitions;
   std::vector<std::pair<std::string, SourceLoc>> exports;
   std::unordered_map<std::string, SourceLoc> imports;  // upper-cased name -> where imported
+  std::vector<std::string> import_order;               // upper-cased names, in #import order
+  std::unordered_map<std::string, int> import_index;   // upper-cased name -> import_order index
   std::unordered_set<std::string> failed_imports;      // imported but exported by nobody
   int base = 0;  // address of the unit's first instruction after linking
+  bool no_append_stop = false;  // #no_append_stop
+
+  // A linked object: its code is already encoded; relocations are applied after resolving.
+  const ObjectFile* object = nullptr;
+  std::vector<int> object_files;  // the object's file table -> SourceSet index
+  std::string input_name;         // "main.tmc", "homing.o", "libmotion.a(homing.o)"
+  int size() const { return object ? static_cast<int>(object->code.size()) : static_cast<int>(stmts.size()); }
+  // Where instruction `i` of an object came from (no column: objects carry no source text).
+  SourceLoc object_loc(std::uint32_t file, std::uint32_t line) const {
+    if (file == kNoIndex || file >= object_files.size()) return SourceLoc{};
+    return SourceLoc{object_files[file], static_cast<int>(line), 0, 0};
+  }
 };
 
 std::string upper(std::string_view s);
 
 // Parses one root file (following its includes) into a unit.
+// `text` is the root file's contents when the caller has read it already (moved from; nullptr: read it).
 void parse_unit(const std::string& root, const AsmOptions& options, FileReader& reader, SourceSet& sources,
-                Diagnostics& diags, Unit& unit);
+                Diagnostics& diags, Unit& unit, std::string* text = nullptr);
+
+// Makes a unit of a linked object: its symbols, exports and imports; its files join `sources`.
+void object_unit(const ObjectFile& obj, const std::string& input_name, SourceSet& sources, Unit& unit);
+
+// ---- linking (link.cpp) ----------------------------------------------------------------------
+// Objects and libraries read in one run; units point into them, so they must not move.
+struct Storage {
+  std::deque<ObjectFile> objects;
+  std::deque<Library> libraries;
+};
+
+// One command-line input: a source or an object (one unit), or a library (its chosen members).
+struct InputSlot {
+  std::string name;
+  std::vector<Unit> units;
+  const Library* library = nullptr;
+  std::vector<std::string> chosen;   // per member: the name it was linked for ("" = not linked)
+  std::vector<std::string> reasons;  // per linked member, in `units` order
+  std::vector<std::string> unused;   // members not linked, as "lib.a(member.o)"
+};
+
+void read_inputs(const std::vector<std::string>& files, const AsmOptions& options, FileReader& reader,
+                 AsmResult& out, Storage& store, std::vector<InputSlot>& slots);
+void choose_members(std::vector<InputSlot>& slots, SourceSet& sources);
+const Profile& choose_target(const AsmOptions& options, const std::vector<Unit>& units, Diagnostics& diags);
+class Resolver;
+// Relocates unit `u` (an object) into out.program, checking what the target needs checked.
+void link_object(Resolver& resolver, int u, const Unit& unit, const Profile& profile, AsmResult& out);
+// The object of a unit assembled with -c: out.program and out.lines are its code.
+ObjectFile build_object(const Unit& unit, Resolver& resolver, const AsmResult& out, const std::vector<ObjReloc>& relocs,
+                        const std::vector<std::uint8_t>& flags, const Profile& profile);
 
 // Resolves symbols across units and evaluates expressions.
 class Resolver {
  public:
-  Resolver(std::vector<Unit>& units, Diagnostics& diags, const SourceSet& sources);
+  // `relocatable`: one unit assembled into an object (-c), whose base and imports are unknown.
+  Resolver(std::vector<Unit>& units, Diagnostics& diags, const SourceSet& sources, bool relocatable = false);
   // Value of an expression in a unit; nullopt after reporting an error (or a poisoned symbol).
+  // An operand that cannot be expressed as a relocation is reported at `operand`.
+  std::optional<Value> eval_value(int unit, int node, SourceLoc operand);
+  // The same for a number that must be final (never relocatable).
   std::optional<std::int64_t> eval(int unit, int node);
   // Looks up a symbol as `unit` sees it: its own, then imported exports.
   std::pair<int, int> lookup(int unit, const std::string& upper_name);
   // Value of a symbol definition (constants are evaluated on first use).
-  std::optional<std::int64_t> eval_def(int unit, int def) { return eval_symbol(unit, def, 0, SourceLoc{}); }
+  std::optional<Value> eval_def(int unit, int def) { return eval_symbol(unit, def, 0, SourceLoc{}); }
+  // Whether `unit` can see this name at all (defined or imported).
+  bool known(int unit, const std::string& upper_name);
   void check_redefinitions();
   std::string_view name_of(int unit, int node) const {
     return units_[static_cast<std::size_t>(unit)].nodes[static_cast<std::size_t>(node)].name;
@@ -164,14 +232,25 @@ class Resolver {
   void link_exports();
 
  private:
-  std::optional<std::int64_t> eval_node(int unit, int node, int depth);
-  std::optional<std::int64_t> eval_symbol(int unit, int def, int depth, SourceLoc use);
+  std::optional<Value> eval_node(int unit, int node, int depth);
+  std::optional<Value> eval_symbol(int unit, int def, int depth, SourceLoc use);
+  std::optional<Value> eval_object_symbol(int unit, const SymDef& d, int depth);
+  std::optional<Value> combine(const ExprNode& op, Value a, Value b);
   std::optional<std::int64_t> apply(const ExprNode& op, std::int64_t a, std::int64_t b);
+  void undefined_import(int unit, const std::string& key, SourceLoc import_loc);
+  std::optional<Value> eval_name(int unit, const ExprNode& n, int depth);
+  [[gnu::noinline]] void report_not_relocatable(const SymDef& d);
+  [[gnu::noinline]] void report_cycle(int unit, int def);
+  [[gnu::noinline]] void report_too_deep(int unit, int node);
+  [[gnu::noinline]] void report_undefined(int unit, const ExprNode& n, const std::string& key);
   std::string name_at(SourceLoc loc) const;
   std::vector<Unit>& units_;
   Diagnostics& diags_;
   const SourceSet& sources_;
+  bool relocatable_;
   bool depth_reported_ = false;
+  SourceLoc not_relocatable_{};  // where an expression stopped being relocatable (file -1: nowhere)
+  bool not_relocatable_pending_ = false;
   std::unordered_map<std::string, std::pair<int, int>> exported_;  // upper name -> (unit, def)
   std::vector<std::pair<int, int>> busy_;  // constants being evaluated, for cycle messages
 };

@@ -72,9 +72,11 @@ class Parser {
     }
   }
 
-  void parse_root(const std::string& path) {
+  void parse_root(const std::string& path, std::string* preloaded) {
     std::string text;
-    if (!reader_.read(path, text)) {
+    if (preloaded) {
+      text = std::move(*preloaded);  // the caller read it to tell a source from an object
+    } else if (!reader_.read(path, text)) {
       diags_.error(SourceLoc{}, "cannot read '" + path + "': " + reader_.last_error());
       return;
     }
@@ -261,10 +263,12 @@ class Parser {
       if (cur().kind != Tok::Ident) return fail(what + " expects a name, found " + describe(cur()));
       SourceLoc l = loc(cur());
       std::string name(cur().text);
-      if (exporting)
+      if (exporting) {
         unit_.exports.emplace_back(name, l);
-      else
-        unit_.imports.emplace(upper(name), l);
+      } else if (unit_.imports.emplace(upper(name), l).second) {
+        unit_.import_index.emplace(upper(name), static_cast<int>(unit_.import_order.size()));
+        unit_.import_order.push_back(upper(name));
+      }
       advance();
       if (at_eol()) return;
       if (!is_punct(P::Comma)) return fail("expected ',' between names, found " + describe(cur()));
@@ -277,8 +281,14 @@ class Parser {
     if (d == "#INCLUDE") return include(depth);
     if (d == "#EXPORT") return name_list(true);
     if (d == "#IMPORT") return name_list(false);
+    if (d == "#NO_APPEND_STOP") {
+      // Written by the disassembler for an image that does not end in STOP.
+      unit_.no_append_stop = true;
+      advance();
+      return;
+    }
     auto& diag = diags_.error(loc(cur()), "unknown directive '" + std::string(cur().text) + "'");
-    std::string hint = closest_match(cur().text, {"#include", "#export", "#import"});
+    std::string hint = closest_match(cur().text, {"#include", "#export", "#import", "#no_append_stop"});
     if (!hint.empty()) diags_.note(diag, loc(cur()), "did you mean '" + hint + "'?");
     skip_line();
   }
@@ -300,6 +310,16 @@ class Parser {
     instruction();
   }
 
+  // The number of names in one unit is limited (docs/limits.md); the first one past the limit
+  // is reported, the rest silently dropped.
+  bool room_for_symbol(SourceLoc at) {
+    if (unit_.defs.size() < kMaxSymbols) return true;
+    if (!symbols_reported_)
+      diags_.error(at, "more than " + std::to_string(kMaxSymbols) + " labels and constants in one unit");
+    symbols_reported_ = true;
+    return false;
+  }
+
   void define_label(const Token& t) {
     std::string key = upper(t.text);
     auto it = unit_.by_name.find(key);
@@ -311,6 +331,7 @@ class Parser {
       diags_.note(d, first.loc, "first defined here");
       return;
     }
+    if (!room_for_symbol(loc(t))) return;
     SymDef d;
     d.name = std::string(t.text);
     d.kind = SymbolKind::Label;
@@ -351,6 +372,7 @@ class Parser {
       unit_.redefinitions.push_back({it->second, e, loc(name)});
       return;
     }
+    if (!room_for_symbol(loc(name))) return;
     if (is_keyword_name(key))
       diags_.warning(loc(name), "constant '" + std::string(name.text) + "' has the name of a keyword; where " +
                                     "that keyword may stand, the keyword wins");
@@ -579,8 +601,9 @@ class Parser {
   Diagnostics& diags_;
   Unit& unit_;
   Lexer* lexer_ = nullptr;
-  Token win_[2];
-  Token prev_;  // the token consumed last, for the extent of an operand  // the current token and the one after it
+  Token win_[2];  // the current token and the one after it
+  Token prev_;    // the token consumed last, for the extent of an operand
+  bool symbols_reported_ = false;
   int file_ = -1;
   std::vector<std::string> stack_;     // include chain (keys)
   std::vector<std::string> included_;  // every file included so far (keys)
@@ -589,10 +612,11 @@ class Parser {
 }  // namespace
 
 void parse_unit(const std::string& root, const AsmOptions& options, FileReader& reader, SourceSet& sources,
-                Diagnostics& diags, Unit& unit) {
+                Diagnostics& diags, Unit& unit, std::string* text) {
   Parser p(options, reader, sources, diags, unit);
   for (const auto& [name, value] : options.defines) p.define_command_line(name, value);
-  p.parse_root(root);
+  p.parse_root(root, text);
+  unit.input_name = root == "-" ? "<stdin>" : root;
 }
 
 }  // namespace tmcl::detail

@@ -1,5 +1,6 @@
-// tmclasm: the command-line assembler. Parses arguments, calls the assembler library, writes the
-// output. Exit status: 0 success, 65 errors in the input, 64 usage errors, 74 output not written.
+// tmclasm: the command-line assembler, linker and disassembler. Parses arguments, calls the
+// assembler library, writes the output. Exit status: 0 success, 65 errors in the input, 64 usage
+// errors, 74 output not written.
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
@@ -8,6 +9,8 @@
 #include <vector>
 
 #include "tmcl/asm/assembler.hpp"
+#include "tmcl/asm/disasm.hpp"
+#include "tmcl/asm/object.hpp"
 #include "tmcl/asm/output.hpp"
 #include "tmcl/fileio.hpp"
 
@@ -17,20 +20,35 @@ constexpr int kExitInput = 65;
 constexpr int kExitUsage = 64;
 constexpr int kExitOutput = 74;
 
-const char* kUsage = R"(usage: tmclasm [options] FILE...        FILE may be - for standard input
+const char* kUsage = R"(usage: tmclasm [options] FILE...        link sources, objects and libraries
+       tmclasm -c [options] FILE.tmc...   assemble each source into an object (.o)
+       tmclasm -f lib -o LIB.a FILE...    bundle objects (sources are assembled) into a library
+       tmclasm -d [--symbols SYM] FILE    disassemble a .bin, datagrams or an object to source
+       tmclasm --dump-object FILE         show an object or library as text
+FILE may be - for standard input.
 
-Assembles TMCL sources (.tmc) into a program image. Each FILE is its own unit: its labels and
-constants are private unless exported (#export NAME) and imported elsewhere (#import NAME).
-Units are placed one after another from address 0.
+Assembles TMCL sources (.tmc) and links them with objects (.o) and libraries (.a) into a program
+image. Each FILE is its own unit: its labels and constants are private unless exported
+(#export NAME) and imported elsewhere (#import NAME). Units are placed one after another from
+address 0 in command-line order; of a library only the members that export a name some linked
+unit imports are linked, at the library's place.
 
 options:
   -o FILE            output file; -o - writes to standard output
                      (default: the first input with the format's extension, beside it;
-                      standard output when reading standard input)
+                      standard output when reading standard input, for -d and --dump-object)
   -f, --format FMT   bin (default)  TMCL-IDE .bin, 8 bytes per instruction
                      datagrams      one 9-byte TMCL request per instruction (.dgm)
                      listing        addresses, bytes, source lines (.lst)
                      symbols        labels and constants, tab-separated (.sym)
+                     lib            a library of the inputs (needs -o)
+  -c                 assemble each source into a relocatable object (FILE.o)
+  --map FILE         also write a link map: input address ranges, every symbol's address
+  -d, --disassemble  turn the FILE (.bin, .dgm datagrams, object) into .tmc source
+  --symbols FILE     with -d: label names from a symbols file (tmclasm -f symbols)
+  --from FMT         with -d: read FILE as bin, datagrams or object (default: by its contents
+                     and extension)
+  --dump-object      show an object or a library (every member) as text
   --address N        module address in datagrams (default 1)
   -t, --target NAME  usb-2-sd | tmc2300-eval | generic (default)
   -I DIR             search DIR for #include files (after the including file's folder)
@@ -44,6 +62,10 @@ examples:
   tmclasm prog.tmc                       writes prog.bin
   tmclasm -t usb-2-sd -f listing -o - prog.tmc
   tmclasm -f datagrams --address 3 -o prog.dgm prog.tmc
+  tmclasm -c homing.tmc jog.tmc          writes homing.o and jog.o
+  tmclasm -f lib -o libmotion.a homing.o jog.o
+  tmclasm --map prog.map -o prog.bin main.tmc libmotion.a
+  tmclasm -d prog.bin -o prog.tmc        source that reassembles to the identical prog.bin
 
 exit status: 0 success, 65 errors in the input, 64 usage error, 74 output could not be written
 )";
@@ -60,17 +82,116 @@ bool valid_name(const std::string& s) {
   return true;
 }
 
+void print_failure(int errors, int warnings) {
+  std::fprintf(stderr, "tmclasm: %d error%s, %d warning%s; nothing written\n", errors, errors == 1 ? "" : "s",
+               warnings, warnings == 1 ? "" : "s");
+}
+
+bool write_output(const std::string& path, const std::vector<std::uint8_t>& bytes) {
+  std::string err;
+  if (tmcl::write_file_atomic(path, bytes, err)) return true;
+  std::fprintf(stderr, "tmclasm: %s\n", err.c_str());
+  return false;
+}
+
+std::vector<std::uint8_t> bytes_of(const std::string& s) { return {s.begin(), s.end()}; }
+
+enum class Mode { Link, Compile, Library, Disassemble, Dump };
+
+// -d: one image or object in, source out.
+int disassemble(const std::string& file, const std::string& output, const tmcl::DisasmOptions& options,
+                const std::string& symbols_file) {
+  tmcl::DiskReader reader;
+  std::string bytes;
+  if (!reader.read(file, bytes)) {
+    std::fprintf(stderr, "tmclasm: error: cannot read '%s': %s\n", file.c_str(), reader.last_error().c_str());
+    return kExitInput;
+  }
+  tmcl::LabelNames names;
+  tmcl::DisasmOptions o = options;
+  if (!symbols_file.empty()) {
+    std::string text, error;
+    if (!reader.read(symbols_file, text)) {
+      std::fprintf(stderr, "tmclasm: error: cannot read '%s': %s\n", symbols_file.c_str(), reader.last_error().c_str());
+      return kExitInput;
+    }
+    if (!tmcl::parse_symbols(text, names, error)) {
+      std::fprintf(stderr, "%s: error: not a symbols file: %s\n", symbols_file.c_str(), error.c_str());
+      return kExitInput;
+    }
+    o.names = &names;
+  }
+  tmcl::DisasmResult r = tmcl::disassemble(file, bytes, o);
+  int errors = 0, warnings = 0;
+  std::string shown = file == "-" ? "<stdin>" : file;
+  for (const auto& m : r.messages) {
+    std::fprintf(stderr, "%s: %s: %s%s\n", shown.c_str(), m.error ? "error" : "warning", m.text.c_str(),
+                 m.error && options.warnings_are_errors && m.text.find("checksum") != std::string::npos ? " [-Werror]"
+                                                                                                          : "");
+    ++(m.error ? errors : warnings);
+  }
+  if (errors > 0) {
+    print_failure(errors, warnings);
+    return kExitInput;
+  }
+  return write_output(output, bytes_of(r.source)) ? 0 : kExitOutput;
+}
+
+int dump(const std::string& file, const std::string& output) {
+  tmcl::DiskReader reader;
+  std::string bytes, error, text;
+  if (!reader.read(file, bytes)) {
+    std::fprintf(stderr, "tmclasm: error: cannot read '%s': %s\n", file.c_str(), reader.last_error().c_str());
+    return kExitInput;
+  }
+  const auto* data = reinterpret_cast<const std::uint8_t*>(bytes.data());
+  std::string shown = file == "-" ? "<stdin>" : file;
+  switch (tmcl::sniff_file(bytes)) {
+    case tmcl::FileKind::Object: {
+      tmcl::ObjectFile obj;
+      if (!tmcl::read_object(data, bytes.size(), obj, error)) {
+        std::fprintf(stderr, "%s: error: invalid object: %s\n", shown.c_str(), error.c_str());
+        return kExitInput;
+      }
+      text = tmcl::dump_object(obj);
+      break;
+    }
+    case tmcl::FileKind::Library: {
+      tmcl::Library lib;
+      if (!tmcl::read_library(data, bytes.size(), lib, error)) {
+        std::fprintf(stderr, "%s: error: invalid library: %s\n", shown.c_str(), error.c_str());
+        return kExitInput;
+      }
+      text = tmcl::dump_library(lib);
+      break;
+    }
+    case tmcl::FileKind::Source:
+      std::fprintf(stderr, "%s: error: not an object or library (no tmcl object magic)\n", shown.c_str());
+      return kExitInput;
+  }
+  return write_output(output, bytes_of(text)) ? 0 : kExitOutput;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
   tmcl::AsmOptions opts;
   std::vector<std::string> files;
-  std::string output;
-  bool have_output = false;
+  std::string output, map_file, symbols_file;
+  bool have_output = false, have_format = false;
   tmcl::OutputFormat format = tmcl::OutputFormat::Bin;
+  Mode mode = Mode::Link;
+  bool make_lib = false;
+  tmcl::DisasmOptions dopts;
   int address = 1;
   std::vector<std::string> args(argv + 1, argv + argc);
 
+  auto set_mode = [&](Mode m, const char* name) {
+    if (mode != Mode::Link && mode != m) return false;
+    (void)name;
+    mode = m;
+    return true;
+  };
   for (std::size_t i = 0; i < args.size(); ++i) {
     const std::string& a = args[i];
     auto value = [&](const std::string& opt, std::string& out) -> bool {
@@ -95,11 +216,32 @@ int main(int argc, char** argv) {
       have_output = true;
     } else if (a == "-f" || a == "--format") {
       if (!value(a, v)) return usage_error(a + " needs a format");
+      have_format = true;
+      make_lib = false;
       if (v == "bin") format = tmcl::OutputFormat::Bin;
       else if (v == "datagrams") format = tmcl::OutputFormat::Datagrams;
       else if (v == "listing") format = tmcl::OutputFormat::Listing;
       else if (v == "symbols") format = tmcl::OutputFormat::Symbols;
-      else return usage_error("unknown format '" + v + "' (bin, datagrams, listing, symbols)");
+      else if (v == "lib") make_lib = true;
+      else return usage_error("unknown format '" + v + "' (bin, datagrams, listing, symbols, lib)");
+    } else if (a == "-c") {
+      if (!set_mode(Mode::Compile, "-c")) return usage_error("-c cannot be combined with -d or --dump-object");
+    } else if (a == "-d" || a == "--disassemble") {
+      if (!set_mode(Mode::Disassemble, "-d")) return usage_error("-d cannot be combined with -c or --dump-object");
+    } else if (a == "--dump-object") {
+      if (!set_mode(Mode::Dump, "--dump-object")) return usage_error("--dump-object cannot be combined with -c or -d");
+    } else if (a == "--map") {
+      if (!value(a, v)) return usage_error("--map needs a file name");
+      map_file = v;
+    } else if (a == "--symbols") {
+      if (!value(a, v)) return usage_error("--symbols needs a file name");
+      symbols_file = v;
+    } else if (a == "--from") {
+      if (!value(a, v)) return usage_error("--from needs a format");
+      if (v == "bin") dopts.kind = tmcl::ImageKind::Bin;
+      else if (v == "datagrams") dopts.kind = tmcl::ImageKind::Datagrams;
+      else if (v == "object") dopts.kind = tmcl::ImageKind::Object;
+      else return usage_error("unknown input format '" + v + "' for --from (bin, datagrams, object)");
     } else if (a == "-t" || a == "--target") {
       if (!value(a, v)) return usage_error(a + " needs a target name");
       opts.profile = tmcl::find_profile(v);
@@ -121,6 +263,7 @@ int main(int argc, char** argv) {
       opts.defines.emplace_back(name, eq == std::string::npos ? "1" : v.substr(eq + 1));
     } else if (a == "-Werror") {
       opts.warnings_are_errors = true;
+      dopts.warnings_are_errors = true;
     } else if (a == "--no-append-stop") {
       opts.append_stop = false;
     } else if (a == "-") {
@@ -132,15 +275,63 @@ int main(int argc, char** argv) {
     }
   }
   if (files.empty()) return usage_error("no input files");
+  if (make_lib && mode != Mode::Link) return usage_error("-f lib cannot be combined with -c, -d or --dump-object");
+  if (!map_file.empty() && (mode != Mode::Link || make_lib)) return usage_error("--map needs a link (not -c, -d, -f lib)");
+  if ((!symbols_file.empty() || dopts.kind != tmcl::ImageKind::Auto) && mode != Mode::Disassemble)
+    return usage_error("--symbols and --from need -d");
+
+  if (mode == Mode::Disassemble || mode == Mode::Dump) {
+    if (files.size() != 1)
+      return usage_error(std::string(mode == Mode::Dump ? "--dump-object" : "-d") + " takes one input file");
+    if (have_format) return usage_error("-f does not apply to -d or --dump-object (they write text)");
+    std::string out = have_output ? output : "-";
+    return mode == Mode::Dump ? dump(files[0], out) : disassemble(files[0], out, dopts, symbols_file);
+  }
 
   tmcl::DiskReader reader;
+  if (make_lib) {
+    if (!have_output) return usage_error("-f lib needs -o LIBRARY");
+    tmcl::LibraryResult lib = tmcl::make_library(files, opts, reader);
+    std::fputs(lib.messages.c_str(), stderr);
+    if (!lib.ok()) {
+      print_failure(lib.errors, lib.warnings);
+      return kExitInput;
+    }
+    return write_output(output, tmcl::write_library(lib.library)) ? 0 : kExitOutput;
+  }
+
+  if (mode == Mode::Compile) {
+    if (have_format) return usage_error("-c writes objects; -f does not apply");
+    if (have_output && files.size() > 1) return usage_error("-o with -c names one object; give one source file");
+    // Every source is assembled and reported; objects are written only when all succeed.
+    std::vector<std::pair<std::string, std::vector<std::uint8_t>>> objects;
+    int errors = 0, warnings = 0;
+    opts.relocatable = true;
+    for (const auto& file : files) {
+      tmcl::AsmResult r = tmcl::assemble({file}, opts, reader);
+      std::fputs(r.diags.render(r.sources).c_str(), stderr);
+      errors += r.diags.error_count();
+      warnings += r.diags.warning_count();
+      if (!r.ok() || !r.object) continue;
+      std::string out = have_output ? output
+                        : file == "-" ? std::string("-")
+                                      : std::filesystem::path(file).replace_extension(".o").string();
+      objects.emplace_back(out, tmcl::write_object(*r.object));
+    }
+    if (errors > 0) {
+      print_failure(errors, warnings);
+      return kExitInput;
+    }
+    for (const auto& [path, bytes] : objects)
+      if (!write_output(path, bytes)) return kExitOutput;
+    return 0;
+  }
+
   tmcl::AsmResult result = tmcl::assemble(files, opts, reader);
   std::string text = result.diags.render(result.sources);
   std::fputs(text.c_str(), stderr);
   if (!result.ok()) {
-    std::fprintf(stderr, "tmclasm: %d error%s, %d warning%s; nothing written\n", result.diags.error_count(),
-                 result.diags.error_count() == 1 ? "" : "s", result.diags.warning_count(),
-                 result.diags.warning_count() == 1 ? "" : "s");
+    print_failure(result.diags.error_count(), result.diags.warning_count());
     return kExitInput;
   }
 
@@ -152,12 +343,9 @@ int main(int argc, char** argv) {
       output = std::filesystem::path(files[0]).replace_extension(ext[static_cast<int>(format)]).string();
     }
   }
-  const tmcl::Profile& profile = opts.profile ? *opts.profile : tmcl::generic_profile();
+  const tmcl::Profile& profile = result.profile ? *result.profile : tmcl::generic_profile();
   auto bytes = tmcl::format_output(format, result, profile, static_cast<std::uint8_t>(address));
-  std::string err;
-  if (!tmcl::write_file_atomic(output, bytes, err)) {
-    std::fprintf(stderr, "tmclasm: %s\n", err.c_str());
-    return kExitOutput;
-  }
+  if (!map_file.empty() && !write_output(map_file, bytes_of(tmcl::format_map(result)))) return kExitOutput;
+  if (!write_output(output, bytes)) return kExitOutput;
   return 0;
 }

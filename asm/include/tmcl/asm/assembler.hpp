@@ -1,9 +1,9 @@
-// The assembler's public interface: TMCL source files in, a program (instructions with their
-// source lines, labels and constants) and diagnostics out.
+// The assembler's public interface: TMCL sources, objects and libraries in; a program
+// (instructions with their source lines, labels and constants) or one object, and diagnostics out.
 //
-// Pipeline (assembler.cpp): read -> lex -> parse (one unit per root file, includes inlined)
-//   -> resolve (constants, labels, expressions) -> encode -> link (place units, resolve imports)
-//   -> check against the module profile.
+// Pipeline (assembler.cpp): read -> lex -> parse (one unit per root file, includes inlined; an
+//   object is a unit already encoded) -> choose library members -> place -> resolve (constants,
+//   labels, expressions, imports) -> encode and relocate -> append STOP -> check the target.
 #pragma once
 
 #include <cstdint>
@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "tmcl/asm/diag.hpp"
+#include "tmcl/asm/object.hpp"
 #include "tmcl/isa.hpp"
 #include "tmcl/profile.hpp"
 
@@ -56,6 +57,7 @@ struct AsmOptions {
   std::vector<std::pair<std::string, std::string>> defines;  // -D NAME=VALUE (VALUE an expression)
   bool warnings_are_errors = false;             // -Werror
   bool append_stop = true;                      // append STOP unless the program ends in one
+  bool relocatable = false;                     // -c: one source file into an object (AsmResult::object)
 };
 
 // Where an instruction came from.
@@ -74,17 +76,42 @@ struct Symbol {
   bool exported = false;
 };
 
+// One input of a link and where it landed (for the link map).
+struct LinkedInput {
+  std::string name;     // "main.tmc", "homing.o", "libmotion.a(homing.o)"
+  int first = 0;        // address of its first instruction
+  int count = 0;        // instructions
+  std::string reason;   // library members: the symbol it was linked for
+};
+
 struct AsmResult {
   std::vector<Instruction> program;
   std::vector<LineInfo> lines;      // one per instruction; file -1 for the appended STOP
   std::vector<Symbol> symbols;      // labels and constants of every unit, in definition order
+  std::vector<LinkedInput> inputs;  // in address order
+  std::vector<std::string> unused_members;  // library members not linked
+  const Profile* profile = nullptr; // the target: -t, else the one the objects were built for
+  bool appended_stop = false;
+  std::optional<ObjectFile> object; // relocatable: the object
   SourceSet sources;
   Diagnostics diags;
   bool ok() const { return !diags.has_errors(); }
 };
 
-// Assembles the root files (each its own unit: labels and constants are local to it) and links
-// them in order from address 0.
+// Assembles the inputs — sources (each its own unit: labels and constants are local to it),
+// objects and libraries, told apart by their first bytes — and links them in order from address
+// 0. With options.relocatable, `files` is one source, assembled into AsmResult::object.
 AsmResult assemble(const std::vector<std::string>& files, const AsmOptions& options, FileReader& reader);
+
+// A library (tmclasm -f lib) of the inputs: objects and library members as they are, sources
+// assembled into objects first. Member names are the file names with the extension .o.
+struct LibraryResult {
+  Library library;
+  std::string messages;  // rendered diagnostics of every input
+  int errors = 0;
+  int warnings = 0;
+  bool ok() const { return errors == 0; }
+};
+LibraryResult make_library(const std::vector<std::string>& files, const AsmOptions& options, FileReader& reader);
 
 }  // namespace tmcl

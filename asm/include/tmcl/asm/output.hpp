@@ -17,6 +17,9 @@ std::vector<std::uint8_t> format_datagrams(const std::vector<Instruction>& progr
 std::string format_listing(const AsmResult& result, const Profile& profile);
 // "kind<TAB>name<TAB>value<TAB>file:line<TAB>scope" per label and constant (docs/tmclasm.md).
 std::string format_symbols(const AsmResult& result);
+// The link map (--map): each input's address range, library members linked and why, and every
+// symbol's final value (docs/tmclasm.md).
+std::string format_map(const AsmResult& result);
 // The output in the chosen format, as bytes.
 std::vector<std::uint8_t> format_output(OutputFormat f, const AsmResult& result, const Profile& profile,
                                         std::uint8_t address);

@@ -1,0 +1,28 @@
+#!/usr/bin/env bash
+# Builds every libFuzzer target with clang and runs each for N seconds (default 60) on a corpus
+# seeded from the examples and golden tests. Crashes land in fuzz/findings/<target>/.
+# usage: fuzz/run_all.sh [SECONDS] [TARGET...]
+set -euo pipefail
+cd "$(dirname "$0")/.."
+seconds=${1:-60}
+shift || true
+build=build-fuzz
+CC=clang CXX=clang++ cmake -S . -B "$build" -DTMCL_FUZZ=ON -DBUILD_TESTING=OFF -DCMAKE_BUILD_TYPE=RelWithDebInfo >/dev/null
+targets=("$@")
+if [ ${#targets[@]} -eq 0 ]; then
+  for f in fuzz/fuzz_*.cpp; do targets+=("$(basename "$f" .cpp)"); done
+fi
+cmake --build "$build" -j2 --target "${targets[@]}" >/dev/null
+for t in "${targets[@]}"; do
+  corpus="$build/corpus/$t"
+  mkdir -p "$corpus" "fuzz/findings/$t"
+  # Seeds: sources for the source fuzzers, images for the image fuzzers.
+  case "$t" in
+    fuzz_asm) find examples tests/golden include_files -name '*.tmc' -o -name '*.inc' | head -500 | xargs -r cp -t "$corpus" 2>/dev/null || true ;;
+    *) find tests/golden examples -name '*.bin' | head -200 | xargs -r cp -t "$corpus" 2>/dev/null || true ;;
+  esac
+  [ -d "fuzz/seeds/$t" ] && cp -r "fuzz/seeds/$t/." "$corpus/"
+  echo "== $t: ${seconds}s"
+  "$build/fuzz/$t" -max_total_time="$seconds" -timeout=10 -rss_limit_mb=2048 \
+    -artifact_prefix="fuzz/findings/$t/" "$corpus" 2>&1 | grep -E '^(#[0-9]+ *(DONE|pulse)|==|SUMMARY|Done)' | tail -3
+done
