@@ -1,0 +1,365 @@
+// tmclrun: runs a TMCL program on the virtual machine without hardware. Parses arguments, loads
+// the program (assembling .tmc in-process), scenario and EEPROM, runs the VM library, prints the
+// summary, trace or JSON. All semantics live in vm/; see docs/tmclrun.md.
+// Exit status: 0 STOP, 3 limit reached or blocked, 70 runtime fault, 65 bad input, 64 usage,
+// 74 EEPROM file not written.
+#include <cctype>
+#include <cerrno>
+#include <cstdio>
+#include <cstdlib>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "tmcl/asm/assembler.hpp"
+#include "tmcl/duration.hpp"
+#include "tmcl/eeprom.hpp"
+#include "tmcl/fileio.hpp"
+#include "tmcl/motion_recording.hpp"
+#include "tmcl/program_image.hpp"
+#include "tmcl/scenario.hpp"
+#include "tmcl/vm.hpp"
+#include "tmcl/vm_output.hpp"
+
+#ifndef TMCL_VERSION
+#define TMCL_VERSION "unknown"
+#endif
+
+namespace {
+
+constexpr int kExitOk = 0, kExitLimit = 3, kExitUsage = 64, kExitInput = 65, kExitFault = 70, kExitIo = 74;
+
+const char* kUsage = R"(usage: tmclrun [options] PROGRAM        PROGRAM: .tmc source, .bin, .dgm, or - (stdin)
+
+Runs a TMCL program on a deterministic virtual module. Simulated time: nothing waits for real.
+
+options:
+  -t, --target NAME      usb-2-sd (default) | tmc2300-eval | generic
+  --motion NAME          motion core (default: the module's; available: %s)
+  --instr-time DURATION  simulated time per instruction (default 20us)
+  --max-time DURATION    stop when simulated time reaches DURATION
+  --max-steps N          stop after N instructions
+  --scenario FILE        timed inputs, switches and encoder slip (docs/tmclrun.md)
+  --eeprom FILE          load the EEPROM from FILE at start, save it there at exit
+  --trace                print a line per instruction, interrupt, wait and motion event
+                         (to standard error when --json is given)
+  --json                 print the final state as one JSON object instead of the summary
+  --csv FILE             write time, position, velocity, acceleration of every motor to FILE
+                         at each --sample period, plus one row per event
+  --sample DURATION      the sampling period of --csv and --plot (default 10ms)
+  --plot FILE.svg        draw position, velocity and acceleration against time as an SVG
+  -I DIR                 search DIR for #include files
+  -D NAME=VALUE          define an assembler constant
+  --help                 show this help
+  --version              show the version
+DURATION: an integer with us, ms, s or min (50us, 10ms, 2s, 1min); 0 needs no unit.
+
+examples:
+  tmclrun prog.tmc                              run until STOP, print a summary
+  tmclrun --trace --max-time 10s prog.tmc       trace the first 10 simulated seconds
+  tmclrun --scenario switches.txt --json prog.bin
+  tmclrun --eeprom module.eeprom prog.tmc       run twice: the EEPROM persists
+
+exit status: 0 STOP, 3 limit reached or blocked forever, 70 runtime fault, 65 bad input,
+             64 usage error, 74 EEPROM file could not be written
+)";
+
+std::string joined(const std::vector<std::string>& names) {
+  std::string s;
+  for (const auto& n : names) s += (s.empty() ? "" : ", ") + n;
+  return s;
+}
+
+int usage_error(const std::string& msg) {
+  std::fprintf(stderr, "tmclrun: %s\n(see tmclrun --help)\n", msg.c_str());
+  return kExitUsage;
+}
+
+bool ends_with_ci(const std::string& s, const char* suffix) {
+  std::string suf = suffix;
+  if (s.size() < suf.size()) return false;
+  for (std::size_t i = 0; i < suf.size(); ++i)
+    if (std::tolower(static_cast<unsigned char>(s[s.size() - suf.size() + i])) != suf[i]) return false;
+  return true;
+}
+
+// Serves "-" from memory (standard input was already read to sniff its kind), the rest from disk.
+class StdinFirstReader final : public tmcl::FileReader {
+ public:
+  explicit StdinFirstReader(std::string text) : text_(std::move(text)) {}
+  bool read(const std::string& path, std::string& out) override {
+    if (path == "-") {
+      out = text_;
+      return true;
+    }
+    return disk_.read(path, out);
+  }
+
+ private:
+  std::string text_;
+  tmcl::DiskReader disk_;
+};
+
+struct Options {
+  std::string target = "usb-2-sd";
+  std::string motion;
+  tmcl::SimTime instr_time = 20;
+  tmcl::Limits limits;
+  std::string scenario, eeprom, program;
+  bool trace = false, json = false;
+  std::string csv, plot;
+  tmcl::SimTime sample = 10 * tmcl::kUsPerMs;
+  tmcl::AsmOptions asm_opts;
+};
+
+// Returns -1 when the run should go on, otherwise an exit status.
+int parse_args(int argc, char** argv, Options& o) {
+  std::vector<std::string> args(argv + 1, argv + argc);
+  bool have_program = false;
+  for (std::size_t i = 0; i < args.size(); ++i) {
+    std::string a = args[i];
+    std::string inline_value;
+    bool has_inline = false;
+    if (a.rfind("--", 0) == 0 && a.find('=') != std::string::npos) {
+      inline_value = a.substr(a.find('=') + 1);
+      a = a.substr(0, a.find('='));
+      has_inline = true;
+    } else if (a.size() > 2 && a[0] == '-' && a[1] != '-' && (a[1] == 't' || a[1] == 'I' || a[1] == 'D')) {
+      inline_value = a.substr(2);
+      a = a.substr(0, 2);
+      has_inline = true;
+    }
+    auto value = [&](std::string& out) -> bool {
+      if (has_inline) {
+        out = inline_value;
+        return true;
+      }
+      if (i + 1 >= args.size()) return false;
+      out = args[++i];
+      return true;
+    };
+    auto duration = [&](const char* opt, tmcl::SimTime& out) -> int {
+      std::string v;
+      if (!value(v)) return usage_error(std::string(opt) + " needs a duration");
+      auto d = tmcl::parse_duration(v);
+      if (!d) return usage_error("bad duration '" + v + "' for " + opt + " (use e.g. 0, 50us, 10ms, 2s, 1min)");
+      out = *d;
+      return -1;
+    };
+    std::string v;
+    if (a == "--help" || a == "-h") {
+      std::printf(kUsage, joined(tmcl::motion_core_names()).c_str());
+      return kExitOk;
+    } else if (a == "--version") {
+      std::printf("tmclrun (tmcl) %s\n", TMCL_VERSION);
+      return kExitOk;
+    } else if (a == "-t" || a == "--target") {
+      if (!value(o.target)) return usage_error("-t needs a module name");
+    } else if (a == "--motion") {
+      if (!value(o.motion)) return usage_error("--motion needs a core name");
+    } else if (a == "--instr-time") {
+      if (int r = duration("--instr-time", o.instr_time); r >= 0) return r;
+    } else if (a == "--max-time") {
+      if (int r = duration("--max-time", o.limits.until); r >= 0) return r;
+    } else if (a == "--max-steps") {
+      if (!value(v)) return usage_error("--max-steps needs a number");
+      char* end = nullptr;
+      errno = 0;
+      unsigned long long n = std::strtoull(v.c_str(), &end, 10);
+      if (v.empty() || *end || v[0] == '-' || errno) return usage_error("bad step count '" + v + "' for --max-steps");
+      o.limits.max_steps = n;
+    } else if (a == "--scenario") {
+      if (!value(o.scenario)) return usage_error("--scenario needs a file");
+    } else if (a == "--eeprom") {
+      if (!value(o.eeprom)) return usage_error("--eeprom needs a file");
+    } else if (a == "--csv") {
+      if (!value(o.csv)) return usage_error("--csv needs a file");
+    } else if (a == "--plot") {
+      if (!value(o.plot)) return usage_error("--plot needs a file");
+    } else if (a == "--sample") {
+      if (int r = duration("--sample", o.sample); r >= 0) return r;
+      if (o.sample <= 0) return usage_error("--sample needs a duration greater than 0");
+    } else if (a == "--trace" && !has_inline) {
+      o.trace = true;
+    } else if (a == "--json" && !has_inline) {
+      o.json = true;
+    } else if (a == "-I") {
+      if (!value(v)) return usage_error("-I needs a directory");
+      o.asm_opts.include_dirs.push_back(v);
+    } else if (a == "-D") {
+      if (!value(v)) return usage_error("-D needs NAME=VALUE");
+      auto eq = v.find('=');
+      if (eq == std::string::npos || eq == 0) return usage_error("bad -D '" + v + "' (expected NAME=VALUE)");
+      o.asm_opts.defines.emplace_back(v.substr(0, eq), v.substr(eq + 1));
+    } else if (a != "-" && a.size() > 1 && a[0] == '-') {
+      return usage_error("unknown option '" + args[i] + "'");
+    } else {
+      if (have_program) return usage_error("only one PROGRAM can be run (got '" + o.program + "' and '" + a + "')");
+      o.program = a;
+      have_program = true;
+    }
+  }
+  if (!have_program) return usage_error("no PROGRAM given");
+  return -1;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  Options o;
+  if (int r = parse_args(argc, argv, o); r >= 0) return r;
+
+  const tmcl::Profile* profile = tmcl::find_profile(o.target);
+  if (!profile) {
+    std::vector<std::string> names;
+    for (const auto* p : tmcl::all_profiles()) names.emplace_back(p->name);
+    return usage_error("unknown module '" + o.target + "' (available: " + joined(names) + ")");
+  }
+  std::string core_name = o.motion.empty() ? std::string(profile->default_motion) : o.motion;
+  auto core = tmcl::make_motion_core(core_name);
+  if (!core && !o.motion.empty())
+    return usage_error("unknown motion core '" + o.motion + "' (available: " + joined(tmcl::motion_core_names()) + ")");
+  if (!core) {
+    std::fprintf(stderr, "tmclrun: note: motion core '%s' (the default for %s) is not built in; using 'ideal'\n",
+                 core_name.c_str(), o.target.c_str());
+    core = tmcl::make_ideal_motion_core();
+  }
+
+  // ---- the program ----
+  std::vector<std::uint8_t> bytes;
+  std::string err;
+  if (!tmcl::read_file(o.program, bytes, err)) {
+    std::fprintf(stderr, "tmclrun: error: %s\n", err.c_str());
+    return kExitInput;
+  }
+  bool is_image = ends_with_ci(o.program, ".bin") || ends_with_ci(o.program, ".dgm");
+  if (o.program == "-") {
+    for (auto b : bytes) is_image = is_image || b == 0;  // a binary image always has zero bytes
+  }
+  std::vector<tmcl::Instruction> program;
+  tmcl::SourceMap sources;
+  if (is_image) {
+    std::string messages;
+    std::string name = o.program == "-" ? "<stdin>" : o.program;
+    bool ok = tmcl::read_program_image(name, bytes, program, messages);
+    std::fputs(messages.c_str(), stderr);
+    if (!ok) return kExitInput;
+  } else {
+    StdinFirstReader reader(o.program == "-" ? std::string(bytes.begin(), bytes.end()) : std::string());
+    o.asm_opts.profile = profile;
+    tmcl::AsmResult res = tmcl::assemble({o.program}, o.asm_opts, reader);
+    if (!res.diags.all().empty()) std::fputs(res.diags.render(res.sources).c_str(), stderr);
+    if (!res.ok()) return kExitInput;
+    program = res.program;
+    for (const auto& li : res.lines) {
+      if (li.file >= 0 && static_cast<std::size_t>(li.file) < res.sources.files.size())
+        sources.push_back(res.sources.files[static_cast<std::size_t>(li.file)].name + ":" + std::to_string(li.line));
+      else
+        sources.emplace_back();
+    }
+  }
+  if (program.empty()) {
+    std::fprintf(stderr, "%s: error: the program is empty\n", o.program.c_str());
+    return kExitInput;
+  }
+  if (profile->program_memory > 0 && program.size() > static_cast<std::size_t>(profile->program_memory)) {
+    std::fprintf(stderr, "%s: error: %zu instructions do not fit the %d of %s program memory\n", o.program.c_str(),
+                 program.size(), profile->program_memory, o.target.c_str());
+    return kExitInput;
+  }
+
+  // ---- scenario and EEPROM ----
+  std::vector<tmcl::InputEvent> inputs;
+  if (!o.scenario.empty()) {
+    std::vector<std::uint8_t> sb;
+    if (!tmcl::read_file(o.scenario, sb, err)) {
+      std::fprintf(stderr, "tmclrun: error: %s\n", err.c_str());
+      return kExitInput;
+    }
+    if (!tmcl::parse_scenario(std::string(sb.begin(), sb.end()), o.scenario, inputs, err)) {
+      std::fprintf(stderr, "%s\n", err.c_str());
+      return kExitInput;
+    }
+    for (const auto& ev : inputs) {
+      bool motor_event = ev.kind != tmcl::InputEvent::Digital && ev.kind != tmcl::InputEvent::Analog;
+      if (motor_event && ev.index >= profile->motors) {
+        std::fprintf(stderr, "%s:%d: error: %s has no motor %d\n", o.scenario.c_str(), ev.line, o.target.c_str(), ev.index);
+        return kExitInput;
+      }
+    }
+  }
+  tmcl::EepromImage image;
+  if (!o.eeprom.empty()) {
+    bool existed = false;
+    if (!tmcl::load_eeprom_file(o.eeprom, image, existed, err)) {
+      std::fprintf(stderr, "%s\n", err.c_str());
+      return kExitInput;
+    }
+    if (existed && image.profile != profile->name) {
+      std::fprintf(stderr, "%s:2: error: EEPROM written for module '%s', not '%s'\n", o.eeprom.c_str(), image.profile.c_str(),
+                   o.target.c_str());
+      return kExitInput;
+    }
+  }
+
+  // ---- run ----
+  // --csv/--plot: the VM drives a recording decorator around the real core.
+  bool recording = !o.csv.empty() || !o.plot.empty();
+  tmcl::MotionRecorder recorder(profile->motors, o.sample);
+  tmcl::RecordingCore recording_core(*core, recorder);
+  tmcl::Vm vm(*profile, recording ? static_cast<tmcl::MotionCore&>(recording_core) : *core);
+  vm.instr_time = o.instr_time;
+  tmcl::TextTrace trace(o.json ? stderr : stdout, &sources);
+  if (o.trace) vm.trace = &trace;
+  tmcl::RecordingTrace recording_trace(vm.trace, recorder);
+  if (recording) vm.trace = &recording_trace;
+  vm.load(program);
+  vm.source_of = sources;
+  vm.power_on(o.eeprom.empty() ? nullptr : &image);
+  vm.add_inputs(std::move(inputs));
+  vm.start(0);
+  tmcl::RunResult result = vm.run(o.limits);
+
+  int status = kExitOk;
+  switch (result.halt) {
+    case tmcl::Halt::Stop:
+    case tmcl::Halt::NotRunning: status = kExitOk; break;
+    case tmcl::Halt::Fault: status = kExitFault; break;
+    default: status = kExitLimit; break;
+  }
+  if (result.halt == tmcl::Halt::Fault) {
+    std::int32_t at = vm.halt_pc;
+    std::string where = at >= 0 && static_cast<std::size_t>(at) < sources.size() ? sources[static_cast<std::size_t>(at)] : "";
+    std::fprintf(stderr, "%s: error: runtime fault: %s\n", where.empty() ? "tmclrun" : where.c_str(), result.message.c_str());
+  } else if (status == kExitLimit) {
+    std::fprintf(stderr, "tmclrun: %s: %s\n", std::string(tmcl::halt_name(result.halt)).c_str(), result.message.c_str());
+  }
+
+  if (recording) {
+    recording_core.finish(vm.now);
+    std::ostringstream csv, svg;
+    if (!o.csv.empty()) tmcl::write_csv(csv, recorder);
+    if (!o.plot.empty()) {
+      tmcl::PlotOptions plot;
+      plot.title = (o.program == "-" ? std::string("<stdin>") : o.program) + " on " + o.target + " (" +
+                   std::string(core->name()) + " motion)";
+      tmcl::write_svg(svg, recorder, plot);
+    }
+    for (const auto& [file, text] : {std::pair{o.csv, csv.str()}, std::pair{o.plot, svg.str()}}) {
+      if (file.empty()) continue;
+      if (!tmcl::write_file_atomic(file, std::vector<std::uint8_t>(text.begin(), text.end()), err)) {
+        std::fprintf(stderr, "tmclrun: %s\n", err.c_str());
+        status = kExitIo;
+      }
+    }
+  }
+  if (!o.eeprom.empty() && !tmcl::save_eeprom_file(o.eeprom, vm.eeprom, err)) {
+    std::fprintf(stderr, "%s\n", err.c_str());
+    status = kExitIo;
+  }
+  if (o.json)
+    std::fputs(tmcl::state_json(vm, result).c_str(), stdout);
+  else
+    std::fputs(tmcl::state_summary(vm, result, &sources).c_str(), stdout);
+  return status;
+}

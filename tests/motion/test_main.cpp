@@ -1,0 +1,3 @@
+// Entry point of the motion test executables (tests/unit/check.hpp).
+#define TMCL_TEST_MAIN
+#include "check.hpp"

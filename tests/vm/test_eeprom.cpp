@@ -1,0 +1,114 @@
+// The EEPROM: STGP/RSGP, STAP/RSAP, SCO/GCO bank-255 forms, global 84/85, auto-stored bank 0,
+// power-up restore, the file format (round trip, corruption, atomic save) (E16).
+#include <cstdio>
+#include <fstream>
+#include <sstream>
+#include <unistd.h>
+
+#include "check.hpp"
+#include "machine.hpp"
+#include "tmcl/eeprom.hpp"
+
+using namespace vmtest;
+using tmcl::Op;
+
+TEST(stgp_rsgp_user_variables) {
+  Machine m({I(Op::SGP, 3, 2, 99), I(Op::STGP, 3, 2), I(Op::SGP, 3, 2, 1), I(Op::RSGP, 3, 2), I(Op::SGP, 60, 2, 5),
+             I(Op::STGP, 60, 2),  // only 0..55 are backed: ignored
+             I(Op::STOP)});
+  m.run();
+  CHECK_EQ(m.vm.vars[3], 99);
+  CHECK_EQ(m.vm.eeprom.vars.size(), 1u);
+  CHECK(m.vm.eeprom_dirty);
+}
+
+TEST(stap_rsap_axis_parameters) {
+  Machine m({I(Op::SAP, 4, 0, 5000), I(Op::STAP, 4, 0), I(Op::SAP, 4, 0, 7), I(Op::RSAP, 4, 0), I(Op::SAP, 140, 0, 3),
+             I(Op::RSAP, 140, 0),  // never stored: the factory default
+             I(Op::STAP, 0, 0),    // not EEPROM-backed on this module: ignored
+             I(Op::STOP)});
+  m.run();
+  CHECK_EQ(m.vm.axis_param(0, 4), 5000);
+  CHECK_EQ(m.vm.axis_param(0, 140), 8);
+  CHECK_EQ(m.vm.eeprom.axis.size(), 1u);
+}
+
+TEST(coordinate_eeprom_forms) {
+  Machine m({I(Op::SCO, 1, 0, 11), I(Op::SCO, 2, 0, 22), I(Op::SCO, 0, 255, 0), I(Op::SCO, 1, 0, 0), I(Op::SCO, 2, 0, 0),
+             I(Op::GCO, 2, 255), I(Op::STOP)});
+  m.run();
+  CHECK_EQ(m.vm.coords[0][1], 0);
+  CHECK_EQ(m.vm.coords[0][2], 22);
+  CHECK_EQ(m.vm.eeprom.coords.size(), 20u);  // all but coordinate 0
+}
+
+TEST(power_on_restores) {
+  tmcl::EepromImage img;
+  img.vars[3] = 33;
+  img.globals[84] = 1;
+  img.axis[{0, 4}] = 4444;
+  img.coords[{0, 5}] = 55;
+  Machine m({I(Op::STOP)});
+  m.vm.power_on(&img);
+  CHECK_EQ(m.vm.vars[3], 33);
+  CHECK_EQ(m.vm.axis_param(0, 4), 4444);
+  CHECK_EQ(m.vm.coords[0][5], 55);
+  img.globals[85] = 1;  // do not restore user variables
+  img.globals[84] = 0;  // coordinates in RAM only
+  m.vm.power_on(&img);
+  CHECK_EQ(m.vm.vars[3], 0);
+  CHECK_EQ(m.vm.coords[0][5], 0);
+}
+
+TEST(global_84_writes_coordinates_through) {
+  Machine m({I(Op::SGP, 84, 0, 1), I(Op::SCO, 4, 0, 40), I(Op::SCO, 0, 0, 1), I(Op::STOP)});
+  m.run();
+  CHECK_EQ(m.vm.eeprom.coords.size(), 1u);  // coordinate 0 stays in RAM
+}
+
+TEST(file_round_trip_and_corruption) {
+  tmcl::EepromImage img;
+  img.profile = "test";
+  img.vars[0] = -5;
+  img.globals[77] = 1;
+  img.axis[{0, 4}] = 100;
+  img.coords[{0, 20}] = 2147483647;
+  std::string text = tmcl::eeprom_to_text(img);
+  tmcl::EepromImage back;
+  std::string err;
+  CHECK(tmcl::eeprom_from_text(text, "e.txt", back, err));
+  CHECK(back == img);
+  std::string bad = text;
+  bad[bad.find("-5")] = '+';
+  CHECK(!tmcl::eeprom_from_text(bad, "e.txt", back, err));
+  CHECK(err.find("e.txt:3: error:") != std::string::npos);
+  bad = text;
+  bad.replace(bad.find("100"), 3, "101");
+  CHECK(!tmcl::eeprom_from_text(bad, "e.txt", back, err));
+  CHECK(err.find("checksum mismatch") != std::string::npos);
+  CHECK(!tmcl::eeprom_from_text(text.substr(0, text.size() - 15), "e.txt", back, err));
+  CHECK(!tmcl::eeprom_from_text("tmcl-eeprom 2\n", "e.txt", back, err));
+  CHECK(err.find("version 2") != std::string::npos);
+  CHECK(!tmcl::eeprom_from_text("", "e.txt", back, err));
+  CHECK(!tmcl::eeprom_from_text("hello\n", "e.txt", back, err));
+}
+
+TEST(file_save_is_atomic_and_loads) {
+  char dir[] = "/tmp/tmcl-eeprom-XXXXXX";
+  CHECK(mkdtemp(dir) != nullptr);
+  std::string path = std::string(dir) + "/e.eeprom";
+  tmcl::EepromImage img, back;
+  bool existed = true;
+  std::string err;
+  CHECK(tmcl::load_eeprom_file(path, back, existed, err));  // missing: empty, not an error
+  CHECK(!existed);
+  img.vars[1] = 7;
+  CHECK(tmcl::save_eeprom_file(path, img, err));
+  CHECK(tmcl::load_eeprom_file(path, back, existed, err));
+  CHECK(existed);
+  CHECK_EQ(back.vars.at(1), 7);
+  CHECK(access((path + ".tmp").c_str(), F_OK) != 0);  // no temporary left behind
+  CHECK(!tmcl::save_eeprom_file(std::string(dir) + "/no/such/dir/e", img, err));
+  std::remove(path.c_str());
+  rmdir(dir);
+}

@@ -1,0 +1,84 @@
+// Durations, scenarios, instruction text, trace and JSON shape, the generic profile.
+#include <cstdio>
+
+#include "check.hpp"
+#include "machine.hpp"
+#include "tmcl/duration.hpp"
+#include "tmcl/scenario.hpp"
+#include "tmcl/vm_output.hpp"
+
+using namespace vmtest;
+using tmcl::Op;
+
+TEST(durations) {
+  CHECK_EQ(tmcl::parse_duration("50us").value_or(-1), 50);
+  CHECK_EQ(tmcl::parse_duration("10ms").value_or(-1), 10'000);
+  CHECK_EQ(tmcl::parse_duration("2s").value_or(-1), 2'000'000);
+  CHECK_EQ(tmcl::parse_duration("1min").value_or(-1), 60'000'000);
+  CHECK_EQ(tmcl::parse_duration("0").value_or(-1), 0);
+  CHECK(!tmcl::parse_duration("10"));
+  CHECK(!tmcl::parse_duration("ms"));
+  CHECK(!tmcl::parse_duration("-1s"));
+  CHECK(!tmcl::parse_duration("1.5s"));
+  CHECK(!tmcl::parse_duration("1h"));
+  CHECK(!tmcl::parse_duration("99999999999999999999min"));
+  CHECK_EQ(tmcl::format_time(12'000'020), std::string("12.000020s"));
+}
+
+TEST(scenario_parsing) {
+  std::vector<tmcl::InputEvent> ev;
+  std::string err;
+  CHECK(tmcl::parse_scenario("# c\n\nat 10ms input 0 = 1\nat 1s analog 2 = -512 # x\nat 2s left 0 = 1\n", "s.txt", ev, err));
+  CHECK_EQ(ev.size(), 3u);
+  CHECK_EQ(ev[1].at, 1'000'000);
+  CHECK_EQ(ev[1].value, -512);
+  CHECK_EQ(ev[2].line, 5);
+  const char* bad[] = {"at 1s bogus 0 = 1", "at 1x input 0 = 1", "at 1s input 9 = 1", "at 1s input 0 1",
+                       "when 1s input 0 = 1", "at 1s input 0 = 99999999999"};
+  for (const char* b : bad) {
+    ev.clear();
+    CHECK(!tmcl::parse_scenario(std::string("\n") + b + "\n", "s.txt", ev, err));
+    CHECK(err.rfind("s.txt:2: error: ", 0) == 0);
+  }
+}
+
+TEST(instruction_text) {
+  CHECK_EQ(tmcl::instruction_text(I(Op::MVP, 0, 0, 51200)), std::string("MVP ABS, 0, 51200"));
+  CHECK_EQ(tmcl::instruction_text(I(Op::WAIT, 1, 0, 0)), std::string("WAIT POS, 0, 0"));
+  CHECK_EQ(tmcl::instruction_text(I(Op::CALCX, 10)), std::string("CALCX SWAP"));
+  CHECK_EQ(tmcl::instruction_text(I(Op::RSUB)), std::string("RSUB"));
+  CHECK_EQ(tmcl::instruction_text(I(Op::JC, 5, 0, 10)), std::string("JC GE, 10"));
+  CHECK_EQ(tmcl::instruction_text(Instruction{99, 1, 2, 3}), std::string("?? 99, 1, 2, 3"));
+}
+
+TEST(json_has_every_documented_key) {
+  Machine m({I(Op::SGP, 0, 2, 5), I(Op::STOP)});
+  auto r = m.run();
+  std::string j = tmcl::state_json(m.vm, r);
+  for (const char* k : {"\"halt\":\"stop\"", "\"message\":", "\"profile\":", "\"motion\":\"ideal\"", "\"time_us\":", "\"time_ms\":",
+                        "\"steps\":2", "\"pc\":1", "\"acc\":", "\"x\":", "\"flags\":", "\"errors\":", "\"stack\":",
+                        "\"vars\":[5,", "\"axis\":[{", "\"coords\":[[", "\"inputs\":", "\"analog\":", "\"outputs\":",
+                        "\"globals\":", "\"interrupts\":"})
+    CHECK(j.find(k) != std::string::npos);
+}
+
+TEST(trace_lines) {
+  char buf[4096] = {};
+  std::FILE* f = fmemopen(buf, sizeof buf - 1, "w");
+  tmcl::SourceMap src = {"p.tmc:1", "p.tmc:2"};
+  tmcl::TextTrace t(f, &src);
+  Machine m({I(Op::MVP, 0, 0, 10), I(Op::STOP)}, test_profile(), 20);
+  m.vm.trace = &t;
+  m.run();
+  std::fclose(f);
+  std::string out = buf;
+  CHECK(out.find("0.000000s     0 p.tmc:1          MVP ABS, 0, 10") != std::string::npos);
+  CHECK(out.find("motion: motor 0 target reached at position 10") != std::string::npos);
+  CHECK(out.find("0.000020s     1 p.tmc:2          STOP") != std::string::npos);
+}
+
+TEST(generic_profile_runs) {
+  Machine m({I(Op::SAP, 200, 0, 5), I(Op::GAP, 200, 0), I(Op::STOP)}, tmcl::generic_profile());
+  m.run();
+  CHECK_EQ(m.vm.acc, 5);
+}

@@ -1,0 +1,163 @@
+// The EEPROM file (format in eeprom.hpp): text with a version line and an FNV-1a checksum,
+// saved atomically through a temporary file and a rename.
+#include "tmcl/eeprom.hpp"
+
+#include <cerrno>
+#include <cstdio>
+#include <cstring>
+#include <sstream>
+#include <vector>
+
+#include <fcntl.h>
+#include <unistd.h>
+
+namespace tmcl {
+namespace {
+
+std::uint32_t fnv1a(std::string_view s) {
+  std::uint32_t h = 2166136261u;
+  for (unsigned char c : s) {
+    h ^= c;
+    h *= 16777619u;
+  }
+  return h;
+}
+
+bool parse_int(const std::string& s, long long lo, long long hi, long long& out) {
+  if (s.empty()) return false;
+  std::size_t i = (s[0] == '-') ? 1 : 0;
+  if (i == s.size()) return false;
+  long long v = 0;
+  for (; i < s.size(); ++i) {
+    if (s[i] < '0' || s[i] > '9') return false;
+    v = v * 10 + (s[i] - '0');
+    if (v > 4294967296LL) return false;
+  }
+  if (s[0] == '-') v = -v;
+  if (v < lo || v > hi) return false;
+  out = v;
+  return true;
+}
+
+}  // namespace
+
+std::string eeprom_to_text(const EepromImage& image) {
+  std::ostringstream os;
+  os << "tmcl-eeprom 1\n";
+  os << "profile " << (image.profile.empty() ? "generic" : image.profile) << "\n";
+  for (const auto& [n, v] : image.vars) os << "var " << n << " " << v << "\n";
+  for (const auto& [n, v] : image.globals) os << "global " << n << " " << v << "\n";
+  for (const auto& [k, v] : image.axis) os << "axis " << k.first << " " << k.second << " " << v << "\n";
+  for (const auto& [k, v] : image.coords) os << "coord " << k.first << " " << k.second << " " << v << "\n";
+  std::string body = os.str();
+  char check[32];
+  std::snprintf(check, sizeof check, "check %08x\n", fnv1a(body));
+  return body + check;
+}
+
+bool eeprom_from_text(const std::string& text, const std::string& file, EepromImage& image, std::string& error) {
+  image = EepromImage{};
+  auto fail = [&](int line, const std::string& msg) {
+    error = file + ":" + std::to_string(line) + ": error: " + msg;
+    return false;
+  };
+  std::size_t pos = 0;
+  int line_no = 0;
+  bool checked = false;
+  while (pos < text.size()) {
+    std::size_t end = text.find('\n', pos);
+    if (end == std::string::npos) return fail(line_no + 1, "EEPROM file is truncated (no final newline)");
+    std::string line = text.substr(pos, end - pos);
+    ++line_no;
+    if (checked) return fail(line_no, "text after the checksum line");
+    std::istringstream is(line);
+    std::vector<std::string> w;
+    for (std::string t; is >> t;) w.push_back(t);
+    long long a = 0, b = 0, c = 0;
+    if (line_no == 1) {
+      if (w.size() != 2 || w[0] != "tmcl-eeprom") return fail(1, "not a tmclrun EEPROM file (expected 'tmcl-eeprom 1')");
+      if (w[1] != "1") return fail(1, "unsupported EEPROM file version " + w[1] + " (this tmclrun reads version 1)");
+    } else if (!w.empty() && w[0] == "check") {
+      unsigned long expect = 0;
+      if (w.size() != 2 || w[1].size() != 8 || std::sscanf(w[1].c_str(), "%8lx", &expect) != 1)
+        return fail(line_no, "malformed checksum line");
+      if (fnv1a(std::string_view(text).substr(0, pos)) != expect)
+        return fail(line_no, "EEPROM file is corrupt (checksum mismatch)");
+      checked = true;
+    } else if (w.size() == 2 && w[0] == "profile") {
+      image.profile = w[1];
+    } else if (w.size() == 3 && w[0] == "var" && parse_int(w[1], 0, 255, a) && parse_int(w[2], INT32_MIN, INT32_MAX, b)) {
+      if (!image.vars.emplace(static_cast<int>(a), static_cast<std::int32_t>(b)).second) return fail(line_no, "duplicate record");
+    } else if (w.size() == 3 && w[0] == "global" && parse_int(w[1], 0, 255, a) && parse_int(w[2], INT32_MIN, INT32_MAX, b)) {
+      if (!image.globals.emplace(static_cast<int>(a), static_cast<std::int32_t>(b)).second) return fail(line_no, "duplicate record");
+    } else if (w.size() == 4 && (w[0] == "axis" || w[0] == "coord") && parse_int(w[1], 0, 255, a) &&
+               parse_int(w[2], 0, 255, b) && parse_int(w[3], INT32_MIN, INT32_MAX, c)) {
+      auto& map = w[0] == "axis" ? image.axis : image.coords;
+      if (!map.emplace(std::make_pair(static_cast<int>(a), static_cast<int>(b)), static_cast<std::int32_t>(c)).second)
+        return fail(line_no, "duplicate record");
+    } else {
+      return fail(line_no, "malformed EEPROM record '" + line + "'");
+    }
+    pos = end + 1;
+  }
+  if (line_no == 0) return fail(1, "EEPROM file is empty");
+  if (!checked) return fail(line_no, "EEPROM file is truncated (no checksum line)");
+  return true;
+}
+
+bool load_eeprom_file(const std::string& path, EepromImage& image, bool& existed, std::string& error) {
+  image = EepromImage{};
+  existed = false;
+  std::FILE* f = std::fopen(path.c_str(), "rb");
+  if (!f) {
+    if (errno == ENOENT) return true;  // a new EEPROM: empty
+    error = path + ": error: cannot read EEPROM file: " + std::strerror(errno);
+    return false;
+  }
+  existed = true;
+  std::string text;
+  char buf[4096];
+  for (std::size_t n; (n = std::fread(buf, 1, sizeof buf, f)) > 0;) text.append(buf, n);
+  bool read_error = std::ferror(f) != 0;
+  std::fclose(f);
+  if (read_error) {
+    error = path + ": error: cannot read EEPROM file";
+    return false;
+  }
+  return eeprom_from_text(text, path, image, error);
+}
+
+bool save_eeprom_file(const std::string& path, const EepromImage& image, std::string& error) {
+  const std::string text = eeprom_to_text(image);
+  const std::string tmp = path + ".tmp";
+  int fd = ::open(tmp.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+  if (fd < 0) {
+    error = tmp + ": error: cannot write EEPROM file: " + std::strerror(errno);
+    return false;
+  }
+  std::size_t done = 0;
+  while (done < text.size()) {
+    ssize_t n = ::write(fd, text.data() + done, text.size() - done);
+    if (n < 0) {
+      if (errno == EINTR) continue;
+      error = tmp + ": error: cannot write EEPROM file: " + std::strerror(errno);
+      ::close(fd);
+      ::unlink(tmp.c_str());
+      return false;
+    }
+    done += static_cast<std::size_t>(n);
+  }
+  if (::fsync(fd) != 0 || ::close(fd) != 0) {
+    error = tmp + ": error: cannot write EEPROM file: " + std::strerror(errno);
+    ::unlink(tmp.c_str());
+    return false;
+  }
+  if (::rename(tmp.c_str(), path.c_str()) != 0) {
+    error = path + ": error: cannot replace EEPROM file: " + std::strerror(errno);
+    ::unlink(tmp.c_str());
+    return false;
+  }
+  return true;
+}
+
+}  // namespace tmcl

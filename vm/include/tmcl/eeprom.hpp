@@ -1,0 +1,43 @@
+// The simulated EEPROM: what STGP/STAP/SCO-255/auto-stored bank-0 parameters keep across runs,
+// and its file format (tmclrun --eeprom FILE).
+//
+// File format, version 1 (text, one record per line, sorted, so it diffs well):
+//   tmcl-eeprom 1
+//   profile usb-2-sd
+//   var <index> <value>
+//   global <param> <value>          (bank 0)
+//   axis <motor> <param> <value>
+//   coord <motor> <n> <value>
+//   check <8 hex digits>            FNV-1a 32 of every byte before this line
+// A file that does not match (header, syntax, duplicate record, checksum) is rejected with
+// FILE:LINE: error: ... . Saving writes FILE.tmp, flushes it, then renames it over FILE, so a
+// killed process leaves either the old or the new file, never half of one.
+#pragma once
+
+#include <cstdint>
+#include <map>
+#include <string>
+#include <utility>
+
+namespace tmcl {
+
+struct EepromImage {
+  std::string profile;  // the -t name it was written with
+  std::map<int, std::int32_t> vars;                     // bank 2 (STGP)
+  std::map<int, std::int32_t> globals;                  // bank 0 (auto-stored or STGP)
+  std::map<std::pair<int, int>, std::int32_t> axis;     // (motor, param) (STAP)
+  std::map<std::pair<int, int>, std::int32_t> coords;   // (motor, n) (SCO n, 255 / global 84)
+  friend bool operator==(const EepromImage&, const EepromImage&) = default;
+};
+
+std::string eeprom_to_text(const EepromImage& image);
+// Parses `text` (named `file` in messages). On error returns false and sets `error` to
+// "file:line: error: ...".
+bool eeprom_from_text(const std::string& text, const std::string& file, EepromImage& image, std::string& error);
+
+// Loads FILE; a missing file is an empty EEPROM (returns true, `existed` false).
+bool load_eeprom_file(const std::string& path, EepromImage& image, bool& existed, std::string& error);
+// Atomic save: temporary file + rename.
+bool save_eeprom_file(const std::string& path, const EepromImage& image, std::string& error);
+
+}  // namespace tmcl

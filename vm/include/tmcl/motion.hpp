@@ -1,0 +1,133 @@
+// The motion-core interface: everything an embedder needs to write a ramp generator for the VM.
+//
+// The VM owns the program; a motion core owns the motors. The VM never integrates motion itself:
+// it forwards motion parameters (SAP/GAP/AAP on the numbers the core claims with owns()), motion
+// commands (MVP, MVPA, ROR, ROL, RORA, ROLA, MST, RFS) and switch inputs, asks the core for the
+// instant of its next observable event, and asks it to advance, in closed form, to an instant.
+//
+// Contract (the VM keeps it, a core may rely on it):
+//   - Time is simulated, an integer count of microseconds (SimTime), starting at 0 after reset().
+//   - Before any command, parameter access or query at instant t the VM has called advance(t),
+//     so a core only ever needs to know "now" from the last advance().
+//   - advance(t) never goes backwards; it appends every event in (last, t] in time order, each
+//     stamped with its exact instant. An event caused by a command at instant t (e.g. an ideal
+//     move that completes at once) is reported by the next advance(t) with the same instant.
+//   - next_event() is the earliest instant > last advance (or == it, for events caused by a
+//     command not yet collected) at which advance would report an event; kNever if none can
+//     happen without new input. The VM sleeps until then, so a core must not under-report.
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <limits>
+#include <memory>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "tmcl/profile.hpp"
+
+namespace tmcl {
+
+// Simulated time in microseconds.
+using SimTime = std::int64_t;
+inline constexpr SimTime kNever = std::numeric_limits<SimTime>::max();
+inline constexpr SimTime kUsPerMs = 1000;
+inline constexpr SimTime kUsPerTick = 10 * kUsPerMs;  // one WAIT tick is 10 ms
+
+enum class MotionEventKind : std::uint8_t {
+  TargetReached,    // position mode: the target is reached with zero speed (interrupt 3+motor)
+  VelocityReached,  // velocity mode: the target speed is reached
+  Stopped,          // the motor came to rest for another reason (stop switch, virtual stop, MST)
+  Deviation,        // encoder deviation beyond axis parameter 212: motor stopped (interrupt 21+motor)
+  ReferenceDone,    // a reference search completed
+};
+std::string_view motion_event_name(MotionEventKind kind);
+
+struct MotionEvent {
+  SimTime at;
+  std::uint8_t motor;
+  MotionEventKind kind;
+  std::int32_t position;  // actual position at that instant
+};
+
+enum class SwitchInput : std::uint8_t { StopLeft, StopRight, Home };
+
+// Result of a parameter write the VM forwards to a core.
+enum class ParamWrite : std::uint8_t { Ok, ReadOnly, OutOfRange };
+
+enum class RfsAction : std::uint8_t { Start = 0, Stop = 1, Status = 2 };
+
+// A motor's state at one instant, for recording and plotting (tmclrun --csv / --plot).
+struct MotionSample {
+  std::int64_t position;  // actual position (axis parameter 1, not wrapped to 32 bits)
+  double velocity;        // pps
+  double acceleration;    // pps²
+};
+
+class MotionCore {
+ public:
+  virtual ~MotionCore() = default;
+  virtual std::string_view name() const = 0;
+
+  // Power-on state for `motors` motors. Parameters the core owns start at the profile's
+  // defaults (profile.axis_param(n)->default_value) where the profile lists them.
+  virtual void reset(const Profile& profile, int motors) = 0;
+
+  // Earliest instant of the next event (see the contract above); kNever when idle.
+  virtual SimTime next_event() const = 0;
+  // Advances every motor to instant `to` in closed form, appending the events on the way.
+  virtual void advance(SimTime to, std::vector<MotionEvent>& events) = 0;
+
+  // Axis parameters the core owns. The VM checks the profile's access and range first, then
+  // forwards owned numbers here and keeps every other parameter in its own table.
+  virtual bool owns(int param) const = 0;
+  virtual ParamWrite set_param(int motor, int param, std::int32_t value) = 0;
+  // Reading may have effects (e.g. a flag cleared by reading), hence not const.
+  virtual std::int32_t get_param(int motor, int param) = 0;
+
+  virtual void move_absolute(int motor, std::int32_t target) = 0;  // MVP ABS/COORD, MVPA
+  virtual void move_relative(int motor, std::int32_t offset) = 0;  // MVP REL (start per param 127)
+  virtual void rotate(int motor, std::int32_t velocity) = 0;       // ROR (+), ROL (-), RORA, ROLA
+  virtual void stop(int motor) = 0;                                // MST: soft stop
+  // RFS START/STOP; STATUS returns 0 when no search is running (finished), non-zero otherwise.
+  virtual std::int32_t reference_search(int motor, RfsAction action) = 0;
+
+  virtual void set_switch(int motor, SwitchInput input, bool active) = 0;
+  virtual void encoder_slip(int motor, std::int32_t counts) = 0;  // encoder loses/gains counts
+
+  virtual std::int32_t position(int motor) const = 0;  // actual position (axis parameter 1)
+  virtual bool target_reached(int motor) const = 0;    // WAIT POS condition
+  virtual bool reference_done(int motor) const = 0;    // WAIT RFS condition
+
+  // The state of `motor` at instant t >= the last advance(), assuming no further input: a core
+  // in closed form can look ahead, which lets a recorder sample at any period without waking
+  // the VM. The default knows only the position now and reports no motion.
+  virtual MotionSample sample_at(int motor, SimTime t) const {
+    (void)t;
+    return {position(motor), 0.0, 0.0};
+  }
+};
+
+// Motion-core registry: --motion NAME. Built-in cores register themselves; an embedder may add
+// its own before creating a VM.
+using MotionFactory = std::function<std::unique_ptr<MotionCore>()>;
+void register_motion_core(std::string name, MotionFactory factory);
+// nullptr when no core has that name.
+std::unique_ptr<MotionCore> make_motion_core(std::string_view name);
+// Registered names, sorted.
+std::vector<std::string> motion_core_names();
+
+// The built-in `ideal` core: every move completes at the instant it is commanded, rotation runs
+// at the commanded speed from that instant (infinite acceleration).
+std::unique_ptr<MotionCore> make_ideal_motion_core();
+
+// The built-in `tmc4361` core (USB-2-SD): trapezoid/SixPoint and S-shaped ramps, velocity mode,
+// re-planning, virtual stops, stop switches, encoder deviation (docs/motion.md).
+std::unique_ptr<MotionCore> make_tmc4361_motion_core();
+
+// The built-in `linear` core (TMC2300-MOTOR-EVAL): one acceleration for both directions of
+// speed change, speeds limited to ±32767 pps (docs/motion.md).
+std::unique_ptr<MotionCore> make_linear_motion_core();
+
+}  // namespace tmcl

@@ -1,0 +1,78 @@
+// Recording a run's motion and writing it as CSV (tmclrun --csv FILE --sample DURATION) or as an
+// SVG plot of position, velocity and acceleration against time (tmclrun --plot FILE.svg).
+//
+// Wiring into a run loop:
+//   MotionRecorder rec(vm.motors, sample_period);
+//   before every motion->advance(t):        rec.sample_until(*motion, t);
+//   for every MotionEvent the VM handles:   rec.motion_event(ev);
+//   when the program issues a move:         rec.mark(now, motor, Mark::MoveIssued, "MVP ABS 5000", pos);
+//   when an interrupt is taken:             rec.mark(now, motor, Mark::Interrupt, "TI_TIMER0");
+//   when a stop switch changes:             rec.mark(now, motor, Mark::StopSwitch, "left 0 = 1");
+//   at the end:                             rec.sample_until(*motion, now); write_csv(...); write_svg(...);
+// Samples come from MotionCore::sample_at, which looks ahead in closed form, so the VM never has
+// to wake up for a sample.
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <ostream>
+#include <string>
+#include <vector>
+
+#include "tmcl/motion.hpp"
+
+namespace tmcl {
+
+enum class Mark : std::uint8_t { MoveIssued, TargetReached, Interrupt, StopSwitch, Other };
+std::string_view mark_name(Mark m);
+
+struct RecordedMark {
+  SimTime at;
+  int motor;  // -1: not about one motor (e.g. a timer interrupt)
+  Mark kind;
+  std::string label;
+  std::optional<std::int64_t> position;
+};
+
+class MotionRecorder {
+ public:
+  // period > 0: one sample of every motor at 0, period, 2*period, ...
+  MotionRecorder(int motors, SimTime period);
+
+  // Samples every motor at each grid instant in (last sampled, to] (and at 0 the first time).
+  // Call it before the core advances to `to`, i.e. while its plan is still the one that holds.
+  void sample_until(const MotionCore& core, SimTime to);
+  void mark(SimTime at, int motor, Mark kind, std::string label, std::optional<std::int64_t> position = {});
+  // A core's event: target reached becomes a TargetReached mark, the others Other marks.
+  void motion_event(const MotionEvent& ev);
+
+  int motors() const { return motors_; }
+  SimTime period() const { return period_; }
+  const std::vector<SimTime>& times() const { return times_; }
+  // samples()[i * motors() + m]: motor m at times()[i].
+  const std::vector<MotionSample>& samples() const { return samples_; }
+  const std::vector<RecordedMark>& marks() const { return marks_; }
+
+ private:
+  int motors_;
+  SimTime period_;
+  SimTime next_ = 0;
+  std::vector<SimTime> times_;
+  std::vector<MotionSample> samples_;
+  std::vector<RecordedMark> marks_;
+};
+
+// CSV: a comment line, a header, then rows in time order; sample rows have an empty event column,
+// event rows an empty velocity and acceleration. Stable text (fixed decimals) for golden files.
+void write_csv(std::ostream& out, const MotionRecorder& rec);
+
+struct PlotOptions {
+  std::string title = "Motion";
+  int width = 1100;
+  int height = 780;
+};
+// A self-contained SVG: three stacked panels (position, velocity, acceleration) over a shared
+// time axis, one colour per quantity, one dash pattern per motor, event markers and a legend.
+void write_svg(std::ostream& out, const MotionRecorder& rec, const PlotOptions& options = {});
+
+}  // namespace tmcl

@@ -1,0 +1,257 @@
+// The TMCL virtual machine: a plain struct with visible state and a run loop that returns why it
+// stopped. Deterministic: simulated time (microseconds) is data; nothing reads the wall clock.
+//
+//   Vm vm(profile, core);          // core: a MotionCore (motion.hpp), owned by the caller
+//   vm.load(program);              // instructions, e.g. from the assembler or read_bin()
+//   vm.power_on(&eeprom);          // defaults, then what the EEPROM restores at power-up
+//   vm.start(0);
+//   RunResult r = vm.run(limits);  // until STOP, a fault, a limit, or blocked forever
+//
+// Standalone mode (run) and direct mode (execute_direct) share one state, as on a real module.
+// Semantics where the manuals are silent are recorded in docs/errata.md.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "tmcl/eeprom.hpp"
+#include "tmcl/isa.hpp"
+#include "tmcl/motion.hpp"
+#include "tmcl/profile.hpp"
+
+namespace tmcl {
+
+struct Vm;
+
+// Comparison flags (set by COMP, by every CALC variant and by every read in standalone mode).
+enum Flag : std::uint8_t { kFlagZero = 1, kFlagEqual = 2, kFlagGreater = 4, kFlagLower = 8 };
+// Error flags (JC ETO/EAL/EDV/EPO, CLE).
+enum ErrorFlag : std::uint8_t { kErrTimeout = 1, kErrAlarm = 2, kErrDeviation = 4, kErrPosition = 8, kErrShutdown = 16 };
+
+// Program state as global parameter 128 reports it.
+enum class AppStatus : std::uint8_t { Stopped = 0, Running = 1, Step = 2, Reset = 3 };
+
+// Why run() returned.
+enum class Halt : std::uint8_t {
+  Stop,       // STOP executed (or the program was stopped); motion has been run to rest
+  Fault,      // runtime fault: see RunResult::message
+  StepLimit,  // Limits::max_steps instructions executed
+  TimeLimit,  // simulated time reached Limits::until
+  Blocked,    // waiting for an event that can never come (no timer, motion, input or timeout)
+  NotRunning, // run() called while the program is stopped and no motion is pending
+};
+std::string_view halt_name(Halt h);
+
+// Where run() must stop at the latest. Both are totals, not budgets: run() returns when
+// Vm::steps reaches max_steps (a WAIT counts as one instruction) or Vm::now reaches until.
+struct Limits {
+  std::uint64_t max_steps = UINT64_MAX;
+  SimTime until = kNever;
+};
+
+struct RunResult {
+  Halt halt;
+  std::string message;  // for Fault, Blocked and limits: what happened
+};
+
+// A WAIT in progress. Part of the interrupt context: a WAIT interrupted by a handler goes on.
+struct WaitState {
+  bool active = false;
+  std::uint8_t kind = 0;  // WAIT type: 0 TICKS, 1 POS, 2 REFSW, 3 LIMSW, 4 RFS
+  std::uint8_t motor = 0;
+  SimTime deadline = kNever;  // TICKS: end; others: timeout (kNever: none)
+};
+
+struct InterruptContext {
+  std::int32_t pc = 0;  // where to resume (the interrupted instruction, or a WAIT)
+  std::int32_t acc = 0;
+  std::int32_t x = 0;
+  std::uint8_t flags = 0;
+  WaitState wait;
+  int stack_depth = 0;  // call-stack depth at entry: RSUB inside the handler cannot go below it
+  int vector = -1;
+};
+
+struct Timer {
+  std::uint32_t period_ms = 0;  // bank 3, parameters 0..2; 0 = off
+  SimTime next = kNever;
+};
+
+struct MotorSwitches {
+  bool left = false, right = false, home = false;
+};
+
+// A direct-mode reply: status 100 ok, 2 invalid command, 3 wrong type, 4 invalid value,
+// 6 not available on this module.
+struct DirectReply {
+  std::uint8_t status;
+  std::int32_t value;
+};
+inline constexpr std::uint8_t kStatusOk = 100, kStatusInvalidCommand = 2, kStatusWrongType = 3,
+                              kStatusInvalidValue = 4, kStatusNotAvailable = 6;
+
+// Observer for --trace; every callback gets the instant. Null by default (no cost).
+class TraceSink {
+ public:
+  virtual ~TraceSink() = default;
+  // Called after an instruction executed; `at` is its start time, `pc` its address.
+  virtual void instruction(const Vm& vm, SimTime at, std::int32_t pc, const Instruction& ins) = 0;
+  virtual void interrupt_enter(const Vm& vm, int vector, std::int32_t from_pc) = 0;
+  virtual void interrupt_leave(const Vm& vm, std::int32_t to_pc) = 0;
+  virtual void motion_event(const Vm& vm, const MotionEvent& ev) = 0;
+  virtual void wait_end(const Vm& vm, std::int32_t pc, bool timeout) = 0;
+  virtual void input_event(const Vm& vm, const std::string& what) = 0;
+};
+
+// One external input change at an instant (from a scenario, or pushed by a server).
+struct InputEvent {
+  enum Kind : std::uint8_t { Digital, Analog, StopLeft, StopRight, Home, Slip };
+  SimTime at = 0;
+  Kind kind = Digital;
+  int index = 0;  // input number, or motor
+  std::int32_t value = 0;
+  int line = 0;   // scenario line (0: not from a file)
+};
+
+struct Vm {
+  static constexpr int kStackDepth = 8;
+  static constexpr int kTimers = 3;
+  static constexpr int kPorts = 8;  // digital in, analog in, digital out
+
+  // ---- configuration (set before power_on) ----
+  const Profile* profile;
+  MotionCore* motion;
+  SimTime instr_time = 20;        // per instruction, microseconds (tmclrun --instr-time)
+  TraceSink* trace = nullptr;
+  // Called for every motion event as the VM handles it (e.g. a server's position-reached reply,
+  // command 138). Empty by default; never on the instruction fast path.
+  std::function<void(const Vm&, const MotionEvent&)> on_motion_event;
+
+  // ---- program memory: `program` ends with one sentinel (opcode 0) past the last instruction ----
+  std::vector<Instruction> program;
+  std::vector<Instruction> code;  // what the run loop executes: `program` pre-decoded (opcode 0
+                                  // where the profile lacks the command: faults with a message)
+  std::int32_t program_size = 0;  // without the sentinel
+  // Where a .tmc program came from (tmclrun fills it), for fault messages: "prog.tmc:12".
+  std::vector<std::string> source_of;
+
+  // ---- registers ----
+  std::int32_t pc = 0;
+  std::int32_t acc = 0;
+  std::int32_t x = 0;
+  std::uint8_t flags = 0;   // Flag bits
+  std::uint8_t errors = 0;  // ErrorFlag bits
+  std::array<std::int32_t, kStackDepth> stack{};
+  int sp = 0;
+  std::array<std::int32_t, kStackDepth> data_stack{};  // PUSHA/PUSHX/PUSHV, POPA/POPX/POPV
+  int dsp = 0;
+  AppStatus status = AppStatus::Stopped;
+  WaitState wait;
+
+  // ---- memory ----
+  std::array<std::int32_t, 256> vars{};                // bank 2
+  std::array<std::int32_t, 256> bank0{};               // bank 0 (128..133 are computed)
+  std::array<std::int32_t, 256> bank3{};               // bank 3 (interrupt configuration)
+  std::vector<std::array<std::int32_t, 256>> axis;     // per motor, parameters the core does not own
+  std::vector<std::array<bool, 256>> axis_written;     // which of those were ever written (for JSON)
+  std::vector<std::vector<std::int32_t>> coords;       // per motor, profile->coords entries
+  std::array<std::int32_t, kPorts> inputs{};           // digital inputs (GIO n, 0)
+  std::array<std::int32_t, kPorts> analog{};           // analog inputs (GIO n, 1)
+  std::array<std::int32_t, kPorts> outputs{};          // digital outputs (SIO n, 2 / GIO n, 2)
+  std::vector<MotorSwitches> switches;
+  EepromImage eeprom;
+  bool eeprom_dirty = false;
+
+  // ---- interrupts ----
+  std::array<std::int32_t, 256> vectors{};   // handler address, -1 = not defined
+  std::array<std::uint64_t, 4> enabled{};  // bit n: interrupt n enabled (EI n)
+  std::array<std::uint64_t, 4> pending{};  // bit n: latched, waiting to be served
+  bool global_enable = false;
+  bool in_handler = false;
+  InterruptContext saved;
+  std::array<Timer, kTimers> timers{};
+
+  // ---- time and counters ----
+  SimTime now = 0;
+  std::uint64_t steps = 0;
+  std::int64_t tick_offset_ms = 0;  // global 132 = now/1000 + tick_offset_ms
+  std::uint32_t random_state = 1;   // global 133
+  std::int32_t halt_pc = -1;        // address of the STOP or faulting instruction
+
+  // ---- external inputs queued by time ----
+  std::vector<InputEvent> inputs_queue;  // sorted by time; consumed from input_next
+  std::size_t input_next = 0;
+
+  Vm(const Profile& p, MotionCore& core);
+
+  // Replaces program memory (the VM appends its own sentinel).
+  void load(const std::vector<Instruction>& prog);
+  // Power-up: every register, parameter and variable to its default, then what `image`
+  // restores (user variables, axis parameters, coordinates, bank 0). Time restarts at 0.
+  void power_on(const EepromImage* image = nullptr);
+  // Starts (or continues) the program at `address`.
+  void start(std::int32_t address);
+  // RST / reset application: stack, registers, flags, interrupt state cleared.
+  void reset_interpreter();
+  // Queues external input changes (sorted by time, stable).
+  void add_inputs(std::vector<InputEvent> events);
+
+  RunResult run(const Limits& limits);
+  // Direct mode: one command from a host. Reads do not touch the accumulator.
+  DirectReply execute_direct(const Instruction& ins);
+
+  // Reads for output and tests.
+  std::int32_t axis_param(int motor, int param);  // through the core where it owns the number
+  std::int32_t global_param(int bank, int param);
+  std::int32_t tick_ms() const;
+  bool motion_pending() const { return motion->next_event() != kNever; }
+
+  // ---- internals shared by the implementation files (vm*.cpp) ----
+  SimTime next_check = 0;     // the run loop leaves its fast path when now >= next_check
+  bool fault_set = false;
+  std::string fault_message;
+  std::vector<MotionEvent> event_buf;
+
+  void fault(std::string message);
+  void sync_motion();              // advance the core to `now`, handle its events
+  void handle_motion_event(const MotionEvent& ev);
+  void apply_input(const InputEvent& ev);
+  void raise(int vector);          // latch an interrupt if it is enabled and has a vector
+  bool try_enter_interrupt();
+  SimTime next_wakeup() const;     // earliest timer, motion event, input, WAIT deadline
+  void fire_due_timers();
+  int wait_check();                // 0 still waiting, 1 condition met, 2 timed out (ETO set)
+  void set_timer(int n, std::int32_t period_ms);
+
+  // Parameter access with the profile's rules. Return a direct-mode status.
+  std::uint8_t set_axis(int motor, int param, std::int32_t value);
+  std::uint8_t get_axis(int motor, int param, std::int32_t& value);
+  std::uint8_t set_global(int bank, int param, std::int32_t value);
+  std::uint8_t get_global(int bank, int param, std::int32_t& value);
+  std::uint8_t store_axis(int motor, int param);
+  std::uint8_t restore_axis(int motor, int param);
+  std::uint8_t store_global(int bank, int param);
+  std::uint8_t restore_global(int bank, int param);
+  std::uint8_t set_coord(int motor, int n, std::int32_t value);  // SCO/ACO incl. bank-255 forms
+  std::uint8_t get_coord(int motor, int n, std::int32_t& value); // GCO incl. bank-255 form
+  std::uint8_t capture_coord(int motor, int n, std::int32_t& value);
+  std::uint8_t set_io(int port, int bank, std::int32_t value);
+  std::uint8_t get_io(int port, int bank, std::int32_t& value);
+  std::uint8_t move(int type, int motor, std::int32_t value);
+  std::uint8_t rotate(int motor, std::int64_t velocity);
+  std::uint8_t motor_stop(int motor);
+  std::uint8_t rfs(int type, int motor, std::int32_t& value);
+  bool motor_ok(int motor) const { return motor >= 0 && motor < profile->motors; }
+  bool vector_ok(int n) const;
+  bool jump_ok(std::int32_t target);  // faults when the target is outside the program
+  bool is_enabled(int n) const { return (enabled[n >> 6] >> (n & 63)) & 1; }
+  bool is_pending(int n) const { return (pending[n >> 6] >> (n & 63)) & 1; }
+  std::string where(std::int32_t address) const;  // "address 12 (prog.tmc:13)"
+  void store_instruction(std::int32_t address, const Instruction& ins);  // download mode
+  void decode_all();  // rebuilds code[] from program[]
+};
+
+}  // namespace tmcl

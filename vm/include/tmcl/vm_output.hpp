@@ -1,0 +1,47 @@
+// What tmclrun shows of a run, as stable text: the per-instruction trace, the JSON state dump
+// and the exit summary. In the library so that tests and embedders can reach it.
+#pragma once
+
+#include <cstdio>
+#include <string>
+#include <vector>
+
+#include "tmcl/vm.hpp"
+
+namespace tmcl {
+
+// The instruction as source text, expanded from the instruction table: "MVP ABS, 0, 51200".
+// Keyword operands print by name when the value has one; unknown opcodes as "db op,type,motor,value".
+std::string instruction_text(const Instruction& ins);
+
+// Where each program address came from, e.g. "prog.tmc:12"; empty strings when unknown.
+using SourceMap = std::vector<std::string>;
+
+// --trace: one line per executed instruction and per interrupt, motion event and wait end:
+//   0.000020s  3 prog.tmc:4  SAP 4, 0, 51200  A=0 X=0 F=-- E=-
+class TextTrace final : public TraceSink {
+ public:
+  TextTrace(std::FILE* out, const SourceMap* sources) : out_(out), sources_(sources) {}
+  void instruction(const Vm& vm, SimTime at, std::int32_t pc, const Instruction& ins) override;
+  void interrupt_enter(const Vm& vm, int vector, std::int32_t from_pc) override;
+  void interrupt_leave(const Vm& vm, std::int32_t to_pc) override;
+  void motion_event(const Vm& vm, const MotionEvent& ev) override;
+  void wait_end(const Vm& vm, std::int32_t pc, bool timeout) override;
+  void input_event(const Vm& vm, const std::string& what) override;
+
+ private:
+  std::string where(std::int32_t pc) const;
+  std::FILE* out_;
+  const SourceMap* sources_;
+};
+
+// "ZE EQ" style flag names; "-" when none.
+std::string flags_text(std::uint8_t flags);
+std::string errors_text(std::uint8_t errors);
+
+// --json: one object (see docs/tmclrun.md for every key), ending in a newline.
+std::string state_json(Vm& vm, const RunResult& result);
+// The default exit summary.
+std::string state_summary(Vm& vm, const RunResult& result, const SourceMap* sources);
+
+}  // namespace tmcl

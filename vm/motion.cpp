@@ -1,0 +1,61 @@
+// The motion-core registry (tmclrun --motion NAME) and event names.
+#include <algorithm>
+#include <map>
+#include <mutex>
+
+#include "tmcl/motion.hpp"
+
+namespace tmcl {
+namespace {
+
+struct Registry {
+  std::mutex lock;
+  std::map<std::string, MotionFactory, std::less<>> factories;
+  Registry() {
+    factories.emplace("ideal", [] { return make_ideal_motion_core(); });
+    factories.emplace("tmc4361", [] { return make_tmc4361_motion_core(); });
+    factories.emplace("linear", [] { return make_linear_motion_core(); });
+  }
+};
+
+Registry& registry() {
+  static Registry r;
+  return r;
+}
+
+}  // namespace
+
+std::string_view motion_event_name(MotionEventKind kind) {
+  switch (kind) {
+    case MotionEventKind::TargetReached: return "target reached";
+    case MotionEventKind::VelocityReached: return "velocity reached";
+    case MotionEventKind::Stopped: return "stopped";
+    case MotionEventKind::Deviation: return "deviation";
+    case MotionEventKind::ReferenceDone: return "reference search done";
+  }
+  return "?";
+}
+
+void register_motion_core(std::string name, MotionFactory factory) {
+  Registry& r = registry();
+  std::lock_guard<std::mutex> g(r.lock);
+  r.factories[std::move(name)] = std::move(factory);
+}
+
+std::unique_ptr<MotionCore> make_motion_core(std::string_view name) {
+  Registry& r = registry();
+  std::lock_guard<std::mutex> g(r.lock);
+  auto it = r.factories.find(name);
+  if (it == r.factories.end()) return nullptr;
+  return it->second();
+}
+
+std::vector<std::string> motion_core_names() {
+  Registry& r = registry();
+  std::lock_guard<std::mutex> g(r.lock);
+  std::vector<std::string> names;
+  for (const auto& [name, f] : r.factories) names.push_back(name);
+  return names;
+}
+
+}  // namespace tmcl

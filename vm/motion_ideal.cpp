@@ -1,0 +1,189 @@
+// The `ideal` motion core: infinite acceleration. A move completes at the instant it is
+// commanded (the target-reached event carries that instant); rotation runs at the commanded
+// speed from that instant, so the position is a closed-form line p0 + v * (t - t0). Enough for
+// logic tests of programs; the real ramp generators are separate cores (motion.hpp).
+//
+// Parameters it owns: 0 target, 1 actual position, 2 target speed, 3 actual speed,
+// 8 position reached, 127 relative positioning option, 209 encoder position, 212 maximum
+// encoder deviation. Stop and home switches do not stop an ideal motor (documented).
+#include <cstdlib>
+#include <deque>
+
+#include "tmcl/motion.hpp"
+
+namespace tmcl {
+namespace {
+
+constexpr SimTime kUsPerSecond = 1'000'000;
+
+std::int32_t wrap32(std::int64_t v) { return static_cast<std::int32_t>(static_cast<std::uint32_t>(static_cast<std::uint64_t>(v))); }
+
+struct Motor {
+  std::int64_t base = 0;     // position at t0 (not wrapped; reads wrap to 32 bits)
+  SimTime t0 = 0;
+  std::int32_t velocity = 0; // pps; 0 in position mode
+  std::int32_t target = 0;
+  std::int64_t encoder_offset = 0;  // encoder position - actual position
+  std::int32_t rel_option = 0;      // 127
+  std::int32_t max_deviation = 0;   // 212
+};
+
+class IdealCore final : public MotionCore {
+ public:
+  std::string_view name() const override { return "ideal"; }
+
+  void reset(const Profile& profile, int motors) override {
+    motors_.assign(static_cast<std::size_t>(motors), Motor{});
+    for (auto& m : motors_) {
+      if (auto* p = profile.axis_param(127)) m.rel_option = p->default_value;
+      if (auto* p = profile.axis_param(212)) m.max_deviation = p->default_value;
+    }
+    now_ = 0;
+    events_.clear();
+  }
+
+  SimTime next_event() const override { return events_.empty() ? kNever : events_.front().at; }
+
+  void advance(SimTime to, std::vector<MotionEvent>& out) override {
+    if (to > now_) now_ = to;
+    while (!events_.empty() && events_.front().at <= now_) {
+      out.push_back(events_.front());
+      events_.pop_front();
+    }
+  }
+
+  bool owns(int param) const override {
+    switch (param) {
+      case 0: case 1: case 2: case 3: case 8: case 127: case 209: case 212: return true;
+      default: return false;
+    }
+  }
+
+  ParamWrite set_param(int motor, int param, std::int32_t value) override {
+    Motor& m = at(motor);
+    switch (param) {
+      case 0: move_absolute(motor, value); return ParamWrite::Ok;
+      case 1:
+        rebase(m);
+        m.base = value;
+        return ParamWrite::Ok;
+      case 2: rotate(motor, value); return ParamWrite::Ok;
+      case 127:
+        if (value < 0 || value > 2) return ParamWrite::OutOfRange;
+        m.rel_option = value;
+        return ParamWrite::Ok;
+      case 209: m.encoder_offset = static_cast<std::int64_t>(value) - pos(m); return ParamWrite::Ok;
+      case 212:
+        if (value < 0) return ParamWrite::OutOfRange;
+        m.max_deviation = value;
+        return ParamWrite::Ok;
+      default: return ParamWrite::ReadOnly;
+    }
+  }
+
+  std::int32_t get_param(int motor, int param) override {
+    Motor& m = at(motor);
+    switch (param) {
+      case 0: return m.target;
+      case 1: return wrap32(pos(m));
+      case 2: return m.velocity;
+      case 3: return m.velocity;
+      case 8: return target_reached(motor) ? 1 : 0;
+      case 127: return m.rel_option;
+      case 209: return wrap32(pos(m) + m.encoder_offset);
+      case 212: return m.max_deviation;
+      default: return 0;
+    }
+  }
+
+  void move_absolute(int motor, std::int32_t target) override {
+    Motor& m = at(motor);
+    rebase(m);
+    m.velocity = 0;
+    m.target = target;
+    m.base = target;
+    emit(motor, MotionEventKind::TargetReached, m);
+  }
+
+  void move_relative(int motor, std::int32_t offset) override {
+    Motor& m = at(motor);
+    std::int64_t start = m.rel_option == 0 ? m.target : m.rel_option == 1 ? pos(m) : pos(m) + m.encoder_offset;
+    move_absolute(motor, wrap32(start + offset));
+  }
+
+  void rotate(int motor, std::int32_t velocity) override {
+    Motor& m = at(motor);
+    rebase(m);
+    m.velocity = velocity;
+    emit(motor, velocity == 0 ? MotionEventKind::Stopped : MotionEventKind::VelocityReached, m);
+  }
+
+  void stop(int motor) override {
+    Motor& m = at(motor);
+    bool was_moving = m.velocity != 0;
+    rebase(m);
+    m.velocity = 0;
+    if (was_moving) emit(motor, MotionEventKind::Stopped, m);
+  }
+
+  std::int32_t reference_search(int motor, RfsAction action) override {
+    Motor& m = at(motor);
+    if (action == RfsAction::Start) {  // completes at once: the home is where the motor is
+      rebase(m);
+      m.velocity = 0;
+      m.base = 0;
+      m.target = 0;
+      m.encoder_offset = 0;
+      emit(motor, MotionEventKind::ReferenceDone, m);
+    }
+    return 0;
+  }
+
+  void set_switch(int, SwitchInput, bool) override {}
+
+  void encoder_slip(int motor, std::int32_t counts) override {
+    Motor& m = at(motor);
+    m.encoder_offset += counts;
+    if (m.max_deviation > 0 && std::llabs(m.encoder_offset) > m.max_deviation) {
+      rebase(m);
+      m.velocity = 0;
+      m.target = wrap32(m.base);
+      emit(motor, MotionEventKind::Deviation, m);
+    }
+  }
+
+  std::int32_t position(int motor) const override { return wrap32(pos(motors_[static_cast<std::size_t>(motor)])); }
+  bool target_reached(int motor) const override {
+    const Motor& m = motors_[static_cast<std::size_t>(motor)];
+    return m.velocity == 0 && wrap32(pos(m)) == m.target;
+  }
+  bool reference_done(int) const override { return true; }
+
+ private:
+  Motor& at(int motor) { return motors_[static_cast<std::size_t>(motor)]; }
+
+  // Position at now_: exact integer arithmetic, truncated toward zero.
+  std::int64_t pos(const Motor& m) const {
+    if (m.velocity == 0) return m.base;
+    SimTime dt = now_ - m.t0;
+    std::int64_t v = m.velocity;
+    return m.base + v * (dt / kUsPerSecond) + v * (dt % kUsPerSecond) / kUsPerSecond;
+  }
+  void rebase(Motor& m) {
+    m.base = pos(m);
+    m.t0 = now_;
+  }
+  void emit(int motor, MotionEventKind kind, const Motor& m) {
+    events_.push_back(MotionEvent{now_, static_cast<std::uint8_t>(motor), kind, wrap32(pos(m))});
+  }
+
+  std::vector<Motor> motors_;
+  SimTime now_ = 0;
+  std::deque<MotionEvent> events_;
+};
+
+}  // namespace
+
+std::unique_ptr<MotionCore> make_ideal_motion_core() { return std::make_unique<IdealCore>(); }
+
+}  // namespace tmcl

@@ -1,0 +1,207 @@
+// The `linear` motion core: the TMC2300-MOTOR-EVAL's plain linear ramp. One acceleration
+// (parameter 5) for speeding up and slowing down, no start or stop velocity, speeds limited to
+// ±32767 pps, in positioning and in velocity mode. Mid-move changes re-plan from the current state
+// as in the tmc4361 core (same closed-form planner, ramp.hpp). The module has no stop switches,
+// virtual stops or encoder: switch inputs and encoder slip do not affect it (docs/motion.md).
+//
+// Parameters it owns: 0-8 (6 and 7 the run and standby current, stored and reported), 140, 141,
+// and 180 (the actual current: run current while moving, standby current at rest).
+#include <algorithm>
+#include <array>
+
+#include "ramp_motor.hpp"
+#include "tmcl/motion.hpp"
+
+namespace tmcl {
+namespace {
+
+using ramp::Builder;
+using ramp::EventKind;
+using ramp::RampMotor;
+using ramp::wrap32;
+
+constexpr std::int32_t kMaxSpeed = 32767;
+constexpr int kOwned[] = {0, 1, 2, 3, 4, 5, 6, 7, 8, 140, 141, 180};
+
+enum class Goal : std::uint8_t { Idle, Position, Velocity };
+
+struct Motor {
+  RampMotor rm;
+  std::array<std::int32_t, 256> p{};
+  Goal goal = Goal::Idle;
+  std::int32_t vt = 0;
+};
+
+std::int32_t fallback_default(int p) {
+  switch (p) {
+    case 4: case 5: return 10000;
+    case 6: return 16;
+    case 7: return 8;
+    case 8: return 1;
+    case 140: return 8;
+    case 141: return 1;
+    default: return 0;
+  }
+}
+
+class LinearCore final : public MotionCore {
+ public:
+  std::string_view name() const override { return "linear"; }
+
+  void reset(const Profile& profile, int motors) override {
+    motors_.assign(static_cast<std::size_t>(motors), Motor{});
+    for (auto& m : motors_)
+      for (int n : kOwned) {
+        const ParamInfo* info = profile.axis_param(n);
+        m.p[static_cast<std::size_t>(n)] = info ? info->default_value : fallback_default(n);
+      }
+    now_ = 0;
+  }
+
+  SimTime next_event() const override {
+    SimTime t = kNever;
+    for (const auto& m : motors_) t = std::min(t, m.rm.next_event());
+    if (!pending_.empty()) t = std::min(t, pending_.front().at);
+    return t;
+  }
+
+  void advance(SimTime to, std::vector<MotionEvent>& out) override {
+    if (to > now_) now_ = to;
+    std::size_t first = out.size();
+    out.insert(out.end(), pending_.begin(), pending_.end());
+    pending_.clear();
+    for (std::size_t i = 0; i < motors_.size(); ++i) {
+      Motor& m = motors_[i];
+      while (m.rm.next_event() <= now_) {
+        SimTime at = m.rm.event_time(m.rm.next);
+        EventKind k = m.rm.plan.events[m.rm.next++].kind;
+        MotionEventKind kind = k == EventKind::TargetReached     ? MotionEventKind::TargetReached
+                               : k == EventKind::VelocityReached ? MotionEventKind::VelocityReached
+                                                                 : MotionEventKind::Stopped;
+        out.push_back({at, static_cast<std::uint8_t>(i), kind, wrap32(m.rm.xactual(at))});
+        if (k != EventKind::VelocityReached) m.goal = Goal::Idle;
+      }
+    }
+    if (motors_.size() > 1)
+      std::stable_sort(out.begin() + static_cast<std::ptrdiff_t>(first), out.end(),
+                       [](const MotionEvent& a, const MotionEvent& b) { return a.at < b.at; });
+  }
+
+  bool owns(int param) const override { return std::find(std::begin(kOwned), std::end(kOwned), param) != std::end(kOwned); }
+
+  ParamWrite set_param(int motor, int param, std::int32_t value) override {
+    Motor& m = at(motor);
+    switch (param) {
+      case 0: move_absolute(motor, value); return ParamWrite::Ok;
+      case 1:
+        m.rm.base += static_cast<std::int64_t>(value) - m.rm.xactual(now_);
+        if (m.goal == Goal::Position) replan(m);
+        return ParamWrite::Ok;
+      case 2: rotate(motor, value); return ParamWrite::Ok;
+      case 3: case 8: case 180: return ParamWrite::ReadOnly;
+      case 4: if (value < 0 || value > kMaxSpeed) return ParamWrite::OutOfRange; break;
+      case 5: if (value < 0) return ParamWrite::OutOfRange; break;
+      case 6: case 7: if (value < 0 || value > 31) return ParamWrite::OutOfRange; break;
+      case 140: if (value < 0 || value > 8) return ParamWrite::OutOfRange; break;
+      case 141: if (value < 0 || value > 1) return ParamWrite::OutOfRange; break;
+      default: return ParamWrite::ReadOnly;
+    }
+    bool changed = m.p[static_cast<std::size_t>(param)] != value;
+    m.p[static_cast<std::size_t>(param)] = value;
+    if (changed && (param == 4 || param == 5)) replan(m);
+    return ParamWrite::Ok;
+  }
+
+  std::int32_t get_param(int motor, int param) override {
+    Motor& m = at(motor);
+    switch (param) {
+      case 1: return wrap32(m.rm.xactual(now_));
+      case 2: return m.vt;
+      case 3: {
+        double v = m.rm.state(now_).v;
+        return static_cast<std::int32_t>(v > 0 ? v + 1e-9 : v - 1e-9);
+      }
+      case 8: return target_reached(motor) ? 1 : 0;
+      case 180: return m.rm.at_rest(now_) ? m.p[7] : m.p[6];
+      default: return m.p[static_cast<std::size_t>(param)];
+    }
+  }
+
+  void move_absolute(int motor, std::int32_t target) override {
+    Motor& m = at(motor);
+    m.p[0] = target;
+    m.goal = Goal::Position;
+    replan(m);
+  }
+  // The module has no parameter 127: MVP REL counts from the last target, as the manual says.
+  void move_relative(int motor, std::int32_t offset) override {
+    Motor& m = at(motor);
+    move_absolute(motor, wrap32(static_cast<std::int64_t>(m.p[0]) + offset));
+  }
+  void rotate(int motor, std::int32_t velocity) override {
+    Motor& m = at(motor);
+    m.vt = std::clamp(velocity, -kMaxSpeed, kMaxSpeed);
+    m.goal = Goal::Velocity;
+    replan(m);
+  }
+  void stop(int motor) override {
+    Motor& m = at(motor);
+    if (m.goal == Goal::Idle && m.rm.at_rest(now_)) return;
+    m.vt = 0;
+    m.goal = Goal::Velocity;
+    replan(m);
+  }
+  std::int32_t reference_search(int motor, RfsAction action) override {
+    Motor& m = at(motor);
+    if (action != RfsAction::Start) return 0;
+    Builder b = m.rm.restart(now_);
+    b.stop_hard();
+    b.finish_rest();
+    m.rm.base -= m.rm.xactual(now_);
+    m.p[0] = 0;
+    m.goal = Goal::Idle;
+    pending_.push_back({now_, static_cast<std::uint8_t>(motor), MotionEventKind::ReferenceDone, 0});
+    return 0;
+  }
+  void set_switch(int, SwitchInput, bool) override {}
+  void encoder_slip(int, std::int32_t) override {}
+
+  std::int32_t position(int motor) const override {
+    return wrap32(motors_[static_cast<std::size_t>(motor)].rm.xactual(now_));
+  }
+  bool target_reached(int motor) const override {
+    const Motor& m = motors_[static_cast<std::size_t>(motor)];
+    return m.rm.at_rest(now_) && wrap32(m.rm.xactual(now_)) == m.p[0];
+  }
+  bool reference_done(int) const override { return true; }
+  MotionSample sample_at(int motor, SimTime t) const override {
+    const Motor& m = motors_[static_cast<std::size_t>(motor)];
+    ramp::State s = m.rm.state(t);
+    return {m.rm.xactual(t), s.v, s.a};
+  }
+
+ private:
+  Motor& at(int motor) { return motors_[static_cast<std::size_t>(motor)]; }
+
+  void replan(Motor& m) {
+    if (m.goal == Goal::Idle) return;
+    ramp::Limits lim;
+    lim.vmax = std::min(m.p[4], kMaxSpeed);
+    lim.amax = lim.astart = lim.dmax = lim.dfinal = m.p[5];
+    Builder b = m.rm.restart(now_);
+    if (m.goal == Goal::Position)
+      b.plan_position(lim, static_cast<double>(m.p[0] - m.rm.base));
+    else
+      b.plan_velocity(lim, m.vt);
+  }
+
+  std::vector<Motor> motors_;
+  SimTime now_ = 0;
+  std::vector<MotionEvent> pending_;
+};
+
+}  // namespace
+
+std::unique_ptr<MotionCore> make_linear_motion_core() { return std::make_unique<LinearCore>(); }
+
+}  // namespace tmcl

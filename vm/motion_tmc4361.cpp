@@ -1,0 +1,407 @@
+// The `tmc4361` motion core: the USB-2-SD's ramp generator (a TMC4361A-style motion controller)
+// as the module's axis parameters expose it. Trapezoid/SixPoint and S-shaped positioning ramps,
+// velocity mode, re-planning of a move when its target, speed or acceleration changes, virtual
+// stops, stop switches, and the encoder with its deviation check. Every command computes a
+// closed-form plan (ramp.hpp); time only evaluates it. docs/motion.md explains every decision.
+//
+// Parameters it owns: 0-5, 8, 14-29, 35, 127, 131, 132, 140, 202, 207, 209, 210, 212, 251, 255.
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdlib>
+#include <cstring>
+
+#include "ramp_motor.hpp"
+#include "tmcl/motion.hpp"
+
+namespace tmcl {
+namespace {
+
+using ramp::Builder;
+using ramp::EventKind;
+using ramp::Limits;
+using ramp::RampMotor;
+using ramp::wrap32;
+
+constexpr int kOwned[] = {0,  1,  2,  3,  4,  5,  8,  14, 15, 16,  17,  18,  19,  20,  21,  22,  23,  24,
+                          25, 26, 27, 28, 29, 35, 127, 131, 132, 140, 202, 207, 209, 210, 212, 251, 255};
+
+// Power-on values when the profile does not list a parameter (another module's profile).
+std::int32_t fallback_default(int p) {
+  switch (p) {
+    case 4: case 5: return 51200;
+    case 8: return 1;
+    case 22: case 23: case 24: case 25: return 512000;
+    case 35: return 1;
+    case 140: return 8;
+    case 202: return 200;
+    case 210: return 51200;
+    case 255: return 1;
+    default: return 0;
+  }
+}
+
+enum class Goal : std::uint8_t { Idle, Position, Velocity, Halt };
+enum class Halt : std::uint8_t { Switch, VirtualStop, Deviation };
+
+struct Motor {
+  RampMotor rm;
+  std::array<std::int32_t, 256> p{};  // owned parameters, raw as written
+  Goal goal = Goal::Idle;
+  std::int32_t vt = 0;                // velocity-mode target, raw (param 2)
+  Halt halt = Halt::Switch;           // which stop a Halt goal is
+  double trip_t = ramp::kInf;         // plan instant of a pending trip (switch, virtual stop, ...)
+  Halt trip_kind = Halt::Switch;
+  bool left = false, right = false, home = false;
+  std::int64_t enc_off = 0;           // encoder position = s * XACTUAL + enc_off
+  std::int32_t errors = 0;            // parameter 207
+};
+
+class Tmc4361Core final : public MotionCore {
+ public:
+  std::string_view name() const override { return "tmc4361"; }
+
+  void reset(const Profile& profile, int motors) override {
+    motors_.assign(static_cast<std::size_t>(motors), Motor{});
+    for (auto& m : motors_)
+      for (int n : kOwned) {
+        const ParamInfo* info = profile.axis_param(n);
+        m.p[static_cast<std::size_t>(n)] = info ? info->default_value : fallback_default(n);
+      }
+    now_ = 0;
+  }
+
+  SimTime next_event() const override {
+    SimTime t = kNever;
+    for (const auto& m : motors_) t = std::min(t, m.rm.next_event());
+    if (!pending_ref_.empty()) t = std::min(t, pending_ref_.front().at);
+    return t;
+  }
+
+  void advance(SimTime to, std::vector<MotionEvent>& out) override {
+    if (to > now_) now_ = to;
+    std::size_t first = out.size();
+    out.insert(out.end(), pending_ref_.begin(), pending_ref_.end());
+    pending_ref_.clear();
+    for (std::size_t i = 0; i < motors_.size(); ++i) {
+      Motor& m = motors_[i];
+      while (m.rm.next_event() <= now_) {
+        SimTime at = m.rm.event_time(m.rm.next);
+        EventKind k = m.rm.plan.events[m.rm.next++].kind;
+        out.push_back({at, static_cast<std::uint8_t>(i), kind_of(k), wrap32(m.rm.xactual(at))});
+        if (k == EventKind::Deviation) m.errors = 2;
+        if (k != EventKind::VelocityReached) m.goal = Goal::Idle, m.trip_t = ramp::kInf;
+      }
+    }
+    if (motors_.size() > 1)
+      std::stable_sort(out.begin() + static_cast<std::ptrdiff_t>(first), out.end(),
+                       [](const MotionEvent& a, const MotionEvent& b) { return a.at < b.at; });
+  }
+
+  bool owns(int param) const override { return std::find(std::begin(kOwned), std::end(kOwned), param) != std::end(kOwned); }
+
+  ParamWrite set_param(int motor, int param, std::int32_t value) override {
+    Motor& m = at(motor);
+    switch (param) {
+      case 0: move_absolute(motor, value); return ParamWrite::Ok;
+      case 1: {  // shift the coordinate system; a move in progress still goes to its target
+        m.rm.base += static_cast<std::int64_t>(value) - m.rm.xactual(now_);
+        if (m.goal == Goal::Position) replan(m);
+        return ParamWrite::Ok;
+      }
+      case 2: rotate(motor, value); return ParamWrite::Ok;
+      case 3: case 8: case 131: case 132: case 207: return ParamWrite::ReadOnly;
+      case 209: m.enc_off = static_cast<std::int64_t>(value) - enc_sign(m) * m.rm.xactual(now_); break;
+      case 210: case 251: {  // keep the encoder reading, change how it follows the motor
+        if (param == 210 && (value < -65535 || value > 65535)) return ParamWrite::OutOfRange;
+        if (param == 251 && (value < 0 || value > 1)) return ParamWrite::OutOfRange;
+        std::int64_t e = encoder(m);
+        m.p[static_cast<std::size_t>(param)] = value;
+        m.enc_off = e - enc_sign(m) * m.rm.xactual(now_);
+        break;
+      }
+      default: {
+        if (!valid(param, value)) return ParamWrite::OutOfRange;
+        Limits before = limits(m);
+        m.p[static_cast<std::size_t>(param)] = value;
+        Limits after = limits(m);
+        bool ramp_changed = std::memcmp(&before, &after, sizeof before) != 0 || param == 14 || param == 255;
+        if (ramp_changed || (param >= 26 && param <= 29) || param == 212) replan(m);
+        return ParamWrite::Ok;
+      }
+    }
+    m.p[static_cast<std::size_t>(param)] = value;
+    if (param != 209 || m.goal != Goal::Idle) replan(m);
+    return ParamWrite::Ok;
+  }
+
+  std::int32_t get_param(int motor, int param) override {
+    Motor& m = at(motor);
+    switch (param) {
+      case 1: return wrap32(m.rm.xactual(now_));
+      case 2: return m.vt;
+      case 3: return speed_raw(m, m.rm.state(now_).v);
+      case 8: return target_reached(motor) ? 1 : 0;
+      case 131: case 132: return speed_raw(m, static_cast<double>(enc_sign(m)) * m.rm.state(now_).v);
+      case 207: {
+        std::int32_t e = m.errors;
+        m.errors = 0;
+        return e;
+      }
+      case 209: return wrap32(encoder(m));
+      default: return m.p[static_cast<std::size_t>(param)];
+    }
+  }
+
+  void move_absolute(int motor, std::int32_t target) override {
+    Motor& m = at(motor);
+    m.p[0] = target;
+    m.errors = 0;
+    m.goal = Goal::Position;
+    m.trip_t = ramp::kInf;
+    replan(m, true);
+  }
+
+  void move_relative(int motor, std::int32_t offset) override {
+    Motor& m = at(motor);
+    std::int64_t start = m.p[127] == 0 ? m.p[0] : m.p[127] == 1 ? m.rm.xactual(now_) : encoder(m);
+    move_absolute(motor, wrap32(start + offset));
+  }
+
+  void rotate(int motor, std::int32_t velocity) override {
+    Motor& m = at(motor);
+    m.vt = velocity;
+    m.errors = 0;
+    m.goal = Goal::Velocity;
+    m.trip_t = ramp::kInf;
+    replan(m, true);
+  }
+
+  void stop(int motor) override {
+    Motor& m = at(motor);
+    if (m.goal == Goal::Idle && m.rm.at_rest(now_)) return;
+    m.vt = 0;
+    m.goal = Goal::Velocity;
+    m.trip_t = ramp::kInf;
+    replan(m);
+  }
+
+  // The USB-2-SD has no RFS; profiles that offer it (generic) get an instant reference search:
+  // the motor stops where it is and that place becomes position 0 (encoder 0 too).
+  std::int32_t reference_search(int motor, RfsAction action) override {
+    Motor& m = at(motor);
+    if (action != RfsAction::Start) return 0;
+    Builder b = m.rm.restart(now_);
+    b.stop_hard();
+    b.finish_rest();
+    m.rm.plan.events.clear();
+    m.rm.base -= m.rm.xactual(now_);
+    m.p[0] = 0;
+    m.enc_off = 0;
+    m.goal = Goal::Idle;
+    m.trip_t = ramp::kInf;
+    pending_ref_.push_back({now_, static_cast<std::uint8_t>(motor), MotionEventKind::ReferenceDone, 0});
+    return 0;
+  }
+
+  void set_switch(int motor, SwitchInput input, bool active) override {
+    Motor& m = at(motor);
+    (input == SwitchInput::StopLeft ? m.left : input == SwitchInput::StopRight ? m.right : m.home) = active;
+    if (input != SwitchInput::Home && active && (m.goal == Goal::Position || m.goal == Goal::Velocity)) replan(m);
+  }
+
+  void encoder_slip(int motor, std::int32_t counts) override {
+    Motor& m = at(motor);
+    double res = std::abs(m.p[210]);
+    double factor = res > 0 ? m.p[202] * std::ldexp(1.0, m.p[140]) / res : 0;
+    m.enc_off += std::llround(counts * factor);
+    if (m.p[212] > 0 && std::llabs(deviation(m)) > m.p[212]) {
+      if (m.goal == Goal::Position || m.goal == Goal::Velocity)
+        replan(m);  // the trip scan finds the deviation at once
+      else
+        deviation_at_rest(m);
+    }
+  }
+
+  std::int32_t position(int motor) const override {
+    return wrap32(motors_[static_cast<std::size_t>(motor)].rm.xactual(now_));
+  }
+  bool target_reached(int motor) const override {
+    const Motor& m = motors_[static_cast<std::size_t>(motor)];
+    return m.rm.at_rest(now_) && wrap32(m.rm.xactual(now_)) == m.p[0];
+  }
+  bool reference_done(int) const override { return true; }
+
+  MotionSample sample_at(int motor, SimTime t) const override {
+    const Motor& m = motors_[static_cast<std::size_t>(motor)];
+    ramp::State s = m.rm.state(t);
+    return {m.rm.xactual(t), s.v, s.a};
+  }
+
+ private:
+  Motor& at(int motor) { return motors_[static_cast<std::size_t>(motor)]; }
+
+  static MotionEventKind kind_of(EventKind k) {
+    switch (k) {
+      case EventKind::TargetReached: return MotionEventKind::TargetReached;
+      case EventKind::VelocityReached: return MotionEventKind::VelocityReached;
+      case EventKind::Stopped: return MotionEventKind::Stopped;
+      case EventKind::Deviation: return MotionEventKind::Deviation;
+    }
+    return MotionEventKind::Stopped;
+  }
+
+  static bool valid(int param, std::int32_t v) {
+    switch (param) {
+      case 14: return v == 0 || v == 1;
+      case 28: return v >= 0 && v <= 3;
+      case 29: return v >= 0 && v <= 2;
+      case 35: return v >= 1 && v <= 255;
+      case 127: return v >= 0 && v <= 2;
+      case 140: return v >= 0 && v <= 8;
+      case 255: return v == 0 || v == 1;
+      case 26: case 27: return true;
+      default: return v >= 0;  // speeds, accelerations, bows, resolutions, deviations
+    }
+  }
+
+  // Unit mode 255: 1 = pps, pps², pps³; 0 = the ramp generator's fixed-point registers
+  // (velocities 24.8, accelerations 22.2, bows unscaled).
+  static double vunit(const Motor& m) { return m.p[255] ? 1.0 : 1.0 / 256; }
+  static double aunit(const Motor& m) { return m.p[255] ? 1.0 : 1.0 / 4; }
+  static std::int32_t speed_raw(const Motor& m, double v) { return static_cast<std::int32_t>(std::trunc(v / vunit(m) + (v > 0 ? 1e-9 : -1e-9))); }
+
+  // The effective ramp: 16, 17 = 0 mean "as 5", 19 = 0 means "as the effective 17" (profiles.md).
+  static Limits limits(const Motor& m) {
+    auto p = [&](int n) { return static_cast<double>(m.p[static_cast<std::size_t>(n)]); };
+    const double vu = vunit(m), au = aunit(m);
+    Limits l;
+    l.vmax = p(4) * vu;
+    l.amax = p(5) * au;
+    l.vstart = std::min(p(15) * vu, l.vmax);
+    l.vstop = p(20) * vu;
+    double dmax_raw = m.p[17] ? p(17) : p(5);
+    l.dmax = dmax_raw * au;
+    if (m.p[14] == 1) {  // S-shaped: bows, no break velocity (16, 18, 19 are trapezoid settings)
+      double scale = p(35);
+      auto inv = [&](int n) { return m.p[static_cast<std::size_t>(n)] > 0 ? 1.0 / (p(n) * scale) : 0.0; };
+      l.ij1 = inv(22);
+      l.ij2 = inv(23);
+      l.ij3 = inv(24);
+      l.ij4 = inv(25);
+      l.astart = l.amax;
+      l.dfinal = l.dmax;
+    } else {
+      l.vbreak = p(18) * vu;
+      l.astart = (m.p[16] ? p(16) : p(5)) * au;
+      l.dfinal = (m.p[19] ? p(19) : dmax_raw) * au;
+    }
+    return l;
+  }
+
+  // Encoder direction relative to XACTUAL: reverse shaft turns the motor, not the encoder's
+  // counting (manual, parameter 251); a negative resolution reverses the counting; 0 = none.
+  static std::int64_t enc_sign(const Motor& m) {
+    if (m.p[210] == 0) return 0;
+    return (m.p[251] ? -1 : 1) * (m.p[210] < 0 ? -1 : 1);
+  }
+  std::int64_t encoder(const Motor& m) const { return enc_sign(m) * m.rm.xactual(now_) + m.enc_off; }
+  std::int64_t deviation(const Motor& m) const { return m.rm.xactual(now_) - encoder(m); }
+
+  void deviation_at_rest(Motor& m) {
+    Builder b = m.rm.restart(now_);
+    b.stop_hard();
+    b.event(EventKind::Deviation);
+    b.finish_rest();
+  }
+
+  // Re-plans motor m from its state now toward its goal, then cuts the plan at the first trip.
+  // A re-plan caused by a parameter or switch (not a command) of a motor already cruising at its
+  // target speed does not report "velocity reached" again.
+  void replan(Motor& m, bool by_command = false) {
+    if (m.trip_t != ramp::kInf && m.rm.secs(now_) >= m.trip_t && m.goal != Goal::Idle) {
+      m.goal = Goal::Halt;  // the trip already happened: what is left is its stop
+      m.halt = m.trip_kind;
+    }
+    m.trip_t = ramp::kInf;
+    if (m.goal == Goal::Idle) return;
+    Limits lim = limits(m);
+    Builder b = m.rm.restart(now_);
+    switch (m.goal) {
+      case Goal::Position: b.plan_position(lim, static_cast<double>(m.p[0] - m.rm.base)); break;
+      case Goal::Velocity: b.plan_velocity(lim, m.vt * vunit(m)); break;
+      case Goal::Halt: return halt(m, b, lim, m.halt);
+      case Goal::Idle: break;
+    }
+    auto& ev = m.rm.plan.events;
+    if (!by_command && m.goal == Goal::Velocity && !ev.empty() && ev.front().t == 0 &&
+        ev.front().kind == EventKind::VelocityReached && m.vt != 0)
+      ev.erase(ev.begin());
+    scan_trips(m, lim);
+  }
+
+  void halt(Motor& m, Builder& b, const Limits& lim, Halt kind) {
+    double dstop = m.p[21] * aunit(m);
+    if (kind == Halt::Deviation) {
+      b.stop_hard();
+      b.event(EventKind::Deviation);
+    } else {
+      if (kind == Halt::VirtualStop && m.p[29] == 0)
+        b.stop_ramp(lim);
+      else if (kind == Halt::VirtualStop && m.p[29] == 1)
+        b.stop_hard();
+      else
+        b.stop_linear(dstop);  // 0: hard
+      b.event(EventKind::Stopped);
+    }
+    b.finish_rest();
+  }
+
+  // The first instant the new plan hits a stop switch in its direction, a virtual stop or the
+  // encoder deviation limit; there the plan is cut and the stop appended.
+  void scan_trips(Motor& m, const Limits& lim) {
+    const auto& segs = m.rm.plan.segs;
+    const double base = static_cast<double>(m.rm.base);
+    const int vs_en = m.p[28];
+    const std::int64_t maxdev = m.p[212];
+    const std::int64_t c = 1 - enc_sign(m);  // deviation = c * XACTUAL - enc_off
+    for (const auto& seg : segs) {
+      if (seg.dir == 0) continue;
+      double best = ramp::kInf;
+      Halt kind = Halt::Switch;
+      auto consider = [&](double dt, Halt k) {
+        if (dt >= 0 && seg.t0 + dt < best) best = seg.t0 + dt, kind = k;
+      };
+      if ((seg.dir < 0 && m.left) || (seg.dir > 0 && m.right)) consider(0, Halt::Switch);
+      if (seg.dir > 0 && (vs_en & 2)) consider(ramp::crossing(seg, m.p[27] - base), Halt::VirtualStop);
+      if (seg.dir < 0 && (vs_en & 1)) consider(ramp::crossing(seg, m.p[26] - base), Halt::VirtualStop);
+      if (maxdev > 0) {
+        if (c == 0) {
+          if (std::llabs(m.enc_off) > maxdev) consider(0, Halt::Deviation);
+        } else {  // the deviation grows with the position: a threshold in each direction
+          double hi = std::floor(static_cast<double>(m.enc_off + maxdev) / static_cast<double>(c)) + 1;
+          double lo = std::ceil(static_cast<double>(m.enc_off - maxdev) / static_cast<double>(c)) - 1;
+          consider(ramp::crossing(seg, (seg.dir > 0 ? hi : lo) - base), Halt::Deviation);
+        }
+      }
+      if (best != ramp::kInf) {
+        m.trip_t = best;
+        m.trip_kind = kind;
+        Builder b(m.rm.plan, {}, 0);
+        b.truncate(best);
+        halt(m, b, lim, kind);
+        return;
+      }
+    }
+  }
+
+  std::vector<Motor> motors_;
+  SimTime now_ = 0;
+  std::vector<MotionEvent> pending_ref_;
+};
+
+}  // namespace
+
+std::unique_ptr<MotionCore> make_tmc4361_motion_core() { return std::make_unique<Tmc4361Core>(); }
+
+}  // namespace tmcl

@@ -1,0 +1,331 @@
+// The VM's life cycle and its slow path: power-up, program loading, interrupts, timers, external
+// inputs, motion events and the choice of the next instant to wake up at. The run loop and the
+// instruction semantics are in vm_exec.cpp; parameter access in vm_params.cpp.
+#include <algorithm>
+#include <bit>
+
+#include "tmcl/vm.hpp"
+#include "vm_ops.hpp"
+
+namespace tmcl {
+
+std::string_view halt_name(Halt h) {
+  switch (h) {
+    case Halt::Stop: return "stop";
+    case Halt::Fault: return "fault";
+    case Halt::StepLimit: return "max-steps";
+    case Halt::TimeLimit: return "max-time";
+    case Halt::Blocked: return "blocked";
+    case Halt::NotRunning: return "not-running";
+  }
+  return "?";
+}
+
+Vm::Vm(const Profile& p, MotionCore& core) : profile(&p), motion(&core) {
+  load({});
+  power_on(nullptr);
+}
+
+void Vm::load(const std::vector<Instruction>& prog) {
+  program = prog;
+  program_size = static_cast<std::int32_t>(prog.size());
+  program.push_back(Instruction{});  // sentinel: running past the end faults
+  decode_all();
+  source_of.clear();
+}
+
+void Vm::store_instruction(std::int32_t address, const Instruction& ins) {
+  if (address < 0) return;
+  auto a = static_cast<std::size_t>(address);
+  if (a >= static_cast<std::size_t>(program_size)) {
+    program.resize(a + 2, Instruction{});
+    program_size = address + 1;
+  }
+  program[a] = ins;
+  decode_all();
+}
+
+void Vm::decode_all() {
+  code.resize(program.size());
+  for (std::size_t i = 0; i + 1 < program.size(); ++i) code[i] = ops::decode_for_run(program[i], program[i + 1], program_size, *profile);
+  code.back() = Instruction{};
+}
+
+void Vm::power_on(const EepromImage* image) {
+  const int motors = profile->motors;
+  motion->reset(*profile, motors);
+  pc = acc = x = 0;
+  flags = errors = 0;
+  sp = dsp = 0;
+  stack.fill(0);
+  data_stack.fill(0);
+  status = AppStatus::Stopped;
+  wait = WaitState{};
+  vars.fill(0);
+  bank0.fill(0);
+  bank3.fill(0);
+  for (const auto& g : profile->bank0) bank0[g.number & 255] = g.default_value;
+  for (const auto& g : profile->bank3) bank3[g.number & 255] = g.default_value;
+  axis.assign(static_cast<std::size_t>(motors), {});
+  axis_written.assign(static_cast<std::size_t>(motors), {});
+  for (auto& a : axis) {
+    a.fill(0);
+    for (const auto& ap : profile->axis_params) a[ap.number & 255] = ap.default_value;
+  }
+  coords.assign(static_cast<std::size_t>(motors), std::vector<std::int32_t>(static_cast<std::size_t>(profile->coords), 0));
+  inputs.fill(0);
+  analog.fill(0);
+  outputs.fill(0);
+  switches.assign(static_cast<std::size_t>(motors), MotorSwitches{});
+  vectors.fill(-1);
+  enabled.fill(0);
+  pending.fill(0);
+  global_enable = false;
+  in_handler = false;
+  saved = InterruptContext{};
+  timers.fill(Timer{});
+  now = 0;
+  steps = 0;
+  tick_offset_ms = 0;
+  random_state = 1;
+  halt_pc = -1;
+  fault_set = false;
+  fault_message.clear();
+  input_next = 0;
+  next_check = 0;
+
+  eeprom = image ? *image : EepromImage{};
+  eeprom.profile = std::string(profile->name);
+  eeprom_dirty = false;
+  if (!image) return;
+  // What a module restores at power-up: bank 0, axis parameters, user variables (unless global
+  // 85 says not to), coordinates (when global 84 says they live in the EEPROM).
+  for (const auto& [param, value] : image->globals)
+    if (param >= 0 && param < 256) bank0[static_cast<std::size_t>(param)] = value;
+  for (const auto& [key, value] : image->axis) {
+    auto [motor, param] = key;
+    if (!motor_ok(motor) || param < 0 || param > 255) continue;
+    if (motion->owns(param))
+      (void)motion->set_param(motor, param, value);
+    else
+      axis[static_cast<std::size_t>(motor)][static_cast<std::size_t>(param)] = value;
+  }
+  if (bank0[85] == 0)
+    for (const auto& [n, value] : image->vars)
+      if (n >= 0 && n < 256) vars[static_cast<std::size_t>(n)] = value;
+  if (bank0[84] != 0)
+    for (const auto& [key, value] : image->coords) {
+      auto [motor, n] = key;
+      if (motor_ok(motor) && n > 0 && n < profile->coords)
+        coords[static_cast<std::size_t>(motor)][static_cast<std::size_t>(n)] = value;
+    }
+}
+
+void Vm::start(std::int32_t address) {
+  pc = address;
+  status = AppStatus::Running;
+  halt_pc = -1;
+  fault_set = false;
+  fault_message.clear();
+  next_check = 0;
+}
+
+void Vm::reset_interpreter() {
+  acc = x = 0;
+  flags = errors = 0;
+  sp = dsp = 0;
+  wait = WaitState{};
+  in_handler = false;
+  saved = InterruptContext{};
+  pending.fill(0);
+  next_check = 0;
+}
+
+void Vm::add_inputs(std::vector<InputEvent> events) {
+  inputs_queue.erase(inputs_queue.begin(), inputs_queue.begin() + static_cast<std::ptrdiff_t>(input_next));
+  input_next = 0;
+  for (auto& e : events) inputs_queue.push_back(e);
+  std::stable_sort(inputs_queue.begin(), inputs_queue.end(),
+                   [](const InputEvent& a, const InputEvent& b) { return a.at < b.at; });
+  next_check = 0;
+}
+
+std::string Vm::where(std::int32_t address) const {
+  std::string s = "address " + std::to_string(address);
+  if (address >= 0 && static_cast<std::size_t>(address) < source_of.size() &&
+      !source_of[static_cast<std::size_t>(address)].empty())
+    s += " (" + source_of[static_cast<std::size_t>(address)] + ")";
+  return s;
+}
+
+void Vm::fault(std::string message) {
+  if (fault_set) return;
+  fault_set = true;
+  fault_message = std::move(message);
+  halt_pc = pc;
+  status = AppStatus::Stopped;
+  next_check = 0;
+}
+
+bool Vm::jump_ok(std::int32_t target) {
+  if (target >= 0 && target < program_size) return true;
+  fault("jump to address " + std::to_string(target) + " outside the program (0.." +
+        std::to_string(program_size - 1) + ") at " + where(pc));
+  return false;
+}
+
+bool Vm::vector_ok(int n) const {
+  if (n < 0 || n > 254) return false;
+  if (profile->vectors.empty() || profile->any_parameter) return true;  // generic: every number
+  return profile->vector(n) != nullptr;
+}
+
+std::int32_t Vm::tick_ms() const {
+  return static_cast<std::int32_t>(static_cast<std::uint32_t>(now / kUsPerMs + tick_offset_ms));
+}
+
+void Vm::raise(int n) {
+  if (n < 0 || n > 254 || vectors[static_cast<std::size_t>(n)] < 0 || !is_enabled(n)) return;
+  pending[static_cast<std::size_t>(n >> 6)] |= std::uint64_t{1} << (n & 63);
+  next_check = 0;
+}
+
+// Serves the highest-priority (lowest-numbered) pending interrupt if it may be served now.
+bool Vm::try_enter_interrupt() {
+  if (!global_enable || in_handler || status != AppStatus::Running) return false;
+  for (std::size_t w = 0; w < 4; ++w) {
+    std::uint64_t ready = pending[w] & enabled[w];
+    if (!ready) continue;
+    int n = static_cast<int>(w * 64) + std::countr_zero(ready);
+    pending[w] &= ~(std::uint64_t{1} << (n & 63));
+    saved = InterruptContext{pc, acc, x, flags, wait, sp, n};
+    in_handler = true;
+    wait = WaitState{};
+    std::int32_t from = pc;
+    pc = vectors[static_cast<std::size_t>(n)];
+    if (trace) trace->interrupt_enter(*this, n, from);
+    return true;
+  }
+  return false;
+}
+
+void Vm::set_timer(int n, std::int32_t period_ms) {
+  Timer& t = timers[static_cast<std::size_t>(n)];
+  t.period_ms = static_cast<std::uint32_t>(period_ms);
+  t.next = t.period_ms ? now + static_cast<SimTime>(t.period_ms) * kUsPerMs : kNever;
+}
+
+void Vm::fire_due_timers() {
+  for (int n = 0; n < kTimers; ++n) {
+    Timer& t = timers[static_cast<std::size_t>(n)];
+    if (t.next > now) continue;
+    SimTime period = static_cast<SimTime>(t.period_ms) * kUsPerMs;
+    t.next += ((now - t.next) / period + 1) * period;  // missed periods merge into one interrupt
+    raise(n);
+  }
+}
+
+void Vm::handle_motion_event(const MotionEvent& ev) {
+  if (trace) trace->motion_event(*this, ev);
+  if (on_motion_event) on_motion_event(*this, ev);
+  switch (ev.kind) {
+    case MotionEventKind::TargetReached: raise(3 + ev.motor); break;
+    case MotionEventKind::Deviation:
+      errors |= kErrDeviation;
+      raise(21 + ev.motor);
+      break;
+    default: break;
+  }
+}
+
+void Vm::sync_motion() {
+  event_buf.clear();
+  motion->advance(now, event_buf);
+  for (const auto& ev : event_buf) handle_motion_event(ev);
+}
+
+namespace {
+// Bank-3 transition setting: 1 low->high, 2 high->low, 3 both.
+bool transition_fires(std::int32_t setting, bool before, bool after) {
+  if (before == after) return false;
+  return after ? (setting & 1) != 0 : (setting & 2) != 0;
+}
+}  // namespace
+
+void Vm::apply_input(const InputEvent& ev) {
+  auto idx = static_cast<std::size_t>(ev.index);
+  std::string what;
+  switch (ev.kind) {
+    case InputEvent::Digital:
+      if (idx < inputs.size()) inputs[idx] = ev.value != 0;
+      what = "input " + std::to_string(ev.index) + " = " + std::to_string(ev.value != 0);
+      break;
+    case InputEvent::Analog:
+      if (idx < analog.size()) analog[idx] = ev.value;
+      what = "analog " + std::to_string(ev.index) + " = " + std::to_string(ev.value);
+      break;
+    case InputEvent::StopLeft:
+    case InputEvent::StopRight:
+    case InputEvent::Home: {
+      if (!motor_ok(ev.index)) return;
+      MotorSwitches& s = switches[idx];
+      bool level = ev.value != 0;
+      bool* sw = ev.kind == InputEvent::StopLeft ? &s.left : ev.kind == InputEvent::StopRight ? &s.right : &s.home;
+      bool before = *sw;
+      *sw = level;
+      sync_motion();  // the core must be at `now` before it hears of the switch
+      auto input = ev.kind == InputEvent::StopLeft    ? SwitchInput::StopLeft
+                   : ev.kind == InputEvent::StopRight ? SwitchInput::StopRight
+                                                      : SwitchInput::Home;
+      motion->set_switch(ev.index, input, level);
+      what = std::string(ev.kind == InputEvent::StopLeft    ? "left"
+                         : ev.kind == InputEvent::StopRight ? "right"
+                                                            : "home") +
+             " " + std::to_string(ev.index) + " = " + std::to_string(level);
+      if (trace) trace->input_event(*this, what);
+      if (ev.kind != InputEvent::Home) {
+        int n = (ev.kind == InputEvent::StopLeft ? 27 : 28) + 2 * ev.index;
+        if (n < 255 && transition_fires(bank3[static_cast<std::size_t>(n)], before, level)) raise(n);
+      }
+      return;
+    }
+    case InputEvent::Slip:
+      if (!motor_ok(ev.index)) return;
+      sync_motion();
+      motion->encoder_slip(ev.index, ev.value);
+      what = "slip " + std::to_string(ev.index) + " = " + std::to_string(ev.value);
+      break;
+  }
+  if (trace) trace->input_event(*this, what);
+}
+
+int Vm::wait_check() {
+  int m = wait.motor;
+  bool done = false;
+  switch (wait.kind) {
+    case 0: return now >= wait.deadline ? 1 : 0;
+    case 1: done = motion->target_reached(m); break;
+    case 2: done = switches[static_cast<std::size_t>(m)].home; break;
+    case 3: done = switches[static_cast<std::size_t>(m)].left || switches[static_cast<std::size_t>(m)].right; break;
+    case 4: done = motion->reference_done(m); break;
+    default: done = true; break;
+  }
+  if (done) return 1;
+  if (now >= wait.deadline) {
+    errors |= kErrTimeout;
+    return 2;
+  }
+  return 0;
+}
+
+SimTime Vm::next_wakeup() const {
+  SimTime t = motion->next_event();
+  if (wait.active) t = std::min(t, wait.deadline);
+  if (input_next < inputs_queue.size()) t = std::min(t, inputs_queue[input_next].at);
+  // A timer only matters while its interrupt can be latched.
+  for (int n = 0; n < kTimers; ++n)
+    if (vectors[static_cast<std::size_t>(n)] >= 0 && is_enabled(n)) t = std::min(t, timers[static_cast<std::size_t>(n)].next);
+  return t;
+}
+
+}  // namespace tmcl

@@ -1,0 +1,283 @@
+// The run loop. The fast path costs one predictable branch per instruction: a counter of the
+// instructions that start before `next_check` (the earliest timer, motion event, input or time
+// limit) and within the step limit. Everything else (interrupt entry, WAIT, events, limits) is
+// the slow path in service(). A WAIT never spins: the slow path jumps time to the next event.
+#include <algorithm>
+#include <optional>
+
+#include "tmcl/vm.hpp"
+#include "vm_ops.hpp"
+
+namespace tmcl {
+namespace {
+
+std::string wait_text(const Vm& vm) {
+  std::int32_t at = vm.pc;
+  const Instruction& ins = vm.program[static_cast<std::size_t>(at)];
+  static constexpr const char* kNames[] = {"TICKS", "POS", "REFSW", "LIMSW", "RFS"};
+  return std::string("WAIT ") + kNames[ins.type <= 4 ? ins.type : 0] + " at " + vm.where(at);
+}
+
+// A motion core that keeps announcing an event at an instant it never gets past would make the
+// VM loop forever at one instant; after this many rounds that is reported as a fault.
+constexpr int kMaxRoundsPerInstant = 1'000'000;
+
+std::string stuck_core(const Vm& vm) {
+  return "the motion core '" + std::string(vm.motion->name()) + "' keeps reporting an event at " + std::to_string(vm.now) +
+         " us without getting past it (a bug in the core)";
+}
+
+// After STOP (or a fault): let the motors finish what they were told, up to the time limit.
+RunResult settle(Vm& vm, const Limits& lim) {
+  int rounds = 0;
+  for (SimTime last = -1;; last = vm.now) {
+    SimTime t = vm.motion->next_event();
+    if (t == kNever) break;
+    rounds = vm.now == last ? rounds + 1 : 0;
+    if (rounds > kMaxRoundsPerInstant) return {Halt::Fault, stuck_core(vm)};
+    if (t > lim.until) {
+      vm.now = std::max(vm.now, lim.until);
+      vm.sync_motion();
+      return {Halt::TimeLimit, "the program stopped, but the motors were still moving at the time limit"};
+    }
+    vm.now = std::max(vm.now, t);
+    vm.sync_motion();
+  }
+  if (vm.fault_set) return {Halt::Fault, vm.fault_message};
+  if (vm.halt_pc < 0) return {Halt::NotRunning, "the program is not running"};
+  return {Halt::Stop, "STOP at " + vm.where(vm.halt_pc)};
+}
+
+// The slow path: brings the world up to `now`, ends or continues a WAIT, enters interrupts,
+// sleeps until the next event while waiting. Returns a result when run() must return.
+std::optional<RunResult> service(Vm& vm, const Limits& lim) {
+  int rounds = 0;
+  for (SimTime last = -1;; last = vm.now) {
+    rounds = vm.now == last ? rounds + 1 : 0;
+    if (rounds > kMaxRoundsPerInstant) vm.fault(stuck_core(vm));
+    if (vm.fault_set) return settle(vm, lim);
+    // Commands and queries advance the core themselves; here only its events matter.
+    if (vm.motion->next_event() <= vm.now) vm.sync_motion();
+    while (vm.input_next < vm.inputs_queue.size() && vm.inputs_queue[vm.input_next].at <= vm.now)
+      vm.apply_input(vm.inputs_queue[vm.input_next++]);
+    vm.fire_due_timers();
+    if (vm.status != AppStatus::Running) return settle(vm, lim);
+    if (vm.steps >= lim.max_steps)
+      return RunResult{Halt::StepLimit, "stopped after " + std::to_string(vm.steps) + " instructions (--max-steps)"};
+    if (vm.wait.active) {
+      int w = vm.wait_check();
+      if (w != 0) {
+        vm.wait.active = false;
+        if (vm.trace) vm.trace->wait_end(vm, vm.pc, w == 2);
+        ++vm.pc;
+      }
+    }
+    vm.try_enter_interrupt();
+    if (vm.now >= lim.until) return RunResult{Halt::TimeLimit, "simulated time limit reached (--max-time)"};
+    SimTime wake = vm.next_wakeup();
+    if (!vm.wait.active) {
+      vm.next_check = std::min(wake, lim.until);
+      if (vm.next_check <= vm.now) vm.next_check = vm.now + 1;  // never spin on a stale instant
+      return std::nullopt;
+    }
+    if (wake == kNever && lim.until == kNever)
+      return RunResult{Halt::Blocked, wait_text(vm) + " can never end: no timer, motion, input or timeout is pending"};
+    vm.now = std::max(vm.now, std::min(wake, lim.until));
+  }
+}
+
+// Reports an instruction the table dispatch did not know (code[] maps every opcode the profile
+// lacks to 0): says which of the four reasons applies.
+void unknown_instruction(Vm& vm, std::int32_t at) {
+  const Instruction& raw = vm.program[static_cast<std::size_t>(at)];
+  const OpInfo* info = op_info(raw.op);
+  if (at == vm.program_size)
+    vm.fault("ran past the end of the program (address " + std::to_string(at) + ")");
+  else if (!info)
+    vm.fault("unknown opcode " + std::to_string(raw.op) + " at " + vm.where(at));
+  else if (info->control)
+    vm.fault("control command " + std::to_string(raw.op) + " cannot run in a program, at " + vm.where(at));
+  else
+    vm.fault(std::string(info->mnemonic) + " is not available on " + std::string(vm.profile->name) + ", at " + vm.where(at));
+}
+
+// One instruction through the table dispatch (every row of opcodes.def), registers in `vm`.
+inline void execute(Vm& vm, std::int32_t at) {
+  bool known = false;
+  if (vm.code[static_cast<std::size_t>(at)].op != 0) ops::dispatch<false>(vm, vm.program[static_cast<std::size_t>(at)], known);
+  if (!known) [[unlikely]] unknown_instruction(vm, at);
+}
+
+// Traced execution: one instruction at a time, each reported after it ran.
+RunResult run_traced(Vm& vm, const Limits& lim) {
+  for (;;) {
+    if (vm.now >= vm.next_check || vm.steps >= lim.max_steps) {
+      if (auto r = service(vm, lim)) return *r;
+      continue;
+    }
+    const std::int32_t at = vm.pc;
+    const SimTime t0 = vm.now;
+    const bool was_in_handler = vm.in_handler;
+    vm.now += vm.instr_time;
+    ++vm.steps;
+    execute(vm, at);
+    vm.trace->instruction(vm, t0, at, vm.program[static_cast<std::size_t>(at)]);
+    if (was_in_handler && !vm.in_handler) vm.trace->interrupt_leave(vm, vm.pc);  // RETI (or RST)
+  }
+}
+
+// How many instructions start before the next check instant and within the step limit. Every
+// instruction advances time by exactly instr_time, so the fast loop needs one counter instead of
+// two comparisons.
+std::uint64_t burst_length(const Vm& vm, const Limits& lim) {
+  if (vm.now >= vm.next_check || vm.steps >= lim.max_steps) return 0;
+  std::uint64_t n = lim.max_steps - vm.steps;
+  if (vm.next_check != kNever && vm.instr_time > 0) {
+    auto by_time = static_cast<std::uint64_t>((vm.next_check - vm.now + vm.instr_time - 1) / vm.instr_time);
+    n = std::min(n, by_time);
+  }
+  return n;
+}
+
+// Untraced execution. Between two checks the hot registers live in locals (the compiler cannot
+// keep struct fields in registers across the calls of the slow instructions). The most frequent
+// pure instructions run inline through the same primitives as vm_ops.hpp (arith, flags_of,
+// compare_flags, condition); every other instruction, and every case that could fault, writes
+// the registers back and goes through the table dispatch.
+RunResult run_fast(Vm& vm, const Limits& lim) {
+  using namespace ops;
+  for (;;) {
+    std::uint64_t total = burst_length(vm, lim);
+    if (total == 0) {
+      if (auto r = service(vm, lim)) return *r;
+      continue;
+    }
+    const Instruction* const code = vm.code.data();
+    const auto size = static_cast<std::uint32_t>(vm.program_size);
+    const SimTime dt = vm.instr_time;
+    SimTime base_now = vm.now;
+    std::uint64_t base_steps = vm.steps;
+    std::uint64_t left = total;
+    std::int32_t pc = vm.pc, acc = vm.acc;
+    std::uint8_t flags = vm.flags;
+    while (left != 0) {
+      --left;
+      const Instruction& ins = code[pc];
+      switch (ins.op) {
+// The ALU part of CALC t / CALCV t on `dst`, shared by the plain and the fused forms.
+#define TMCL_ALU(t, dst)          \
+  if constexpr (t == NOT)         \
+    dst = ~dst;                   \
+  else                            \
+    arith(t, dst, ins.value);     \
+  flags = flags_of(dst);
+// The DJNZ half of a fused form; when the budget ends between the two halves, the DJNZ runs on
+// its own after the check.
+#define TMCL_FUSED_DJNZ()                                              \
+  if (left == 0) {                                                     \
+    ++pc;                                                              \
+    continue;                                                          \
+  }                                                                    \
+  --left;                                                              \
+  {                                                                    \
+    const Instruction& d = code[pc + 1];                               \
+    std::int32_t& n = vm.vars[d.type];                                 \
+    n = wrap(static_cast<std::uint32_t>(n) - 1u);                      \
+    pc = n != 0 ? d.value : pc + 2;                                    \
+  }                                                                    \
+  continue;
+#define TMCL_FAST_CALC(t)                 \
+  case kFastCalc + t:                     \
+    TMCL_ALU(t, acc)                      \
+    ++pc;                                 \
+    continue;                             \
+  case kFusedCalc + t:                    \
+    TMCL_ALU(t, acc)                      \
+    TMCL_FUSED_DJNZ()                     \
+  case kFastCalcV + t: {                  \
+    std::int32_t& v = vm.vars[ins.motor]; \
+    TMCL_ALU(t, v)                        \
+    ++pc;                                 \
+    continue;                             \
+  }                                       \
+  case kFusedCalcV + t: {                 \
+    std::int32_t& v = vm.vars[ins.motor]; \
+    TMCL_ALU(t, v)                        \
+    TMCL_FUSED_DJNZ()                     \
+  }
+        TMCL_FAST_CALC(ADD)
+        TMCL_FAST_CALC(SUB)
+        TMCL_FAST_CALC(MUL)
+        TMCL_FAST_CALC(DIV)
+        TMCL_FAST_CALC(MOD)
+        TMCL_FAST_CALC(AND)
+        TMCL_FAST_CALC(OR)
+        TMCL_FAST_CALC(XOR)
+        TMCL_FAST_CALC(NOT)
+        TMCL_FAST_CALC(LOAD)
+#undef TMCL_FAST_CALC
+#undef TMCL_FUSED_DJNZ
+#undef TMCL_ALU
+        case kFastCalcV + COMP:
+          flags = compare_flags(vm.vars[ins.motor], ins.value);
+          ++pc;
+          continue;
+        case static_cast<std::uint8_t>(Op::COMP):
+          flags = compare_flags(acc, ins.value);
+          ++pc;
+          continue;
+        case static_cast<std::uint8_t>(Op::JA):
+          if (static_cast<std::uint32_t>(ins.value) < size) {
+            pc = ins.value;
+            continue;
+          }
+          break;
+        case static_cast<std::uint8_t>(Op::JC):
+          if (static_cast<std::uint32_t>(ins.value) < size) {
+            pc = condition(flags, vm.errors, ins.type) ? ins.value : pc + 1;
+            continue;
+          }
+          break;
+        case static_cast<std::uint8_t>(Op::DJNZ):
+          if (static_cast<std::uint32_t>(ins.value) < size) {
+            std::int32_t& v = vm.vars[ins.type];
+            v = wrap(static_cast<std::uint32_t>(v) - 1u);
+            pc = v != 0 ? ins.value : pc + 1;
+            continue;
+          }
+          break;
+        default: break;
+      }
+      // The slow way: registers back into the struct, table dispatch, registers out again.
+      std::uint64_t done = total - left;
+      vm.now = base_now + static_cast<SimTime>(done) * dt;
+      vm.steps = base_steps + done;
+      vm.pc = pc;
+      vm.acc = acc;
+      vm.flags = flags;
+      execute(vm, pc);
+      pc = vm.pc;
+      acc = vm.acc;
+      flags = vm.flags;
+      base_now = vm.now;
+      base_steps = vm.steps;
+      total = left = burst_length(vm, lim);
+    }
+    std::uint64_t done = total - left;
+    vm.now = base_now + static_cast<SimTime>(done) * dt;
+    vm.steps = base_steps + done;
+    vm.pc = pc;
+    vm.acc = acc;
+    vm.flags = flags;
+  }
+}
+
+}  // namespace
+
+RunResult Vm::run(const Limits& limits) {
+  if (status != AppStatus::Running && !fault_set) return settle(*this, limits);
+  next_check = 0;
+  return trace ? run_traced(*this, limits) : run_fast(*this, limits);
+}
+
+}  // namespace tmcl

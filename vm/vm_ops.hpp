@@ -1,0 +1,462 @@
+// Instruction semantics, one function per row of opcodes.def, shared by standalone mode (the run
+// loop in vm_exec.cpp, kDirect = false) and direct mode (vm_direct.cpp, kDirect = true).
+// Internal to the vm library. In standalone mode every op leaves pc at the next instruction to
+// run; in direct mode pc, the accumulator and the flags of reads are left alone.
+// Decisions where the manuals are silent are numbered in docs/errata.md (E1, E2, ...).
+#pragma once
+
+#include <cstdint>
+#include <limits>
+#include <utility>
+
+#include "tmcl/vm.hpp"
+
+namespace tmcl::ops {
+
+using R = DirectReply;
+inline constexpr R ok(std::int32_t v = 0) { return {kStatusOk, v}; }
+inline constexpr R status(std::uint8_t s, std::int32_t v = 0) { return {s, v}; }
+
+// E2: results and reads set ZE/EQ from "value == 0" and GT/LT from its sign.
+// (Written without branches: these run on the dispatch fast path.)
+inline std::uint8_t compare_flags(std::int32_t a, std::int32_t b) {
+  return static_cast<std::uint8_t>((a == b) * (kFlagZero | kFlagEqual) + (a > b) * kFlagGreater + (a < b) * kFlagLower);
+}
+inline std::uint8_t flags_of(std::int32_t v) { return compare_flags(v, 0); }
+
+template <bool kDirect>
+inline void next(Vm& vm) {
+  if constexpr (!kDirect) ++vm.pc;
+}
+
+// A read: standalone loads the accumulator and sets the flags; direct replies with the value.
+template <bool kDirect>
+inline R load(Vm& vm, std::uint8_t st, std::int32_t v) {
+  if constexpr (!kDirect) {
+    if (st == kStatusOk) {
+      vm.acc = v;
+      vm.flags = flags_of(v);
+    }
+  }
+  next<kDirect>(vm);
+  return {st, st == kStatusOk ? v : 0};
+}
+
+template <bool kDirect>
+inline R done(Vm& vm, std::uint8_t st, std::int32_t v = 0) {
+  next<kDirect>(vm);
+  return {st, v};
+}
+
+// E1: two's-complement wrap-around for ADD/SUB/MUL; DIV and MOD by zero leave the target
+// unchanged; INT_MIN / -1 wraps to INT_MIN, INT_MIN % -1 is 0; DIV truncates toward zero and MOD
+// takes the sign of the dividend (C semantics, as the firmware is written in C).
+enum CalcOp : std::uint8_t { ADD, SUB, MUL, DIV, MOD, AND, OR, XOR, NOT, LOAD, SWAP, COMP };
+
+inline std::int32_t wrap(std::uint32_t v) { return static_cast<std::int32_t>(v); }
+
+// a <op> b for ADD..XOR and LOAD; NOT/SWAP/COMP are handled by the callers.
+inline void arith(std::uint8_t op, std::int32_t& a, std::int32_t b) {
+  auto ua = static_cast<std::uint32_t>(a), ub = static_cast<std::uint32_t>(b);
+  switch (op) {
+    case ADD: a = wrap(ua + ub); break;
+    case SUB: a = wrap(ua - ub); break;
+    case MUL: a = wrap(ua * ub); break;
+    case DIV:
+      if (b == 0) break;
+      a = (a == std::numeric_limits<std::int32_t>::min() && b == -1) ? a : a / b;
+      break;
+    case MOD:
+      if (b == 0) break;
+      a = (b == -1) ? 0 : a % b;
+      break;
+    case AND: a = wrap(ua & ub); break;
+    case OR: a = wrap(ua | ub); break;
+    case XOR: a = wrap(ua ^ ub); break;
+    case LOAD: a = b; break;
+    default: break;
+  }
+}
+
+// The CALC family: `a` is the target, `b` the operand. `max_op` is the highest type the
+// instruction accepts; `not_self` chooses NOT = ~a (CALC, CALCV) or NOT = ~b (the others, which
+// "copy the inverted operand"); `b_writable` allows SWAP.
+template <bool kDirect>
+inline R calc(Vm& vm, const Instruction& ins, std::int32_t& a, std::int32_t* b_ref, std::int32_t b, bool not_self,
+              bool allow_swap, bool allow_comp) {
+  std::uint8_t op = ins.type;
+  if (op > COMP || (op == SWAP && !allow_swap) || (op == COMP && !allow_comp)) return done<kDirect>(vm, kStatusWrongType);
+  switch (op) {
+    case NOT: a = not_self ? ~a : ~b; vm.flags = flags_of(a); break;
+    case SWAP: std::swap(a, *b_ref); vm.flags = flags_of(a); break;
+    case COMP: vm.flags = compare_flags(a, b); break;
+    default: arith(op, a, b); vm.flags = flags_of(a); break;
+  }
+  return done<kDirect>(vm, kStatusOk, ins.value);
+}
+
+// JC/CALL conditions as data: the flag bits that must be set (`mask`, over the comparison flags
+// in the low nibble and the error flags in the high one) or, with `invert`, all be clear.
+struct CondBits {
+  std::uint8_t mask;
+  bool invert;
+};
+inline constexpr CondBits kConditions[16] = {
+    {kFlagZero, false},  {kFlagZero, true},  {kFlagEqual, false}, {kFlagEqual, true},
+    {kFlagGreater, false}, {kFlagGreater | kFlagEqual, false}, {kFlagLower, false}, {kFlagLower | kFlagEqual, false},
+    {kErrTimeout << 4, false}, {kErrAlarm << 4, false}, {kErrDeviation << 4, false}, {kErrPosition << 4, false},
+    {0, false}, {0, false}, {0, false}, {0, false},  // E11: unknown conditions never hold
+};
+inline bool condition(std::uint8_t flags, std::uint8_t errors, std::uint8_t cond) {
+  if (cond > 15) return false;
+  const CondBits c = kConditions[cond];
+  const unsigned bits = flags | (static_cast<unsigned>(errors) << 4);
+  return ((bits & c.mask) != 0) != c.invert;
+}
+inline bool condition(const Vm& vm, std::uint8_t cond) { return condition(vm.flags, vm.errors, cond); }
+
+// Flow-control commands have no effect in direct mode (E14) and reply ok with the value.
+#define TMCL_FLOW_IN_DIRECT(ins) \
+  if constexpr (D) return ok((ins).value)
+
+// Opcodes the run loop's code[] uses for pre-decoded hot forms. No program opcode is 0x80 or
+// higher (the control commands up there never reach code[]), so these cannot collide:
+//   kFastCalc + t     CALC t         (t = ADD..LOAD)
+//   kFastCalcV + t    CALCV t        (t = ADD..LOAD, COMP)
+//   kFusedCalc + t    CALC t, then the DJNZ at the next address (a superinstruction)
+//   kFusedCalcV + t   CALCV t, then the DJNZ at the next address
+// A fused form still counts two instructions and two instruction times, and the run loop splits
+// it when a check falls between the two, so fusion never changes what a program observes.
+inline constexpr std::uint8_t kFastCalc = 0xC0;
+inline constexpr std::uint8_t kFastCalcV = 0xD0;
+inline constexpr std::uint8_t kFusedCalc = 0xA0;
+inline constexpr std::uint8_t kFusedCalcV = 0xB0;
+
+// What the run loop executes at an address holding `ins`, followed by `next`, in a program of
+// `size` instructions: 0 when the profile lacks the command (or it is not a program
+// instruction), a pre-decoded hot form, or the instruction itself.
+inline Instruction decode_for_run(const Instruction& ins, const Instruction& next, std::int32_t size,
+                                  const Profile& profile) {
+  auto available = [&](const Instruction& i) {
+    const OpInfo* info = op_info(i.op);
+    return info && !info->control && profile.has_command(i.op);
+  };
+  Instruction c = ins;
+  if (!available(ins)) {
+    c.op = 0;
+    return c;
+  }
+  const bool djnz_next = next.op == static_cast<std::uint8_t>(Op::DJNZ) && available(next) && next.value >= 0 &&
+                         next.value < size;
+  if (ins.op == static_cast<std::uint8_t>(Op::CALC) && ins.type <= LOAD) {
+    c.op = static_cast<std::uint8_t>((djnz_next ? kFusedCalc : kFastCalc) + ins.type);
+  } else if (ins.op == static_cast<std::uint8_t>(Op::CALCV) && (ins.type <= LOAD || ins.type == COMP)) {
+    c.op = static_cast<std::uint8_t>((djnz_next && ins.type != COMP ? kFusedCalcV : kFastCalcV) + ins.type);
+  }
+  return c;
+}
+
+inline bool var_index(std::int32_t v) { return v >= 0 && v <= 255; }
+
+// ---------------------------------------------------------------- motion
+template <bool D> R op_ROR(Vm& vm, const Instruction& i) { return done<D>(vm, vm.rotate(i.motor, i.value)); }
+template <bool D> R op_ROL(Vm& vm, const Instruction& i) { return done<D>(vm, vm.rotate(i.motor, -static_cast<std::int64_t>(i.value))); }
+template <bool D> R op_MST(Vm& vm, const Instruction& i) { return done<D>(vm, vm.motor_stop(i.motor)); }
+template <bool D> R op_MVP(Vm& vm, const Instruction& i) { return done<D>(vm, vm.move(i.type, i.motor, i.value)); }
+template <bool D> R op_MVPA(Vm& vm, const Instruction& i) { return done<D>(vm, vm.move(i.type, i.motor, vm.acc)); }
+template <bool D> R op_MVPXA(Vm& vm, const Instruction& i) { return op_MVPA<D>(vm, i); }
+template <bool D> R op_RORA(Vm& vm, const Instruction& i) { return done<D>(vm, vm.rotate(i.motor, vm.acc)); }
+template <bool D> R op_ROLA(Vm& vm, const Instruction& i) { return done<D>(vm, vm.rotate(i.motor, -static_cast<std::int64_t>(vm.acc))); }
+template <bool D> R op_RORXA(Vm& vm, const Instruction& i) { return op_RORA<D>(vm, i); }
+template <bool D> R op_ROLXA(Vm& vm, const Instruction& i) { return op_ROLA<D>(vm, i); }
+template <bool D> R op_MSTX(Vm& vm, const Instruction& i) { return op_MST<D>(vm, i); }
+template <bool D> R op_RFS(Vm& vm, const Instruction& i) {
+  std::int32_t v = 0;
+  std::uint8_t st = vm.rfs(i.type, i.motor, v);
+  if (i.type == 2) return load<D>(vm, st, v);  // RFS STATUS is a read
+  return done<D>(vm, st);
+}
+
+// ---------------------------------------------------------------- parameters
+template <bool D> R op_SAP(Vm& vm, const Instruction& i) { return done<D>(vm, vm.set_axis(i.motor, i.type, i.value)); }
+template <bool D> R op_GAP(Vm& vm, const Instruction& i) {
+  std::int32_t v = 0;
+  std::uint8_t st = vm.get_axis(i.motor, i.type, v);
+  return load<D>(vm, st, v);
+}
+template <bool D> R op_AAP(Vm& vm, const Instruction& i) { return done<D>(vm, vm.set_axis(i.motor, i.type, vm.acc)); }
+template <bool D> R op_SAPX(Vm& vm, const Instruction& i) { return op_SAP<D>(vm, i); }
+template <bool D> R op_GAPX(Vm& vm, const Instruction& i) { return op_GAP<D>(vm, i); }
+template <bool D> R op_AAPX(Vm& vm, const Instruction& i) { return op_AAP<D>(vm, i); }
+template <bool D> R op_STAP(Vm& vm, const Instruction& i) { return done<D>(vm, vm.store_axis(i.motor, i.type)); }
+template <bool D> R op_RSAP(Vm& vm, const Instruction& i) { return done<D>(vm, vm.restore_axis(i.motor, i.type)); }
+template <bool D> R op_SGP(Vm& vm, const Instruction& i) { return done<D>(vm, vm.set_global(i.motor, i.type, i.value)); }
+template <bool D> R op_GGP(Vm& vm, const Instruction& i) {
+  std::int32_t v = 0;
+  std::uint8_t st = vm.get_global(i.motor, i.type, v);
+  return load<D>(vm, st, v);
+}
+template <bool D> R op_AGP(Vm& vm, const Instruction& i) { return done<D>(vm, vm.set_global(i.motor, i.type, vm.acc)); }
+template <bool D> R op_STGP(Vm& vm, const Instruction& i) { return done<D>(vm, vm.store_global(i.motor, i.type)); }
+template <bool D> R op_RSGP(Vm& vm, const Instruction& i) { return done<D>(vm, vm.restore_global(i.motor, i.type)); }
+template <bool D> R op_SIO(Vm& vm, const Instruction& i) { return done<D>(vm, vm.set_io(i.type, i.motor, i.value)); }
+template <bool D> R op_GIO(Vm& vm, const Instruction& i) {
+  std::int32_t v = 0;
+  std::uint8_t st = vm.get_io(i.type, i.motor, v);
+  return load<D>(vm, st, v);
+}
+
+// ---------------------------------------------------------------- coordinates
+template <bool D> R op_SCO(Vm& vm, const Instruction& i) { return done<D>(vm, vm.set_coord(i.motor, i.type, i.value)); }
+template <bool D> R op_ACO(Vm& vm, const Instruction& i) {
+  if (i.motor == 255) return done<D>(vm, kStatusInvalidValue);  // the EEPROM forms are SCO/GCO only
+  return done<D>(vm, vm.set_coord(i.motor, i.type, vm.acc));
+}
+template <bool D> R op_GCO(Vm& vm, const Instruction& i) {
+  std::int32_t v = 0;
+  std::uint8_t st = vm.get_coord(i.motor, i.type, v);
+  if (i.motor == 255) return done<D>(vm, st);  // EEPROM -> RAM copy: not a read
+  return load<D>(vm, st, v);
+}
+template <bool D> R op_CCO(Vm& vm, const Instruction& i) {
+  std::int32_t v = 0;
+  std::uint8_t st = vm.capture_coord(i.motor, i.type, v);
+  return done<D>(vm, st, st == kStatusOk ? v : 0);  // E9: a capture, not a read: acc untouched
+}
+
+// ---------------------------------------------------------------- arithmetic
+template <bool D> R op_CALC(Vm& vm, const Instruction& i) {
+  return calc<D>(vm, i, vm.acc, nullptr, i.value, true, false, false);
+}
+template <bool D> R op_CALCX(Vm& vm, const Instruction& i) {
+  if (i.type == LOAD) {  // "copy accumulator to X register"
+    vm.x = vm.acc;
+    vm.flags = flags_of(vm.x);
+    return done<D>(vm, kStatusOk);
+  }
+  return calc<D>(vm, i, vm.acc, &vm.x, vm.x, false, true, false);
+}
+template <bool D> R op_COMP(Vm& vm, const Instruction& i) {
+  vm.flags = compare_flags(vm.acc, i.value);
+  return done<D>(vm, kStatusOk, i.value);
+}
+// The manual's replies: CALCVV/VA/AV/VX/XV answer 0, CALC and CALCV echo the operand.
+template <bool D> R op_CALCVV(Vm& vm, const Instruction& i) {
+  if (!var_index(i.value)) return done<D>(vm, kStatusInvalidValue);
+  std::int32_t& b = vm.vars[static_cast<std::uint8_t>(i.value)];
+  return {calc<D>(vm, i, vm.vars[i.motor], &b, b, false, true, true).status, 0};
+}
+template <bool D> R op_CALCVA(Vm& vm, const Instruction& i) {
+  return {calc<D>(vm, i, vm.vars[i.motor], &vm.acc, vm.acc, false, true, true).status, 0};
+}
+template <bool D> R op_CALCAV(Vm& vm, const Instruction& i) {
+  std::int32_t& b = vm.vars[i.motor];
+  return {calc<D>(vm, i, vm.acc, &b, b, false, true, true).status, 0};
+}
+template <bool D> R op_CALCVX(Vm& vm, const Instruction& i) {
+  return {calc<D>(vm, i, vm.vars[i.motor], &vm.x, vm.x, false, true, true).status, 0};
+}
+template <bool D> R op_CALCXV(Vm& vm, const Instruction& i) {
+  std::int32_t& b = vm.vars[i.motor];
+  return {calc<D>(vm, i, vm.x, &b, b, false, true, true).status, 0};
+}
+template <bool D> R op_CALCV(Vm& vm, const Instruction& i) {
+  return calc<D>(vm, i, vm.vars[i.motor], nullptr, i.value, true, false, true);
+}
+
+// ---------------------------------------------------------------- indexed variables, stack
+// E8: SIV/GIV/AIV with X outside 0..255 are ignored (the manuals say so).
+template <bool D> R op_SIV(Vm& vm, const Instruction& i) {
+  if (!var_index(vm.x)) return done<D>(vm, kStatusInvalidValue);
+  vm.vars[static_cast<std::size_t>(vm.x)] = i.value;
+  return done<D>(vm, kStatusOk);
+}
+template <bool D> R op_GIV(Vm& vm, const Instruction& i) {
+  (void)i;
+  if (!var_index(vm.x)) return done<D>(vm, kStatusInvalidValue);
+  return load<D>(vm, kStatusOk, vm.vars[static_cast<std::size_t>(vm.x)]);
+}
+template <bool D> R op_AIV(Vm& vm, const Instruction& i) {
+  (void)i;
+  if (!var_index(vm.x)) return done<D>(vm, kStatusInvalidValue);
+  vm.vars[static_cast<std::size_t>(vm.x)] = vm.acc;
+  return done<D>(vm, kStatusOk);
+}
+// E12: PUSH*/POP* use their own 8-entry stack; a push on a full or a pop on an empty one is ignored.
+template <bool D> R push(Vm& vm, std::int32_t v) {
+  if (vm.dsp < Vm::kStackDepth) vm.data_stack[static_cast<std::size_t>(vm.dsp++)] = v;
+  return done<D>(vm, kStatusOk);
+}
+template <bool D> R pop(Vm& vm, std::int32_t& dst) {
+  if (vm.dsp > 0) dst = vm.data_stack[static_cast<std::size_t>(--vm.dsp)];
+  return done<D>(vm, kStatusOk);
+}
+template <bool D> R op_PUSHA(Vm& vm, const Instruction&) { return push<D>(vm, vm.acc); }
+template <bool D> R op_PUSHX(Vm& vm, const Instruction&) { return push<D>(vm, vm.x); }
+template <bool D> R op_PUSHV(Vm& vm, const Instruction& i) { return push<D>(vm, vm.vars[i.type]); }
+template <bool D> R op_POPA(Vm& vm, const Instruction&) { return pop<D>(vm, vm.acc); }
+template <bool D> R op_POPX(Vm& vm, const Instruction&) { return pop<D>(vm, vm.x); }
+template <bool D> R op_POPV(Vm& vm, const Instruction& i) { return pop<D>(vm, vm.vars[i.type]); }
+
+// ---------------------------------------------------------------- control flow
+template <bool D> R op_JA(Vm& vm, const Instruction& i) {
+  TMCL_FLOW_IN_DIRECT(i);
+  if (vm.jump_ok(i.value)) vm.pc = i.value;
+  return ok();
+}
+template <bool D> R op_JC(Vm& vm, const Instruction& i) {
+  TMCL_FLOW_IN_DIRECT(i);
+  if (!condition(vm, i.type)) return done<D>(vm, kStatusOk);
+  if (vm.jump_ok(i.value)) vm.pc = i.value;
+  return ok();
+}
+template <bool D> R call(Vm& vm, const Instruction& i) {
+  if (!vm.jump_ok(i.value)) return ok();
+  if (vm.sp >= Vm::kStackDepth) return done<D>(vm, kStatusOk);  // E5: the 9th CSUB is ignored
+  vm.stack[static_cast<std::size_t>(vm.sp++)] = vm.pc + 1;
+  vm.pc = i.value;
+  return ok();
+}
+template <bool D> R op_CSUB(Vm& vm, const Instruction& i) {
+  TMCL_FLOW_IN_DIRECT(i);
+  return call<D>(vm, i);
+}
+template <bool D> R op_CALL(Vm& vm, const Instruction& i) {
+  TMCL_FLOW_IN_DIRECT(i);
+  if (!condition(vm, i.type)) return done<D>(vm, kStatusOk);
+  return call<D>(vm, i);
+}
+template <bool D> R op_RSUB(Vm& vm, const Instruction& i) {
+  TMCL_FLOW_IN_DIRECT(i);
+  // E6: an empty stack, or (inside a handler) no frame pushed by the handler: ignored.
+  int floor = vm.in_handler ? vm.saved.stack_depth : 0;
+  if (vm.sp <= floor) return done<D>(vm, kStatusOk);
+  vm.pc = vm.stack[static_cast<std::size_t>(--vm.sp)];
+  return ok();
+}
+template <bool D> R op_DJNZ(Vm& vm, const Instruction& i) {
+  TMCL_FLOW_IN_DIRECT(i);
+  std::int32_t& v = vm.vars[i.type];
+  v = wrap(static_cast<std::uint32_t>(v) - 1u);  // E4: flags unchanged; jumps while != 0
+  if (v == 0) return done<D>(vm, kStatusOk);
+  if (vm.jump_ok(i.value)) vm.pc = i.value;
+  return ok();
+}
+template <bool D> R op_STOP(Vm& vm, const Instruction& i) {
+  TMCL_FLOW_IN_DIRECT(i);
+  vm.status = AppStatus::Stopped;
+  vm.halt_pc = vm.pc;
+  vm.next_check = 0;
+  return ok();
+}
+template <bool D> R op_RST(Vm& vm, const Instruction& i) {
+  TMCL_FLOW_IN_DIRECT(i);
+  if (!vm.jump_ok(i.value)) return ok();
+  vm.reset_interpreter();
+  vm.pc = i.value;
+  return ok();
+}
+template <bool D> R op_WAIT(Vm& vm, const Instruction& i) {
+  TMCL_FLOW_IN_DIRECT(i);
+  std::int64_t ticks = i.value == -1 ? vm.acc : i.value;  // E7: -1 takes the accumulator
+  if (ticks < 0) ticks = 0;                                // E7: negative counts as 0
+  if (i.type > 4 || (i.type != 0 && !vm.motor_ok(i.motor))) return done<D>(vm, kStatusOk);  // ignored
+  SimTime start = vm.now - vm.instr_time;  // the WAIT's own start instant
+  vm.wait.active = true;
+  vm.wait.kind = i.type;
+  vm.wait.motor = i.type == 0 ? 0 : i.motor;
+  vm.wait.deadline = (i.type == 0 || ticks > 0) ? start + ticks * kUsPerTick : kNever;
+  vm.next_check = 0;
+  return ok();  // pc stays on the WAIT until it ends (the run loop's slow path)
+}
+
+// ---------------------------------------------------------------- interrupts and errors
+template <bool D> R op_EI(Vm& vm, const Instruction& i) {
+  if (i.type == 255) {
+    vm.global_enable = true;
+  } else if (vm.vector_ok(i.type)) {
+    vm.enabled[i.type >> 6] |= std::uint64_t{1} << (i.type & 63);
+  } else {
+    return done<D>(vm, kStatusWrongType);
+  }
+  vm.next_check = 0;
+  return done<D>(vm, kStatusOk);
+}
+template <bool D> R op_DI(Vm& vm, const Instruction& i) {
+  if (i.type == 255) {
+    vm.global_enable = false;
+  } else if (vm.vector_ok(i.type)) {
+    vm.enabled[i.type >> 6] &= ~(std::uint64_t{1} << (i.type & 63));
+    vm.pending[i.type >> 6] &= ~(std::uint64_t{1} << (i.type & 63));  // E10: DI n drops a latched n
+  } else {
+    return done<D>(vm, kStatusWrongType);
+  }
+  return done<D>(vm, kStatusOk);
+}
+template <bool D> R op_VECT(Vm& vm, const Instruction& i) {
+  if (!vm.vector_ok(i.type)) return done<D>(vm, kStatusWrongType);
+  if (i.value < 0 || i.value >= vm.program_size) {
+    if constexpr (D) return status(kStatusInvalidValue);
+    vm.jump_ok(i.value);  // faults: a vector outside the program
+    return ok();
+  }
+  vm.vectors[i.type] = i.value;
+  return done<D>(vm, kStatusOk);
+}
+template <bool D> R op_RETI(Vm& vm, const Instruction& i) {
+  TMCL_FLOW_IN_DIRECT(i);
+  if (!vm.in_handler) return done<D>(vm, kStatusOk);  // E13: RETI outside a handler is ignored
+  vm.pc = vm.saved.pc;
+  vm.acc = vm.saved.acc;
+  vm.x = vm.saved.x;
+  vm.flags = vm.saved.flags;
+  vm.wait = vm.saved.wait;
+  vm.sp = vm.saved.stack_depth;  // frames the handler left behind are dropped
+  vm.in_handler = false;
+  vm.next_check = 0;
+  return ok();  // the traced run loop reports leaving the handler
+}
+template <bool D> R op_CLE(Vm& vm, const Instruction& i) {
+  static constexpr std::uint8_t kMask[] = {0x1F, kErrTimeout, kErrAlarm, kErrDeviation, kErrPosition, kErrShutdown};
+  if (i.type > 5) return done<D>(vm, kStatusWrongType);
+  vm.errors = static_cast<std::uint8_t>(vm.errors & ~kMask[i.type]);
+  return done<D>(vm, kStatusOk);
+}
+
+// ---------------------------------------------------------------- user functions
+// E15: a virtual module has no customer firmware extensions.
+template <bool D> R user_function(Vm& vm, const Instruction& i) {
+  if constexpr (D) return status(kStatusNotAvailable);
+  vm.fault("UF" + std::to_string(i.op - 64) + " (a customer-specific user function) has no implementation in the virtual module, at " +
+           vm.where(vm.pc));
+  return ok();
+}
+template <bool D> R op_UF0(Vm& vm, const Instruction& i) { return user_function<D>(vm, i); }
+template <bool D> R op_UF1(Vm& vm, const Instruction& i) { return user_function<D>(vm, i); }
+template <bool D> R op_UF2(Vm& vm, const Instruction& i) { return user_function<D>(vm, i); }
+template <bool D> R op_UF3(Vm& vm, const Instruction& i) { return user_function<D>(vm, i); }
+template <bool D> R op_UF4(Vm& vm, const Instruction& i) { return user_function<D>(vm, i); }
+template <bool D> R op_UF5(Vm& vm, const Instruction& i) { return user_function<D>(vm, i); }
+template <bool D> R op_UF6(Vm& vm, const Instruction& i) { return user_function<D>(vm, i); }
+template <bool D> R op_UF7(Vm& vm, const Instruction& i) { return user_function<D>(vm, i); }
+
+#undef TMCL_FLOW_IN_DIRECT
+
+// The dispatch: one case per row of the instruction table.
+template <bool kDirect>
+inline R dispatch(Vm& vm, const Instruction& ins, bool& known) {
+  known = true;
+  switch (static_cast<Op>(ins.op)) {
+#define TMCL_OP(code, id, ...) \
+  case Op::id: return op_##id<kDirect>(vm, ins);
+#define TMCL_CTL(code, id, meaning)
+#include "tmcl/opcodes.def"
+#undef TMCL_OP
+#undef TMCL_CTL
+    default: break;
+  }
+  known = false;
+  return status(kStatusInvalidCommand);
+}
+
+}  // namespace tmcl::ops

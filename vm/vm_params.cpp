@@ -1,0 +1,313 @@
+// Parameter, coordinate, I/O and motion-command access with the module profile's rules. Each
+// function returns a direct-mode status; standalone mode ignores a command whose status is not
+// 100 (E3). Motion parameters the core owns are forwarded to it, everything else lives in the VM.
+#include "tmcl/vm.hpp"
+
+namespace tmcl {
+namespace {
+
+bool in_range(const ParamInfo& p, std::int64_t v) { return v >= p.min && v <= p.max; }
+
+std::uint8_t from_core(ParamWrite w) {
+  switch (w) {
+    case ParamWrite::Ok: return kStatusOk;
+    case ParamWrite::ReadOnly: return kStatusWrongType;
+    case ParamWrite::OutOfRange: return kStatusInvalidValue;
+  }
+  return kStatusInvalidValue;
+}
+
+// The profile's rules for a parameter: nullptr when the profile accepts every number without
+// checks (generic), so only a listed parameter of a real module is access- and range-checked.
+const ParamInfo* rules(const Profile& profile, const ParamInfo* p) { return profile.any_parameter ? nullptr : p; }
+
+// Global parameters the VM computes itself, whatever the profile's table says about storage.
+bool computed_global(int param) { return param == 128 || param == 129 || param == 130 || param == 132 || param == 133; }
+
+}  // namespace
+
+std::uint8_t Vm::set_axis(int motor, int param, std::int32_t value) {
+  if (!motor_ok(motor)) return kStatusInvalidValue;
+  const ParamInfo* p = rules(*profile, profile->axis_param(param));
+  if (!p && !profile->any_parameter) return kStatusWrongType;
+  if (p && !(p->access & kWrite)) return kStatusWrongType;
+  if (p && !in_range(*p, value)) return kStatusInvalidValue;
+  if (motion->owns(param)) {
+    sync_motion();
+    std::uint8_t st = from_core(motion->set_param(motor, param, value));
+    next_check = 0;
+    return st;
+  }
+  axis[static_cast<std::size_t>(motor)][static_cast<std::size_t>(param)] = value;
+  axis_written[static_cast<std::size_t>(motor)][static_cast<std::size_t>(param)] = true;
+  return kStatusOk;
+}
+
+std::uint8_t Vm::get_axis(int motor, int param, std::int32_t& value) {
+  if (!motor_ok(motor)) return kStatusInvalidValue;
+  const ParamInfo* p = rules(*profile, profile->axis_param(param));
+  if (!p && !profile->any_parameter) return kStatusWrongType;
+  if (p && !(p->access & kRead)) return kStatusWrongType;
+  value = axis_param(motor, param);
+  return kStatusOk;
+}
+
+std::int32_t Vm::axis_param(int motor, int param) {
+  if (motion->owns(param)) {
+    sync_motion();
+    return motion->get_param(motor, param);
+  }
+  return axis[static_cast<std::size_t>(motor)][static_cast<std::size_t>(param)];
+}
+
+std::uint8_t Vm::store_axis(int motor, int param) {
+  if (!motor_ok(motor)) return kStatusInvalidValue;
+  const ParamInfo* p = rules(*profile, profile->axis_param(param));
+  if (!p && !profile->any_parameter) return kStatusWrongType;
+  if (p && !(p->access & kEeprom) && !profile->any_parameter) return kStatusWrongType;
+  eeprom.axis[{motor, param}] = axis_param(motor, param);
+  eeprom_dirty = true;
+  return kStatusOk;
+}
+
+std::uint8_t Vm::restore_axis(int motor, int param) {
+  if (!motor_ok(motor)) return kStatusInvalidValue;
+  const ParamInfo* p = rules(*profile, profile->axis_param(param));
+  if (!p && !profile->any_parameter) return kStatusWrongType;
+  if (p && !(p->access & kEeprom) && !profile->any_parameter) return kStatusWrongType;
+  auto it = eeprom.axis.find({motor, param});
+  const ParamInfo* info = profile->axis_param(param);
+  std::int32_t v = it != eeprom.axis.end() ? it->second : (info ? info->default_value : 0);  // E16: factory default
+  if (motion->owns(param)) {
+    sync_motion();
+    (void)motion->set_param(motor, param, v);
+    next_check = 0;
+  } else {
+    axis[static_cast<std::size_t>(motor)][static_cast<std::size_t>(param)] = v;
+  }
+  return kStatusOk;
+}
+
+std::int32_t Vm::global_param(int bank, int param) {
+  std::int32_t v = 0;
+  (void)get_global(bank, param, v);
+  return v;
+}
+
+std::uint8_t Vm::set_global(int bank, int param, std::int32_t value) {
+  if (param < 0 || param > 255) return kStatusWrongType;
+  auto idx = static_cast<std::size_t>(param);
+  if (bank == 2) {
+    vars[idx] = value;
+    return kStatusOk;
+  }
+  if (bank != 0 && bank != 3) return kStatusInvalidValue;
+  const ParamInfo* p = rules(*profile, profile->global_param(bank, param));
+  if (!p && !profile->any_parameter) return kStatusWrongType;
+  if (p && !(p->access & kWrite)) return kStatusWrongType;
+  if (p && !in_range(*p, bank == 3 && param <= 2 ? static_cast<std::int64_t>(static_cast<std::uint32_t>(value)) : value))
+    return kStatusInvalidValue;
+  if (bank == 3) {
+    bank3[idx] = value;
+    if (param < kTimers) set_timer(param, value);
+    next_check = 0;
+    return kStatusOk;
+  }
+  if (param == 128 || param == 129 || param == 130) return kStatusWrongType;  // read-only status
+  if (param == 132) {
+    tick_offset_ms = static_cast<std::int64_t>(static_cast<std::uint32_t>(value)) - now / kUsPerMs;
+    return kStatusOk;
+  }
+  if (param == 133) {
+    random_state = static_cast<std::uint32_t>(value);
+    return kStatusOk;
+  }
+  bank0[idx] = value;
+  if (const ParamInfo* info = profile->global_param(0, param); info && (info->access & kAutoStore)) {
+    eeprom.globals[param] = value;
+    eeprom_dirty = true;
+  }
+  return kStatusOk;
+}
+
+std::uint8_t Vm::get_global(int bank, int param, std::int32_t& value) {
+  if (param < 0 || param > 255) return kStatusWrongType;
+  auto idx = static_cast<std::size_t>(param);
+  if (bank == 2) {
+    value = vars[idx];
+    return kStatusOk;
+  }
+  if (bank != 0 && bank != 3) return kStatusInvalidValue;
+  const ParamInfo* p = rules(*profile, profile->global_param(bank, param));
+  if (!p && !profile->any_parameter && !(bank == 0 && computed_global(param))) return kStatusWrongType;
+  if (p && !(p->access & kRead)) return kStatusWrongType;
+  if (bank == 3) {
+    value = bank3[idx];
+    return kStatusOk;
+  }
+  switch (param) {
+    case 128: value = static_cast<std::int32_t>(status); break;
+    case 129: value = 0; break;  // download mode: never, for a running program
+    case 130: value = pc; break;
+    case 132: value = tick_ms(); break;
+    case 133:
+      // E17: xorshift32, 31-bit results; the seed is what SGP 133 wrote (0 becomes 1).
+      if (random_state == 0) random_state = 1;
+      random_state ^= random_state << 13;
+      random_state ^= random_state >> 17;
+      random_state ^= random_state << 5;
+      value = static_cast<std::int32_t>(random_state & 0x7FFFFFFFu);
+      break;
+    default: value = bank0[idx]; break;
+  }
+  return kStatusOk;
+}
+
+std::uint8_t Vm::store_global(int bank, int param) {
+  if (param < 0 || param > 255) return kStatusWrongType;
+  if (bank == 2) {
+    if (param >= profile->eeprom_user_vars) return kStatusWrongType;  // not backed on this module
+    eeprom.vars[param] = vars[static_cast<std::size_t>(param)];
+    eeprom_dirty = true;
+    return kStatusOk;
+  }
+  if (bank != 0) return kStatusInvalidValue;
+  const ParamInfo* p = rules(*profile, profile->global_param(0, param));
+  if (!p && !profile->any_parameter) return kStatusWrongType;
+  if (p && !(p->access & (kEeprom | kAutoStore))) return kStatusWrongType;
+  if (computed_global(param)) return kStatusWrongType;
+  eeprom.globals[param] = bank0[static_cast<std::size_t>(param)];
+  eeprom_dirty = true;
+  return kStatusOk;
+}
+
+std::uint8_t Vm::restore_global(int bank, int param) {
+  if (param < 0 || param > 255) return kStatusWrongType;
+  if (bank == 2) {
+    if (param >= profile->eeprom_user_vars) return kStatusWrongType;
+    auto it = eeprom.vars.find(param);
+    vars[static_cast<std::size_t>(param)] = it != eeprom.vars.end() ? it->second : 0;
+    return kStatusOk;
+  }
+  if (bank != 0) return kStatusInvalidValue;
+  const ParamInfo* p = rules(*profile, profile->global_param(0, param));
+  if (!p && !profile->any_parameter) return kStatusWrongType;
+  if (p && !(p->access & (kEeprom | kAutoStore))) return kStatusWrongType;
+  if (computed_global(param)) return kStatusWrongType;
+  auto it = eeprom.globals.find(param);
+  const ParamInfo* info = profile->global_param(0, param);
+  bank0[static_cast<std::size_t>(param)] = it != eeprom.globals.end() ? it->second : (info ? info->default_value : 0);
+  return kStatusOk;
+}
+
+// ---------------------------------------------------------------- coordinates
+
+std::uint8_t Vm::set_coord(int motor, int n, std::int32_t value) {
+  if (n < 0 || n >= profile->coords) return kStatusWrongType;
+  if (motor == 255) {  // SCO n, 255: copy RAM -> EEPROM (n = 0: all but coordinate 0)
+    for (int m = 0; m < profile->motors; ++m)
+      for (int c = (n == 0 ? 1 : n); c <= (n == 0 ? profile->coords - 1 : n); ++c)
+        eeprom.coords[{m, c}] = coords[static_cast<std::size_t>(m)][static_cast<std::size_t>(c)];
+    eeprom_dirty = true;
+    return kStatusOk;
+  }
+  if (!motor_ok(motor)) return kStatusInvalidValue;
+  coords[static_cast<std::size_t>(motor)][static_cast<std::size_t>(n)] = value;
+  if (bank0[84] != 0 && n != 0) {  // global 84: coordinates are kept in the EEPROM too
+    eeprom.coords[{motor, n}] = value;
+    eeprom_dirty = true;
+  }
+  return kStatusOk;
+}
+
+std::uint8_t Vm::get_coord(int motor, int n, std::int32_t& value) {
+  if (n < 0 || n >= profile->coords) return kStatusWrongType;
+  if (motor == 255) {  // GCO n, 255: copy EEPROM -> RAM
+    for (int m = 0; m < profile->motors; ++m)
+      for (int c = (n == 0 ? 1 : n); c <= (n == 0 ? profile->coords - 1 : n); ++c) {
+        auto it = eeprom.coords.find({m, c});
+        coords[static_cast<std::size_t>(m)][static_cast<std::size_t>(c)] = it != eeprom.coords.end() ? it->second : 0;
+      }
+    value = 0;
+    return kStatusOk;
+  }
+  if (!motor_ok(motor)) return kStatusInvalidValue;
+  value = coords[static_cast<std::size_t>(motor)][static_cast<std::size_t>(n)];
+  return kStatusOk;
+}
+
+std::uint8_t Vm::capture_coord(int motor, int n, std::int32_t& value) {
+  if (n < 0 || n >= profile->coords) return kStatusWrongType;
+  if (!motor_ok(motor)) return kStatusInvalidValue;
+  sync_motion();
+  value = motion->position(motor);
+  return set_coord(motor, n, value);
+}
+
+// ---------------------------------------------------------------- inputs and outputs
+// Bank 0: digital inputs, bank 1: analog inputs, bank 2: digital outputs (E18).
+
+std::uint8_t Vm::set_io(int port, int bank, std::int32_t value) {
+  if (bank != 2) return kStatusInvalidValue;
+  if (port < 0 || port >= kPorts) return kStatusWrongType;
+  outputs[static_cast<std::size_t>(port)] = value != 0;
+  return kStatusOk;
+}
+
+std::uint8_t Vm::get_io(int port, int bank, std::int32_t& value) {
+  if (port < 0 || port >= kPorts) return kStatusWrongType;
+  auto p = static_cast<std::size_t>(port);
+  switch (bank) {
+    case 0: value = inputs[p]; return kStatusOk;
+    case 1: value = analog[p]; return kStatusOk;
+    case 2: value = outputs[p]; return kStatusOk;
+    default: return kStatusInvalidValue;
+  }
+}
+
+// ---------------------------------------------------------------- motion commands
+
+std::uint8_t Vm::move(int type, int motor, std::int32_t value) {
+  if (!motor_ok(motor)) return kStatusInvalidValue;
+  sync_motion();
+  switch (type) {
+    case 0: motion->move_absolute(motor, value); break;
+    case 1: motion->move_relative(motor, value); break;
+    case 2:
+      if (value < 0 || value >= profile->coords) return kStatusInvalidValue;
+      motion->move_absolute(motor, coords[static_cast<std::size_t>(motor)][static_cast<std::size_t>(value)]);
+      break;
+    default: return kStatusWrongType;
+  }
+  next_check = 0;
+  return kStatusOk;
+}
+
+std::uint8_t Vm::rotate(int motor, std::int64_t velocity) {
+  if (!motor_ok(motor)) return kStatusInvalidValue;
+  const ParamInfo* p = rules(*profile, profile->axis_param(2));
+  if (p ? !in_range(*p, velocity) : (velocity < INT32_MIN || velocity > INT32_MAX)) return kStatusInvalidValue;
+  sync_motion();
+  motion->rotate(motor, static_cast<std::int32_t>(velocity));
+  next_check = 0;
+  return kStatusOk;
+}
+
+std::uint8_t Vm::motor_stop(int motor) {
+  if (!motor_ok(motor)) return kStatusInvalidValue;
+  sync_motion();
+  motion->stop(motor);
+  next_check = 0;
+  return kStatusOk;
+}
+
+std::uint8_t Vm::rfs(int type, int motor, std::int32_t& value) {
+  if (!motor_ok(motor)) return kStatusInvalidValue;
+  if (type > 2) return kStatusWrongType;
+  sync_motion();
+  value = motion->reference_search(motor, static_cast<RfsAction>(type));
+  next_check = 0;
+  return kStatusOk;
+}
+
+}  // namespace tmcl
