@@ -18,6 +18,7 @@
 #include "tmcl/motion_recording.hpp"
 #include "tmcl/program_image.hpp"
 #include "tmcl/scenario.hpp"
+#include "tmcl/server.hpp"
 #include "tmcl/vm.hpp"
 #include "tmcl/vm_output.hpp"
 
@@ -44,6 +45,15 @@ options:
   --trace                print a line per instruction, interrupt, wait and motion event
                          (to standard error when --json is given)
   --json                 print the final state as one JSON object instead of the summary
+  --serve SPEC           act as a virtual module: tcp:HOST:PORT (loopback unless told
+                         otherwise; [::1]:PORT for IPv6), pty, or stdio (docs/virtual-module.md).
+                         PROGRAM is then optional (a host can download one)
+  --autostart            with --serve: start the program at once (also: global 77 = 1)
+  --time-scale X         with --serve: simulated seconds per real second (default 1)
+  --module-address N     with --serve: answer requests to address N (default: global 66, 1)
+  --host-address N       with --serve: address replies to N (default: global 76, 2)
+  --eeprom-locked        with --serve: refuse commands that write the EEPROM (status 5)
+  --max-wall-time DURATION  with --serve: stop by itself after this much real time
   --csv FILE             write time, position, velocity, acceleration of every motor to FILE
                          at each --sample period, plus one row per event
   --sample DURATION      the sampling period of --csv and --plot (default 10ms)
@@ -108,6 +118,8 @@ struct Options {
   std::string scenario, eeprom, program;
   bool trace = false, json = false;
   std::string csv, plot;
+  std::string serve;
+  tmcl::ServeOptions serve_opts;
   tmcl::SimTime sample = 10 * tmcl::kUsPerMs;
   tmcl::AsmOptions asm_opts;
 };
@@ -172,6 +184,32 @@ int parse_args(int argc, char** argv, Options& o) {
       if (!value(o.scenario)) return usage_error("--scenario needs a file");
     } else if (a == "--eeprom") {
       if (!value(o.eeprom)) return usage_error("--eeprom needs a file");
+    } else if (a == "--serve") {
+      if (!value(o.serve)) return usage_error("--serve needs tcp:HOST:PORT, pty or stdio");
+      std::string err;
+      if (!tmcl::parse_serve_spec(o.serve, o.serve_opts, err)) return usage_error(err);
+    } else if (a == "--autostart" && !has_inline) {
+      o.serve_opts.autostart = true;
+    } else if (a == "--eeprom-locked" && !has_inline) {
+      o.serve_opts.protocol.eeprom_locked = true;
+    } else if (a == "--time-scale") {
+      if (!value(v)) return usage_error("--time-scale needs a number");
+      char* end = nullptr;
+      errno = 0;
+      double x = std::strtod(v.c_str(), &end);
+      if (v.empty() || *end || errno || !(x > 0) || x > 1e9) return usage_error("--time-scale needs a number greater than 0");
+      o.serve_opts.time_scale = x;
+    } else if (a == "--module-address" || a == "--host-address") {
+      if (!value(v)) return usage_error(a + " needs a number from 0 to 255");
+      char* end = nullptr;
+      long n = std::strtol(v.c_str(), &end, 0);
+      if (v.empty() || *end || n < 0 || n > 255) return usage_error(a + " needs a number from 0 to 255");
+      (a == "--module-address" ? o.serve_opts.protocol.module_address : o.serve_opts.protocol.host_address) =
+          static_cast<std::uint8_t>(n);
+    } else if (a == "--max-wall-time") {
+      tmcl::SimTime wall = 0;
+      if (int r = duration("--max-wall-time", wall); r >= 0) return r;
+      o.serve_opts.max_wall_ms = wall / tmcl::kUsPerMs + (wall % tmcl::kUsPerMs ? 1 : 0);
     } else if (a == "--csv") {
       if (!value(o.csv)) return usage_error("--csv needs a file");
     } else if (a == "--plot") {
@@ -199,33 +237,24 @@ int parse_args(int argc, char** argv, Options& o) {
       have_program = true;
     }
   }
-  if (!have_program) return usage_error("no PROGRAM given");
+  if (o.serve.empty()) {
+    for (const char* opt : {"--autostart", "--time-scale", "--module-address", "--host-address", "--eeprom-locked",
+                            "--max-wall-time"})
+      for (const auto& arg : args)
+        if (arg == opt || arg.rfind(std::string(opt) + "=", 0) == 0)
+          return usage_error(std::string(opt) + " goes with --serve");
+  } else if (o.trace || o.json || !o.csv.empty() || !o.plot.empty() || o.limits.until != tmcl::kNever ||
+             o.limits.max_steps != UINT64_MAX) {
+    return usage_error("--serve runs until stopped: --trace, --json, --csv, --plot, --max-time and --max-steps do not go with it");
+  }
+  if (!have_program && o.serve.empty()) return usage_error("no PROGRAM given");
   return -1;
 }
 
-}  // namespace
-
-int main(int argc, char** argv) {
-  Options o;
-  if (int r = parse_args(argc, argv, o); r >= 0) return r;
-
-  const tmcl::Profile* profile = tmcl::find_profile(o.target);
-  if (!profile) {
-    std::vector<std::string> names;
-    for (const auto* p : tmcl::all_profiles()) names.emplace_back(p->name);
-    return usage_error("unknown module '" + o.target + "' (available: " + joined(names) + ")");
-  }
-  std::string core_name = o.motion.empty() ? std::string(profile->default_motion) : o.motion;
-  auto core = tmcl::make_motion_core(core_name);
-  if (!core && !o.motion.empty())
-    return usage_error("unknown motion core '" + o.motion + "' (available: " + joined(tmcl::motion_core_names()) + ")");
-  if (!core) {
-    std::fprintf(stderr, "tmclrun: note: motion core '%s' (the default for %s) is not built in; using 'ideal'\n",
-                 core_name.c_str(), o.target.c_str());
-    core = tmcl::make_ideal_motion_core();
-  }
-
-  // ---- the program ----
+// Reads PROGRAM (.tmc assembled in-process, .bin, .dgm, or - ) into `program` and the source
+// place of every instruction into `sources`. Returns -1 on success, else an exit status.
+int load_program(Options& o, const tmcl::Profile* profile, std::vector<tmcl::Instruction>& program,
+                 tmcl::SourceMap& sources) {
   std::vector<std::uint8_t> bytes;
   std::string err;
   if (!tmcl::read_file(o.program, bytes, err)) {
@@ -236,8 +265,6 @@ int main(int argc, char** argv) {
   if (o.program == "-") {
     for (auto b : bytes) is_image = is_image || b == 0;  // a binary image always has zero bytes
   }
-  std::vector<tmcl::Instruction> program;
-  tmcl::SourceMap sources;
   if (is_image) {
     std::string messages;
     std::string name = o.program == "-" ? "<stdin>" : o.program;
@@ -267,6 +294,38 @@ int main(int argc, char** argv) {
                  program.size(), profile->program_memory, o.target.c_str());
     return kExitInput;
   }
+
+  return -1;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  Options o;
+  if (int r = parse_args(argc, argv, o); r >= 0) return r;
+
+  const tmcl::Profile* profile = tmcl::find_profile(o.target);
+  if (!profile) {
+    std::vector<std::string> names;
+    for (const auto* p : tmcl::all_profiles()) names.emplace_back(p->name);
+    return usage_error("unknown module '" + o.target + "' (available: " + joined(names) + ")");
+  }
+  std::string core_name = o.motion.empty() ? std::string(profile->default_motion) : o.motion;
+  auto core = tmcl::make_motion_core(core_name);
+  if (!core && !o.motion.empty())
+    return usage_error("unknown motion core '" + o.motion + "' (available: " + joined(tmcl::motion_core_names()) + ")");
+  if (!core) {
+    std::fprintf(stderr, "tmclrun: note: motion core '%s' (the default for %s) is not built in; using 'ideal'\n",
+                 core_name.c_str(), o.target.c_str());
+    core = tmcl::make_ideal_motion_core();
+  }
+
+  // ---- the program (optional with --serve: a host may download one) ----
+  std::vector<tmcl::Instruction> program;
+  tmcl::SourceMap sources;
+  std::string err;
+  if (!o.program.empty())
+    if (int r = load_program(o, profile, program, sources); r >= 0) return r;
 
   // ---- scenario and EEPROM ----
   std::vector<tmcl::InputEvent> inputs;
@@ -317,6 +376,11 @@ int main(int argc, char** argv) {
   vm.source_of = sources;
   vm.power_on(o.eeprom.empty() ? nullptr : &image);
   vm.add_inputs(std::move(inputs));
+  if (!o.serve.empty()) {
+    // The virtual module runs until SIGINT/SIGTERM (or --max-wall-time) and saves the EEPROM.
+    o.serve_opts.eeprom_path = o.eeprom;
+    return tmcl::serve(vm, o.serve_opts);
+  }
   vm.start(0);
   tmcl::RunResult result = vm.run(o.limits);
 

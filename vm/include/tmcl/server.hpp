@@ -1,0 +1,169 @@
+// The virtual module: TMCL direct mode (9-byte requests and replies, USB-2-SD manual 3.1, 3.2)
+// spoken over TCP, a pseudo-terminal or standard input/output, against a running Vm.
+//
+// Two layers:
+//   TmclModule  the protocol engine: bytes in, bytes out. Framing and resynchronisation,
+//               checksums, module and host addresses, status codes, reply suppression (global
+//               255), the control commands 128..138 and 255, download mode, position-reached
+//               events (138). It neither reads a clock nor touches a file descriptor: the
+//               caller says how far simulated time has come (advance) and when the line has
+//               been quiet for the resynchronisation gap (gap_elapsed). Unit tests drive it
+//               directly.
+//   serve()     the I/O loop: one transport, one client at a time, wall-clock pacing of
+//               simulated time (the only place in the project that reads the wall clock),
+//               SIGINT/SIGTERM shutdown that saves the EEPROM file.
+//
+// Where the manuals are silent, the choices are recorded in docs/errata.md (S1, S2, ...)
+// and explained for users in docs/virtual-module.md.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <functional>
+#include <iosfwd>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "tmcl/vm.hpp"
+
+namespace tmcl {
+
+// Status codes of the protocol beyond the VM's (vm.hpp: 2, 3, 4, 6, 100).
+inline constexpr std::uint8_t kStatusWrongChecksum = 1, kStatusEepromLocked = 5, kStatusLoaded = 101,
+                              kStatusPositionReached = 128;
+
+struct ProtocolOptions {
+  // Override the module's serial address (global 66) and host address (global 76). Written into
+  // the RAM copy of the parameter at start and after every reset, never into the EEPROM; a
+  // profile without the parameter keeps the value here. Unset: what the VM holds (defaults 1, 2).
+  std::optional<std::uint8_t> module_address;
+  std::optional<std::uint8_t> host_address;
+  // Refuse every direct-mode command that would write the EEPROM with status 5 (S9).
+  bool eeprom_locked = false;
+};
+
+// The protocol engine for one module. Not thread-safe; one instance per Vm.
+class TmclModule {
+ public:
+  TmclModule(Vm& vm, ProtocolOptions options = {});
+
+  // Bytes from the host. Complete frames are executed at once; replies go to output().
+  void receive(const std::uint8_t* data, std::size_t n);
+  // True when at least 9 bytes are buffered that are not a frame and more bytes could still
+  // make one: the caller calls gap_elapsed() once the line has been quiet for the gap.
+  bool window_pending() const;
+  // The line has been quiet: a pending window is a corrupted frame (status 1 if it was
+  // addressed to this module) and is dropped.
+  void gap_elapsed();
+  // A new connection: bytes of a torn frame from the previous one are forgotten.
+  void drop_partial();
+
+  // Runs the program and the motors up to simulated instant `until` (never backwards) and
+  // queues position-reached events that became due.
+  void advance(SimTime until);
+  // The next simulated instant at which advance() has something to do: vm.now while a program
+  // is executing instructions, kNever when nothing happens until the next request.
+  SimTime next_wakeup() const;
+  // True once after a software reset or factory restore: simulated time restarted at 0.
+  bool take_power_cycle();
+
+  // Bytes to send to the host, in order. The caller removes what it sent.
+  std::vector<std::uint8_t>& output() { return out_; }
+
+  std::uint8_t module_address() const;
+  std::uint8_t host_address() const;
+  bool download_mode() const { return download_; }
+
+  // Program faults and other notes for the operator (nullptr: dropped).
+  std::function<void(const std::string&)> on_message;
+
+  // Counters, for tests and the shutdown note.
+  struct Counters {
+    std::uint64_t frames = 0;           // valid frames addressed to this module
+    std::uint64_t foreign = 0;          // valid frames for another address (no reply)
+    std::uint64_t bad_checksum = 0;     // corrupted frames (replied to when addressed here)
+    std::uint64_t skipped_bytes = 0;    // garbage dropped while resynchronising
+  };
+  const Counters& counters() const { return counters_; }
+
+ private:
+  void parse();
+  void handle_frame(const std::uint8_t* frame);
+  void execute(const Instruction& ins);
+  void control(const Instruction& ins);
+  void store(const Instruction& ins);
+  void commit_download();
+  void power_cycle(bool clear_eeprom);
+  void apply_address_overrides();
+  bool writes_eeprom(const Instruction& ins) const;
+  bool suppressed(std::uint8_t op) const;
+  void reply(std::uint8_t status, std::uint8_t op, std::int32_t value);
+  void reply_raw(const std::array<std::uint8_t, 9>& bytes, std::uint8_t op);
+  void check_events();
+  void note(const std::string& text);
+
+  Vm& vm_;
+  ProtocolOptions options_;
+  std::vector<std::uint8_t> rx_;
+  std::size_t head_ = 0;  // first unparsed byte of rx_
+  std::vector<std::uint8_t> out_;
+  // Addresses of the request being answered (S4: a reply carries the pair the request met).
+  std::uint8_t reply_module_ = 1, reply_host_ = 2;
+  std::uint8_t fallback_module_ = 1, fallback_host_ = 2;  // when the profile has no 66 / 76
+
+  // Download mode (132/133): stores go to `pending_`, which replaces program memory at once
+  // when a command needs it (133, 129, 130, 131, 134, 255) — one reload instead of one per word.
+  bool download_ = false;
+  bool pending_dirty_ = false;
+  std::int32_t download_ptr_ = 0;
+  std::vector<Instruction> pending_;
+
+  // 138: motors whose next arrival is announced (bit per motor).
+  std::uint32_t every_mvp_mask_ = 0;  // type 1
+  std::uint32_t next_mvp_mask_ = 0;   // type 0, consumed by the next MVP
+  std::uint32_t waiting_mask_ = 0;    // an announced move is under way
+
+  bool power_cycled_ = false;
+  bool fault_reported_ = false;
+  Counters counters_;
+};
+
+// ---- the I/O loop ----
+
+enum class Transport : std::uint8_t { Tcp, Pty, Stdio };
+
+struct ServeOptions {
+  Transport transport = Transport::Tcp;
+  std::string host = "127.0.0.1";  // Tcp: address to listen on (IPv4 or IPv6 literal or name)
+  int port = 2001;                 // Tcp: 0 picks a free port (announced)
+  int in_fd = 0, out_fd = 1;       // Stdio: where frames come from and replies go
+  ProtocolOptions protocol;
+  double time_scale = 1.0;         // simulated seconds per wall-clock second (> 0)
+  bool autostart = false;          // start the program at address 0 (also: global 77 = 1)
+  std::string eeprom_path;         // non-empty: saved there at shutdown (save_eeprom_file)
+  int resync_gap_ms = 20;          // quiet time after which a stuck 9-byte window is dropped
+  int spin_us = 100;               // after a request, poll for the next one this long (0: never)
+  bool handle_signals = true;      // SIGINT/SIGTERM stop the loop (handlers restored on return)
+  int stop_fd = -1;                // readable (or closed) => stop, for embedders and tests
+  std::int64_t max_wall_ms = 0;    // > 0: stop by itself after this long (tests, CI)
+  // Called once when the transport is ready: "127.0.0.1:2001", "[::1]:2001", the pty's path,
+  // or "stdio". serve() also prints it (see `announce`).
+  std::function<void(const std::string&)> on_ready;
+  std::ostream* announce = nullptr;  // where the ready line goes; nullptr: stdout (stderr for stdio)
+  std::ostream* log = nullptr;       // notes and errors; nullptr: stderr
+  bool quiet = false;                // no announce line, no notes (errors still go to `log`)
+};
+
+// Serves until SIGINT/SIGTERM, stop_fd, max_wall_ms, or end of input (stdio). The caller has
+// loaded the program and powered the VM on (with the EEPROM image). Returns an exit status:
+// 0 clean shutdown, 71 the transport could not be set up (message on `log`), 74 the EEPROM
+// file could not be written.
+int serve(Vm& vm, const ServeOptions& options);
+
+// Parses a --serve argument: "tcp:HOST:PORT" (HOST may be "[v6]"; "tcp:PORT" means
+// 127.0.0.1), "pty" or "stdio". Returns false with a message on error.
+bool parse_serve_spec(std::string_view spec, ServeOptions& options, std::string& error);
+
+}  // namespace tmcl

@@ -1,0 +1,558 @@
+// The virtual module's I/O loop (server.hpp: serve): one transport (TCP, pseudo-terminal or
+// stdio), one client at a time, and the real-time pacing of simulated time — the only code in
+// the project that reads the wall clock. Simulated time follows the steady clock scaled by
+// ServeOptions::time_scale; the loop sleeps in poll() until a request, the next event of the
+// program or the motors, the resynchronisation gap, or a stop request.
+//
+// One client at a time (errata S2): while a TCP client is connected, a second connection is
+// accepted and closed at once with a reset, so its connect or first read fails loudly instead of
+// hanging; the refusal is logged. A new connection after the first one closed is served.
+#include <fcntl.h>
+#include <netdb.h>
+#include <netinet/in.h>
+#include <netinet/tcp.h>
+#include <poll.h>
+#include <signal.h>
+#include <sys/socket.h>
+#include <termios.h>
+#include <unistd.h>
+
+#include <arpa/inet.h>
+
+#include <atomic>
+#include <cerrno>
+#include <chrono>
+#include <cstring>
+#include <iostream>
+
+#include "tmcl/eeprom.hpp"
+#include "tmcl/server.hpp"
+
+namespace tmcl {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+constexpr std::size_t kMaxPendingOutput = 1 << 20;  // stop reading requests beyond this
+constexpr auto kPtyStall = std::chrono::milliseconds(1000);  // pty: nobody reads; drop the replies
+
+// ---- signals: a self-pipe, so poll() wakes up ----
+std::atomic<int> g_signal_fd{-1};
+
+extern "C" void on_stop_signal(int) {
+  int fd = g_signal_fd.load();
+  if (fd >= 0) {
+    const char c = 's';
+    [[maybe_unused]] ssize_t n = ::write(fd, &c, 1);
+  }
+}
+
+struct SignalGuard {
+  bool active = false;
+  int pipe_fds[2] = {-1, -1};
+  struct sigaction old_int{}, old_term{}, old_pipe{};
+
+  bool install() {
+    if (::pipe(pipe_fds) != 0) return false;
+    for (int fd : pipe_fds) {
+      ::fcntl(fd, F_SETFD, FD_CLOEXEC);
+      ::fcntl(fd, F_SETFL, ::fcntl(fd, F_GETFL) | O_NONBLOCK);
+    }
+    g_signal_fd.store(pipe_fds[1]);
+    struct sigaction sa{};
+    sa.sa_handler = on_stop_signal;
+    sigemptyset(&sa.sa_mask);
+    sa.sa_flags = 0;  // no SA_RESTART: a blocked write returns EINTR and the loop sees the stop
+    ::sigaction(SIGINT, &sa, &old_int);
+    ::sigaction(SIGTERM, &sa, &old_term);
+    struct sigaction ign{};
+    ign.sa_handler = SIG_IGN;
+    sigemptyset(&ign.sa_mask);
+    ::sigaction(SIGPIPE, &ign, &old_pipe);  // a vanished reader is an error code, not a death
+    active = true;
+    return true;
+  }
+  ~SignalGuard() {
+    if (!active) return;
+    ::sigaction(SIGINT, &old_int, nullptr);
+    ::sigaction(SIGTERM, &old_term, nullptr);
+    ::sigaction(SIGPIPE, &old_pipe, nullptr);
+    g_signal_fd.store(-1);
+    ::close(pipe_fds[0]);
+    ::close(pipe_fds[1]);
+  }
+};
+
+struct Fd {
+  int fd = -1;
+  Fd() = default;
+  explicit Fd(int f) : fd(f) {}
+  Fd(const Fd&) = delete;
+  Fd& operator=(const Fd&) = delete;
+  ~Fd() { reset(); }
+  void reset(int f = -1) {
+    if (fd >= 0) ::close(fd);
+    fd = f;
+  }
+  int release() {
+    int f = fd;
+    fd = -1;
+    return f;
+  }
+};
+
+void set_nonblocking(int fd) { ::fcntl(fd, F_SETFL, ::fcntl(fd, F_GETFL) | O_NONBLOCK); }
+
+std::string address_text(const sockaddr_storage& ss) {
+  char buf[INET6_ADDRSTRLEN] = "?";
+  if (ss.ss_family == AF_INET) {
+    const auto* a = reinterpret_cast<const sockaddr_in*>(&ss);
+    ::inet_ntop(AF_INET, &a->sin_addr, buf, sizeof buf);
+    return std::string(buf) + ":" + std::to_string(ntohs(a->sin_port));
+  }
+  const auto* a = reinterpret_cast<const sockaddr_in6*>(&ss);
+  ::inet_ntop(AF_INET6, &a->sin6_addr, buf, sizeof buf);
+  return "[" + std::string(buf) + "]:" + std::to_string(ntohs(a->sin6_port));
+}
+
+bool is_loopback(const sockaddr_storage& ss) {
+  if (ss.ss_family == AF_INET) {
+    const auto* a = reinterpret_cast<const sockaddr_in*>(&ss);
+    return (ntohl(a->sin_addr.s_addr) >> 24) == 127;
+  }
+  const auto* a = reinterpret_cast<const sockaddr_in6*>(&ss);
+  return IN6_IS_ADDR_LOOPBACK(&a->sin6_addr) != 0;
+}
+
+// Opens the listening socket: the first address HOST resolves to that binds.
+int open_listener(const ServeOptions& opt, std::string& where, bool& loopback, std::string& error) {
+  addrinfo hints{};
+  hints.ai_family = AF_UNSPEC;
+  hints.ai_socktype = SOCK_STREAM;
+  hints.ai_flags = AI_PASSIVE | AI_NUMERICSERV;
+  addrinfo* res = nullptr;
+  const std::string port = std::to_string(opt.port);
+  if (int rc = ::getaddrinfo(opt.host.c_str(), port.c_str(), &hints, &res); rc != 0) {
+    error = "cannot resolve '" + opt.host + "': " + ::gai_strerror(rc);
+    return -1;
+  }
+  int fd = -1;
+  for (addrinfo* ai = res; ai; ai = ai->ai_next) {
+    fd = ::socket(ai->ai_family, ai->ai_socktype | SOCK_CLOEXEC, ai->ai_protocol);
+    if (fd < 0) continue;
+    int one = 1;
+    ::setsockopt(fd, SOL_SOCKET, SO_REUSEADDR, &one, sizeof one);
+    if (ai->ai_family == AF_INET6) ::setsockopt(fd, IPPROTO_IPV6, IPV6_V6ONLY, &one, sizeof one);
+    if (::bind(fd, ai->ai_addr, ai->ai_addrlen) == 0 && ::listen(fd, 8) == 0) break;
+    error = "cannot listen on " + opt.host + ":" + port + ": " + std::strerror(errno);
+    ::close(fd);
+    fd = -1;
+  }
+  ::freeaddrinfo(res);
+  if (fd < 0) {
+    if (error.empty()) error = "cannot listen on " + opt.host + ":" + port;
+    return -1;
+  }
+  sockaddr_storage ss{};
+  socklen_t len = sizeof ss;
+  ::getsockname(fd, reinterpret_cast<sockaddr*>(&ss), &len);
+  where = address_text(ss);
+  loopback = is_loopback(ss);
+  set_nonblocking(fd);
+  return fd;
+}
+
+// A pseudo-terminal whose slave side behaves like a raw serial port. The server keeps the slave
+// open itself, so the master never sees a hang-up between two clients.
+bool open_pty(Fd& master, Fd& slave, std::string& path, std::string& error) {
+  master.reset(::posix_openpt(O_RDWR | O_NOCTTY));
+  if (master.fd < 0 || ::grantpt(master.fd) != 0 || ::unlockpt(master.fd) != 0) {
+    error = std::string("cannot create a pseudo-terminal: ") + std::strerror(errno);
+    return false;
+  }
+  char name[256];
+  if (::ptsname_r(master.fd, name, sizeof name) != 0) {
+    error = std::string("cannot name the pseudo-terminal: ") + std::strerror(errno);
+    return false;
+  }
+  path = name;
+  slave.reset(::open(name, O_RDWR | O_NOCTTY | O_CLOEXEC));
+  if (slave.fd < 0) {
+    error = "cannot open " + path + ": " + std::strerror(errno);
+    return false;
+  }
+  termios t{};
+  if (::tcgetattr(slave.fd, &t) == 0) {  // raw: 8 data bits, no echo, no line editing, no CR/LF mapping
+    t.c_iflag &= ~static_cast<tcflag_t>(IGNBRK | BRKINT | PARMRK | ISTRIP | INLCR | IGNCR | ICRNL | IXON | IXOFF);
+    t.c_oflag &= ~static_cast<tcflag_t>(OPOST);
+    t.c_lflag &= ~static_cast<tcflag_t>(ECHO | ECHONL | ICANON | ISIG | IEXTEN);
+    t.c_cflag &= ~static_cast<tcflag_t>(CSIZE | PARENB);
+    t.c_cflag |= CS8 | CREAD | CLOCAL;
+    t.c_cc[VMIN] = 1;
+    t.c_cc[VTIME] = 0;
+    ::tcsetattr(slave.fd, TCSANOW, &t);
+  }
+  ::fcntl(master.fd, F_SETFD, FD_CLOEXEC);
+  set_nonblocking(master.fd);
+  return true;
+}
+
+// Writes as much of `out` as the descriptor takes now; removes it. False: the peer is gone.
+bool flush_some(int fd, std::vector<std::uint8_t>& out, bool socket) {
+  std::size_t done = 0;
+  while (done < out.size()) {
+    ssize_t n = socket ? ::send(fd, out.data() + done, out.size() - done, MSG_NOSIGNAL | MSG_DONTWAIT)
+                       : ::write(fd, out.data() + done, out.size() - done);
+    if (n > 0) {
+      done += static_cast<std::size_t>(n);
+      continue;
+    }
+    if (n < 0 && errno == EINTR) break;  // a signal: the loop looks at it, then writes again
+    if (n < 0 && (errno == EAGAIN || errno == EWOULDBLOCK)) break;
+    out.erase(out.begin(), out.begin() + static_cast<std::ptrdiff_t>(done));
+    return false;
+  }
+  out.erase(out.begin(), out.begin() + static_cast<std::ptrdiff_t>(done));
+  return true;
+}
+
+enum class ReadResult { Data, Again, Closed };
+
+ReadResult read_into(int fd, TmclModule& module, std::vector<std::uint8_t>& buf) {
+  for (;;) {
+    ssize_t n = ::read(fd, buf.data(), buf.size());
+    if (n > 0) {
+      module.receive(buf.data(), static_cast<std::size_t>(n));
+      return ReadResult::Data;
+    }
+    if (n == 0) return ReadResult::Closed;
+    if (errno == EINTR) return ReadResult::Again;
+    if (errno == EAGAIN || errno == EWOULDBLOCK) return ReadResult::Again;
+    return ReadResult::Closed;
+  }
+}
+
+}  // namespace
+
+int serve(Vm& vm, const ServeOptions& opt) {
+  std::ostream& log = opt.log ? *opt.log : std::cerr;
+  std::ostream& announce = opt.announce ? *opt.announce : (opt.transport == Transport::Stdio ? std::cerr : std::cout);
+  auto note = [&](const std::string& s) {
+    if (!opt.quiet) log << "tmclrun: " << s << std::endl;
+  };
+
+  SignalGuard signals;
+  if (opt.handle_signals && !signals.install()) {
+    log << "tmclrun: error: cannot install signal handlers: " << std::strerror(errno) << std::endl;
+    return 71;
+  }
+
+  TmclModule module(vm, opt.protocol);
+  module.on_message = note;
+  const bool autostart_param = vm.profile->global_param(0, 77) && vm.bank0[77] != 0;
+  if ((opt.autostart || autostart_param) && vm.program_size > 0) vm.start(0);
+
+  // ---- the transport ----
+  Fd listener, client, pty_master, pty_slave;
+  std::string ready;
+  std::string error;
+  switch (opt.transport) {
+    case Transport::Tcp: {
+      bool loopback = true;
+      listener.reset(open_listener(opt, ready, loopback, error));
+      if (listener.fd < 0) {
+        log << "tmclrun: error: " << error << std::endl;
+        return 71;
+      }
+      if (!loopback) note("warning: listening on a non-loopback address; anyone who reaches it can move the motors");
+      break;
+    }
+    case Transport::Pty:
+      if (!open_pty(pty_master, pty_slave, ready, error)) {
+        log << "tmclrun: error: " << error << std::endl;
+        return 71;
+      }
+      break;
+    case Transport::Stdio: ready = "stdio"; break;
+  }
+  if (!opt.quiet && opt.transport != Transport::Stdio) {
+    if (opt.transport == Transport::Tcp) announce << "listening on " << ready << std::endl;
+    else announce << ready << std::endl;
+  }
+  if (opt.on_ready) opt.on_ready(ready);
+
+  // ---- pacing ----
+  const double scale = opt.time_scale > 0 ? opt.time_scale : 1.0;
+  Clock::time_point wall0 = Clock::now();
+  SimTime sim0 = vm.now;
+  auto target_at = [&](Clock::time_point t) {
+    return sim0 + static_cast<SimTime>(std::chrono::duration<double, std::micro>(t - wall0).count() * scale);
+  };
+  const Clock::time_point started = wall0;
+  Clock::time_point last_rx = wall0;
+
+  auto advance_now = [&] {
+    const Clock::time_point t = Clock::now();
+    module.advance(target_at(t));
+    if (module.take_power_cycle()) {  // simulated time restarted at 0
+      wall0 = t;
+      sim0 = vm.now;
+    }
+  };
+
+  std::vector<std::uint8_t> buf(64 << 10);
+  std::vector<std::uint8_t>& out = module.output();
+  bool stop = false;
+  bool dropped_note = false;
+  Clock::time_point last_write = wall0;  // pty: when output last moved (or was empty)
+  const auto spin = std::chrono::microseconds(opt.spin_us);
+  Clock::time_point spin_until = wall0;
+  const int in_fd = opt.transport == Transport::Stdio ? opt.in_fd : -1;
+  const int out_fd = opt.transport == Transport::Stdio ? opt.out_fd : -1;
+
+  // The descriptor that carries the protocol right now (-1: no client).
+  auto data_fd = [&]() -> int {
+    switch (opt.transport) {
+      case Transport::Tcp: return client.fd;
+      case Transport::Pty: return pty_master.fd;
+      case Transport::Stdio: return in_fd;
+    }
+    return -1;
+  };
+  auto write_fd = [&]() -> int { return opt.transport == Transport::Stdio ? out_fd : data_fd(); };
+
+  auto close_client = [&](const char* why) {
+    note(std::string("client disconnected") + why);
+    client.reset();
+    module.drop_partial();
+    out.clear();
+  };
+
+  auto flush = [&] {
+    if (out.empty()) {
+      if (opt.transport == Transport::Pty) last_write = Clock::now();
+      return;
+    }
+    const int fd = write_fd();
+    if (fd < 0) {
+      out.clear();  // nobody to tell: replies and events are lost, as on an unplugged line
+      return;
+    }
+    const std::size_t before = out.size();
+    if (!flush_some(fd, out, opt.transport == Transport::Tcp)) {
+      if (opt.transport == Transport::Tcp) close_client("");
+      else if (opt.transport == Transport::Stdio) stop = true;
+      else out.clear();
+    }
+    if (opt.transport != Transport::Pty) return;
+    // A pseudo-terminal has no "disconnected": replies nobody reads for a second are dropped,
+    // as a serial line drops them, so the next client does not receive stale answers.
+    const Clock::time_point t = Clock::now();
+    if (out.empty() || out.size() < before) {
+      last_write = t;
+    } else if (t - last_write > kPtyStall) {
+      if (!dropped_note) note("nobody reads the pseudo-terminal: dropping replies");
+      dropped_note = true;
+      out.clear();
+      last_write = t;
+    }
+  };
+
+  while (!stop) {
+    advance_now();
+    flush();
+    if (stop) break;
+
+    const Clock::time_point now = Clock::now();
+    if (opt.max_wall_ms > 0 && now - started >= std::chrono::milliseconds(opt.max_wall_ms)) {
+      note("stopping: time limit of the server reached");
+      break;
+    }
+
+    // Right after a request, look for the next one for a few microseconds before sleeping in
+    // poll(): a host that sends its next request as soon as it has the reply then costs one
+    // wake-up per round trip instead of two (the round-trip benchmark doubles).
+    if (spin_until > now && opt.transport != Transport::Stdio && data_fd() >= 0 && out.size() < kMaxPendingOutput) {
+      ReadResult r = read_into(data_fd(), module, buf);
+      if (r == ReadResult::Data) {
+        last_rx = Clock::now();
+        spin_until = last_rx + spin;
+        continue;
+      }
+      if (r == ReadResult::Again) continue;
+      spin_until = now;
+      if (opt.transport == Transport::Tcp) close_client("");
+      continue;
+    }
+
+    // How long poll may sleep.
+    std::int64_t timeout_ms = 1000;
+    const SimTime wake = module.next_wakeup();
+    if (wake != kNever) {
+      const double ahead_us = static_cast<double>(wake - target_at(now)) / scale;
+      const double ms = ahead_us / 1000.0;
+      timeout_ms = ms <= 1.0 ? 1 : ms >= 1000.0 ? 1000 : static_cast<std::int64_t>(ms) + 1;
+    }
+    if (module.window_pending()) {
+      auto left = std::chrono::duration_cast<std::chrono::milliseconds>(last_rx + std::chrono::milliseconds(opt.resync_gap_ms) - now).count();
+      if (left <= 0) {
+        module.gap_elapsed();
+        continue;
+      }
+      timeout_ms = std::min<std::int64_t>(timeout_ms, left);
+    }
+    if (opt.max_wall_ms > 0) {
+      auto left = std::chrono::duration_cast<std::chrono::milliseconds>(started + std::chrono::milliseconds(opt.max_wall_ms) - now).count();
+      timeout_ms = std::max<std::int64_t>(0, std::min<std::int64_t>(timeout_ms, left + 1));
+    }
+
+    pollfd fds[5];
+    nfds_t nfds = 0;
+    int i_signal = -1, i_stop = -1, i_listen = -1, i_data = -1, i_out = -1;
+    if (signals.active) {
+      i_signal = static_cast<int>(nfds);
+      fds[nfds++] = {signals.pipe_fds[0], POLLIN, 0};
+    }
+    if (opt.stop_fd >= 0) {
+      i_stop = static_cast<int>(nfds);
+      fds[nfds++] = {opt.stop_fd, POLLIN, 0};
+    }
+    if (listener.fd >= 0) {
+      i_listen = static_cast<int>(nfds);
+      fds[nfds++] = {listener.fd, POLLIN, 0};
+    }
+    const bool backlog = out.size() >= kMaxPendingOutput;
+    if (data_fd() >= 0) {
+      i_data = static_cast<int>(nfds);
+      short ev = backlog ? 0 : POLLIN;
+      if (!out.empty() && write_fd() == data_fd()) ev |= POLLOUT;
+      fds[nfds++] = {data_fd(), ev, 0};
+    }
+    if (out_fd >= 0 && out_fd != in_fd && !out.empty()) {
+      i_out = static_cast<int>(nfds);
+      fds[nfds++] = {out_fd, POLLOUT, 0};
+    }
+
+    int rc = ::poll(fds, nfds, static_cast<int>(timeout_ms));
+    if (rc < 0) {
+      if (errno == EINTR) continue;
+      log << "tmclrun: error: poll: " << std::strerror(errno) << std::endl;
+      break;
+    }
+    if (rc == 0) continue;
+    if (i_signal >= 0 && (fds[i_signal].revents & POLLIN)) {
+      note("stopping on signal");
+      break;
+    }
+    if (i_stop >= 0 && fds[i_stop].revents) break;
+
+    if (i_data >= 0 && fds[i_data].revents) {
+      const short re = fds[i_data].revents;
+      if (re & (POLLIN | POLLHUP | POLLERR)) {
+        advance_now();  // the request sees the module as it is now
+        ReadResult r = read_into(data_fd(), module, buf);
+        if (r == ReadResult::Data) {
+          last_rx = Clock::now();
+          spin_until = last_rx + spin;
+        }
+        if (r == ReadResult::Closed) {
+          if (opt.transport == Transport::Tcp) {
+            close_client("");
+          } else if (opt.transport == Transport::Stdio) {
+            flush();
+            break;  // end of input ends the session
+          }
+        }
+      }
+      if ((re & POLLOUT) && data_fd() >= 0) flush();
+    }
+    if (i_out >= 0 && (fds[i_out].revents & (POLLOUT | POLLERR | POLLHUP))) flush();
+
+    if (i_listen >= 0 && (fds[i_listen].revents & POLLIN)) {
+      sockaddr_storage ss{};
+      socklen_t len = sizeof ss;
+      int fd = ::accept4(listener.fd, reinterpret_cast<sockaddr*>(&ss), &len, SOCK_NONBLOCK | SOCK_CLOEXEC);
+      if (fd >= 0) {
+        if (client.fd >= 0) {
+          // The current client may have closed an instant ago: read what it left first.
+          advance_now();
+          if (read_into(client.fd, module, buf) == ReadResult::Closed) close_client("");
+        }
+        if (client.fd >= 0) {
+          linger lg{1, 0};  // close with a reset: the refused client gets ECONNRESET at once
+          ::setsockopt(fd, SOL_SOCKET, SO_LINGER, &lg, sizeof lg);
+          ::close(fd);
+          note("refused a second client from " + address_text(ss) + ": one client at a time");
+        } else {
+          int one = 1;
+          ::setsockopt(fd, IPPROTO_TCP, TCP_NODELAY, &one, sizeof one);
+          client.reset(fd);
+          module.drop_partial();
+          note("client connected from " + address_text(ss));
+        }
+      }
+    }
+  }
+
+  // ---- shutdown ----
+  if (!out.empty() && write_fd() >= 0) flush_some(write_fd(), out, opt.transport == Transport::Tcp);
+  client.reset();
+  listener.reset();
+  pty_master.reset();
+  pty_slave.reset();
+  if (!opt.eeprom_path.empty()) {
+    std::string err;
+    if (!save_eeprom_file(opt.eeprom_path, vm.eeprom, err)) {
+      log << "tmclrun: error: " << err << std::endl;
+      return 74;
+    }
+  }
+  return 0;
+}
+
+bool parse_serve_spec(std::string_view spec, ServeOptions& options, std::string& error) {
+  if (spec == "pty") {
+    options.transport = Transport::Pty;
+    return true;
+  }
+  if (spec == "stdio") {
+    options.transport = Transport::Stdio;
+    return true;
+  }
+  if (spec.substr(0, 4) != "tcp:") {
+    error = "--serve takes tcp:HOST:PORT, pty or stdio, not '" + std::string(spec) + "'";
+    return false;
+  }
+  std::string_view rest = spec.substr(4);
+  std::string host = "127.0.0.1";
+  std::string_view port;
+  if (!rest.empty() && rest.front() == '[') {  // [v6]:port
+    std::size_t close = rest.find(']');
+    if (close == std::string_view::npos || close + 1 >= rest.size() || rest[close + 1] != ':') {
+      error = "--serve tcp:[ADDRESS]:PORT: '" + std::string(spec) + "' is incomplete";
+      return false;
+    }
+    host = std::string(rest.substr(1, close - 1));
+    port = rest.substr(close + 2);
+  } else if (std::size_t colon = rest.rfind(':'); colon != std::string_view::npos) {
+    host = std::string(rest.substr(0, colon));
+    port = rest.substr(colon + 1);
+    if (host.find(':') != std::string::npos) {
+      error = "--serve: write an IPv6 address in brackets, e.g. tcp:[::1]:2001";
+      return false;
+    }
+  } else {
+    port = rest;
+  }
+  if (host.empty() || port.empty() || port.size() > 5 || port.find_first_not_of("0123456789") != std::string_view::npos ||
+      std::stoi(std::string(port)) > 65535) {
+    error = "--serve tcp:HOST:PORT: bad host or port in '" + std::string(spec) + "'";
+    return false;
+  }
+  options.transport = Transport::Tcp;
+  options.host = host;
+  options.port = std::stoi(std::string(port));
+  return true;
+}
+
+}  // namespace tmcl
