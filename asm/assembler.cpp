@@ -10,37 +10,6 @@ namespace tmcl {
 namespace detail {
 namespace {
 
-struct FieldRange {
-  std::int64_t min, max;
-  const char* text;
-};
-
-FieldRange range_of(Field f) {
-  switch (f) {
-    case Field::Type:
-    case Field::Motor: return {0, 255, "0 to 255"};
-    case Field::Value: return {INT32_MIN, UINT32_MAX, "-2147483648 to 4294967295"};
-  }
-  return {0, 0, ""};
-}
-
-const char* field_name(Field f) {
-  switch (f) {
-    case Field::Type: return "type";
-    case Field::Motor: return "motor/bank";
-    case Field::Value: return "value";
-  }
-  return "?";
-}
-
-void put(Instruction& ins, Field f, std::int64_t v) {
-  switch (f) {
-    case Field::Type: ins.type = static_cast<std::uint8_t>(v); break;
-    case Field::Motor: ins.motor = static_cast<std::uint8_t>(v); break;
-    case Field::Value: ins.value = static_cast<std::int32_t>(static_cast<std::uint32_t>(v)); break;
-  }
-}
-
 class Encoder {
  public:
   Encoder(Resolver& r, Diagnostics& d) : resolver_(r), diags_(d) {}
@@ -82,9 +51,9 @@ class Encoder {
       }
       if (!ok) return false;
       ins.op = static_cast<std::uint8_t>(v[0]);
-      put(ins, Field::Type, v[1]);
-      put(ins, Field::Motor, v[2]);
-      put(ins, Field::Value, v[3]);
+      put_field(ins, Field::Type, v[1]);
+      put_field(ins, Field::Motor, v[2]);
+      put_field(ins, Field::Value, v[3]);
       return true;
     }
     ins = Instruction{};
@@ -124,7 +93,7 @@ class Encoder {
         diags_.warning(o.loc, std::to_string(v) + " is not a valid " + std::string(kwset_name(spec.keywords)) +
                                   " of " + std::string(s.op->mnemonic));
       }
-      put(ins, spec.field, v);
+      put_field(ins, spec.field, v);
     }
     return ok;
   }

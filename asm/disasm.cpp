@@ -7,6 +7,8 @@
 #include "tmcl/asm/disasm.hpp"
 
 #include <algorithm>
+
+#include "internal.hpp"
 #include <cstdio>
 #include <map>
 #include <optional>
@@ -17,20 +19,9 @@
 namespace tmcl {
 namespace {
 
-std::string upper(std::string s) {
-  for (auto& c : s)
-    if (c >= 'a' && c <= 'z') c = static_cast<char>(c - 'a' + 'A');
-  return s;
-}
+using detail::upper;
 
-bool valid_name(const std::string& s) {
-  if (s.empty() || s.size() > 255) return false;
-  auto letter = [](char c) { return (c >= 'A' && c <= 'Z') || (c >= 'a' && c <= 'z') || c == '_'; };
-  if (!letter(s[0])) return false;
-  for (char c : s)
-    if (!letter(c) && !(c >= '0' && c <= '9')) return false;
-  return true;
-}
+
 
 std::uint32_t field_value(const Instruction& ins, Field f) {
   switch (f) {
@@ -56,7 +47,7 @@ class Labels {
   explicit Labels(std::size_t n) : n_(n) {}
   // A given name; false when it is invalid or taken.
   bool add(const std::string& name, std::int64_t address) {
-    if (!valid_name(name) || address < 0 || address > static_cast<std::int64_t>(n_)) return false;
+    if (!is_valid_name(name) || address < 0 || address > static_cast<std::int64_t>(n_)) return false;
     if (!used_.insert(upper(name)).second) return false;
     at_[address].push_back(name);
     return true;
@@ -251,7 +242,7 @@ bool parse_symbols(const std::string& text, LabelNames& out, std::string& error)
     if (f[0] != "label") continue;
     char* endp = nullptr;
     long long v = std::strtoll(f[2].c_str(), &endp, 10);
-    if (f[2].empty() || *endp || !valid_name(f[1])) {
+    if (f[2].empty() || *endp || !is_valid_name(f[1])) {
       error = "line " + std::to_string(line_no) + ": invalid label name or address";
       return false;
     }

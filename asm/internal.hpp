@@ -172,6 +172,31 @@ struct Unit {
 
 std::string upper(std::string_view s);
 
+// The three instruction fields an operand can fill, their ranges and how a value is stored.
+struct FieldRange {
+  std::int64_t min, max;
+  const char* text;
+};
+inline FieldRange range_of(Field f) {
+  if (f == Field::Value) return {INT32_MIN, UINT32_MAX, "-2147483648 to 4294967295"};
+  return {0, 255, "0 to 255"};
+}
+inline const char* field_name(Field f) {
+  switch (f) {
+    case Field::Type: return "type";
+    case Field::Motor: return "motor/bank";
+    case Field::Value: return "value";
+  }
+  return "?";
+}
+inline void put_field(Instruction& ins, Field f, std::int64_t v) {
+  switch (f) {
+    case Field::Type: ins.type = static_cast<std::uint8_t>(v); break;
+    case Field::Motor: ins.motor = static_cast<std::uint8_t>(v); break;
+    case Field::Value: ins.value = static_cast<std::int32_t>(static_cast<std::uint32_t>(v)); break;
+  }
+}
+
 // Parses one root file (following its includes) into a unit.
 // `text` is the root file's contents when the caller has read it already (moved from; nullptr: read it).
 void parse_unit(const std::string& root, const AsmOptions& options, FileReader& reader, SourceSet& sources,

@@ -9,6 +9,20 @@
 
 namespace tmcl::detail {
 
+}  // namespace tmcl::detail
+
+namespace tmcl {
+bool is_valid_name(std::string_view name) {
+  auto letter = [](char c) { return (c >= 'A' && c <= 'Z') || (c >= 'a' && c <= 'z') || c == '_'; };
+  if (name.empty() || name.size() > 255 || !letter(name[0])) return false;
+  for (char c : name)
+    if (!letter(c) && !(c >= '0' && c <= '9')) return false;
+  return true;
+}
+}  // namespace tmcl
+
+namespace tmcl::detail {
+
 std::string upper(std::string_view s) {
   std::string u(s);
   for (auto& c : u)

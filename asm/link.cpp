@@ -19,32 +19,6 @@ std::string text_at(const SourceSet& sources, SourceLoc loc) {
   return std::string(line.substr(start, static_cast<std::size_t>(loc.len)));
 }
 
-struct FieldRange {
-  std::int64_t min, max;
-  const char* text;
-};
-
-FieldRange range_of(Field f) {
-  if (f == Field::Value) return {INT32_MIN, UINT32_MAX, "-2147483648 to 4294967295"};
-  return {0, 255, "0 to 255"};
-}
-
-const char* field_word(Field f) {
-  switch (f) {
-    case Field::Type: return "type";
-    case Field::Motor: return "motor/bank";
-    case Field::Value: return "value";
-  }
-  return "?";
-}
-
-void put(Instruction& ins, Field f, std::int64_t v) {
-  switch (f) {
-    case Field::Type: ins.type = static_cast<std::uint8_t>(v); break;
-    case Field::Motor: ins.motor = static_cast<std::uint8_t>(v); break;
-    case Field::Value: ins.value = static_cast<std::int32_t>(static_cast<std::uint32_t>(v)); break;
-  }
-}
 
 std::string with_addend(const std::string& name, std::int64_t k) {
   if (k == 0) return name;
@@ -261,12 +235,12 @@ void link_object(Resolver& resolver, int u, const Unit& unit, const Profile& pro
       }
       FieldRange fr = range_of(x.field);
       if (v < fr.min || v > fr.max) {
-        out.diags.error(at, "value " + std::to_string(v) + " of " + what + " does not fit the " + field_word(x.field) +
+        out.diags.error(at, "value " + std::to_string(v) + " of " + what + " does not fit the " + field_name(x.field) +
                                 " field (" + fr.text + ")");
         ok = false;
         continue;
       }
-      put(ins, x.field, v);
+      put_field(ins, x.field, v);
       bool address = false;
       if (info)
         for (const auto& spec : info->operands)

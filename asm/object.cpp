@@ -5,6 +5,8 @@
 #include "tmcl/asm/object.hpp"
 
 #include <algorithm>
+
+#include "internal.hpp"
 #include <array>
 #include <cstdio>
 #include <cstring>
@@ -14,6 +16,8 @@
 
 namespace tmcl {
 namespace {
+
+using detail::upper;
 
 constexpr std::uint8_t kObjMagic[8] = {'T', 'M', 'C', 'L', 'O', 'B', 'J', 0};
 constexpr std::uint8_t kLibMagic[8] = {'T', 'M', 'C', 'L', 'L', 'I', 'B', 0};
@@ -109,14 +113,6 @@ std::uint32_t get32(const std::uint8_t* p) {
   return std::uint32_t{p[0]} | (std::uint32_t{p[1]} << 8) | (std::uint32_t{p[2]} << 16) | (std::uint32_t{p[3]} << 24);
 }
 
-bool valid_name(const std::string& s) {
-  if (s.empty() || s.size() > 255) return false;
-  auto letter = [](char c) { return (c >= 'A' && c <= 'Z') || (c >= 'a' && c <= 'z') || c == '_'; };
-  if (!letter(s[0])) return false;
-  for (char c : s)
-    if (!letter(c) && !(c >= '0' && c <= '9')) return false;
-  return true;
-}
 
 bool printable(const std::string& s) {
   for (unsigned char c : s)
@@ -124,11 +120,6 @@ bool printable(const std::string& s) {
   return true;
 }
 
-std::string upper(std::string s) {
-  for (auto& c : s)
-    if (c >= 'a' && c <= 'z') c = static_cast<char>(c - 'a' + 'A');
-  return s;
-}
 
 // Checks what every object and library starts with: length, magic, version, size, CRC.
 bool check_envelope(const std::uint8_t* data, std::size_t size, const std::uint8_t (&magic)[8], const char* what,
@@ -303,7 +294,7 @@ bool read_object(const std::uint8_t* data, std::size_t size, ObjectFile& out, st
         !r.u32(s.term_symbol) || !r.u32(s.file) || !r.u32(s.line))
       return bad("symbol " + std::to_string(i) + " runs past the end");
     std::string which = "symbol " + std::to_string(i);
-    if (!valid_name(s.name)) return bad(which + " has an invalid name");
+    if (!is_valid_name(s.name)) return bad(which + " has an invalid name");
     which += " '" + s.name + "'";
     if (kind > 1 || binding > 2 || term > 2 || pad != 0) return bad(which + " has an invalid kind, binding or term");
     s.kind = static_cast<ObjSymKind>(kind);

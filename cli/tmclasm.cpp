@@ -75,12 +75,6 @@ int usage_error(const std::string& msg) {
   return kExitUsage;
 }
 
-bool valid_name(const std::string& s) {
-  if (s.empty() || !(std::isalpha(static_cast<unsigned char>(s[0])) || s[0] == '_')) return false;
-  for (char c : s)
-    if (!(std::isalnum(static_cast<unsigned char>(c)) || c == '_')) return false;
-  return true;
-}
 
 void print_failure(int errors, int warnings) {
   std::fprintf(stderr, "tmclasm: %d error%s, %d warning%s; nothing written\n", errors, errors == 1 ? "" : "s",
@@ -259,7 +253,7 @@ int main(int argc, char** argv) {
       if (!value("-D", v)) return usage_error("-D needs NAME=VALUE");
       auto eq = v.find('=');
       std::string name = v.substr(0, eq);
-      if (!valid_name(name)) return usage_error("-D " + v + ": '" + name + "' is not a valid name");
+      if (!tmcl::is_valid_name(name)) return usage_error("-D " + v + ": '" + name + "' is not a valid name");
       opts.defines.emplace_back(name, eq == std::string::npos ? "1" : v.substr(eq + 1));
     } else if (a == "-Werror") {
       opts.warnings_are_errors = true;

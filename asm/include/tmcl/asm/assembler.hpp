@@ -48,6 +48,10 @@ class MemoryReader final : public FileReader {
   std::string last_error() const override { return "No such file or directory"; }
 };
 
+// A valid name for a label or constant: a letter or '_', then letters, digits and '_'; at most
+// 255 bytes (the longest an object file stores).
+bool is_valid_name(std::string_view name);
+
 // The include files bundled with tmcl (include_files/), compiled into the library.
 const std::map<std::string, std::string_view>& bundled_includes();
 
