@@ -44,47 +44,16 @@ std::int32_t fallback_default(int p) {
   }
 }
 
-class LinearCore final : public MotionCore {
+class LinearCore final : public ramp::RampCore<Motor> {
  public:
   std::string_view name() const override { return "linear"; }
 
-  void reset(const Profile& profile, int motors) override {
-    motors_.assign(static_cast<std::size_t>(motors), Motor{});
-    for (auto& m : motors_)
-      for (int n : kOwned) {
-        const ParamInfo* info = profile.axis_param(n);
-        m.p[static_cast<std::size_t>(n)] = info ? info->default_value : fallback_default(n);
-      }
-    now_ = 0;
-  }
-
-  SimTime next_event() const override {
-    SimTime t = kNever;
-    for (const auto& m : motors_) t = std::min(t, m.rm.next_event());
-    if (!pending_.empty()) t = std::min(t, pending_.front().at);
-    return t;
-  }
+  void reset(const Profile& profile, int motors) override { reset_motors(profile, motors, kOwned, fallback_default); }
 
   void advance(SimTime to, std::vector<MotionEvent>& out) override {
-    if (to > now_) now_ = to;
-    std::size_t first = out.size();
-    out.insert(out.end(), pending_.begin(), pending_.end());
-    pending_.clear();
-    for (std::size_t i = 0; i < motors_.size(); ++i) {
-      Motor& m = motors_[i];
-      while (m.rm.next_event() <= now_) {
-        SimTime at = m.rm.event_time(m.rm.next);
-        EventKind k = m.rm.plan.events[m.rm.next++].kind;
-        MotionEventKind kind = k == EventKind::TargetReached     ? MotionEventKind::TargetReached
-                               : k == EventKind::VelocityReached ? MotionEventKind::VelocityReached
-                                                                 : MotionEventKind::Stopped;
-        out.push_back({at, static_cast<std::uint8_t>(i), kind, wrap32(m.rm.xactual(at))});
-        if (k != EventKind::VelocityReached) m.goal = Goal::Idle;
-      }
-    }
-    if (motors_.size() > 1)
-      std::stable_sort(out.begin() + static_cast<std::ptrdiff_t>(first), out.end(),
-                       [](const MotionEvent& a, const MotionEvent& b) { return a.at < b.at; });
+    collect(to, out, [](Motor& m, EventKind k) {
+      if (k != EventKind::VelocityReached) m.goal = Goal::Idle;
+    });
   }
 
   bool owns(int param) const override { return std::find(std::begin(kOwned), std::end(kOwned), param) != std::end(kOwned); }
@@ -166,22 +135,7 @@ class LinearCore final : public MotionCore {
   void set_switch(int, SwitchInput, bool) override {}
   void encoder_slip(int, std::int32_t) override {}
 
-  std::int32_t position(int motor) const override {
-    return wrap32(motors_[static_cast<std::size_t>(motor)].rm.xactual(now_));
-  }
-  bool target_reached(int motor) const override {
-    const Motor& m = motors_[static_cast<std::size_t>(motor)];
-    return m.rm.at_rest(now_) && wrap32(m.rm.xactual(now_)) == m.p[0];
-  }
-  bool reference_done(int) const override { return true; }
-  MotionSample sample_at(int motor, SimTime t) const override {
-    const Motor& m = motors_[static_cast<std::size_t>(motor)];
-    ramp::State s = m.rm.state(t);
-    return {m.rm.xactual(t), s.v, s.a};
-  }
-
  private:
-  Motor& at(int motor) { return motors_[static_cast<std::size_t>(motor)]; }
 
   void replan(Motor& m) {
     if (m.goal == Goal::Idle) return;
@@ -194,10 +148,6 @@ class LinearCore final : public MotionCore {
     else
       b.plan_velocity(lim, m.vt);
   }
-
-  std::vector<Motor> motors_;
-  SimTime now_ = 0;
-  std::vector<MotionEvent> pending_;
 };
 
 }  // namespace

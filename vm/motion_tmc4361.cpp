@@ -57,45 +57,17 @@ struct Motor {
   std::int32_t errors = 0;            // parameter 207
 };
 
-class Tmc4361Core final : public MotionCore {
+class Tmc4361Core final : public ramp::RampCore<Motor> {
  public:
   std::string_view name() const override { return "tmc4361"; }
 
-  void reset(const Profile& profile, int motors) override {
-    motors_.assign(static_cast<std::size_t>(motors), Motor{});
-    for (auto& m : motors_)
-      for (int n : kOwned) {
-        const ParamInfo* info = profile.axis_param(n);
-        m.p[static_cast<std::size_t>(n)] = info ? info->default_value : fallback_default(n);
-      }
-    now_ = 0;
-  }
-
-  SimTime next_event() const override {
-    SimTime t = kNever;
-    for (const auto& m : motors_) t = std::min(t, m.rm.next_event());
-    if (!pending_ref_.empty()) t = std::min(t, pending_ref_.front().at);
-    return t;
-  }
+  void reset(const Profile& profile, int motors) override { reset_motors(profile, motors, kOwned, fallback_default); }
 
   void advance(SimTime to, std::vector<MotionEvent>& out) override {
-    if (to > now_) now_ = to;
-    std::size_t first = out.size();
-    out.insert(out.end(), pending_ref_.begin(), pending_ref_.end());
-    pending_ref_.clear();
-    for (std::size_t i = 0; i < motors_.size(); ++i) {
-      Motor& m = motors_[i];
-      while (m.rm.next_event() <= now_) {
-        SimTime at = m.rm.event_time(m.rm.next);
-        EventKind k = m.rm.plan.events[m.rm.next++].kind;
-        out.push_back({at, static_cast<std::uint8_t>(i), kind_of(k), wrap32(m.rm.xactual(at))});
-        if (k == EventKind::Deviation) m.errors = 2;
-        if (k != EventKind::VelocityReached) m.goal = Goal::Idle, m.trip_t = ramp::kInf;
-      }
-    }
-    if (motors_.size() > 1)
-      std::stable_sort(out.begin() + static_cast<std::ptrdiff_t>(first), out.end(),
-                       [](const MotionEvent& a, const MotionEvent& b) { return a.at < b.at; });
+    collect(to, out, [](Motor& m, EventKind k) {
+      if (k == EventKind::Deviation) m.errors = 2;
+      if (k != EventKind::VelocityReached) m.goal = Goal::Idle, m.trip_t = ramp::kInf;
+    });
   }
 
   bool owns(int param) const override { return std::find(std::begin(kOwned), std::end(kOwned), param) != std::end(kOwned); }
@@ -200,7 +172,7 @@ class Tmc4361Core final : public MotionCore {
     m.enc_off = 0;
     m.goal = Goal::Idle;
     m.trip_t = ramp::kInf;
-    pending_ref_.push_back({now_, static_cast<std::uint8_t>(motor), MotionEventKind::ReferenceDone, 0});
+    pending_.push_back({now_, static_cast<std::uint8_t>(motor), MotionEventKind::ReferenceDone, 0});
     return 0;
   }
 
@@ -223,33 +195,8 @@ class Tmc4361Core final : public MotionCore {
     }
   }
 
-  std::int32_t position(int motor) const override {
-    return wrap32(motors_[static_cast<std::size_t>(motor)].rm.xactual(now_));
-  }
-  bool target_reached(int motor) const override {
-    const Motor& m = motors_[static_cast<std::size_t>(motor)];
-    return m.rm.at_rest(now_) && wrap32(m.rm.xactual(now_)) == m.p[0];
-  }
-  bool reference_done(int) const override { return true; }
-
-  MotionSample sample_at(int motor, SimTime t) const override {
-    const Motor& m = motors_[static_cast<std::size_t>(motor)];
-    ramp::State s = m.rm.state(t);
-    return {m.rm.xactual(t), s.v, s.a};
-  }
 
  private:
-  Motor& at(int motor) { return motors_[static_cast<std::size_t>(motor)]; }
-
-  static MotionEventKind kind_of(EventKind k) {
-    switch (k) {
-      case EventKind::TargetReached: return MotionEventKind::TargetReached;
-      case EventKind::VelocityReached: return MotionEventKind::VelocityReached;
-      case EventKind::Stopped: return MotionEventKind::Stopped;
-      case EventKind::Deviation: return MotionEventKind::Deviation;
-    }
-    return MotionEventKind::Stopped;
-  }
 
   static bool valid(int param, std::int32_t v) {
     switch (param) {
@@ -394,10 +341,6 @@ class Tmc4361Core final : public MotionCore {
       }
     }
   }
-
-  std::vector<Motor> motors_;
-  SimTime now_ = 0;
-  std::vector<MotionEvent> pending_ref_;
 };
 
 }  // namespace

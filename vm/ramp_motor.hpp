@@ -4,6 +4,8 @@
 // reported at the first whole microsecond >= t (1 ns of floating-point noise tolerated).
 #pragma once
 
+#include <algorithm>
+
 #include <cmath>
 #include <cstdint>
 
@@ -61,6 +63,87 @@ struct RampMotor {
     plan.clear();
     return Builder(plan, st, dir);
   }
+};
+
+
+// What every core built on RampMotor shares: one M per motor (M has a RampMotor `rm` and the
+// owned parameters `p`), the instant of the last advance, events that commands caused (reported
+// by the next advance), and turning each motor's plan events into MotionEvents in time order.
+// A core adds its parameters and commands and reacts to its motors' events in collect's hook.
+template <class M>
+class RampCore : public MotionCore {
+ public:
+  SimTime next_event() const override {
+    SimTime t = kNever;
+    for (const auto& m : motors_) t = std::min(t, m.rm.next_event());
+    if (!pending_.empty()) t = std::min(t, pending_.front().at);
+    return t;
+  }
+  std::int32_t position(int motor) const override {
+    return wrap32(motors_[static_cast<std::size_t>(motor)].rm.xactual(now_));
+  }
+  // At rest on the target (parameter 0): WAIT POS and parameter 8.
+  bool target_reached(int motor) const override {
+    const M& m = motors_[static_cast<std::size_t>(motor)];
+    return m.rm.at_rest(now_) && wrap32(m.rm.xactual(now_)) == m.p[0];
+  }
+  bool reference_done(int) const override { return true; }
+  MotionSample sample_at(int motor, SimTime t) const override {
+    const M& m = motors_[static_cast<std::size_t>(motor)];
+    State s = m.rm.state(t);
+    return {m.rm.xactual(t), s.v, s.a};
+  }
+
+ protected:
+  // Power-on: every owned parameter at the profile's default, else at fallback(number).
+  template <std::size_t N, class Fallback>
+  void reset_motors(const Profile& profile, int motors, const int (&owned)[N], Fallback fallback) {
+    motors_.assign(static_cast<std::size_t>(motors), M{});
+    for (auto& m : motors_)
+      for (int n : owned) {
+        const ParamInfo* info = profile.axis_param(n);
+        m.p[static_cast<std::size_t>(n)] = info ? info->default_value : fallback(n);
+      }
+    now_ = 0;
+    pending_.clear();
+  }
+
+  // Advances to `to` and appends the events on the way; on_event(motor, kind) runs after each.
+  template <class OnEvent>
+  void collect(SimTime to, std::vector<MotionEvent>& out, OnEvent on_event) {
+    if (to > now_) now_ = to;
+    std::size_t first = out.size();
+    out.insert(out.end(), pending_.begin(), pending_.end());
+    pending_.clear();
+    for (std::size_t i = 0; i < motors_.size(); ++i) {
+      M& m = motors_[i];
+      while (m.rm.next_event() <= now_) {
+        SimTime at = m.rm.event_time(m.rm.next);
+        EventKind k = m.rm.plan.events[m.rm.next++].kind;
+        out.push_back({at, static_cast<std::uint8_t>(i), motion_kind(k), wrap32(m.rm.xactual(at))});
+        on_event(m, k);
+      }
+    }
+    if (motors_.size() > 1)
+      std::stable_sort(out.begin() + static_cast<std::ptrdiff_t>(first), out.end(),
+                       [](const MotionEvent& a, const MotionEvent& b) { return a.at < b.at; });
+  }
+
+  M& at(int motor) { return motors_[static_cast<std::size_t>(motor)]; }
+
+  static MotionEventKind motion_kind(EventKind k) {
+    switch (k) {
+      case EventKind::TargetReached: return MotionEventKind::TargetReached;
+      case EventKind::VelocityReached: return MotionEventKind::VelocityReached;
+      case EventKind::Stopped: return MotionEventKind::Stopped;
+      case EventKind::Deviation: return MotionEventKind::Deviation;
+    }
+    return MotionEventKind::Stopped;
+  }
+
+  std::vector<M> motors_;
+  SimTime now_ = 0;
+  std::vector<MotionEvent> pending_;  // caused by a command, reported by the next advance
 };
 
 }  // namespace tmcl::ramp
