@@ -331,7 +331,7 @@ int main(int argc, char** argv) {
   std::vector<tmcl::InputEvent> inputs;
   if (!o.scenario.empty()) {
     std::vector<std::uint8_t> sb;
-    if (!tmcl::read_file(o.scenario, sb, err)) {
+    if (!tmcl::read_file(o.scenario, sb, err, tmcl::kMaxScenarioBytes)) {
       std::fprintf(stderr, "tmclrun: error: %s\n", err.c_str());
       return kExitInput;
     }

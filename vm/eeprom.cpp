@@ -2,11 +2,15 @@
 // saved atomically through a temporary file and a rename.
 #include "tmcl/eeprom.hpp"
 
+#include <sys/stat.h>
+
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
 #include <sstream>
 #include <vector>
+
+#include "tmcl/fileio.hpp"
 
 #include <fcntl.h>
 #include <unistd.h>
@@ -108,53 +112,25 @@ bool eeprom_from_text(const std::string& text, const std::string& file, EepromIm
 bool load_eeprom_file(const std::string& path, EepromImage& image, bool& existed, std::string& error) {
   image = EepromImage{};
   existed = false;
-  std::FILE* f = std::fopen(path.c_str(), "rb");
-  if (!f) {
-    if (errno == ENOENT) return true;  // a new EEPROM: empty
-    error = path + ": error: cannot read EEPROM file: " + std::strerror(errno);
-    return false;
-  }
+  struct stat st {};
+  if (::stat(path.c_str(), &st) != 0 && errno == ENOENT) return true;  // a new EEPROM: empty
   existed = true;
-  std::string text;
-  char buf[4096];
-  for (std::size_t n; (n = std::fread(buf, 1, sizeof buf, f)) > 0;) text.append(buf, n);
-  bool read_error = std::ferror(f) != 0;
-  std::fclose(f);
-  if (read_error) {
-    error = path + ": error: cannot read EEPROM file";
+  std::vector<std::uint8_t> bytes;
+  std::string why;
+  if (!read_file(path, bytes, why, kMaxEepromBytes)) {
+    error = path + ": error: cannot read EEPROM file: " + why;
     return false;
   }
-  return eeprom_from_text(text, path, image, error);
+  return eeprom_from_text(std::string(bytes.begin(), bytes.end()), path, image, error);
 }
 
+// Through a temporary file, fsync and rename: a killed process or a power cut never leaves a
+// half-written EEPROM file.
 bool save_eeprom_file(const std::string& path, const EepromImage& image, std::string& error) {
   const std::string text = eeprom_to_text(image);
-  const std::string tmp = path + ".tmp";
-  int fd = ::open(tmp.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-  if (fd < 0) {
-    error = tmp + ": error: cannot write EEPROM file: " + std::strerror(errno);
-    return false;
-  }
-  std::size_t done = 0;
-  while (done < text.size()) {
-    ssize_t n = ::write(fd, text.data() + done, text.size() - done);
-    if (n < 0) {
-      if (errno == EINTR) continue;
-      error = tmp + ": error: cannot write EEPROM file: " + std::strerror(errno);
-      ::close(fd);
-      ::unlink(tmp.c_str());
-      return false;
-    }
-    done += static_cast<std::size_t>(n);
-  }
-  if (::fsync(fd) != 0 || ::close(fd) != 0) {
-    error = tmp + ": error: cannot write EEPROM file: " + std::strerror(errno);
-    ::unlink(tmp.c_str());
-    return false;
-  }
-  if (::rename(tmp.c_str(), path.c_str()) != 0) {
-    error = path + ": error: cannot replace EEPROM file: " + std::strerror(errno);
-    ::unlink(tmp.c_str());
+  std::string why;
+  if (!write_file_atomic(path, std::vector<std::uint8_t>(text.begin(), text.end()), why, true)) {
+    error = path + ": error: cannot write EEPROM file: " + why;
     return false;
   }
   return true;

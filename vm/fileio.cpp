@@ -10,7 +10,15 @@
 
 namespace tmcl {
 
-bool read_file(const std::string& path, std::vector<std::uint8_t>& out, std::string& error) {
+namespace {
+std::string size_text(std::size_t bytes) {
+  if (bytes % (1u << 20) == 0) return std::to_string(bytes >> 20) + " MiB";
+  if (bytes % (1u << 10) == 0) return std::to_string(bytes >> 10) + " KiB";
+  return std::to_string(bytes) + " bytes";
+}
+}  // namespace
+
+bool read_file(const std::string& path, std::vector<std::uint8_t>& out, std::string& error, std::size_t max_bytes) {
   int fd = path == "-" ? 0 : ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
   if (fd < 0) {
     error = "cannot open '" + path + "': " + std::strerror(errno);
@@ -33,6 +41,11 @@ bool read_file(const std::string& path, std::vector<std::uint8_t>& out, std::str
       return false;
     }
     if (n == 0) break;
+    if (out.size() + static_cast<std::size_t>(n) > max_bytes) {
+      error = "'" + path + "' is larger than the limit of " + size_text(max_bytes);
+      if (fd != 0) ::close(fd);
+      return false;
+    }
     out.insert(out.end(), buf, buf + n);
   }
   if (fd != 0) ::close(fd);

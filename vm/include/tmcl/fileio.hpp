@@ -7,8 +7,15 @@
 
 namespace tmcl {
 
-// Reads a whole file ("-" = standard input). False with `error` set when it cannot.
-bool read_file(const std::string& path, std::vector<std::uint8_t>& out, std::string& error);
+// Input files are bounded (docs/limits.md): programs and images, scenarios, EEPROM files.
+inline constexpr std::size_t kMaxInputBytes = 64u << 20;
+inline constexpr std::size_t kMaxScenarioBytes = 16u << 20;
+inline constexpr std::size_t kMaxEepromBytes = 1u << 20;
+
+// Reads a whole file ("-" = standard input) of at most `max_bytes`. False with `error` set when
+// it cannot, or when the file is larger ("'x' is larger than the limit of 16 MiB").
+bool read_file(const std::string& path, std::vector<std::uint8_t>& out, std::string& error,
+               std::size_t max_bytes = kMaxInputBytes);
 // Writes through a temporary file in the same folder and a rename, so that a reader never sees
 // a half-written file and an old file survives a failed or killed write. With `durable` the data
 // is also flushed to the disk before the rename (survives a power cut; costs milliseconds).
