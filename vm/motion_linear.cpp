@@ -121,15 +121,9 @@ class LinearCore final : public ramp::RampCore<Motor> {
     replan(m);
   }
   std::int32_t reference_search(int motor, RfsAction action) override {
-    Motor& m = at(motor);
     if (action != RfsAction::Start) return 0;
-    Builder b = m.rm.restart(now_);
-    b.stop_hard();
-    b.finish_rest();
-    m.rm.base -= m.rm.xactual(now_);
-    m.p[0] = 0;
-    m.goal = Goal::Idle;
-    pending_.push_back({now_, static_cast<std::uint8_t>(motor), MotionEventKind::ReferenceDone, 0});
+    zero_here(motor);
+    at(motor).goal = Goal::Idle;
     return 0;
   }
   void set_switch(int, SwitchInput, bool) override {}

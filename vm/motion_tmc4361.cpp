@@ -161,18 +161,12 @@ class Tmc4361Core final : public ramp::RampCore<Motor> {
   // The USB-2-SD has no RFS; profiles that offer it (generic) get an instant reference search:
   // the motor stops where it is and that place becomes position 0 (encoder 0 too).
   std::int32_t reference_search(int motor, RfsAction action) override {
-    Motor& m = at(motor);
     if (action != RfsAction::Start) return 0;
-    Builder b = m.rm.restart(now_);
-    b.stop_hard();
-    b.finish_rest();
-    m.rm.plan.events.clear();
-    m.rm.base -= m.rm.xactual(now_);
-    m.p[0] = 0;
+    zero_here(motor);
+    Motor& m = at(motor);
     m.enc_off = 0;
     m.goal = Goal::Idle;
     m.trip_t = ramp::kInf;
-    pending_.push_back({now_, static_cast<std::uint8_t>(motor), MotionEventKind::ReferenceDone, 0});
     return 0;
   }
 

@@ -131,6 +131,19 @@ class RampCore : public MotionCore {
 
   M& at(int motor) { return motors_[static_cast<std::size_t>(motor)]; }
 
+  // An instant reference search: the motor stops where it is, that place becomes position 0
+  // (and the target), and ReferenceDone is reported by the next advance.
+  void zero_here(int motor) {
+    M& m = at(motor);
+    Builder b = m.rm.restart(now_);
+    b.stop_hard();
+    b.finish_rest();
+    m.rm.plan.events.clear();
+    m.rm.base -= m.rm.xactual(now_);
+    m.p[0] = 0;
+    pending_.push_back({now_, static_cast<std::uint8_t>(motor), MotionEventKind::ReferenceDone, 0});
+  }
+
   static MotionEventKind motion_kind(EventKind k) {
     switch (k) {
       case EventKind::TargetReached: return MotionEventKind::TargetReached;

@@ -43,45 +43,33 @@ std::string make_file(const std::string& name, std::size_t size, const std::stri
 
 bool says(const Out& o, const std::string& s) { return o.text.find(s) != std::string::npos; }
 
-}  // namespace
-
-TEST(program_file_64_MiB) {
-  std::string at = make_file("at.tmc", tmcl::kMaxInputBytes, "STOP\n", "//");
-  Out ok = tmclrun("--motion ideal " + at);
-  CHECK_EQ(ok.status, 0);
+// A file of `limit` bytes is read (the run ends with `at_status`, never with a size message); one
+// of limit + 1 bytes is rejected with exit 65 and "is larger than the limit of <limit_text>".
+void check_limit(const std::string& name, std::size_t limit, const std::string& head, const std::string& comment,
+                 const std::string& option, const std::string& program, int at_status, const std::string& limit_text) {
+  std::string at = make_file("at-" + name, limit, head, comment);
+  Out ok = tmclrun("--motion ideal " + option + at + " " + program);
+  CHECK_EQ(ok.status, at_status);
   CHECK(!says(ok, "larger than the limit"));
-  std::string past = make_file("past.tmc", tmcl::kMaxInputBytes + 1, "STOP\n", "//");
-  Out bad = tmclrun("--motion ideal " + past);
+  std::string past = make_file("past-" + name, limit + 1, head, comment);
+  Out bad = tmclrun("--motion ideal " + option + past + " " + program);
   CHECK_EQ(bad.status, 65);
-  CHECK(says(bad, "is larger than the limit of 64 MiB"));
+  CHECK(says(bad, "is larger than the limit of " + limit_text));
   std::remove(at.c_str());
   std::remove(past.c_str());
 }
+
+}  // namespace
+
+TEST(program_file_64_MiB) { check_limit("prog.tmc", tmcl::kMaxInputBytes, "STOP\n", "//", "", "", 0, "64 MiB"); }
 
 TEST(scenario_file_16_MiB) {
   std::string prog = make_file("prog.tmc", 5, "STOP\n", "//");
-  std::string at = make_file("at.scn", tmcl::kMaxScenarioBytes, "at 1ms input 0 = 1\n", "#");
-  Out ok = tmclrun("--motion ideal --scenario " + at + " " + prog);
-  CHECK_EQ(ok.status, 0);
-  CHECK(!says(ok, "larger than the limit"));
-  std::string past = make_file("past.scn", tmcl::kMaxScenarioBytes + 1, "at 1ms input 0 = 1\n", "#");
-  Out bad = tmclrun("--motion ideal --scenario " + past + " " + prog);
-  CHECK_EQ(bad.status, 65);
-  CHECK(says(bad, "is larger than the limit of 16 MiB"));
-  std::remove(at.c_str());
-  std::remove(past.c_str());
+  check_limit("s.scn", tmcl::kMaxScenarioBytes, "at 1ms input 0 = 1\n", "#", "--scenario ", prog, 0, "16 MiB");
 }
 
 TEST(eeprom_file_1_MiB) {
+  // Not an EEPROM file, so exit 65 at the limit too, but for its content, not its size.
   std::string prog = make_file("prog2.tmc", 5, "STOP\n", "//");
-  std::string at = make_file("at.eeprom", tmcl::kMaxEepromBytes, "", "#");
-  Out big = tmclrun("--motion ideal --eeprom " + at + " " + prog);
-  CHECK_EQ(big.status, 65);  // not an EEPROM file, but read: the message is about its content
-  CHECK(!says(big, "larger than the limit"));
-  std::string past = make_file("past.eeprom", tmcl::kMaxEepromBytes + 1, "", "#");
-  Out bad = tmclrun("--motion ideal --eeprom " + past + " " + prog);
-  CHECK_EQ(bad.status, 65);
-  CHECK(says(bad, "is larger than the limit of 1 MiB"));
-  std::remove(at.c_str());
-  std::remove(past.c_str());
+  check_limit("e.eeprom", tmcl::kMaxEepromBytes, "", "#", "--eeprom ", prog, 65, "1 MiB");
 }

@@ -1,5 +1,6 @@
 // Behaviour of the tmc4361 core through its public API: velocity mode, re-planning mid-move,
 // virtual stops, stop switches, encoder deviation, reverse shaft, relative positioning.
+#include <string>
 #include "check.hpp"
 #include "helpers.hpp"
 
@@ -359,4 +360,28 @@ TEST(two_motors_events_in_time_order) {
   CHECK_EQ(b.events.size(), std::size_t{2});
   CHECK_EQ(b.events[0].motor, 1);
   CHECK_EQ(b.events[1].motor, 0);
+}
+
+// RFS START on the ramp cores (offered by the generic profile): the motor stops where it is,
+// that place becomes position and target 0 (encoder 0 too on tmc4361), the search is done at
+// once and reported by the next advance, and the motor then stays at rest.
+TEST(reference_search_zeroes_where_the_motor_is) {
+  for (const char* name : {"tmc4361", "linear"}) {
+    mt::Bench b(name, "generic");
+    b.core->move_absolute(0, 100000);
+    b.to(200000);  // 0.2 s into the move
+    std::int32_t moved = b.core->position(0);
+    CHECK(moved > 0);
+    b.core->reference_search(0, tmcl::RfsAction::Start);
+    b.to(200000);
+    CHECK(!b.events.empty() && b.last().kind == tmcl::MotionEventKind::ReferenceDone);
+    CHECK_EQ(b.core->position(0), 0);
+    CHECK_EQ(b.get(0), 0);
+    CHECK(b.core->target_reached(0));
+    CHECK(b.core->reference_done(0));
+    if (std::string(name) == "tmc4361") CHECK_EQ(b.get(209), 0);
+    CHECK_EQ(b.core->next_event(), tmcl::kNever);  // nothing more happens
+    b.to(5000000);
+    CHECK_EQ(b.core->position(0), 0);
+  }
 }
