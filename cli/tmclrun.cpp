@@ -1,8 +1,8 @@
 // tmclrun: runs a TMCL program on the virtual machine without hardware. Parses arguments, loads
 // the program (assembling .tmc in-process), scenario and EEPROM, runs the VM library, prints the
-// summary, trace or JSON. All semantics live in vm/; see docs/tmclrun.md.
-// Exit status: 0 STOP, 3 limit reached or blocked, 70 runtime fault, 65 bad input, 64 usage,
-// 74 EEPROM file not written.
+// summary, trace, JSON, CSV or plot, or serves it as a virtual module (--serve). All semantics
+// live in vm/; see docs/tmclrun.md. Exit status: 0 STOP, 3 limit reached or blocked, 70 runtime
+// fault, 65 bad input, 64 usage, 71 --serve transport failed, 74 output file not written.
 #include <cctype>
 #include <cerrno>
 #include <cstdio>
@@ -69,9 +69,12 @@ examples:
   tmclrun --trace --max-time 10s prog.tmc       trace the first 10 simulated seconds
   tmclrun --scenario switches.txt --json prog.bin
   tmclrun --eeprom module.eeprom prog.tmc       run twice: the EEPROM persists
+  tmclrun --plot motion.svg --csv motion.csv prog.tmc   what the motors did, as a picture and data
+  tmclrun --serve tcp:127.0.0.1:2001 prog.tmc   a virtual module for PyTrinamic (Ctrl-C stops it)
 
 exit status: 0 STOP, 3 limit reached or blocked forever, 70 runtime fault, 65 bad input,
-             64 usage error, 74 EEPROM file could not be written
+             64 usage error, 71 --serve transport failed, 74 an output file (EEPROM, --csv,
+             --plot) could not be written
 )";
 
 std::string joined(const std::vector<std::string>& names) {
