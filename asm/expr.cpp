@@ -164,7 +164,7 @@ void Resolver::report_undefined(int unit, const ExprNode& n, const std::string& 
 std::optional<Value> Resolver::eval_name(int unit, const ExprNode& n, int depth) {
   std::string key = upper(n.name);
   auto [su, sd] = lookup(unit, key);
-  if (su >= 0) return eval_symbol(su, sd, depth, n.loc);
+  if (su >= 0) return eval_symbol(su, sd, depth);
   const Unit& u = units_[static_cast<std::size_t>(unit)];
   if (relocatable_)
     if (auto it = u.import_index.find(key); it != u.import_index.end()) return Value{0, it->second};
@@ -200,7 +200,7 @@ std::optional<std::int64_t> Resolver::eval(int unit, int node) {
   return v->k;
 }
 
-std::optional<Value> Resolver::eval_symbol(int unit, int def, int depth, SourceLoc use) {
+std::optional<Value> Resolver::eval_symbol(int unit, int def, int depth) {
   Unit& u = units_[static_cast<std::size_t>(unit)];
   SymDef& d = u.defs[static_cast<std::size_t>(def)];
   if (d.kind == SymbolKind::Label) {
@@ -219,7 +219,6 @@ std::optional<Value> Resolver::eval_symbol(int unit, int def, int depth, SourceL
     case EvalState::Busy: report_cycle(unit, def); return std::nullopt;
     case EvalState::Todo: break;
   }
-  (void)use;
   d.state = EvalState::Busy;
   busy_.emplace_back(unit, def);
   bool outer_pending = not_relocatable_pending_;
@@ -250,7 +249,7 @@ std::optional<Value> Resolver::eval_object_symbol(int unit, const SymDef& d, int
       std::string key = upper(u.object->symbols[s.term_symbol].name);
       auto [su, sd] = lookup(unit, key);
       if (su < 0) return std::nullopt;  // reported as an undefined import
-      auto v = eval_symbol(su, sd, depth, d.loc);
+      auto v = eval_symbol(su, sd, depth);
       if (!v) return std::nullopt;
       return Value{static_cast<std::int64_t>(static_cast<std::uint64_t>(v->k) + static_cast<std::uint64_t>(s.value)), kAbsolute};
     }
@@ -367,7 +366,7 @@ void Resolver::check_redefinitions() {
   for (int u = 0; u < static_cast<int>(units_.size()); ++u) {
     Unit& unit = units_[static_cast<std::size_t>(u)];
     for (const auto& r : unit.redefinitions) {
-      auto first = eval_symbol(u, r.first, 0, r.loc);
+      auto first = eval_symbol(u, r.first, 0);
       auto second = eval_value(u, r.expr, r.loc);
       if (!first || !second || *first == *second) continue;
       const SymDef& d = unit.defs[static_cast<std::size_t>(r.first)];

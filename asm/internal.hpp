@@ -246,7 +246,7 @@ class Resolver {
   // Looks up a symbol as `unit` sees it: its own, then imported exports.
   std::pair<int, int> lookup(int unit, const std::string& upper_name);
   // Value of a symbol definition (constants are evaluated on first use).
-  std::optional<Value> eval_def(int unit, int def) { return eval_symbol(unit, def, 0, SourceLoc{}); }
+  std::optional<Value> eval_def(int unit, int def) { return eval_symbol(unit, def, 0); }
   // Whether `unit` can see this name at all (defined or imported).
   bool known(int unit, const std::string& upper_name);
   void check_redefinitions();
@@ -258,7 +258,7 @@ class Resolver {
 
  private:
   std::optional<Value> eval_node(int unit, int node, int depth);
-  std::optional<Value> eval_symbol(int unit, int def, int depth, SourceLoc use);
+  std::optional<Value> eval_symbol(int unit, int def, int depth);
   std::optional<Value> eval_object_symbol(int unit, const SymDef& d, int depth);
   std::optional<Value> combine(const ExprNode& op, Value a, Value b);
   std::optional<std::int64_t> apply(const ExprNode& op, std::int64_t a, std::int64_t b);

@@ -182,7 +182,6 @@ class Parser {
   }
 
   void include(int depth) {
-    Token dir = cur();
     advance();
     if (cur().kind != Tok::IncludeName || cur().text.empty()) return fail("#include needs a file name");
     Token nt = cur();
@@ -239,7 +238,6 @@ class Parser {
     }
     if (std::find(included_.begin(), included_.end(), key) != included_.end()) return;  // once only
     included_.push_back(key);
-    (void)dir;
     if (text.size() > kMaxFileBytes) {
       diags_.error(loc(nt), "'" + path + "' is larger than the limit of " + std::to_string(kMaxFileBytes >> 20) + " MiB");
       return;
