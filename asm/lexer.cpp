@@ -5,11 +5,8 @@
 #include <cstring>
 #include <string>
 
+#include "chars.hpp"
 #include "internal.hpp"
-
-namespace tmcl::detail {
-
-}  // namespace tmcl::detail
 
 namespace tmcl {
 bool is_valid_name(std::string_view name) {
@@ -31,22 +28,6 @@ std::string upper(std::string_view s) {
 }
 
 namespace {
-
-// Character classes, looked up once per byte on the hot path.
-enum : std::uint8_t { kOther, kSpace, kLetter, kDigit };
-constexpr std::array<std::uint8_t, 256> make_classes() {
-  std::array<std::uint8_t, 256> t{};
-  for (int c = 'a'; c <= 'z'; ++c) t[static_cast<std::size_t>(c)] = kLetter;
-  for (int c = 'A'; c <= 'Z'; ++c) t[static_cast<std::size_t>(c)] = kLetter;
-  t['_'] = kLetter;
-  for (int c = '0'; c <= '9'; ++c) t[static_cast<std::size_t>(c)] = kDigit;
-  for (char c : {' ', '\t', '\r', '\f', '\v'}) t[static_cast<unsigned char>(c)] = kSpace;
-  return t;
-}
-constexpr auto kClass = make_classes();
-inline std::uint8_t cls(char c) { return kClass[static_cast<unsigned char>(c)]; }
-bool ident_start(char c) { return cls(c) == kLetter; }
-bool ident_char(char c) { return cls(c) == kLetter || cls(c) == kDigit; }
 
 std::string hex(unsigned v) {
   const char* d = "0123456789ABCDEF";
@@ -93,12 +74,12 @@ void Lexer::skip_to_eol() {
 
 void Lexer::step() {
   char c = src_[pos_];
-  switch (cls(c)) {
+  switch (char_class(c)) {
     case kLetter: return ident();
     case kDigit: return number();
     case kSpace:
       do ++pos_;
-      while (pos_ < src_.size() && cls(src_[pos_]) == kSpace);
+      while (pos_ < src_.size() && char_class(src_[pos_]) == kSpace);
       return;
     default: break;
   }
@@ -213,50 +194,19 @@ void Lexer::number() {
 }
 
 void Lexer::digits(std::size_t start, std::size_t prefix, int base) {
-  pos_ = start + prefix;
-  if (base == 10) {
-    // Fast path: plain decimal digits that end the number (at most 18, so no overflow).
-    std::size_t p = pos_;
-    std::int64_t v = 0;
-    while (p < src_.size() && p - pos_ < 18 && cls(src_[p]) == kDigit) v = v * 10 + (src_[p++] - '0');
-    if (p == src_.size() || (cls(src_[p]) != kDigit && cls(src_[p]) != kLetter)) {
-      pos_ = p;
-      return push(Tok::Number, start, pos_ - start, P::None, v);
-    }
+  DigitsRead r = read_digits(src_, start + prefix, base);
+  pos_ = r.end;
+  int len = static_cast<int>(pos_ - start);
+  switch (r.status) {
+    case DigitsRead::Ok: return push(Tok::Number, start, pos_ - start, P::None, r.value);
+    case DigitsRead::BadDigit:
+      diags_.error(loc_at(start, len), "invalid digit '" + std::string(1, r.bad) + "' in " +
+                                           (base == 16 ? "hexadecimal" : base == 2 ? "binary" : "decimal") + " number");
+      break;
+    case DigitsRead::NoDigits: diags_.error(loc_at(start, len), "number has no digits after its prefix"); break;
+    case DigitsRead::Overflow: diags_.error(loc_at(start, len), "number is too large (more than 63 bits)"); break;
   }
-  std::uint64_t v = 0;
-  bool overflow = false, any = false;
-  while (pos_ < src_.size() && ident_char(src_[pos_])) {
-    char c = src_[pos_];
-    int d = std::isdigit(static_cast<unsigned char>(c)) ? c - '0'
-            : std::isxdigit(static_cast<unsigned char>(c))
-                ? std::tolower(static_cast<unsigned char>(c)) - 'a' + 10
-                : 99;
-    if (d >= base) {
-      while (pos_ < src_.size() && ident_char(src_[pos_])) ++pos_;
-      diags_.error(loc_at(start, static_cast<int>(pos_ - start)),
-                   "invalid digit '" + std::string(1, c) + "' in " +
-                       (base == 16 ? "hexadecimal" : base == 2 ? "binary" : "decimal") + " number");
-      push(Tok::Bad, start, pos_ - start);
-      return;
-    }
-    any = true;
-    if (v > (UINT64_MAX >> 1) / static_cast<std::uint64_t>(base)) overflow = true;
-    v = v * static_cast<std::uint64_t>(base) + static_cast<std::uint64_t>(d);
-    if (v > static_cast<std::uint64_t>(INT64_MAX)) overflow = true;
-    ++pos_;
-  }
-  if (!any) {
-    diags_.error(loc_at(start, static_cast<int>(pos_ - start)), "number has no digits after its prefix");
-    push(Tok::Bad, start, pos_ - start);
-    return;
-  }
-  if (overflow) {
-    diags_.error(loc_at(start, static_cast<int>(pos_ - start)), "number is too large (more than 63 bits)");
-    push(Tok::Bad, start, pos_ - start);
-    return;
-  }
-  push(Tok::Number, start, pos_ - start, P::None, static_cast<std::int64_t>(v));
+  push(Tok::Bad, start, pos_ - start);
 }
 
 bool Lexer::punct() {

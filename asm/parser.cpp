@@ -4,7 +4,6 @@
 // still takes its address so that later labels stay where the programmer expects them.
 #include <algorithm>
 #include <filesystem>
-#include <unordered_set>
 
 #include "internal.hpp"
 
@@ -25,15 +24,6 @@ std::string operand_names(const OpInfo& op) {
     s += o.keywords != KwSet::None ? std::string(kwset_name(o.keywords)) : std::string(role_name(o.role));
   }
   return s;
-}
-
-bool is_keyword_name(const std::string& upper_name) {
-  static const std::unordered_set<std::string> names = [] {
-    std::unordered_set<std::string> n;
-    for (const auto& k : all_keywords()) n.insert(upper(k.name));
-    return n;
-  }();
-  return names.count(upper_name) > 0;
 }
 
 class Parser {
@@ -371,7 +361,7 @@ class Parser {
       return;
     }
     if (!room_for_symbol(loc(name))) return;
-    if (is_keyword_name(key))
+    if (is_keyword(name.text))
       diags_.warning(loc(name), "constant '" + std::string(name.text) + "' has the name of a keyword; where " +
                                     "that keyword may stand, the keyword wins");
     SymDef d;

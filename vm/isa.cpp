@@ -3,7 +3,7 @@
 
 #include <algorithm>
 #include <cctype>
-#include <unordered_map>
+#include <utility>
 #include <vector>
 
 namespace tmcl {
@@ -65,40 +65,47 @@ static_assert(fields_unique(), "an opcode fills one field twice");
 
 constexpr char ascii_upper(char c) { return c >= 'a' && c <= 'z' ? static_cast<char>(c - 'a' + 'A') : c; }
 
-// Mnemonics and keywords are short: lookups copy the word upper-cased into a small key.
-struct Key {
-  char text[8]{};
-  std::size_t size = 0;
-  static bool make(std::string_view s, Key& k) {
-    if (s.size() > sizeof k.text) return false;
-    for (std::size_t i = 0; i < s.size(); ++i) k.text[i] = ascii_upper(s[i]);
-    k.size = s.size();
-    return true;
-  }
-  std::string_view view() const { return {text, size}; }
-};
+// Mnemonics and keywords are at most 8 characters: a word upper-cased and packed into 64 bits
+// is its key, so a lookup is a few integer compares (the assembler does one per line).
+bool pack_upper(std::string_view s, std::uint64_t& key) {
+  if (s.empty() || s.size() > 8) return false;
+  key = 0;
+  for (std::size_t i = 0; i < s.size(); ++i) key |= std::uint64_t{static_cast<unsigned char>(ascii_upper(s[i]))} << (8 * i);
+  return true;
+}
 
 struct OpIndex {
+  static constexpr std::size_t kSlots = 512;  // open addressing, well over twice the mnemonics
   std::array<const OpInfo*, 256> by_code{};
-  std::unordered_map<std::string_view, const OpInfo*> by_mnemonic;
-  std::array<std::vector<const Keyword*>, 16> by_set;
+  std::array<std::uint64_t, kSlots> mnemonic_keys{};
+  std::array<const OpInfo*, kSlots> mnemonic_ops{};
+  std::array<std::vector<std::pair<std::uint64_t, const Keyword*>>, 16> by_set;
+  static std::size_t slot(std::uint64_t key) { return static_cast<std::size_t>((key * 0x9E3779B97F4A7C15ull) >> 55); }
   OpIndex() {
     for (const auto& op : kOps) {
       by_code[op.code] = &op;
-      if (!op.mnemonic.empty()) by_mnemonic.emplace(op.mnemonic, &op);
+      std::uint64_t key = 0;
+      if (!pack_upper(op.mnemonic, key)) continue;
+      std::size_t i = slot(key);
+      while (mnemonic_ops[i]) i = (i + 1) % kSlots;
+      mnemonic_keys[i] = key;
+      mnemonic_ops[i] = &op;
     }
-    for (const auto& k : kKeywords) by_set[static_cast<std::size_t>(k.set)].push_back(&k);
+    for (const auto& k : kKeywords) {
+      std::uint64_t key = 0;
+      pack_upper(k.name, key);
+      by_set[static_cast<std::size_t>(k.set)].emplace_back(key, &k);
+    }
+  }
+  const OpInfo* mnemonic(std::uint64_t key) const {
+    for (std::size_t i = slot(key);; i = (i + 1) % kSlots) {
+      if (!mnemonic_ops[i] || mnemonic_keys[i] == key) return mnemonic_ops[i];
+    }
   }
 };
 const OpIndex& index() {
   static const OpIndex idx;
   return idx;
-}
-
-bool iequals(std::string_view a, std::string_view b) {
-  return a.size() == b.size() && std::equal(a.begin(), a.end(), b.begin(), [](char x, char y) {
-           return std::toupper(static_cast<unsigned char>(x)) == std::toupper(static_cast<unsigned char>(y));
-         });
 }
 
 }  // namespace
@@ -108,18 +115,27 @@ std::span<const OpInfo> all_ops() { return kOps; }
 const OpInfo* op_info(std::uint8_t code) { return index().by_code[code]; }
 
 const OpInfo* op_by_mnemonic(std::string_view mnemonic) {
-  Key k;
-  if (!Key::make(mnemonic, k)) return nullptr;
-  auto it = index().by_mnemonic.find(k.view());
-  return it == index().by_mnemonic.end() ? nullptr : it->second;
+  std::uint64_t key = 0;
+  return pack_upper(mnemonic, key) ? index().mnemonic(key) : nullptr;
 }
 
 std::span<const Keyword> all_keywords() { return kKeywords; }
 
 std::optional<std::uint8_t> keyword_value(KwSet set, std::string_view name) {
-  for (const Keyword* k : index().by_set[static_cast<std::size_t>(set)])
-    if (iequals(k->name, name)) return k->value;
+  std::uint64_t key = 0;
+  if (!pack_upper(name, key)) return std::nullopt;
+  for (const auto& [k, kw] : index().by_set[static_cast<std::size_t>(set)])
+    if (k == key) return kw->value;
   return std::nullopt;
+}
+
+bool is_keyword(std::string_view name) {
+  std::uint64_t key = 0;
+  if (!pack_upper(name, key)) return false;
+  for (const auto& set : index().by_set)
+    for (const auto& entry : set)
+      if (entry.first == key) return true;
+  return false;
 }
 
 std::optional<std::string_view> keyword_name(KwSet set, std::uint8_t value) {

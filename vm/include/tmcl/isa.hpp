@@ -81,6 +81,8 @@ const OpInfo* op_by_mnemonic(std::string_view mnemonic);
 std::span<const Keyword> all_keywords();
 // Case-insensitive lookup of a keyword in one set.
 std::optional<std::uint8_t> keyword_value(KwSet set, std::string_view name);
+// Whether `name` is a keyword of any set (case-insensitive).
+bool is_keyword(std::string_view name);
 // The keyword of `set` with this value (for the disassembler), if any.
 std::optional<std::string_view> keyword_name(KwSet set, std::uint8_t value);
 std::string_view kwset_name(KwSet set);
