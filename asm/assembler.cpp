@@ -144,10 +144,22 @@ AsmResult assemble(const std::vector<std::string>& files, const AsmOptions& opti
     return out;
   }
 
+  // one well-formed source: the fast path, unless it gives up (fast_path.cpp)
+  std::string first;
+  bool preread = false;
+  if (options.fast_path && files.size() == 1 && !reloc && options.defines.empty()) {
+    preread = reader.read(files[0], first);
+    if (preread && sniff_file(first) == FileKind::Source) {
+      AsmResult fast;
+      fast.diags.set_warnings_are_errors(options.warnings_are_errors);
+      if (fast_assemble(files[0], options, first, fast)) return fast;
+    }
+  }
+
   // read: parse sources into units, read objects and libraries
   Storage store;
   std::vector<InputSlot> slots;
-  read_inputs(files, options, reader, out, store, slots);
+  read_inputs(files, options, reader, out, store, slots, preread ? &first : nullptr);
 
   // link only the library members that resolve an import
   choose_members(slots, out.sources);

@@ -20,6 +20,9 @@ std::string_view SourceFile::line(int number) const {
 
 int SourceSet::add(SourceFile f) {
   f.line_starts.clear();
+  // Reserving for lines of 8 bytes on average saves regrowing (which touches twice the memory)
+  // and costs nothing where the guess is too high: untouched memory is never faulted in.
+  f.line_starts.reserve(f.text.size() / 8 + 16);
   f.line_starts.push_back(0);
   for (const char* p = f.text.data(); (p = static_cast<const char*>(std::memchr(p, '\n', static_cast<std::size_t>(f.text.data() + f.text.size() - p)))) != nullptr;) {
     ++p;

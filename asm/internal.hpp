@@ -172,6 +172,16 @@ struct Unit {
 
 std::string upper(std::string_view s);
 
+// Drops a UTF-8 byte-order mark (Windows editors write one); true when there was one.
+bool drop_bom(std::string& text);
+// The first line of `f` longer than kMaxLineBytes (1-based), or 0 when there is none.
+int first_long_line(const SourceFile& f);
+
+// Assembles `text`, the only input `path`, when it is a program the fast path (fast_path.cpp)
+// handles: one source without directives or -D whose result has no diagnostic. Otherwise it
+// gives `text` back unchanged and returns false, and the full assembler takes over.
+bool fast_assemble(const std::string& path, const AsmOptions& options, std::string& text, AsmResult& out);
+
 // The three instruction fields an operand can fill, their ranges and how a value is stored.
 struct FieldRange {
   std::int64_t min, max;
@@ -222,8 +232,9 @@ struct InputSlot {
   std::vector<std::string> unused;   // members not linked, as "lib.a(member.o)"
 };
 
+// `first`: the text of files[0] when the caller has read it already (moved from), else nullptr.
 void read_inputs(const std::vector<std::string>& files, const AsmOptions& options, FileReader& reader,
-                 AsmResult& out, Storage& store, std::vector<InputSlot>& slots);
+                 AsmResult& out, Storage& store, std::vector<InputSlot>& slots, std::string* first = nullptr);
 void choose_members(std::vector<InputSlot>& slots, SourceSet& sources);
 const Profile& choose_target(const AsmOptions& options, const std::vector<Unit>& units, Diagnostics& diags);
 class Resolver;

@@ -67,7 +67,7 @@ void object_unit(const ObjectFile& obj, const std::string& input_name, SourceSet
 }
 
 void read_inputs(const std::vector<std::string>& files, const AsmOptions& options, FileReader& reader,
-                 AsmResult& out, Storage& store, std::vector<InputSlot>& slots) {
+                 AsmResult& out, Storage& store, std::vector<InputSlot>& slots, std::string* first) {
   std::vector<std::string> seen;
   for (const auto& file : files) {
     if (std::find(seen.begin(), seen.end(), file) != seen.end()) {
@@ -76,7 +76,9 @@ void read_inputs(const std::vector<std::string>& files, const AsmOptions& option
     }
     seen.push_back(file);
     std::string text;
-    if (!reader.read(file, text)) {
+    if (first && &file == &files.front()) {
+      text = std::move(*first);
+    } else if (!reader.read(file, text)) {
       out.diags.error(SourceLoc{}, "cannot read '" + file + "': " + reader.last_error());
       continue;
     }

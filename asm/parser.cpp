@@ -150,19 +150,14 @@ class Parser {
     stack_.pop_back();
   }
 
-  // Adds a loaded file; a UTF-8 byte-order mark (Windows editors write one) is dropped. Returns
-  // -1 when a line is too long to be a source line (the file is then not parsed).
+  // Adds a loaded file; returns -1 when a line is too long to be a source line (the file is
+  // then not parsed).
   int add_source(SourceFile f) {
-    if (f.text.rfind("\xEF\xBB\xBF", 0) == 0) f.text.erase(0, 3);
+    drop_bom(f.text);
     int idx = sources_.add(std::move(f));
-    const SourceFile& added = sources_.files[static_cast<std::size_t>(idx)];
-    for (std::size_t l = 0; l < added.line_starts.size(); ++l) {
-      std::size_t end = l + 1 < added.line_starts.size() ? added.line_starts[l + 1] : added.text.size();
-      if (end - added.line_starts[l] > kMaxLineBytes) {
-        diags_.error(SourceLoc{idx, static_cast<int>(l + 1), 1, 1},
-                     "line is longer than " + std::to_string(kMaxLineBytes) + " bytes");
-        return -1;
-      }
+    if (int l = first_long_line(sources_.files[static_cast<std::size_t>(idx)])) {
+      diags_.error(SourceLoc{idx, l, 1, 1}, "line is longer than " + std::to_string(kMaxLineBytes) + " bytes");
+      return -1;
     }
     return idx;
   }

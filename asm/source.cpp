@@ -1,4 +1,5 @@
-// Reading source files from disk (or standard input) for the assembler.
+// Reading source files from disk (or standard input) for the assembler, and what every loaded
+// source goes through before it is parsed.
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
@@ -29,18 +30,41 @@ bool DiskReader::read(const std::string& path, std::string& out) {
     error_ = std::strerror(errno);
     return false;
   }
+  // Read straight into a string of the file's size: growing it by doubling would touch (and
+  // fault in) twice the memory. A file that grows meanwhile is read on in chunks.
   out.clear();
+  std::size_t expected = S_ISREG(st.st_mode) ? static_cast<std::size_t>(st.st_size) : 0;
+  if (expected > detail::kMaxFileBytes) expected = detail::kMaxFileBytes + 1;  // the caller reports the limit
+  out.resize(expected);
+  std::size_t got = expected > 0 ? std::fread(out.data(), 1, expected, f) : 0;
+  out.resize(got);
   char buf[65536];
   std::size_t n;
-  while ((n = std::fread(buf, 1, sizeof buf, f)) > 0) {
-    out.append(buf, n);
-    if (out.size() > detail::kMaxFileBytes) break;  // the caller reports the size limit
-  }
+  while (out.size() <= detail::kMaxFileBytes && (n = std::fread(buf, 1, sizeof buf, f)) > 0) out.append(buf, n);
   bool ok = !std::ferror(f);
   if (!ok) error_ = "read error";
   std::fclose(f);
   return ok;
 }
+
+namespace detail {
+
+bool drop_bom(std::string& text) {
+  if (text.rfind("\xEF\xBB\xBF", 0) != 0) return false;
+  text.erase(0, 3);
+  return true;
+}
+
+int first_long_line(const SourceFile& f) {
+  const auto& starts = f.line_starts;
+  for (std::size_t l = 0; l < starts.size(); ++l) {
+    std::size_t end = l + 1 < starts.size() ? starts[l + 1] : f.text.size();
+    if (end - starts[l] > kMaxLineBytes) return static_cast<int>(l + 1);
+  }
+  return 0;
+}
+
+}  // namespace detail
 
 bool MemoryReader::read(const std::string& path, std::string& out) {
   auto it = files.find(path);

@@ -62,6 +62,7 @@ struct AsmOptions {
   bool warnings_are_errors = false;             // -Werror
   bool append_stop = true;                      // append STOP unless the program ends in one
   bool relocatable = false;                     // -c: one source file into an object (AsmResult::object)
+  bool fast_path = true;  // try the fast path first (same result; tests turn it off to compare)
 };
 
 // Where an instruction came from.

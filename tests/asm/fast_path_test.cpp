@@ -1,0 +1,220 @@
+// The fast path (asm/fast_path.cpp) must give exactly the full assembler's result whenever it
+// accepts a program, and give up on everything else. Checked on every source in the repository,
+// on targeted edge cases, and on thousands of seeded mutations of those sources (a mutation the
+// fast path accepts must assemble cleanly and identically through the full assembler).
+#define TMCL_TEST_MAIN
+#include <algorithm>
+#include <filesystem>
+#include <fstream>
+#include <random>
+#include <sstream>
+
+#include "check.hpp"
+#include "internal.hpp"
+#include "same_result.hpp"
+
+namespace {
+
+namespace fs = std::filesystem;
+
+std::string read_text(const fs::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  std::ostringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+std::vector<fs::path> repository_sources() {
+  std::vector<fs::path> out;
+  for (const char* dir : {"examples", "tests"})
+    for (const auto& e : fs::recursive_directory_iterator(fs::path(TMCL_SOURCE_DIR) / dir))
+      if (e.is_regular_file() && e.path().extension() == ".tmc") out.push_back(e.path());
+  std::sort(out.begin(), out.end());
+  return out;
+}
+
+std::vector<const tmcl::Profile*> targets() {
+  return {nullptr, tmcl::find_profile("usb-2-sd"), tmcl::find_profile("tmc2300-eval")};
+}
+
+// The fast path on `text` alone; accepted tells whether it handled it.
+tmcl::AsmResult fast(const std::string& text, const tmcl::Profile* target, bool& accepted) {
+  tmcl::AsmOptions o;
+  o.profile = target;
+  tmcl::AsmResult r;
+  std::string copy = text;
+  accepted = tmcl::detail::fast_assemble("main.tmc", o, copy, r);
+  if (!accepted) CHECK(copy == text);  // given back unchanged for the full assembler
+  return r;
+}
+
+tmcl::AsmResult full(const std::string& text, const tmcl::Profile* target) {
+  tmcl::MemoryReader reader;
+  reader.files["main.tmc"] = text;
+  tmcl::AsmOptions o;
+  o.profile = target;
+  o.fast_path = false;
+  return tmcl::assemble({"main.tmc"}, o, reader);
+}
+
+// Whenever the fast path accepts `text`, the full assembler must succeed silently with the same result.
+bool agrees(const std::string& text, const tmcl::Profile* target, bool& accepted) {
+  tmcl::AsmResult f = fast(text, target, accepted);
+  if (!accepted) return true;
+  tmcl::AsmResult r = full(text, target);
+  std::string diff = tmcl_test::result_difference(f, r);
+  if (diff.empty()) return true;
+  std::fprintf(stderr, "fast path differs (%s) on:\n%s\n--- full assembler says:\n%s\n", diff.c_str(), text.c_str(),
+               r.diags.render(r.sources).c_str());
+  return false;
+}
+
+TEST(every_repository_source_agrees_through_the_public_interface) {
+  int files = 0;
+  for (const auto& path : repository_sources()) {
+    for (const auto* target : targets()) {
+      tmcl::DiskReader reader;
+      tmcl::AsmOptions on, off;
+      on.profile = off.profile = target;
+      off.fast_path = false;
+      auto a = tmcl::assemble({path.string()}, on, reader);
+      auto b = tmcl::assemble({path.string()}, off, reader);
+      std::string diff = tmcl_test::result_difference(a, b);
+      if (!diff.empty()) std::fprintf(stderr, "%s: %s\n", path.string().c_str(), diff.c_str());
+      CHECK(diff.empty());
+    }
+    ++files;
+  }
+  CHECK(files > 100);
+}
+
+TEST(the_fast_path_takes_most_plain_programs) {
+  int accepted_count = 0, total = 0;
+  for (const auto& path : repository_sources()) {
+    bool accepted = false;
+    CHECK(agrees(read_text(path), nullptr, accepted));
+    accepted_count += accepted;
+    ++total;
+  }
+  std::printf("fast path accepted %d of %d repository sources (generic target)\n", accepted_count, total);
+  CHECK(accepted_count >= 40);  // the rest have directives or are golden error cases
+}
+
+TEST(edge_cases) {
+  struct Case {
+    const char* text;
+    bool accepted;
+  };
+  const Case cases[] = {
+      {"SAP 4, 0, %101\n", true},                      // '%' after a comma: a binary number
+      {"SAP %1, 0, 0\n", false},                       // after the mnemonic: the modulo operator
+      {"X = %101 % %11\nSAP X, 0, 0\n", true},
+      {"JA Later\nLater: STOP\n", true},                // forward label
+      {"A = B + 1\nB = 2\nSAP A, 0, B\n", true},        // forward constant
+      {"A = B\nB = A\n", false},                        // a cycle
+      {"/* two\nlines */ SAP 1, /* x\n */ 2, 3\nSTOP\n", true},
+      {"SAP 1, 2, 3 ; /* not a block comment\nSTOP\n", true},
+      {"SAP 1, 2, 3 // x /* y\nSTOP\n", true},
+      {"SAP 1, 2, 3 /* unterminated\n", false},
+      {"L1: L2: L3: STOP\n", true},
+      {"WAIT TICKS, 0, 100\nJC GE, 0\nCALC MUL, 3\nMVP REL, 0, -(1 << 10)\n", true},
+      {"ABS = 3\n", false},                              // a keyword's name: warned about
+      {"JC 99, 0\n", false},                             // not a condition: warned about
+      {"JA 5\n", false},                                 // outside the program: warned about
+      {"SAP 1, 256, 0\n", false},                        // does not fit
+      {"SAP 1, 0, 4294967295\nSAP 1, 0, -2147483648\n", true},
+      {"SAP 1, 0, 4294967296\n", false},
+      {"X = 1 / 0\n", false},
+      {"X = 1 << 64\n", false},
+      {"X = 9223372036854775807\nSAP 1, 0, X & 1\n", true},
+      {"X = 9223372036854775808\n", false},
+      {"L: X = 3\nSAP X, 0, L\n", true},
+      {"L:\nL:\n", false},                               // duplicate label
+      {"X = 1\nX = 1\n", false},                         // redefinition: left to the full assembler
+      {"#include \"a.tmc\"\n", false},
+      {".raw 1, 2, 3, 4\n", false},
+      {"SAP 1, 2\n", false},
+      {"SAP 1, 2, 3, 4\n", false},
+      {"STOP 1\n", false},
+      {"caf\xC3\xA9: STOP\n", false},
+      {"// caf\xC3\xA9 in a comment\r\nSTOP\r\n", true},
+      {"\xEF\xBB\xBFSTOP\n", true},                      // a byte-order mark
+      {"SAP 1, 2, 0x1G\n", false},
+      {"SAP 1, 2, $\n", false},
+      {"SAP 1, 2, 0b\n", false},
+      {"SAP 1, 2, 12abc\n", false},
+      {"SAP 1, 2, 3 4\n", false},
+      {"SAP 1, 2, (3\n", false},
+      {"SAP 1, 2, 3)\n", false},
+      {"SAP 1, 2, 3 < 4\n", false},
+      {"SAP 1, 2, ~-+3\n", true},
+      {"", true},
+      {"STOP", true},
+      {"FOO 1\n", false},
+      {"Loop\n", false},
+  };
+  for (const auto& c : cases) {
+    for (const auto* target : targets()) {
+      bool accepted = false;
+      CHECK(agrees(c.text, target, accepted));
+      if (target == nullptr && accepted != c.accepted)
+        std::fprintf(stderr, "expected the fast path to %s: %s\n", c.accepted ? "accept" : "give up", c.text);
+      if (target == nullptr) CHECK(accepted == c.accepted);
+    }
+  }
+}
+
+TEST(a_byte_order_mark_survives_giving_up) {
+  std::string text = "\xEF\xBB\xBF#bogus\nSTOP\n";
+  tmcl::MemoryReader reader;
+  reader.files["main.tmc"] = text;
+  tmcl::AsmOptions on, off;
+  off.fast_path = false;
+  auto a = tmcl::assemble({"main.tmc"}, on, reader);
+  auto b = tmcl::assemble({"main.tmc"}, off, reader);
+  CHECK(!a.ok());
+  CHECK(tmcl_test::result_difference(a, b).empty());
+}
+
+// Small edits of real programs: whatever the fast path accepts must be right.
+TEST(seeded_mutations_never_fool_the_fast_path) {
+  std::mt19937 rng(20261122);
+  const std::string alphabet = "\n;/*%$#.,:=()+-~<>&|^019abfxXLqZ_ \t\r\xE9\"";
+  int tried = 0, accepted_count = 0;
+  for (const auto& path : repository_sources()) {
+    std::string base = read_text(path);
+    bool accepted = false;
+    (void)fast(base, nullptr, accepted);
+    if (!accepted || base.size() > 20000 || base.empty()) continue;
+    for (int m = 0; m < 60; ++m) {
+      std::string t = base;
+      int edits = 1 + static_cast<int>(rng() % 3);
+      for (int e = 0; e < edits && !t.empty(); ++e) {
+        std::size_t at = rng() % t.size();
+        switch (rng() % 4) {
+          case 0: t.erase(at, 1); break;
+          case 1: t.insert(at, 1, alphabet[rng() % alphabet.size()]); break;
+          case 2: t[at] = alphabet[rng() % alphabet.size()]; break;
+          case 3: {  // repeat a line elsewhere
+            std::size_t s = t.rfind('\n', at);
+            s = s == std::string::npos ? 0 : s + 1;
+            std::size_t n = t.find('\n', at);
+            std::string line = t.substr(s, n == std::string::npos ? std::string::npos : n - s + 1);
+            t.insert(rng() % t.size(), line);
+            break;
+          }
+        }
+      }
+      const auto* target = targets()[rng() % 3];
+      bool ok = false;
+      CHECK(agrees(t, target, ok));
+      accepted_count += ok;
+      ++tried;
+    }
+  }
+  std::printf("%d mutations, %d accepted by the fast path\n", tried, accepted_count);
+  CHECK(tried > 1000);
+  CHECK(accepted_count > 100);
+}
+
+}  // namespace
