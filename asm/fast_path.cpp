@@ -1,7 +1,7 @@
 // The fast path: a well-formed program in one source file, assembled in two passes over its
 // text without tokens, statements or expression trees. Pass 1 finds every label, constant and
-// instruction; pass 2 evaluates the operands and encodes them. Constants are evaluated from
-// their text on first use.
+// instruction; then the names are indexed; pass 2 evaluates the operands and encodes them.
+// Constants are evaluated from their text on first use.
 //
 // It accepts only what it is sure the full assembler (lexer, parser, resolver, encoder) accepts
 // without any diagnostic, and then gives the same result. Anything else -- a directive, .raw,
@@ -61,7 +61,9 @@ struct FastSymbol {
 class FastAssembler {
  public:
   FastAssembler(std::string_view src, int file, const Profile& profile, AsmResult& out)
-      : src_(src), file_(file), profile_(profile), out_(out) {}
+      : src_(src), file_(file), profile_(profile), out_(out) {
+    for (const auto& op : all_ops()) ops_[op.code] = &op;
+  }
 
   // Room for `lines` statements: reserving touches no memory, and regrowing would touch twice.
   void reserve(std::size_t lines) {
@@ -87,11 +89,12 @@ class FastAssembler {
   }
 
   bool pass2() {
+    if (!index_symbols()) return false;
     Stmt probe;  // what the profile check reads: the opcode (its locations are never shown here)
     Diagnostics scratch;
     for (std::size_t i = 0; i < operands_.size(); ++i) {
       Instruction& ins = out_.program[i];
-      const OpInfo* info = op_info(ins.op);
+      const OpInfo* info = ops_[ins.op];
       if (!encode(*info, operands_[i], ins)) return false;
       probe.op = info;
       check_against_profile(profile_, probe, ins, scratch);
@@ -110,7 +113,7 @@ class FastAssembler {
     auto total = static_cast<std::int64_t>(out_.program.size());
     for (int i = 0; i < size; ++i) {
       const Instruction& ins = out_.program[static_cast<std::size_t>(i)];
-      for (const auto& spec : op_info(ins.op)->operands)  // a jump outside the program is a warning
+      for (const auto& spec : ops_[ins.op]->operands)  // a jump outside the program is a warning
         if (spec.role == Role::Address && (ins.value < 0 || ins.value >= total)) return false;
     }
     if (profile_.program_memory > 0 && total > profile_.program_memory) return false;
@@ -237,36 +240,55 @@ class FastAssembler {
     return true;
   }
 
-  // ---- symbols: open addressing over indices into symbols_ ----
+  // ---- symbols: open addressing; a slot holds the hash's high half and the index + 1, so a probe
+  // compares names only when the hashes agree (each name compared is a cache miss) ----
+  static std::uint64_t slot_value(std::uint64_t h, std::size_t k) { return (h & ~0xFFFFFFFFull) | (k + 1); }
+
   int find(std::string_view name, std::uint64_t h) const {
-    if (slots_.empty()) return -1;
     std::size_t mask = slots_.size() - 1;
     for (std::size_t i = static_cast<std::size_t>(h) & mask;; i = (i + 1) & mask) {
-      int k = slots_[i];
-      if (k < 0) return -1;
-      const FastSymbol& s = symbols_[static_cast<std::size_t>(k)];
-      if (s.len == name.size() && same_name(s.name, name.data(), name.size())) return k;
+      std::uint64_t v = slots_[i];
+      if (v == 0) return -1;
+      if ((v ^ h) >> 32) continue;
+      const FastSymbol& s = symbols_[(v & 0xFFFFFFFFu) - 1];
+      if (s.len == name.size() && same_name(s.name, name.data(), name.size()))
+        return static_cast<int>((v & 0xFFFFFFFFu) - 1);
     }
   }
 
-  void place(int k, std::uint64_t h) {
-    std::size_t mask = slots_.size() - 1;
-    std::size_t i = static_cast<std::size_t>(h) & mask;
-    while (slots_[i] >= 0) i = (i + 1) & mask;
-    slots_[i] = k;
+  // Pass 1 records names; they are indexed afterwards in one sweep that prefetches the slots a
+  // few names ahead, since nearly every slot touched is a cache miss. False on a name defined twice.
+  bool index_symbols() {
+    std::size_t n = symbols_.size(), size = 1024;
+    while (size < 2 * n) size *= 2;
+    slots_.assign(size, 0);
+    const std::size_t mask = size - 1;
+    constexpr std::size_t kAhead = 16;
+    std::array<std::uint64_t, kAhead> ahead{};
+    auto hash_of = [&](std::size_t k) { return name_hash(symbols_[k].name, symbols_[k].len); };
+    for (std::size_t k = 0; k < n && k < kAhead; ++k) {
+      ahead[k] = hash_of(k);
+      __builtin_prefetch(&slots_[ahead[k] & mask]);
+    }
+    for (std::size_t k = 0; k < n; ++k) {
+      std::uint64_t h = ahead[k % kAhead];
+      if (k + kAhead < n) {
+        ahead[k % kAhead] = hash_of(k + kAhead);
+        __builtin_prefetch(&slots_[ahead[k % kAhead] & mask]);
+      }
+      const FastSymbol& s = symbols_[k];
+      if (find({s.name, s.len}, h) >= 0) return false;  // redefined: left to the full assembler
+      std::size_t i = static_cast<std::size_t>(h) & mask;
+      while (slots_[i] != 0) i = (i + 1) & mask;
+      slots_[i] = slot_value(h, k);
+    }
+    return true;
   }
 
   bool define(std::string_view name, SymbolKind kind, int line, int col, std::int64_t value, std::uint32_t expr) {
-    std::uint64_t h = name_hash(name.data(), name.size());
-    if (find(name, h) >= 0 || symbols_.size() >= kMaxSymbols) return false;  // redefined, or too many
-    if ((symbols_.size() + 1) * 2 > slots_.size()) {
-      slots_.assign(slots_.empty() ? 1024 : slots_.size() * 2, -1);
-      for (std::size_t k = 0; k < symbols_.size(); ++k)
-        place(static_cast<int>(k), name_hash(symbols_[k].name, symbols_[k].len));
-    }
+    if (symbols_.size() >= kMaxSymbols) return false;
     symbols_.push_back(FastSymbol{name.data(), static_cast<std::uint32_t>(name.size()), kind,
                                   kind == SymbolKind::Label ? State::Done : State::Todo, line, col, expr, value});
-    place(static_cast<int>(symbols_.size() - 1), h);
     return true;
   }
 
@@ -429,7 +451,8 @@ class FastAssembler {
   AsmResult& out_;
   std::vector<std::uint32_t> operands_;  // per instruction: where its operands start
   std::vector<FastSymbol> symbols_;      // in definition order
-  std::vector<int> slots_;
+  std::vector<std::uint64_t> slots_;
+  std::array<const OpInfo*, 256> ops_{};  // op_info(), without its lookup on every instruction
 };
 
 }  // namespace

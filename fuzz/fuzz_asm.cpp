@@ -1,12 +1,14 @@
 // Fuzzes the assembler on source text. The input is split into files at lines "#FILE name":
 // the first part is main.tmc, each later part an include file served from memory, so that
 // include chains, cycles and errors inside includes are reached. Checks: no crash, no hang;
-// a successful run has one line record per instruction and renders every output format.
+// a successful run has one line record per instruction and renders every output format; and
+// the fast path and the full assembler give the same result (or the same diagnostics).
 #include <cstdint>
 #include <string>
 
 #include "tmcl/asm/assembler.hpp"
 #include "tmcl/asm/output.hpp"
+#include "same_result.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   std::string text(reinterpret_cast<const char*>(data), size);
@@ -25,6 +27,9 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   tmcl::AsmOptions opts;
   opts.profile = size % 2 ? tmcl::find_profile("usb-2-sd") : nullptr;
   tmcl::AsmResult r = tmcl::assemble({"main.tmc"}, opts, reader);
+  tmcl::AsmOptions full_only = opts;
+  full_only.fast_path = false;
+  if (!tmcl_test::result_difference(r, tmcl::assemble({"main.tmc"}, full_only, reader)).empty()) __builtin_trap();
   std::string diags = r.diags.render(r.sources);
   if (r.ok()) {
     if (r.lines.size() != r.program.size()) __builtin_trap();
