@@ -263,7 +263,7 @@ AsmResult assemble(const std::vector<std::string>& files, const AsmOptions& opti
       if (def.from_command_line) continue;
       if (def.kind == SymbolKind::Constant && def.state == EvalState::Failed) continue;
       auto v = resolver.eval_def(u, d);  // an unused constant is still checked
-      if (!v) continue;
+      if (!v || !options.symbols) continue;
       out.symbols.push_back(Symbol{def.name, def.kind, v->k, def.loc, def.exported});
     }
   }

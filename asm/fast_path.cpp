@@ -8,11 +8,9 @@
 // -D, a block comment it cannot close, any error or warning, an unusually deep expression --
 // makes it give up, and the full assembler, the reference, starts again from the same text.
 // Giving up is always safe, so every doubtful case gives up. tests/asm/fast_path_test checks
-// that both paths agree byte for byte on every source in the repository.
-#include <array>
-#include <cstring>
-
-#include "chars.hpp"
+// that both paths agree on every source in the repository and on thousands of mutations.
+#include "fast_symbols.hpp"
+#include "fast_text.hpp"
 #include "internal.hpp"
 
 namespace tmcl::detail {
@@ -21,47 +19,22 @@ namespace {
 // Deeper than any real program nests; beyond it the full assembler, with its own limits, decides.
 constexpr int kMaxFastDepth = 64;
 
-// Identifier characters differ only in bit 5 between the cases, and no two other identifier
-// characters differ only there, so masking it compares and hashes names case-insensitively.
-constexpr std::uint64_t kFold = 0xDFDFDFDFDFDFDFDFull;
-
-std::uint64_t name_hash(const char* s, std::size_t n) {
-  std::uint64_t h = n * 0x9E3779B97F4A7C15ull;
-  while (n > 0) {
-    std::uint64_t w = 0;
-    std::size_t k = n < 8 ? n : 8;
-    std::memcpy(&w, s, k);
-    h = (h ^ (w & kFold)) * 0xFF51AFD7ED558CCDull;
-    h ^= h >> 32;
-    s += k;
-    n -= k;
-  }
-  h *= 0xC4CEB9FE1A85EC53ull;  // the table indexes with the low bits: mix the high ones down
-  return h ^ (h >> 29);
-}
-
-bool same_name(const char* a, const char* b, std::size_t n) {
-  for (std::size_t i = 0; i < n; ++i)
-    if ((a[i] ^ b[i]) & 0xDF) return false;
-  return true;
-}
-
-enum class State : std::uint8_t { Todo, Busy, Done };
-
-struct FastSymbol {
-  const char* name;
-  std::uint32_t len;
-  SymbolKind kind;
-  State state;
-  int line, col;
-  std::uint32_t expr;  // constants: where the value's expression starts
-  std::int64_t value;  // labels: the address
-};
+// Binary operators by their first character: C precedence (| ^ & << >> + - * / %), 0 for none.
+constexpr auto kPrecedence = [] {
+  std::array<std::uint8_t, 256> t{};
+  t['|'] = 1;
+  t['^'] = 2;
+  t['&'] = 3;
+  t['<'] = t['>'] = 4;
+  t['+'] = t['-'] = 5;
+  t['*'] = t['/'] = t['%'] = 6;
+  return t;
+}();
 
 class FastAssembler {
  public:
-  FastAssembler(std::string_view src, int file, const Profile& profile, AsmResult& out)
-      : src_(src), file_(file), profile_(profile), out_(out) {
+  FastAssembler(const SourceFile& file, int index, const Profile& profile, AsmResult& out)
+      : file_(file), text_(file.text), index_(index), profile_(profile), out_(out) {
     for (const auto& op : all_ops()) ops_[op.code] = &op;
   }
 
@@ -70,32 +43,31 @@ class FastAssembler {
     out_.program.reserve(lines + 1);
     out_.lines.reserve(lines + 1);
     operands_.reserve(lines);
-    symbols_.reserve(lines);
+    symbols_.all().reserve(lines / 2);
   }
 
   bool pass1() {
-    std::size_t p = 0;
-    int line = 1;
-    std::size_t line_start = 0;
-    while (p < src_.size()) {
-      if (!statement_head(p, line, line_start)) return false;
-      if (p < src_.size()) {  // at the newline that ends the statement
+    LineCount lines{1, text_.begin()};
+    const char* p = text_.begin();
+    while (p < text_.end()) {
+      if (!statement_head(p, lines)) return false;
+      if (p < text_.end()) {  // at the newline that ends the statement
         ++p;
-        ++line;
-        line_start = p;
+        ++lines.line;
+        lines.start = p;
       }
     }
     return true;
   }
 
   bool pass2() {
-    if (!index_symbols()) return false;
+    if (!symbols_.index()) return false;  // a name defined twice
     Stmt probe;  // what the profile check reads: the opcode (its locations are never shown here)
     Diagnostics scratch;
     for (std::size_t i = 0; i < operands_.size(); ++i) {
       Instruction& ins = out_.program[i];
       const OpInfo* info = ops_[ins.op];
-      if (!encode(*info, operands_[i], ins)) return false;
+      if (!encode(*info, text_.begin() + operands_[i], ins)) return false;
       probe.op = info;
       check_against_profile(profile_, probe, ins, scratch);
       if (!scratch.all().empty()) return false;
@@ -103,7 +75,7 @@ class FastAssembler {
     return true;
   }
 
-  bool finish(const AsmOptions& options, const std::string& input_name) {
+  bool finish(const AsmOptions& options) {
     int size = static_cast<int>(out_.program.size());
     if (options.append_stop && (out_.program.empty() || out_.program.back().op != static_cast<std::uint8_t>(Op::STOP))) {
       out_.appended_stop = true;
@@ -117,228 +89,92 @@ class FastAssembler {
         if (spec.role == Role::Address && (ins.value < 0 || ins.value >= total)) return false;
     }
     if (profile_.program_memory > 0 && total > profile_.program_memory) return false;
-    out_.symbols.reserve(symbols_.size());
-    for (std::size_t k = 0; k < symbols_.size(); ++k) {
+    auto& symbols = symbols_.all();
+    if (options.symbols) out_.symbols.reserve(symbols.size());
+    for (std::size_t k = 0; k < symbols.size(); ++k) {
       std::int64_t v = 0;
       if (!symbol_value(static_cast<int>(k), 0, v)) return false;  // unused constants are checked too
-      const FastSymbol& s = symbols_[k];
-      out_.symbols.push_back(Symbol{std::string(s.name, s.len), s.kind, v,
-                                    SourceLoc{file_, s.line, s.col, static_cast<int>(s.len)}, false});
+      if (!options.symbols) continue;
+      const FastSymbol& s = symbols[k];
+      auto col = static_cast<int>(s.name - (text_.begin() + file_.line_starts[static_cast<std::size_t>(s.line - 1)])) + 1;
+      out_.symbols.push_back(
+          Symbol{std::string(s.name, s.len), s.kind, v, SourceLoc{index_, s.line, col, static_cast<int>(s.len)}, false});
     }
-    out_.inputs.push_back(LinkedInput{input_name, 0, size, ""});
+    out_.inputs.push_back(LinkedInput{file_.name, 0, size, ""});
     out_.profile = &profile_;
     return true;
   }
 
  private:
-  char at(std::size_t p) const { return p < src_.size() ? src_[p] : '\0'; }
-
-  // Skips spaces and /* */ comments (which may span lines and do not end a statement).
-  bool skip_space(std::size_t& p, int& line, std::size_t& line_start) const {
-    while (p < src_.size()) {
-      char c = src_[p];
-      if (char_class(c) == kSpace) {
-        ++p;
-      } else if (c == '/' && at(p + 1) == '*') {
-        std::size_t close = src_.find("*/", p + 2);
-        if (close == std::string_view::npos) return false;
-        for (std::size_t q = p + 2; q < close; ++q)
-          if (src_[q] == '\n') {
-            ++line;
-            line_start = q + 1;
-          }
-        p = close + 2;
-      } else {
-        break;
-      }
-    }
-    return true;
-  }
-  bool skip_space(std::size_t& p) const {
-    int line = 0;
-    std::size_t line_start = 0;
-    return skip_space(p, line, line_start);
-  }
-
-  // The end of a statement: the end of the text, a newline, or a comment running to the newline.
-  bool at_end(std::size_t p) const {
-    if (p >= src_.size()) return true;
-    char c = src_[p];
-    return c == '\n' || c == ';' || (c == '/' && at(p + 1) == '/');
-  }
-
-  // Moves p from the end of a statement to its newline (or the end of the text).
-  void to_newline(std::size_t& p) const {
-    const void* nl = p < src_.size() ? std::memchr(src_.data() + p, '\n', src_.size() - p) : nullptr;
-    p = nl ? static_cast<std::size_t>(static_cast<const char*>(nl) - src_.data()) : src_.size();
-  }
-
-  // An identifier at p, or an empty one; a byte outside ASCII next to it is an error.
-  bool ident(std::size_t& p, std::string_view& name) const {
-    std::size_t start = p;
-    if (!ident_start(at(p))) return false;
-    while (p < src_.size() && ident_char(src_[p])) ++p;
-    if (non_ascii(at(p))) return false;
-    name = src_.substr(start, p - start);
-    return true;
-  }
-
-  // Pass 1: the labels of one statement, then a constant, an instruction or nothing; leaves p at
-  // the statement's newline.
-  bool statement_head(std::size_t& p, int& line, std::size_t& line_start) {
-    while (true) {
-      if (!skip_space(p, line, line_start)) return false;
-      if (at_end(p)) {
-        to_newline(p);
+  // ---- pass 1: the labels of one statement, then a constant, an instruction or nothing ----
+  bool statement_head(const char*& p, LineCount& lines) {
+    for (;;) {
+      if (!text_.skip_space(p, &lines)) return false;
+      if (text_.at_end(p)) {
+        p = text_.newline(p);
         return true;
       }
-      std::size_t start = p;
+      const char* start = p;
       std::string_view name;
-      if (!ident(p, name)) return false;  // a directive, .raw, a stray character
-      int name_line = line;
-      int col = static_cast<int>(start - line_start) + 1;
-      if (!skip_space(p, line, line_start)) return false;
-      if (at(p) == ':') {
-        if (!define(name, SymbolKind::Label, name_line, col, static_cast<std::int64_t>(operands_.size()), 0)) return false;
+      if (!FastText::ident(p, name)) return false;  // a directive, .raw, a stray character
+      int line = lines.line;
+      if (!text_.skip_space(p, &lines)) return false;
+      if (*p == ':') {
+        if (!define(name, SymbolKind::Label, line, static_cast<std::int64_t>(operands_.size()), 0)) return false;
         ++p;
         continue;
       }
-      if (at(p) == '=') {
+      if (*p == '=') {
         if (is_keyword(name)) return false;  // warned about by the full assembler
-        if (!define(name, SymbolKind::Constant, name_line, col, 0, static_cast<std::uint32_t>(p + 1))) return false;
-        return skip_statement(p, line, line_start);
+        if (!define(name, SymbolKind::Constant, line, 0, static_cast<std::uint32_t>(p + 1 - text_.begin()))) return false;
+        return text_.skip_statement(p, &lines);
       }
       const OpInfo* op = op_by_mnemonic(name);
       if (!op) return false;
       out_.program.push_back(Instruction{op->code, 0, 0, 0});
-      out_.lines.push_back(LineInfo{file_, name_line});
-      operands_.push_back(static_cast<std::uint32_t>(start + name.size()));
-      return skip_statement(p, line, line_start);
+      out_.lines.push_back(LineInfo{index_, line});
+      operands_.push_back(static_cast<std::uint32_t>(start + name.size() - text_.begin()));
+      return text_.skip_statement(p, &lines);
     }
   }
 
-  // Skips the rest of a statement (read again in pass 2), counting the lines of its comments.
-  bool skip_statement(std::size_t& p, int& line, std::size_t& line_start) const {
-    static constexpr auto kStop = [] {
-      std::array<bool, 256> t{};
-      t['\n'] = t[';'] = t['/'] = true;
-      return t;
-    }();
-    while (true) {
-      while (p < src_.size() && !kStop[static_cast<unsigned char>(src_[p])]) ++p;
-      if (p < src_.size() && src_[p] == '/' && at(p + 1) == '*') {
-        if (!skip_space(p, line, line_start)) return false;
-        continue;
-      }
-      if (p < src_.size() && src_[p] == '/' && at(p + 1) != '/') {
-        ++p;  // division
-        continue;
-      }
-      break;  // a newline, a comment to the newline, or the end of the text
-    }
-    to_newline(p);
-    return true;
-  }
-
-  // ---- symbols: open addressing; a slot holds the hash's high half and the index + 1, so a probe
-  // compares names only when the hashes agree (each name compared is a cache miss) ----
-  static std::uint64_t slot_value(std::uint64_t h, std::size_t k) { return (h & ~0xFFFFFFFFull) | (k + 1); }
-
-  int find(std::string_view name, std::uint64_t h) const {
-    std::size_t mask = slots_.size() - 1;
-    for (std::size_t i = static_cast<std::size_t>(h) & mask;; i = (i + 1) & mask) {
-      std::uint64_t v = slots_[i];
-      if (v == 0) return -1;
-      if ((v ^ h) >> 32) continue;
-      const FastSymbol& s = symbols_[(v & 0xFFFFFFFFu) - 1];
-      if (s.len == name.size() && same_name(s.name, name.data(), name.size()))
-        return static_cast<int>((v & 0xFFFFFFFFu) - 1);
-    }
-  }
-
-  // Pass 1 records names; they are indexed afterwards in one sweep that prefetches the slots a
-  // few names ahead, since nearly every slot touched is a cache miss. False on a name defined twice.
-  bool index_symbols() {
-    std::size_t n = symbols_.size(), size = 1024;
-    while (size < 2 * n) size *= 2;
-    slots_.assign(size, 0);
-    const std::size_t mask = size - 1;
-    constexpr std::size_t kAhead = 16;
-    std::array<std::uint64_t, kAhead> ahead{};
-    auto hash_of = [&](std::size_t k) { return name_hash(symbols_[k].name, symbols_[k].len); };
-    for (std::size_t k = 0; k < n && k < kAhead; ++k) {
-      ahead[k] = hash_of(k);
-      __builtin_prefetch(&slots_[ahead[k] & mask]);
-    }
-    for (std::size_t k = 0; k < n; ++k) {
-      std::uint64_t h = ahead[k % kAhead];
-      if (k + kAhead < n) {
-        ahead[k % kAhead] = hash_of(k + kAhead);
-        __builtin_prefetch(&slots_[ahead[k % kAhead] & mask]);
-      }
-      const FastSymbol& s = symbols_[k];
-      if (find({s.name, s.len}, h) >= 0) return false;  // redefined: left to the full assembler
-      std::size_t i = static_cast<std::size_t>(h) & mask;
-      while (slots_[i] != 0) i = (i + 1) & mask;
-      slots_[i] = slot_value(h, k);
-    }
-    return true;
-  }
-
-  bool define(std::string_view name, SymbolKind kind, int line, int col, std::int64_t value, std::uint32_t expr) {
-    if (symbols_.size() >= kMaxSymbols) return false;
-    symbols_.push_back(FastSymbol{name.data(), static_cast<std::uint32_t>(name.size()), kind,
-                                  kind == SymbolKind::Label ? State::Done : State::Todo, line, col, expr, value});
-    return true;
+  bool define(std::string_view name, SymbolKind kind, int line, std::int64_t value, std::uint32_t expr) {
+    return symbols_.record(FastSymbol{name.data(), value, static_cast<std::uint32_t>(name.size()), expr, line, kind,
+                                      kind == SymbolKind::Label ? FastState::Done : FastState::Todo});
   }
 
   // The value of symbol k; a constant is evaluated from its text the first time.
   bool symbol_value(int k, int depth, std::int64_t& v) {
-    FastSymbol& s = symbols_[static_cast<std::size_t>(k)];
-    if (s.state == State::Done) {
+    FastSymbol& s = symbols_.all()[static_cast<std::size_t>(k)];
+    if (s.state == FastState::Done) {
       v = s.value;
       return true;
     }
-    if (s.state == State::Busy || depth > kMaxFastDepth) return false;  // a cycle, or very deep
-    s.state = State::Busy;
-    std::size_t p = s.expr;
-    if (!skip_space(p) || at_end(p) || !expr(p, 1, depth + 1, v) || !skip_space(p) || !at_end(p)) return false;
-    FastSymbol& again = symbols_[static_cast<std::size_t>(k)];
+    if (s.state == FastState::Busy || depth > kMaxFastDepth) return false;  // a cycle, or very deep
+    s.state = FastState::Busy;
+    const char* p = text_.begin() + s.expr;
+    if (!text_.skip_space(p) || text_.at_end(p) || !expr(p, 1, depth + 1, v) || !text_.skip_space(p) ||
+        !text_.at_end(p))
+      return false;
+    FastSymbol& again = symbols_.all()[static_cast<std::size_t>(k)];
     again.value = v;
-    again.state = State::Done;
+    again.state = FastState::Done;
     return true;
   }
 
-  // ---- expressions, evaluated as they are read: C precedence, 64-bit wrapping (expr.cpp) ----
-  static int precedence(char c, char next, int& len) {
-    len = 1;
-    switch (c) {
-      case '|': return 1;
-      case '^': return 2;
-      case '&': return 3;
-      case '<':
-      case '>': len = 2; return next == c ? 4 : 0;
-      case '+':
-      case '-': return 5;
-      case '*':
-      case '/':
-      case '%': return 6;
-      default: return 0;
-    }
-  }
-
-  bool expr(std::size_t& p, int min_prec, int depth, std::int64_t& v) {
+  // ---- expressions, evaluated as they are read: 64-bit wrapping, as expr.cpp ----
+  bool expr(const char*& p, int min_prec, int depth, std::int64_t& v) {
     if (!unary(p, depth, v)) return false;
-    while (true) {
-      if (!skip_space(p)) return false;
-      if (at_end(p)) return true;
-      int len = 0;
-      char op = src_[p];
-      int prec = precedence(op, at(p + 1), len);
+    for (;;) {
+      if (!text_.skip_space(p)) return false;
+      const char op = *p;
+      int prec = kPrecedence[static_cast<unsigned char>(op)];
       if (prec < min_prec || prec == 0) return true;
-      p += static_cast<std::size_t>(len);
+      if (op == '/' && p[1] == '/') return true;  // a comment
+      if (prec == 4 && p[1] != op) return false;  // a lone '<' or '>'
+      p += prec == 4 ? 2 : 1;
       std::int64_t rhs = 0;
-      if (!expr(p, prec + 1, depth + 1, rhs) || !apply(op, v, rhs)) return false;
+      if (depth >= kMaxFastDepth || !expr(p, prec + 1, depth + 1, rhs) || !apply(op, v, rhs)) return false;
     }
   }
 
@@ -366,71 +202,89 @@ class FastAssembler {
     }
   }
 
-  bool number(std::size_t& p, std::size_t prefix, int base, std::int64_t& v) const {
-    DigitsRead r = read_digits(src_, p + prefix, base);
-    if (r.status != DigitsRead::Ok || non_ascii(at(r.end))) return false;
-    p = r.end;
+  bool number(const char*& p, std::size_t prefix, int base, std::int64_t& v) const {
+    std::size_t at = static_cast<std::size_t>(p - text_.begin());
+    DigitsRead r = read_digits(std::string_view(text_.begin(), static_cast<std::size_t>(text_.end() - text_.begin())),
+                               at + prefix, base);
+    const char* end = text_.begin() + r.end;
+    if (r.status != DigitsRead::Ok || non_ascii(*end)) return false;
+    p = end;
     v = r.value;
     return true;
   }
 
-  bool unary(std::size_t& p, int depth, std::int64_t& v) {
-    if (depth > kMaxFastDepth || !skip_space(p)) return false;
-    char c = at(p);
-    if (c == '-' || c == '+' || c == '~') {
-      ++p;
-      if (!unary(p, depth + 1, v)) return false;
-      auto u = static_cast<std::uint64_t>(v);
-      if (c == '-') v = static_cast<std::int64_t>(0 - u);
-      if (c == '~') v = static_cast<std::int64_t>(~u);
-      return true;
-    }
-    if (c == '(') {
-      ++p;
-      if (!expr(p, 1, depth + 1, v) || !skip_space(p) || at(p) != ')') return false;
-      ++p;
-      return true;
-    }
+  bool unary(const char*& p, int depth, std::int64_t& v) {
+    if (!text_.skip_space(p)) return false;
+    const char c = *p;
     if (char_class(c) == kDigit) {
-      char x = at(p + 1);
-      if (c == '0' && (x == 'x' || x == 'X')) return number(p, 2, 16, v);
-      if (c == '0' && (x == 'b' || x == 'B')) return number(p, 2, 2, v);
+      // Most numbers are short decimals: read them here, the rest as the lexer does.
+      if (c != '0' || char_class(p[1]) == kDigit || !ident_char(p[1])) {
+        std::int64_t n = 0;
+        const char* q = p;
+        while (char_class(*q) == kDigit && q - p < 18) n = n * 10 + (*q++ - '0');
+        if (!ident_char(*q) && !non_ascii(*q)) {
+          p = q;
+          v = n;
+          return true;
+        }
+      }
+      if (c == '0' && (p[1] == 'x' || p[1] == 'X')) return number(p, 2, 16, v);
+      if (c == '0' && (p[1] == 'b' || p[1] == 'B')) return number(p, 2, 2, v);
       return number(p, 0, 10, v);
     }
-    if (c == '$') return number(p, 1, 16, v);
-    if (c == '%') return (at(p + 1) == '0' || at(p + 1) == '1') && number(p, 1, 2, v);
     std::string_view name;
-    if (!ident(p, name)) return false;
-    int k = find(name, name_hash(name.data(), name.size()));
-    return k >= 0 && symbol_value(k, depth, v);
+    if (FastText::ident(p, name)) {
+      int k = symbols_.find(name);
+      return k >= 0 && symbol_value(k, depth, v);
+    }
+    switch (c) {
+      case '-':
+      case '+':
+      case '~': {
+        ++p;
+        if (depth >= kMaxFastDepth || !unary(p, depth + 1, v)) return false;
+        auto u = static_cast<std::uint64_t>(v);
+        if (c == '-') v = static_cast<std::int64_t>(0 - u);
+        if (c == '~') v = static_cast<std::int64_t>(~u);
+        return true;
+      }
+      case '(':
+        ++p;
+        if (depth >= kMaxFastDepth || !expr(p, 1, depth + 1, v) || !text_.skip_space(p) || *p != ')') return false;
+        ++p;
+        return true;
+      case '$': return number(p, 1, 16, v);
+      case '%': return (p[1] == '0' || p[1] == '1') && number(p, 1, 2, v);
+      default: return false;
+    }
   }
 
-  // ---- pass 2: one instruction's operands ----
-  bool encode(const OpInfo& op, std::size_t p, Instruction& ins) {
+  // ---- pass 2: one instruction's operands, from just after its mnemonic ----
+  bool encode(const OpInfo& op, const char* p, Instruction& ins) {
     for (std::size_t k = 0; k < op.operands.size(); ++k) {
       const OperandSpec& spec = op.operands[k];
-      if (!skip_space(p)) return false;
+      if (!text_.skip_space(p)) return false;
       if (k > 0) {
-        if (at(p) != ',') return false;
+        if (*p != ',') return false;
         ++p;
-        if (!skip_space(p)) return false;
+        if (!text_.skip_space(p)) return false;
       }
       // After the mnemonic a '%' is the modulo operator to the full lexer, not a binary number.
-      if (at_end(p) || (k == 0 && at(p) == '%')) return false;
+      if (text_.at_end(p) || (k == 0 && *p == '%')) return false;
       std::int64_t v = 0;
       bool keyword = false;
-      if (spec.keywords != KwSet::None && ident_start(at(p))) {
-        std::size_t q = p;
+      if (spec.keywords != KwSet::None && ident_start(*p)) {
+        const char* q = p;
         std::string_view word;
-        if (!ident(q, word)) return false;
-        std::size_t after = q;
-        if (!skip_space(after)) return false;
-        if (at_end(after) || at(after) == ',') {  // a lone name: a keyword, else a known symbol
+        if (!FastText::ident(q, word)) return false;
+        const char* after = q;
+        if (!text_.skip_space(after)) return false;
+        if (text_.at_end(after) || *after == ',') {  // a lone name: a keyword, else a known symbol
           if (auto kw = keyword_value(spec.keywords, word)) {
             v = *kw;
             keyword = true;
             p = q;
-          } else if (find(word, name_hash(word.data(), word.size())) < 0) {
+          } else if (symbols_.find(word) < 0) {
             return false;  // an unknown keyword
           }
         }
@@ -442,16 +296,16 @@ class FastAssembler {
         return false;  // warned about by the full assembler
       put_field(ins, spec.field, v);
     }
-    return skip_space(p) && at_end(p);
+    return text_.skip_space(p) && text_.at_end(p);
   }
 
-  std::string_view src_;
-  int file_;
+  const SourceFile& file_;
+  FastText text_;
+  int index_;
   const Profile& profile_;
   AsmResult& out_;
   std::vector<std::uint32_t> operands_;  // per instruction: where its operands start
-  std::vector<FastSymbol> symbols_;      // in definition order
-  std::vector<std::uint64_t> slots_;
+  FastSymbols symbols_;
   std::array<const OpInfo*, 256> ops_{};  // op_info(), without its lookup on every instruction
 };
 
@@ -469,9 +323,9 @@ bool fast_assemble(const std::string& path, const AsmOptions& options, std::stri
   const Profile& profile = options.profile ? *options.profile : generic_profile();
   bool done = false;
   if (!first_long_line(added)) {
-    FastAssembler fa(added.text, idx, profile, out);
+    FastAssembler fa(added, idx, profile, out);
     fa.reserve(added.line_starts.size());
-    done = fa.pass1() && fa.pass2() && fa.finish(options, added.name);
+    done = fa.pass1() && fa.pass2() && fa.finish(options);
   }
   if (done) return true;
   text = std::move(out.sources.files[static_cast<std::size_t>(idx)].text);

@@ -321,6 +321,7 @@ int main(int argc, char** argv) {
     return 0;
   }
 
+  opts.symbols = format == tmcl::OutputFormat::Symbols || !map_file.empty();  // otherwise never printed
   tmcl::AsmResult result = tmcl::assemble(files, opts, reader);
   std::string text = result.diags.render(result.sources);
   std::fputs(text.c_str(), stderr);

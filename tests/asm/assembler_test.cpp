@@ -176,3 +176,24 @@ TEST(deep_input_is_an_error_not_a_crash) {
   auto r = a.src(chain);
   CHECK(!r.ok());
 }
+
+// Without AsmOptions::symbols the symbol list stays empty, on both paths, and nothing else
+// changes: unused constants are still evaluated and their errors reported.
+TEST(symbols_can_be_left_out) {
+  for (bool fast : {true, false}) {
+    for (const char* text : {"X = 3\nL: SAP X, 0, L\n", "#include \"none.tmc\"\n", "X = 3\nY = 1 / 0\nSTOP\n"}) {
+      Asm with, without;
+      with.opts.fast_path = without.opts.fast_path = fast;
+      without.opts.symbols = false;
+      auto a = with.src(text);
+      auto b = without.src(text);
+      CHECK(b.symbols.empty());
+      CHECK_EQ(a.ok(), b.ok());
+      CHECK_EQ(a.diags.render(a.sources), b.diags.render(b.sources));
+      CHECK(a.program == b.program);
+    }
+  }
+  Asm a;
+  a.opts.symbols = false;
+  CHECK(!a.src("X = 3\nY = 1 / 0\nSTOP\n").ok());
+}

@@ -62,6 +62,7 @@ struct AsmOptions {
   bool warnings_are_errors = false;             // -Werror
   bool append_stop = true;                      // append STOP unless the program ends in one
   bool relocatable = false;                     // -c: one source file into an object (AsmResult::object)
+  bool symbols = true;     // fill AsmResult::symbols (a tool that prints none skips the work)
   bool fast_path = true;  // try the fast path first (same result; tests turn it off to compare)
 };
 
@@ -93,6 +94,7 @@ struct AsmResult {
   std::vector<Instruction> program;
   std::vector<LineInfo> lines;      // one per instruction; file -1 for the appended STOP
   std::vector<Symbol> symbols;      // labels and constants of every unit, in definition order
+                                    // (empty unless AsmOptions::symbols)
   std::vector<LinkedInput> inputs;  // in address order
   std::vector<std::string> unused_members;  // library members not linked
   const Profile* profile = nullptr; // the target: -t, else the one the objects were built for

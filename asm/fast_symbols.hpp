@@ -1,0 +1,116 @@
+// The fast path's labels and constants (fast_path.cpp): recorded in definition order during
+// pass 1, then indexed in one sweep. Names are compared case-insensitively, as everywhere in
+// the assembler (docs/language.md).
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <cstring>
+#include <string_view>
+#include <vector>
+
+#include "internal.hpp"
+
+namespace tmcl::detail {
+
+enum class FastState : std::uint8_t { Todo, Busy, Done };
+
+struct FastSymbol {
+  const char* name;     // in the source text
+  std::int64_t value;   // labels: the address; constants once Done
+  std::uint32_t len;
+  std::uint32_t expr;   // constants: offset of the value's expression in the text
+  int line;
+  SymbolKind kind;
+  FastState state;
+};
+
+class FastSymbols {
+ public:
+  std::vector<FastSymbol>& all() { return symbols_; }
+
+  // False past the unit's limit on names (the full assembler reports it).
+  bool record(FastSymbol s) {
+    if (symbols_.size() >= kMaxSymbols) return false;
+    symbols_.push_back(s);
+    return true;
+  }
+
+  // Indexes every recorded name in one sweep that prefetches the slots a few names ahead, since
+  // nearly every slot touched is a cache miss. False when a name is defined twice.
+  bool index() {
+    std::size_t n = symbols_.size(), size = 1024;
+    while (size < 2 * n) size *= 2;
+    slots_.assign(size, 0);
+    const std::size_t mask = size - 1;
+    constexpr std::size_t kAhead = 16;
+    std::array<std::uint64_t, kAhead> ahead{};
+    auto hash_of = [&](std::size_t k) { return hash(symbols_[k].name, symbols_[k].len); };
+    for (std::size_t k = 0; k < n && k < kAhead; ++k) {
+      ahead[k] = hash_of(k);
+      __builtin_prefetch(&slots_[ahead[k] & mask]);
+    }
+    for (std::size_t k = 0; k < n; ++k) {
+      std::uint64_t h = ahead[k % kAhead];
+      if (k + kAhead < n) {
+        ahead[k % kAhead] = hash_of(k + kAhead);
+        __builtin_prefetch(&slots_[ahead[k % kAhead] & mask]);
+      }
+      const FastSymbol& s = symbols_[k];
+      if (find(std::string_view(s.name, s.len), h) >= 0) return false;
+      std::size_t i = static_cast<std::size_t>(h) & mask;
+      while (slots_[i] != 0) i = (i + 1) & mask;
+      slots_[i] = (h & ~0xFFFFFFFFull) | (k + 1);
+    }
+    return true;
+  }
+
+  // The index of `name`, or -1.
+  int find(std::string_view name) const { return find(name, hash(name.data(), name.size())); }
+
+ private:
+  // Identifier characters differ only in bit 5 between the cases, and no two other identifier
+  // characters differ only there, so masking it compares and hashes names case-insensitively.
+  static constexpr std::uint64_t kFold = 0xDFDFDFDFDFDFDFDFull;
+
+  static std::uint64_t hash(const char* s, std::size_t n) {
+    std::uint64_t h = n * 0x9E3779B97F4A7C15ull;
+    while (n > 0) {
+      std::uint64_t w = 0;
+      std::size_t k = n < 8 ? n : 8;
+      std::memcpy(&w, s, k);
+      h = (h ^ (w & kFold)) * 0xFF51AFD7ED558CCDull;
+      h ^= h >> 32;
+      s += k;
+      n -= k;
+    }
+    h *= 0xC4CEB9FE1A85EC53ull;  // the table indexes with the low bits: mix the high ones down
+    return h ^ (h >> 29);
+  }
+
+  static bool same_name(const char* a, const char* b, std::size_t n) {
+    for (std::size_t i = 0; i < n; ++i)
+      if ((a[i] ^ b[i]) & 0xDF) return false;
+    return true;
+  }
+
+  // A slot holds the hash's high half and the index + 1, so a probe compares names only when
+  // the hashes agree (each name compared is another cache miss).
+  int find(std::string_view name, std::uint64_t h) const {
+    if (slots_.empty()) return -1;
+    const std::size_t mask = slots_.size() - 1;
+    for (std::size_t i = static_cast<std::size_t>(h) & mask;; i = (i + 1) & mask) {
+      std::uint64_t v = slots_[i];
+      if (v == 0) return -1;
+      if ((v ^ h) >> 32) continue;
+      std::size_t k = (v & 0xFFFFFFFFu) - 1;
+      const FastSymbol& s = symbols_[k];
+      if (s.len == name.size() && same_name(s.name, name.data(), name.size())) return static_cast<int>(k);
+    }
+  }
+
+  std::vector<FastSymbol> symbols_;  // in definition order
+  std::vector<std::uint64_t> slots_;
+};
+
+}  // namespace tmcl::detail
