@@ -1,6 +1,8 @@
 // Collecting and rendering diagnostics: location, source line, caret, include chain, notes.
 #include "tmcl/asm/diag.hpp"
 
+#include "tmcl/fileio.hpp"
+
 #include <algorithm>
 #include <cctype>
 #include <cstdint>
@@ -23,6 +25,7 @@ int SourceSet::add(SourceFile f) {
   // Reserving for lines of 8 bytes on average saves regrowing (which touches twice the memory)
   // and costs nothing where the guess is too high: untouched memory is never faulted in.
   f.line_starts.reserve(f.text.size() / 8 + 16);
+  prefer_huge_pages(f.line_starts.data(), f.line_starts.capacity() * sizeof(std::uint32_t));
   f.line_starts.push_back(0);
   for (const char* p = f.text.data(); (p = static_cast<const char*>(std::memchr(p, '\n', static_cast<std::size_t>(f.text.data() + f.text.size() - p)))) != nullptr;) {
     ++p;

@@ -12,6 +12,7 @@
 #include "fast_symbols.hpp"
 #include "fast_text.hpp"
 #include "internal.hpp"
+#include "tmcl/fileio.hpp"
 
 namespace tmcl::detail {
 namespace {
@@ -44,6 +45,15 @@ class FastAssembler {
     out_.lines.reserve(lines + 1);
     operands_.reserve(lines);
     symbols_.all().reserve(lines / 2);
+    huge(out_.program);
+    huge(out_.lines);
+    huge(operands_);
+    huge(symbols_.all());
+  }
+
+  template <typename T>
+  static void huge(const std::vector<T>& v) {
+    prefer_huge_pages(v.data(), v.capacity() * sizeof(T));
   }
 
   bool pass1() {
@@ -90,7 +100,10 @@ class FastAssembler {
     }
     if (profile_.program_memory > 0 && total > profile_.program_memory) return false;
     auto& symbols = symbols_.all();
-    if (options.symbols) out_.symbols.reserve(symbols.size());
+    if (options.symbols) {
+      out_.symbols.reserve(symbols.size());
+      huge(out_.symbols);
+    }
     for (std::size_t k = 0; k < symbols.size(); ++k) {
       std::int64_t v = 0;
       if (!symbol_value(static_cast<int>(k), 0, v)) return false;  // unused constants are checked too

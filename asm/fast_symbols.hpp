@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "internal.hpp"
+#include "tmcl/fileio.hpp"
 
 namespace tmcl::detail {
 
@@ -41,6 +42,8 @@ class FastSymbols {
   bool index() {
     std::size_t n = symbols_.size(), size = 1024;
     while (size < 2 * n) size *= 2;
+    slots_.reserve(size);
+    prefer_huge_pages(slots_.data(), size * sizeof(std::uint64_t));
     slots_.assign(size, 0);
     const std::size_t mask = size - 1;
     constexpr std::size_t kAhead = 16;

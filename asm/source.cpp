@@ -8,6 +8,7 @@
 #include <sys/stat.h>
 
 #include "internal.hpp"
+#include "tmcl/fileio.hpp"
 
 namespace tmcl {
 
@@ -35,6 +36,8 @@ bool DiskReader::read(const std::string& path, std::string& out) {
   out.clear();
   std::size_t expected = S_ISREG(st.st_mode) ? static_cast<std::size_t>(st.st_size) : 0;
   if (expected > detail::kMaxFileBytes) expected = detail::kMaxFileBytes + 1;  // the caller reports the limit
+  out.reserve(expected);
+  prefer_huge_pages(out.data(), out.capacity());
   out.resize(expected);
   std::size_t got = expected > 0 ? std::fread(out.data(), 1, expected, f) : 0;
   out.resize(got);

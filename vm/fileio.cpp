@@ -1,10 +1,12 @@
-// Whole-file reading and crash-safe writing (temporary file + rename, fsync on request).
+// Whole-file reading and crash-safe writing (temporary file + rename, fsync on request), and
+// huge pages for large buffers.
 #include "tmcl/fileio.hpp"
 
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
 #include <fcntl.h>
+#include <sys/mman.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
@@ -101,6 +103,19 @@ bool write_file_atomic(const std::string& path, const std::vector<std::uint8_t>&
     return false;
   }
   return true;
+}
+
+void prefer_huge_pages(const void* data, std::size_t bytes) {
+#ifdef MADV_HUGEPAGE
+  constexpr std::uintptr_t kHuge = 2u << 20;
+  if (bytes < 2 * kHuge) return;  // smaller buffers hold at most one huge page
+  auto begin = (reinterpret_cast<std::uintptr_t>(data) + kHuge - 1) & ~(kHuge - 1);
+  auto end = (reinterpret_cast<std::uintptr_t>(data) + bytes) & ~(kHuge - 1);
+  if (end > begin) ::madvise(reinterpret_cast<void*>(begin), end - begin, MADV_HUGEPAGE);  // advice: failure is harmless
+#else
+  (void)data;
+  (void)bytes;
+#endif
 }
 
 }  // namespace tmcl

@@ -1,6 +1,8 @@
 // Reading and writing TMCL-IDE .bin images and building 9-byte datagrams.
 #include "tmcl/image.hpp"
 
+#include "tmcl/fileio.hpp"
+
 #include <cstdio>
 
 namespace tmcl {
@@ -20,6 +22,7 @@ std::uint8_t sum8(const std::uint8_t* bytes, std::size_t n) {
 std::vector<std::uint8_t> write_bin(const std::vector<Instruction>& program) {
   std::vector<std::uint8_t> out;
   out.reserve(program.size() * 8);
+  prefer_huge_pages(out.data(), out.capacity());
   for (const auto& ins : program) {
     auto b = encode7(ins);
     out.insert(out.end(), b.begin(), b.end());

@@ -1,4 +1,5 @@
-// Whole-file reading and crash-safe writing shared by the tools.
+// Whole-file reading and crash-safe writing shared by the tools, and how their large buffers
+// are backed.
 #pragma once
 
 #include <cstdint>
@@ -22,5 +23,11 @@ bool read_file(const std::string& path, std::vector<std::uint8_t>& out, std::str
 // "-" = standard output; an existing device or pipe is written into directly.
 bool write_file_atomic(const std::string& path, const std::vector<std::uint8_t>& data, std::string& error,
                        bool durable = false);
+
+// Asks the kernel to back the buffer [data, data + bytes) with huge pages where it can (Linux
+// transparent huge pages; elsewhere nothing). Call it on a freshly reserved buffer before it is
+// first written: a program of a million lines touches tens of megabytes once, and faulting them
+// in 4 KiB at a time costs more than assembling them on a virtual machine.
+void prefer_huge_pages(const void* data, std::size_t bytes);
 
 }  // namespace tmcl
