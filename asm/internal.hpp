@@ -174,6 +174,17 @@ std::string upper(std::string_view s);
 
 // Drops a UTF-8 byte-order mark (Windows editors write one); true when there was one.
 bool drop_bom(std::string& text);
+// An #include'd file as found: its text, the path it was read from, and the key that tells
+// whether two includes name the same file (for "once only" and cycles).
+struct FoundInclude {
+  std::string text, path, key;
+};
+// Searches for `#include name` as the assembler does: an absolute name as it is; otherwise the
+// including file's folder, then the -I folders in order, then the bundled include files (names
+// compared case-insensitively).
+bool find_include(const std::string& name, const std::string& including_path, const AsmOptions& options,
+                  FileReader& reader, FoundInclude& found);
+std::string include_key(const std::string& path);
 // The first line of `f` longer than kMaxLineBytes (1-based), or 0 when there is none.
 int first_long_line(const SourceFile& f);
 

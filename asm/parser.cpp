@@ -3,7 +3,6 @@
 // an error the rest of the line is skipped (panic mode), and an instruction that fails to parse
 // still takes its address so that later labels stay where the programmer expects them.
 #include <algorithm>
-#include <filesystem>
 
 #include "internal.hpp"
 
@@ -84,7 +83,7 @@ class Parser {
     int idx = add_source(std::move(f));
     if (idx < 0) return;
     unit_.root_file = idx;
-    std::string key = key_for(path);
+    std::string key = include_key(path);
     included_.push_back(key);
     parse_file(idx, 0, key);
   }
@@ -162,10 +161,6 @@ class Parser {
     return idx;
   }
 
-  std::string key_for(const std::string& path) const {
-    return std::filesystem::path(path).lexically_normal().generic_string();
-  }
-
   void include(int depth) {
     advance();
     if (cur().kind != Tok::IncludeName || cur().text.empty()) return fail("#include needs a file name");
@@ -178,33 +173,8 @@ class Parser {
       diags_.error(loc(nt), "includes nested more than " + std::to_string(kMaxIncludeDepth) + " deep");
       return;
     }
-    std::string text, path, key;
-    bool found = false;
-    auto try_path = [&](const std::string& p) {
-      if (found || !reader_.read(p, text)) return;
-      found = true;
-      path = p;
-      key = key_for(p);
-    };
-    namespace fs = std::filesystem;
-    const std::string& here = sources_.files[static_cast<std::size_t>(file_)].path;
-    if (fs::path(name).is_absolute()) {
-      try_path(name);
-    } else {
-      if (here.rfind("<bundled>/", 0) != 0 && here != "-") try_path((fs::path(here).parent_path() / name).string());
-      for (const auto& dirp : opts_.include_dirs) try_path((fs::path(dirp) / name).string());
-      if (!found) {
-        for (const auto& [bname, btext] : bundled_includes()) {
-          if (upper(bname) == upper(name)) {
-            found = true;
-            text = std::string(btext);
-            path = "<bundled>/" + bname;
-            key = path;
-            break;
-          }
-        }
-      }
-    }
+    FoundInclude inc;
+    bool found = find_include(name, sources_.files[static_cast<std::size_t>(file_)].path, opts_, reader_, inc);
     if (!found) {
       auto& d = diags_.error(loc(nt), "cannot find include file '" + name + "'");
       std::vector<std::string_view> names;
@@ -213,6 +183,7 @@ class Parser {
       if (!hint.empty()) diags_.note(d, loc(nt), "did you mean '" + hint + "'?");
       return;
     }
+    const std::string& key = inc.key;
     if (std::find(stack_.begin(), stack_.end(), key) != stack_.end()) {
       std::string chain;
       auto it = std::find(stack_.begin(), stack_.end(), key);
@@ -223,14 +194,14 @@ class Parser {
     }
     if (std::find(included_.begin(), included_.end(), key) != included_.end()) return;  // once only
     included_.push_back(key);
-    if (text.size() > kMaxFileBytes) {
-      diags_.error(loc(nt), "'" + path + "' is larger than the limit of " + std::to_string(kMaxFileBytes >> 20) + " MiB");
+    if (inc.text.size() > kMaxFileBytes) {
+      diags_.error(loc(nt), "'" + inc.path + "' is larger than the limit of " + std::to_string(kMaxFileBytes >> 20) + " MiB");
       return;
     }
     SourceFile f;
-    f.name = path.rfind("<bundled>/", 0) == 0 ? path : key;
-    f.path = path;
-    f.text = std::move(text);
+    f.name = inc.path.rfind("<bundled>/", 0) == 0 ? inc.path : key;
+    f.path = inc.path;
+    f.text = std::move(inc.text);
     f.includer = file_;
     f.include_line = nt.line;
     int idx = add_source(std::move(f));

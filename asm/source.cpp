@@ -3,6 +3,7 @@
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
+#include <filesystem>
 #include <iostream>
 #include <iterator>
 #include <sys/stat.h>
@@ -56,6 +57,36 @@ bool drop_bom(std::string& text) {
   if (text.rfind("\xEF\xBB\xBF", 0) != 0) return false;
   text.erase(0, 3);
   return true;
+}
+
+std::string include_key(const std::string& path) {
+  return std::filesystem::path(path).lexically_normal().generic_string();
+}
+
+bool find_include(const std::string& name, const std::string& including_path, const AsmOptions& options,
+                  FileReader& reader, FoundInclude& found) {
+  namespace fs = std::filesystem;
+  auto try_path = [&](const std::string& p) {
+    if (!reader.read(p, found.text)) return false;
+    found.path = p;
+    found.key = include_key(p);
+    return true;
+  };
+  if (fs::path(name).is_absolute()) return try_path(name);
+  if (including_path.rfind("<bundled>/", 0) != 0 && including_path != "-" &&
+      try_path((fs::path(including_path).parent_path() / name).string()))
+    return true;
+  for (const auto& dir : options.include_dirs)
+    if (try_path((fs::path(dir) / name).string())) return true;
+  for (const auto& [bname, btext] : bundled_includes()) {
+    if (upper(bname) == upper(name)) {
+      found.text = std::string(btext);
+      found.path = "<bundled>/" + bname;
+      found.key = found.path;
+      return true;
+    }
+  }
+  return false;
 }
 
 int first_long_line(const SourceFile& f) {
