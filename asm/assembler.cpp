@@ -147,12 +147,12 @@ AsmResult assemble(const std::vector<std::string>& files, const AsmOptions& opti
   // one well-formed source: the fast path, unless it gives up (fast_path.cpp)
   std::string first;
   bool preread = false;
-  if (options.fast_path && files.size() == 1 && !reloc && options.defines.empty()) {
+  if (options.fast_path && files.size() == 1 && !reloc) {
     preread = reader.read(files[0], first);
     if (preread && sniff_file(first) == FileKind::Source) {
       AsmResult fast;
       fast.diags.set_warnings_are_errors(options.warnings_are_errors);
-      if (fast_assemble(files[0], options, first, fast)) return fast;
+      if (fast_assemble(files[0], options, reader, first, fast)) return fast;
     }
   }
 

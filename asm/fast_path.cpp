@@ -3,12 +3,17 @@
 // instruction; then the names are indexed; pass 2 evaluates the operands and encodes them.
 // Constants are evaluated from their text on first use.
 //
-// It accepts only what it is sure the full assembler (lexer, parser, resolver, encoder) accepts
-// without any diagnostic, and then gives the same result. Anything else -- a directive, .raw,
-// -D, a block comment it cannot close, any error or warning, an unusually deep expression --
-// makes it give up, and the full assembler, the reference, starts again from the same text.
+// It takes one source with its #includes and -D definitions, and accepts only what it is sure
+// the full assembler (lexer, parser, resolver, encoder) accepts without any diagnostic, and then
+// gives the same result. Anything else -- another directive, .raw, a block comment it cannot
+// close, any error or warning, an unusually deep expression -- makes it give up, and the full
+// assembler, the reference, starts again from the same text.
 // Giving up is always safe, so every doubtful case gives up. tests/asm/fast_path_test checks
 // that both paths agree on every source in the repository and on thousands of mutations.
+#include <algorithm>
+#include <cctype>
+#include <deque>
+
 #include "fast_symbols.hpp"
 #include "fast_text.hpp"
 #include "internal.hpp"
@@ -34,9 +39,23 @@ constexpr auto kPrecedence = [] {
 
 class FastAssembler {
  public:
-  FastAssembler(const SourceFile& file, int index, const Profile& profile, AsmResult& out)
-      : file_(file), text_(file.text), index_(index), profile_(profile), out_(out) {
+  FastAssembler(const AsmOptions& options, FileReader& reader, const Profile& profile, AsmResult& out)
+      : options_(options), reader_(reader), profile_(profile), out_(out) {
     for (const auto& op : all_ops()) ops_[op.code] = &op;
+  }
+
+  // A source file added to the result: false when the fast path cannot take it.
+  bool add_text(int index) {
+    if (index > 0xFFFF) return false;  // FastSymbol::file
+    texts_.resize(static_cast<std::size_t>(index) + 1, FastText(std::string_view()));
+    texts_[static_cast<std::size_t>(index)] = FastText(out_.sources.files[static_cast<std::size_t>(index)].text);
+    return true;
+  }
+
+  // -D NAME=VALUE, already added as source `index`: a constant whose value is that text.
+  bool define_command_line(const std::string& name, int index) {
+    return is_valid_name(name) && add_text(index) &&
+           define(name, SymbolKind::Constant, 0, index, 0, 0);
   }
 
   // Room for `lines` statements: reserving touches no memory, and regrowing would touch twice.
@@ -56,17 +75,27 @@ class FastAssembler {
     prefer_huge_pages(v.data(), v.capacity() * sizeof(T));
   }
 
-  bool pass1() {
-    LineCount lines{1, text_.begin()};
-    const char* p = text_.begin();
-    while (p < text_.end()) {
-      if (!statement_head(p, lines)) return false;
-      if (p < text_.end()) {  // at the newline that ends the statement
+  // Pass 1 over the root file and, where they are included, the files it includes.
+  bool pass1(int root) {
+    std::string key = include_key(out_.sources.files[static_cast<std::size_t>(root)].path);
+    included_.push_back(key);
+    return add_text(root) && scan_file(root, 0, key);
+  }
+
+  bool scan_file(int file, int depth, const std::string& key) {
+    stack_.push_back(key);
+    const FastText& t = texts_[static_cast<std::size_t>(file)];
+    LineCount lines{1, t.begin()};
+    const char* p = t.begin();
+    while (p < t.end()) {
+      if (!statement_head(file, depth, p, lines)) return false;
+      if (p < t.end()) {  // at the newline that ends the statement
         ++p;
         ++lines.line;
         lines.start = p;
       }
     }
+    stack_.pop_back();
     return true;
   }
 
@@ -77,7 +106,8 @@ class FastAssembler {
     for (std::size_t i = 0; i < operands_.size(); ++i) {
       Instruction& ins = out_.program[i];
       const OpInfo* info = ops_[ins.op];
-      if (!encode(*info, text_.begin() + operands_[i], ins)) return false;
+      const FastText& t = texts_[static_cast<std::size_t>(out_.lines[i].file)];
+      if (!encode(t, *info, t.begin() + operands_[i], ins)) return false;
       probe.op = info;
       check_against_profile(profile_, probe, ins, scratch);
       if (!scratch.all().empty()) return false;
@@ -85,7 +115,7 @@ class FastAssembler {
     return true;
   }
 
-  bool finish(const AsmOptions& options) {
+  bool finish(const AsmOptions& options, int root) {
     int size = static_cast<int>(out_.program.size());
     if (options.append_stop && (out_.program.empty() || out_.program.back().op != static_cast<std::uint8_t>(Op::STOP))) {
       out_.appended_stop = true;
@@ -99,6 +129,14 @@ class FastAssembler {
         if (spec.role == Role::Address && (ins.value < 0 || ins.value >= total)) return false;
     }
     if (profile_.program_memory > 0 && total > profile_.program_memory) return false;
+    for (const auto& r : symbols_.redefinitions()) {  // harmless only with the same value
+      std::int64_t first = 0, again = 0;
+      if (!symbol_value(static_cast<int>(r.first), 0, first) || !symbol_value(static_cast<int>(r.again), 0, again) ||
+          first != again)
+        return false;
+    }
+    const auto& redefined = symbols_.redefinitions();
+    auto next_redefined = redefined.begin();
     auto& symbols = symbols_.all();
     if (options.symbols) {
       out_.symbols.reserve(symbols.size());
@@ -107,52 +145,107 @@ class FastAssembler {
     for (std::size_t k = 0; k < symbols.size(); ++k) {
       std::int64_t v = 0;
       if (!symbol_value(static_cast<int>(k), 0, v)) return false;  // unused constants are checked too
-      if (!options.symbols) continue;
+      if (next_redefined != redefined.end() && next_redefined->again == k) {
+        ++next_redefined;  // not a symbol of its own
+        continue;
+      }
       const FastSymbol& s = symbols[k];
-      auto col = static_cast<int>(s.name - (text_.begin() + file_.line_starts[static_cast<std::size_t>(s.line - 1)])) + 1;
+      if (!options.symbols || s.line == 0) continue;  // -D definitions are not the program's
+      const SourceFile& f = out_.sources.files[s.file];
+      auto col = static_cast<int>(s.name - (f.text.data() + f.line_starts[static_cast<std::size_t>(s.line - 1)])) + 1;
       out_.symbols.push_back(
-          Symbol{std::string(s.name, s.len), s.kind, v, SourceLoc{index_, s.line, col, static_cast<int>(s.len)}, false});
+          Symbol{std::string(s.name, s.len), s.kind, v, SourceLoc{s.file, s.line, col, static_cast<int>(s.len)}, false});
     }
-    out_.inputs.push_back(LinkedInput{file_.name, 0, size, ""});
+    out_.inputs.push_back(LinkedInput{out_.sources.files[static_cast<std::size_t>(root)].name, 0, size, ""});
     out_.profile = &profile_;
     return true;
   }
 
  private:
-  // ---- pass 1: the labels of one statement, then a constant, an instruction or nothing ----
-  bool statement_head(const char*& p, LineCount& lines) {
+  // ---- pass 1: the labels of one statement, then a constant, an instruction, an #include or
+  // nothing; leaves p at the statement's newline ----
+  bool statement_head(int file, int depth, const char*& p, LineCount& lines) {
+    const FastText& t = texts_[static_cast<std::size_t>(file)];
     for (;;) {
-      if (!text_.skip_space(p, &lines)) return false;
-      if (text_.at_end(p)) {
-        p = text_.newline(p);
+      if (!t.skip_space(p, &lines)) return false;
+      if (t.at_end(p)) {
+        p = t.newline(p);
         return true;
       }
+      if (*p == '#') return include(file, depth, p, lines);
       const char* start = p;
       std::string_view name;
-      if (!FastText::ident(p, name)) return false;  // a directive, .raw, a stray character
+      if (!FastText::ident(p, name)) return false;  // .raw, a stray character
       int line = lines.line;
-      if (!text_.skip_space(p, &lines)) return false;
+      if (!t.skip_space(p, &lines)) return false;
       if (*p == ':') {
-        if (!define(name, SymbolKind::Label, line, static_cast<std::int64_t>(operands_.size()), 0)) return false;
+        if (!define(name, SymbolKind::Label, line, file, static_cast<std::int64_t>(operands_.size()), 0)) return false;
         ++p;
         continue;
       }
       if (*p == '=') {
         if (is_keyword(name)) return false;  // warned about by the full assembler
-        if (!define(name, SymbolKind::Constant, line, 0, static_cast<std::uint32_t>(p + 1 - text_.begin()))) return false;
-        return text_.skip_statement(p, &lines);
+        if (!define(name, SymbolKind::Constant, line, file, 0, static_cast<std::uint32_t>(p + 1 - t.begin())))
+          return false;
+        return t.skip_statement(p, &lines);
       }
       const OpInfo* op = op_by_mnemonic(name);
       if (!op) return false;
       out_.program.push_back(Instruction{op->code, 0, 0, 0});
-      out_.lines.push_back(LineInfo{index_, line});
-      operands_.push_back(static_cast<std::uint32_t>(start + name.size() - text_.begin()));
-      return text_.skip_statement(p, &lines);
+      out_.lines.push_back(LineInfo{file, line});
+      operands_.push_back(static_cast<std::uint32_t>(start + name.size() - t.begin()));
+      return t.skip_statement(p, &lines);
     }
   }
 
-  bool define(std::string_view name, SymbolKind kind, int line, std::int64_t value, std::uint32_t expr) {
-    return symbols_.record(FastSymbol{name.data(), value, static_cast<std::uint32_t>(name.size()), expr, line, kind,
+  // #include NAME, "NAME" or <NAME>, read as the lexer and parser read it; the file is scanned
+  // where it is included, once. Every other directive is left to the full assembler.
+  bool include(int file, int depth, const char*& p, LineCount& lines) {
+    const FastText& t = texts_[static_cast<std::size_t>(file)];
+    const char* word = p++;
+    while (ident_char(*p)) ++p;
+    if (upper(std::string_view(word, static_cast<std::size_t>(p - word))) != "#INCLUDE") return false;
+    while (*p == ' ' || *p == '\t') ++p;
+    const char* eol = t.newline(p);
+    std::string name;
+    if (*p == '"' || *p == '<') {
+      const void* close = std::memchr(p + 1, *p == '"' ? '"' : '>', static_cast<std::size_t>(eol - p - 1));
+      if (!close) return false;
+      name.assign(p + 1, static_cast<const char*>(close));
+      p = static_cast<const char*>(close) + 1;
+    } else {
+      const char* e = p;
+      while (e < eol && *e != ';' && !(e[0] == '/' && (e[1] == '/' || e[1] == '*'))) ++e;
+      const char* trimmed = e;
+      while (trimmed > p && std::isspace(static_cast<unsigned char>(trimmed[-1]))) --trimmed;
+      name.assign(p, trimmed);
+      p = e;
+    }
+    int line = lines.line;
+    if (name.empty() || depth + 1 > kMaxIncludeDepth || !t.skip_space(p, &lines) || !t.at_end(p)) return false;
+    p = t.newline(p);
+    FoundInclude inc;
+    if (!find_include(name, out_.sources.files[static_cast<std::size_t>(file)].path, options_, reader_, inc))
+      return false;
+    if (std::find(stack_.begin(), stack_.end(), inc.key) != stack_.end()) return false;  // a cycle
+    if (std::find(included_.begin(), included_.end(), inc.key) != included_.end()) return true;  // once only
+    included_.push_back(inc.key);
+    if (inc.text.size() > kMaxFileBytes) return false;
+    SourceFile f;
+    f.name = inc.path.rfind("<bundled>/", 0) == 0 ? inc.path : inc.key;
+    f.path = inc.path;
+    f.text = std::move(inc.text);
+    f.includer = file;
+    f.include_line = line;
+    drop_bom(f.text);
+    int index = out_.sources.add(std::move(f));
+    return !first_long_line(out_.sources.files[static_cast<std::size_t>(index)]) && add_text(index) &&
+           scan_file(index, depth + 1, inc.key);
+  }
+
+  bool define(std::string_view name, SymbolKind kind, int line, int file, std::int64_t value, std::uint32_t expr) {
+    return symbols_.record(FastSymbol{name.data(), value, static_cast<std::uint32_t>(name.size()), expr, line,
+                                      static_cast<std::uint16_t>(file), kind,
                                       kind == SymbolKind::Label ? FastState::Done : FastState::Todo});
   }
 
@@ -165,9 +258,9 @@ class FastAssembler {
     }
     if (s.state == FastState::Busy || depth > kMaxFastDepth) return false;  // a cycle, or very deep
     s.state = FastState::Busy;
-    const char* p = text_.begin() + s.expr;
-    if (!text_.skip_space(p) || text_.at_end(p) || !expr(p, 1, depth + 1, v) || !text_.skip_space(p) ||
-        !text_.at_end(p))
+    const FastText& t = texts_[s.file];
+    const char* p = t.begin() + s.expr;
+    if (!t.skip_space(p) || t.at_end(p) || !expr(t, p, 1, depth + 1, v) || !t.skip_space(p) || !t.at_end(p))
       return false;
     FastSymbol& again = symbols_.all()[static_cast<std::size_t>(k)];
     again.value = v;
@@ -176,10 +269,10 @@ class FastAssembler {
   }
 
   // ---- expressions, evaluated as they are read: 64-bit wrapping, as expr.cpp ----
-  bool expr(const char*& p, int min_prec, int depth, std::int64_t& v) {
-    if (!unary(p, depth, v)) return false;
+  bool expr(const FastText& t, const char*& p, int min_prec, int depth, std::int64_t& v) {
+    if (!unary(t, p, depth, v)) return false;
     for (;;) {
-      if (!text_.skip_space(p)) return false;
+      if (!t.skip_space(p)) return false;
       const char op = *p;
       int prec = kPrecedence[static_cast<unsigned char>(op)];
       if (prec < min_prec || prec == 0) return true;
@@ -187,7 +280,7 @@ class FastAssembler {
       if (prec == 4 && p[1] != op) return false;  // a lone '<' or '>'
       p += prec == 4 ? 2 : 1;
       std::int64_t rhs = 0;
-      if (depth >= kMaxFastDepth || !expr(p, prec + 1, depth + 1, rhs) || !apply(op, v, rhs)) return false;
+      if (depth >= kMaxFastDepth || !expr(t, p, prec + 1, depth + 1, rhs) || !apply(op, v, rhs)) return false;
     }
   }
 
@@ -215,19 +308,18 @@ class FastAssembler {
     }
   }
 
-  bool number(const char*& p, std::size_t prefix, int base, std::int64_t& v) const {
-    std::size_t at = static_cast<std::size_t>(p - text_.begin());
-    DigitsRead r = read_digits(std::string_view(text_.begin(), static_cast<std::size_t>(text_.end() - text_.begin())),
-                               at + prefix, base);
-    const char* end = text_.begin() + r.end;
+  static bool number(const FastText& t, const char*& p, std::size_t prefix, int base, std::int64_t& v) {
+    auto at = static_cast<std::size_t>(p - t.begin());
+    DigitsRead r = read_digits(std::string_view(t.begin(), static_cast<std::size_t>(t.end() - t.begin())), at + prefix, base);
+    const char* end = t.begin() + r.end;
     if (r.status != DigitsRead::Ok || non_ascii(*end)) return false;
     p = end;
     v = r.value;
     return true;
   }
 
-  bool unary(const char*& p, int depth, std::int64_t& v) {
-    if (!text_.skip_space(p)) return false;
+  bool unary(const FastText& t, const char*& p, int depth, std::int64_t& v) {
+    if (!t.skip_space(p)) return false;
     const char c = *p;
     if (char_class(c) == kDigit) {
       // Most numbers are short decimals: read them here, the rest as the lexer does.
@@ -241,9 +333,9 @@ class FastAssembler {
           return true;
         }
       }
-      if (c == '0' && (p[1] == 'x' || p[1] == 'X')) return number(p, 2, 16, v);
-      if (c == '0' && (p[1] == 'b' || p[1] == 'B')) return number(p, 2, 2, v);
-      return number(p, 0, 10, v);
+      if (c == '0' && (p[1] == 'x' || p[1] == 'X')) return number(t, p, 2, 16, v);
+      if (c == '0' && (p[1] == 'b' || p[1] == 'B')) return number(t, p, 2, 2, v);
+      return number(t, p, 0, 10, v);
     }
     std::string_view name;
     if (FastText::ident(p, name)) {
@@ -255,7 +347,7 @@ class FastAssembler {
       case '+':
       case '~': {
         ++p;
-        if (depth >= kMaxFastDepth || !unary(p, depth + 1, v)) return false;
+        if (depth >= kMaxFastDepth || !unary(t, p, depth + 1, v)) return false;
         auto u = static_cast<std::uint64_t>(v);
         if (c == '-') v = static_cast<std::int64_t>(0 - u);
         if (c == '~') v = static_cast<std::int64_t>(~u);
@@ -263,27 +355,27 @@ class FastAssembler {
       }
       case '(':
         ++p;
-        if (depth >= kMaxFastDepth || !expr(p, 1, depth + 1, v) || !text_.skip_space(p) || *p != ')') return false;
+        if (depth >= kMaxFastDepth || !expr(t, p, 1, depth + 1, v) || !t.skip_space(p) || *p != ')') return false;
         ++p;
         return true;
-      case '$': return number(p, 1, 16, v);
-      case '%': return (p[1] == '0' || p[1] == '1') && number(p, 1, 2, v);
+      case '$': return number(t, p, 1, 16, v);
+      case '%': return (p[1] == '0' || p[1] == '1') && number(t, p, 1, 2, v);
       default: return false;
     }
   }
 
   // ---- pass 2: one instruction's operands, from just after its mnemonic ----
-  bool encode(const OpInfo& op, const char* p, Instruction& ins) {
+  bool encode(const FastText& t, const OpInfo& op, const char* p, Instruction& ins) {
     for (std::size_t k = 0; k < op.operands.size(); ++k) {
       const OperandSpec& spec = op.operands[k];
-      if (!text_.skip_space(p)) return false;
+      if (!t.skip_space(p)) return false;
       if (k > 0) {
         if (*p != ',') return false;
         ++p;
-        if (!text_.skip_space(p)) return false;
+        if (!t.skip_space(p)) return false;
       }
       // After the mnemonic a '%' is the modulo operator to the full lexer, not a binary number.
-      if (text_.at_end(p) || (k == 0 && *p == '%')) return false;
+      if (t.at_end(p) || (k == 0 && *p == '%')) return false;
       std::int64_t v = 0;
       bool keyword = false;
       if (spec.keywords != KwSet::None && ident_start(*p)) {
@@ -291,8 +383,8 @@ class FastAssembler {
         std::string_view word;
         if (!FastText::ident(q, word)) return false;
         const char* after = q;
-        if (!text_.skip_space(after)) return false;
-        if (text_.at_end(after) || *after == ',') {  // a lone name: a keyword, else a known symbol
+        if (!t.skip_space(after)) return false;
+        if (t.at_end(after) || *after == ',') {  // a lone name: a keyword, else a known symbol
           if (auto kw = keyword_value(spec.keywords, word)) {
             v = *kw;
             keyword = true;
@@ -302,21 +394,23 @@ class FastAssembler {
           }
         }
       }
-      if (!keyword && !expr(p, 1, 0, v)) return false;
+      if (!keyword && !expr(t, p, 1, 0, v)) return false;
       FieldRange fr = range_of(spec.field);
       if (v < fr.min || v > fr.max) return false;
       if (!keyword && spec.keywords != KwSet::None && !keyword_name(spec.keywords, static_cast<std::uint8_t>(v)))
         return false;  // warned about by the full assembler
       put_field(ins, spec.field, v);
     }
-    return text_.skip_space(p) && text_.at_end(p);
+    return t.skip_space(p) && t.at_end(p);
   }
 
-  const SourceFile& file_;
-  FastText text_;
-  int index_;
+  const AsmOptions& options_;
+  FileReader& reader_;
   const Profile& profile_;
   AsmResult& out_;
+  std::deque<FastText> texts_;  // by SourceSet index; a deque, since scanning holds references while includes add texts
+  std::vector<std::string> stack_;       // the include chain (keys), for cycles
+  std::vector<std::string> included_;    // every file included so far (keys)
   std::vector<std::uint32_t> operands_;  // per instruction: where its operands start
   FastSymbols symbols_;
   std::array<const OpInfo*, 256> ops_{};  // op_info(), without its lookup on every instruction
@@ -324,24 +418,34 @@ class FastAssembler {
 
 }  // namespace
 
-bool fast_assemble(const std::string& path, const AsmOptions& options, std::string& text, AsmResult& out) {
-  if (!options.defines.empty() || options.relocatable || text.size() > kMaxFileBytes) return false;
+bool fast_assemble(const std::string& path, const AsmOptions& options, FileReader& reader, std::string& text,
+                   AsmResult& out) {
+  if (options.relocatable || text.size() > kMaxFileBytes) return false;
+  const Profile& profile = options.profile ? *options.profile : generic_profile();
+  FastAssembler fa(options, reader, profile, out);
+  bool ok = true;
+  for (const auto& [name, value] : options.defines) {  // added first, as the full assembler does
+    SourceFile d;
+    d.name = "<command line -D " + name + ">";
+    d.path = d.name;
+    d.text = value;
+    ok = ok && fa.define_command_line(name, out.sources.add(std::move(d)));
+  }
   SourceFile f;
   f.name = path == "-" ? "<stdin>" : path;
   f.path = path;
   f.text = std::move(text);
   bool bom = drop_bom(f.text);
-  int idx = out.sources.add(std::move(f));
-  const SourceFile& added = out.sources.files[static_cast<std::size_t>(idx)];
-  const Profile& profile = options.profile ? *options.profile : generic_profile();
-  bool done = false;
-  if (!first_long_line(added)) {
-    FastAssembler fa(added, idx, profile, out);
+  int root = out.sources.add(std::move(f));
+  const SourceFile& added = out.sources.files[static_cast<std::size_t>(root)];
+  if (ok && !first_long_line(added)) {
     fa.reserve(added.line_starts.size());
-    done = fa.pass1() && fa.pass2() && fa.finish(options);
+    ok = fa.pass1(root) && fa.pass2() && fa.finish(options, root);
+  } else {
+    ok = false;
   }
-  if (done) return true;
-  text = std::move(out.sources.files[static_cast<std::size_t>(idx)].text);
+  if (ok) return true;
+  text = std::move(out.sources.files[static_cast<std::size_t>(root)].text);
   if (bom) text.insert(0, "\xEF\xBB\xBF");
   out = AsmResult{};
   return false;

@@ -17,11 +17,12 @@ namespace tmcl::detail {
 enum class FastState : std::uint8_t { Todo, Busy, Done };
 
 struct FastSymbol {
-  const char* name;     // in the source text
+  const char* name;     // in the source text (or the -D option)
   std::int64_t value;   // labels: the address; constants once Done
   std::uint32_t len;
-  std::uint32_t expr;   // constants: offset of the value's expression in the text
-  int line;
+  std::uint32_t expr;   // constants: offset of the value's expression in the text of `file`
+  int line;             // 0: defined on the command line (-D)
+  std::uint16_t file;   // index into the result's SourceSet
   SymbolKind kind;
   FastState state;
 };
@@ -37,8 +38,15 @@ class FastSymbols {
     return true;
   }
 
+  // A constant defined again (harmless when the values agree): its definitions, in order.
+  struct Redefinition {
+    std::uint32_t first, again;
+  };
+  const std::vector<Redefinition>& redefinitions() const { return redefinitions_; }
+
   // Indexes every recorded name in one sweep that prefetches the slots a few names ahead, since
-  // nearly every slot touched is a cache miss. False when a name is defined twice.
+  // nearly every slot touched is a cache miss. A constant defined again is not indexed again but
+  // listed in redefinitions(); false when a label is involved (an error).
   bool index() {
     std::size_t n = symbols_.size(), size = 1024;
     while (size < 2 * n) size *= 2;
@@ -60,7 +68,12 @@ class FastSymbols {
         __builtin_prefetch(&slots_[ahead[k % kAhead] & mask]);
       }
       const FastSymbol& s = symbols_[k];
-      if (find(std::string_view(s.name, s.len), h) >= 0) return false;
+      if (int first = find(std::string_view(s.name, s.len), h); first >= 0) {
+        if (s.kind != SymbolKind::Constant || symbols_[static_cast<std::size_t>(first)].kind != SymbolKind::Constant)
+          return false;
+        redefinitions_.push_back({static_cast<std::uint32_t>(first), static_cast<std::uint32_t>(k)});
+        continue;
+      }
       std::size_t i = static_cast<std::size_t>(h) & mask;
       while (slots_[i] != 0) i = (i + 1) & mask;
       slots_[i] = (h & ~0xFFFFFFFFull) | (k + 1);
@@ -114,6 +127,7 @@ class FastSymbols {
 
   std::vector<FastSymbol> symbols_;  // in definition order
   std::vector<std::uint64_t> slots_;
+  std::vector<Redefinition> redefinitions_;  // in the order of the second definitions
 };
 
 }  // namespace tmcl::detail

@@ -189,9 +189,10 @@ std::string include_key(const std::string& path);
 int first_long_line(const SourceFile& f);
 
 // Assembles `text`, the only input `path`, when it is a program the fast path (fast_path.cpp)
-// handles: one source without directives or -D whose result has no diagnostic. Otherwise it
-// gives `text` back unchanged and returns false, and the full assembler takes over.
-bool fast_assemble(const std::string& path, const AsmOptions& options, std::string& text, AsmResult& out);
+// handles: one source (with its #includes and -D definitions) whose result has no diagnostic.
+// Otherwise it gives `text` back unchanged and returns false, and the full assembler takes over.
+bool fast_assemble(const std::string& path, const AsmOptions& options, FileReader& reader, std::string& text,
+                   AsmResult& out);
 
 // The three instruction fields an operand can fill, their ranges and how a value is stored.
 struct FieldRange {
