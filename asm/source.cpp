@@ -67,7 +67,7 @@ bool find_include(const std::string& name, const std::string& including_path, co
                   FileReader& reader, FoundInclude& found) {
   namespace fs = std::filesystem;
   auto try_path = [&](const std::string& p) {
-    if (!reader.read(p, found.text)) return false;
+    if (p == "-" || !reader.read(p, found.text)) return false;  // "-" is standard input, never an include
     found.path = p;
     found.key = include_key(p);
     return true;

@@ -197,3 +197,16 @@ TEST(symbols_can_be_left_out) {
   a.opts.symbols = false;
   CHECK(!a.src("X = 3\nY = 1 / 0\nSTOP\n").ok());
 }
+
+// An include named "-" is a file of that name, never standard input (which a DiskReader reads
+// for "-"): reading stdin there would consume it behind the user's back.
+TEST(an_include_never_reads_standard_input) {
+  for (bool fast : {true, false}) {
+    Asm a;
+    a.opts.fast_path = fast;
+    a.reader.files["-"] = "X = 1\n";
+    auto r = a.src("#include -\nSAP 1, 0, X\n");
+    CHECK(!r.ok());
+    CHECK(r.diags.render(r.sources).find("cannot find include file '-'") != std::string::npos);
+  }
+}

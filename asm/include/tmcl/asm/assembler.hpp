@@ -4,6 +4,9 @@
 // Pipeline (assembler.cpp): read -> lex -> parse (one unit per root file, includes inlined; an
 //   object is a unit already encoded) -> choose library members -> place -> resolve (constants,
 //   labels, expressions, imports) -> encode and relocate -> append STOP -> check the target.
+// A single source that assembles without any diagnostic is first tried on the fast path
+//   (fast_path.cpp: two passes over the text, no tokens or trees), which gives the same result
+//   or gives up; then the pipeline above runs and reports.
 #pragma once
 
 #include <cstdint>
