@@ -98,6 +98,7 @@ TEST(every_repository_source_agrees_through_the_public_interface) {
       tmcl::DiskReader reader;
       tmcl::AsmOptions on, off;
       on.profile = off.profile = target;
+      on.append_stop = off.append_stop = target != nullptr;  // both ways over the targets
       off.fast_path = false;
       auto a = tmcl::assemble({path.string()}, on, reader);
       auto b = tmcl::assemble({path.string()}, off, reader);
