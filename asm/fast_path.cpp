@@ -115,9 +115,9 @@ class FastAssembler {
     return true;
   }
 
-  bool finish(const AsmOptions& options, int root) {
+  bool finish(int root) {
     int size = static_cast<int>(out_.program.size());
-    if (options.append_stop && (out_.program.empty() || out_.program.back().op != static_cast<std::uint8_t>(Op::STOP))) {
+    if (options_.append_stop && (out_.program.empty() || out_.program.back().op != static_cast<std::uint8_t>(Op::STOP))) {
       out_.appended_stop = true;
       out_.program.push_back(Instruction{static_cast<std::uint8_t>(Op::STOP), 0, 0, 0});
       out_.lines.push_back(LineInfo{-1, 0});
@@ -138,7 +138,7 @@ class FastAssembler {
     const auto& redefined = symbols_.redefinitions();
     auto next_redefined = redefined.begin();
     auto& symbols = symbols_.all();
-    if (options.symbols) {
+    if (options_.symbols) {
       out_.symbols.reserve(symbols.size());
       huge(out_.symbols);
     }
@@ -150,7 +150,7 @@ class FastAssembler {
         continue;
       }
       const FastSymbol& s = symbols[k];
-      if (!options.symbols || s.line == 0) continue;  // -D definitions are not the program's
+      if (!options_.symbols || s.line == 0) continue;  // -D definitions are not the program's
       const SourceFile& f = out_.sources.files[s.file];
       auto col = static_cast<int>(s.name - (f.text.data() + f.line_starts[static_cast<std::size_t>(s.line - 1)])) + 1;
       out_.symbols.push_back(
@@ -440,7 +440,7 @@ bool fast_assemble(const std::string& path, const AsmOptions& options, FileReade
   const SourceFile& added = out.sources.files[static_cast<std::size_t>(root)];
   if (ok && !first_long_line(added)) {
     fa.reserve(added.line_starts.size());
-    ok = fa.pass1(root) && fa.pass2() && fa.finish(options, root);
+    ok = fa.pass1(root) && fa.pass2() && fa.finish(root);
   } else {
     ok = false;
   }
