@@ -24,6 +24,17 @@ const ParamInfo* rules(const Profile& profile, const ParamInfo* p) { return prof
 // Global parameters the VM computes itself, whatever the profile's table says about storage.
 bool computed_global(int param) { return param == 128 || param == 129 || param == 130 || param == 132 || param == 133; }
 
+// Whether bank-0 global parameter `param` has an EEPROM copy that STGP and RSGP may store or
+// restore: a known parameter marked EEPROM or auto-stored (any, on a generic profile), never a
+// computed one.
+std::uint8_t eeprom_global_status(const Profile& profile, int param) {
+  const ParamInfo* p = rules(profile, profile.global_param(0, param));
+  if (!p && !profile.any_parameter) return kStatusWrongType;
+  if (p && !(p->access & (kEeprom | kAutoStore))) return kStatusWrongType;
+  if (computed_global(param)) return kStatusWrongType;
+  return kStatusOk;
+}
+
 }  // namespace
 
 std::uint8_t Vm::set_axis(int motor, int param, std::int32_t value) {
@@ -172,10 +183,7 @@ std::uint8_t Vm::store_global(int bank, int param) {
     return kStatusOk;
   }
   if (bank != 0) return kStatusInvalidValue;
-  const ParamInfo* p = rules(*profile, profile->global_param(0, param));
-  if (!p && !profile->any_parameter) return kStatusWrongType;
-  if (p && !(p->access & (kEeprom | kAutoStore))) return kStatusWrongType;
-  if (computed_global(param)) return kStatusWrongType;
+  if (std::uint8_t st = eeprom_global_status(*profile, param); st != kStatusOk) return st;
   eeprom.globals[param] = bank0[static_cast<std::size_t>(param)];
   eeprom_dirty = true;
   return kStatusOk;
@@ -190,10 +198,7 @@ std::uint8_t Vm::restore_global(int bank, int param) {
     return kStatusOk;
   }
   if (bank != 0) return kStatusInvalidValue;
-  const ParamInfo* p = rules(*profile, profile->global_param(0, param));
-  if (!p && !profile->any_parameter) return kStatusWrongType;
-  if (p && !(p->access & (kEeprom | kAutoStore))) return kStatusWrongType;
-  if (computed_global(param)) return kStatusWrongType;
+  if (std::uint8_t st = eeprom_global_status(*profile, param); st != kStatusOk) return st;
   auto it = eeprom.globals.find(param);
   const ParamInfo* info = profile->global_param(0, param);
   bank0[static_cast<std::size_t>(param)] = it != eeprom.globals.end() ? it->second : (info ? info->default_value : 0);

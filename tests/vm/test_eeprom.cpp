@@ -112,3 +112,21 @@ TEST(file_save_is_atomic_and_loads) {
   std::remove(path.c_str());
   rmdir(dir);
 }
+
+// Bank 0 in direct mode: only parameters the module auto-stores have an EEPROM copy to store
+// or restore; read-only, plain read-write and computed ones answer "wrong type" (3).
+TEST(bank0_store_and_restore_need_an_eeprom_copy) {
+  const tmcl::Profile& usb = *tmcl::find_profile("usb-2-sd");
+  Machine m({I(Op::STOP)}, usb);
+  CHECK_EQ(m.vm.execute_direct(I(Op::STGP, 86, 0)).status, 100);      // step pulse length, auto-stored
+  CHECK_EQ(m.vm.execute_direct(I(Op::SGP, 86, 0, 40)).status, 100);
+  CHECK_EQ(m.vm.execute_direct(I(Op::RSGP, 86, 0)).status, 100);
+  CHECK_EQ(m.vm.execute_direct(I(Op::GGP, 86, 0)).value, 40);         // auto-stored: SGP wrote the copy too
+  CHECK_EQ(m.vm.execute_direct(I(Op::STGP, 255, 0)).status, 3);       // read-write, not stored
+  CHECK_EQ(m.vm.execute_direct(I(Op::RSGP, 128, 0)).status, 3);       // read-only
+  CHECK_EQ(m.vm.execute_direct(I(Op::STGP, 200, 0)).status, 3);       // not a parameter here
+  Machine g({I(Op::STOP)}, tmcl::generic_profile());
+  CHECK_EQ(g.vm.execute_direct(I(Op::STGP, 200, 0)).status, 100);     // generic: any number
+  CHECK_EQ(g.vm.execute_direct(I(Op::STGP, 132, 0)).status, 3);       // computed by the VM
+  CHECK_EQ(g.vm.execute_direct(I(Op::RSGP, 130, 0)).status, 3);
+}
