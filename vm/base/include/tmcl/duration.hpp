@@ -6,7 +6,7 @@
 #include <string>
 #include <string_view>
 
-#include "tmcl/motion.hpp"
+#include "tmcl/sim_time.hpp"
 
 namespace tmcl {
 

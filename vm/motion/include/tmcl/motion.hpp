@@ -26,14 +26,9 @@
 #include <vector>
 
 #include "tmcl/profile.hpp"
+#include "tmcl/sim_time.hpp"
 
 namespace tmcl {
-
-// Simulated time in microseconds.
-using SimTime = std::int64_t;
-inline constexpr SimTime kNever = std::numeric_limits<SimTime>::max();
-inline constexpr SimTime kUsPerMs = 1000;
-inline constexpr SimTime kUsPerTick = 10 * kUsPerMs;  // one WAIT tick is 10 ms
 
 enum class MotionEventKind : std::uint8_t {
   TargetReached,    // position mode: the target is reached with zero speed (interrupt 3+motor)

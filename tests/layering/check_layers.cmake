@@ -1,0 +1,76 @@
+# Fails when a library includes a header of a library above it (docs/architecture.md).
+# Run as: cmake -DROOT=<source dir> -P check_layers.cmake
+#
+# Each library is a folder; the table says which libraries each may reach (itself included).
+# A header belongs to the library whose include/ folder holds it. A new library adds a row here.
+set(LAYERS
+  "base|vm/base|base"
+  "isa|vm/isa|isa,base"
+  "motion|vm/motion|motion,isa,base"
+  "vm|vm|vm,motion,isa,base"
+  "module|vm/module|module,vm,motion,isa,base"
+  "asm|asm|asm,isa,base"
+  "report|cli/report|report,vm,motion,isa,base"
+)
+
+# Which library owns each public header.
+set(owners "")
+foreach(row IN LISTS LAYERS)
+  string(REPLACE "|" ";" parts "${row}")
+  list(GET parts 0 lib)
+  list(GET parts 1 dir)
+  file(GLOB_RECURSE headers RELATIVE "${ROOT}/${dir}/include" "${ROOT}/${dir}/include/tmcl/*")
+  foreach(h IN LISTS headers)
+    set(owner_${h} ${lib})
+  endforeach()
+endforeach()
+
+# Which library a source file belongs to: the longest folder of the table that holds it.
+set(failures 0)
+foreach(row IN LISTS LAYERS)
+  string(REPLACE "|" ";" parts "${row}")
+  list(GET parts 0 lib)
+  list(GET parts 1 dir)
+  list(GET parts 2 allowed)
+  list(GET parts 2 allowed)
+  string(REPLACE "," ";" allowed "${allowed}")
+  file(GLOB_RECURSE files "${ROOT}/${dir}/*.cpp" "${ROOT}/${dir}/*.hpp" "${ROOT}/${dir}/*.def")
+  if(NOT files)
+    message(SEND_ERROR "layer '${lib}': no sources under ${dir}")
+    math(EXPR failures "${failures} + 1")
+  endif()
+  foreach(f IN LISTS files)
+    # A file in a deeper library folder is that library's, not this one's.
+    set(mine TRUE)
+    foreach(other IN LISTS LAYERS)
+      string(REPLACE "|" ";" o "${other}")
+      list(GET o 1 odir)
+      string(LENGTH "${dir}" dlen)
+      string(LENGTH "${odir}" olen)
+      if(olen GREATER dlen AND f MATCHES "^${ROOT}/${odir}/")
+        set(mine FALSE)
+      endif()
+    endforeach()
+    if(NOT mine)
+      continue()
+    endif()
+    file(STRINGS "${f}" lines REGEX "^[ \t]*#[ \t]*include[ \t]*[\"<]tmcl/")
+    foreach(line IN LISTS lines)
+      string(REGEX REPLACE "^[ \t]*#[ \t]*include[ \t]*[\"<](tmcl/[^\">]+)[\">].*$" "\\1" h "${line}")
+      if(NOT DEFINED owner_${h})
+        message(SEND_ERROR "${f}: includes ${h}, which no library of the table owns")
+        math(EXPR failures "${failures} + 1")
+      else()
+        list(FIND allowed "${owner_${h}}" at)
+        if(at EQUAL -1)
+          message(SEND_ERROR "${f}: layer '${lib}' includes ${h} of layer '${owner_${h}}', which is above it")
+          math(EXPR failures "${failures} + 1")
+        endif()
+      endif()
+    endforeach()
+  endforeach()
+endforeach()
+if(failures GREATER 0)
+  message(FATAL_ERROR "${failures} layering violation(s)")
+endif()
+message(STATUS "layering: every include runs downwards")
