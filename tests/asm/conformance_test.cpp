@@ -1,4 +1,4 @@
-// Every binary example of both manuals (../shared/conformance/manual-binary-forms.tsv, with the
+// Every binary example of both manuals (tests/data/manual-binary-forms.tsv, with the
 // manuals' mistakes corrected) assembles to exactly the expected 9-byte datagram, as
 // `tmclasm -f datagrams --no-append-stop` writes it; likewise the requests of the direct-mode table.
 #define TMCL_TEST_MAIN
@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "check.hpp"
+#include "data_file.hpp"
 #include "tmcl/asm/assembler.hpp"
 #include "tmcl/asm/output.hpp"
 
@@ -16,18 +17,13 @@ struct Row {
   std::string source, expected, where;
 };
 
-// Rows of a TSV file: columns `source` and the one named `bytes_column`; comment lines skipped.
+// Rows of a TSV file in tests/data/: columns `source` and the one named `bytes_column`; comment
+// lines skipped. A missing or row-less file has already failed the test, naming the file.
 std::vector<Row> read_rows(const std::string& file, const std::string& bytes_column) {
-  std::ifstream in(std::string(TMCL_CONFORMANCE_DIR) + "/" + file);
   std::vector<Row> rows;
-  std::string line;
   std::vector<std::string> header;
-  while (std::getline(in, line)) {
-    if (line.empty() || line[0] == '#') continue;
-    std::vector<std::string> cols;
-    std::stringstream ss(line);
-    std::string c;
-    while (std::getline(ss, c, '\t')) cols.push_back(c);
+  for (const std::string& line : DATA_LINES(file)) {
+    std::vector<std::string> cols = ::tmcl_test::tsv_fields(line);
     if (header.empty()) {
       header = cols;
       continue;
@@ -66,6 +62,7 @@ std::string assemble_datagram(const std::string& source, std::string& errors) {
 
 TEST(all_manual_binary_forms) {
   auto rows = read_rows("manual-binary-forms.tsv", "expected");
+  if (rows.empty()) return;  // already failed, naming the file
   CHECK_EQ(rows.size(), std::size_t{49});
   for (const auto& row : rows) {
     std::string errors;
@@ -78,7 +75,9 @@ TEST(all_manual_binary_forms) {
 
 TEST(direct_mode_requests) {
   int checked = 0;
-  for (const auto& row : read_rows("manual-direct-mode-replies.tsv", "request")) {
+  const auto rows = read_rows("manual-direct-mode-replies.tsv", "request");
+  if (rows.empty()) return;  // already failed, naming the file
+  for (const auto& row : rows) {
     if (row.source.empty() || row.source[0] == '(') continue;  // control commands have no mnemonic
     std::string errors;
     CHECK_EQ(assemble_datagram(row.source, errors), row.expected);

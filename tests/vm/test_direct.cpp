@@ -1,5 +1,5 @@
 // Direct mode: execute_direct's status codes and values; reads leave the accumulator alone;
-// the reply values of shared/conformance/manual-direct-mode-replies.tsv (E14).
+// the reply values of tests/data/manual-direct-mode-replies.tsv (E14).
 #include "check.hpp"
 #include "machine.hpp"
 
