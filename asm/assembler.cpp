@@ -91,7 +91,7 @@ class Encoder {
       }
       if (spec.keywords != KwSet::None && o.expr >= 0 && !keyword_name(spec.keywords, static_cast<std::uint8_t>(v))) {
         diags_.warning(o.loc, std::to_string(v) + " is not a valid " + std::string(kwset_name(spec.keywords)) +
-                                  " of " + std::string(s.op->mnemonic));
+                                  " of " + std::string(s.op->mnemonic), "keyword-value");
       }
       put_field(ins, spec.field, v);
     }
@@ -137,7 +137,8 @@ class Encoder {
 AsmResult assemble(const std::vector<std::string>& files, const AsmOptions& options, FileReader& reader) {
   using namespace detail;
   AsmResult out;
-  out.diags.set_warnings_are_errors(options.warnings_are_errors);
+  out.diags.set_warning_options(options.warnings);
+  if (options.warnings_are_errors) out.diags.set_warnings_are_errors(true);
   const bool reloc = options.relocatable;
   if (reloc && files.size() != 1) {
     out.diags.error(SourceLoc{}, "-c assembles one source file into one object at a time");
@@ -151,7 +152,7 @@ AsmResult assemble(const std::vector<std::string>& files, const AsmOptions& opti
     preread = reader.read(files[0], first);
     if (preread && sniff_file(first) == FileKind::Source) {
       AsmResult fast;
-      fast.diags.set_warnings_are_errors(options.warnings_are_errors);
+      fast.diags.set_warning_options(out.diags.warning_options());
       if (fast_assemble(files[0], options, reader, first, fast)) return fast;
     }
   }
@@ -226,7 +227,7 @@ AsmResult assemble(const std::vector<std::string>& files, const AsmOptions& opti
     auto target = static_cast<std::int64_t>(ins.value);
     if (target < 0 || target >= static_cast<std::int64_t>(out.program.size()))
       out.diags.warning(at, "address " + std::to_string(target) + " is outside the program (addresses 0 to " +
-                                std::to_string(out.program.size() - 1) + ")");
+                                std::to_string(out.program.size() - 1) + ")", "address");
   };
   for (const auto& u : units) {
     if (reloc) break;

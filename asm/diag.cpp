@@ -39,19 +39,105 @@ int SourceSet::add(SourceFile f) {
 
 Diagnostic& Diagnostics::error(SourceLoc loc, std::string message) {
   ++errors_;
-  list_.push_back({Severity::Error, loc, std::move(message), {}});
+  list_.push_back({Severity::Error, loc, std::move(message), {}, {}});
   return list_.back();
 }
 
 Diagnostic& Diagnostics::warning(SourceLoc loc, std::string message) {
-  if (werror_) return error(loc, std::move(message) + " [-Werror]");
+  if (flags_.all_errors) return error(loc, std::move(message) + " [-Werror]");
   ++warnings_;
-  list_.push_back({Severity::Warning, loc, std::move(message), {}});
+  list_.push_back({Severity::Warning, loc, std::move(message), {}, {}});
   return list_.back();
 }
 
+Diagnostic& Diagnostics::warning(SourceLoc loc, std::string message, std::string_view name) {
+  if (name.empty()) return warning(loc, std::move(message));
+  if (!flags_.enabled(name)) {
+    dropped_ = Diagnostic{Severity::Note, {}, {}, {}, {}};
+    return dropped_;
+  }
+  if (flags_.is_error(name)) {
+    ++errors_;
+    list_.push_back({Severity::Error, loc, std::move(message), {}, std::string(name)});
+  } else {
+    ++warnings_;
+    list_.push_back({Severity::Warning, loc, std::move(message), {}, std::string(name)});
+  }
+  return list_.back();
+}
+
+const std::vector<WarningInfo>& warning_table() {
+  // Assembler warnings first, then the control-flow analysis (asm/analysis, docs/analysis.md).
+  static const std::vector<WarningInfo> table = {
+      {"address", true, "a jump, call or VECT address outside the program"},
+      {"keyword-value", true, "a number where a keyword stands that names no keyword of that kind"},
+      {"keyword-name", true, "a constant with the name of a keyword"},
+      {"target", true, "a motor, bank, parameter, variable or value the target module does not have"},
+      {"call-depth", true, "CSUB nested deeper than the module's call stack"},
+      {"recursion", true, "a subroutine that can call itself"},
+      {"stack-leak", true, "a path that leaves a subroutine without RSUB, or loops through CSUB"},
+      {"rsub", true, "RSUB reachable with an empty call stack"},
+      {"reti", true, "an interrupt handler that can end without RETI, or RETI outside any handler"},
+      {"vect", true, "VECT to no instruction, EI of an interrupt no VECT sets, interrupts never enabled"},
+      {"unreachable", true, "instructions no path reaches"},
+      {"fall-off", true, "a path that runs past the last instruction"},
+      {"eeprom-wear", true, "an EEPROM write in a loop without a visible bound"},
+      {"wait-in-handler", true, "WAIT inside an interrupt handler"},
+  };
+  return table;
+}
+
+const WarningInfo* find_warning(std::string_view name) {
+  for (const auto& w : warning_table())
+    if (w.name == name) return &w;
+  return nullptr;
+}
+
+bool WarningOptions::enabled(std::string_view name) const {
+  if (errors.count(name)) return true;
+  if (off.count(name)) return false;
+  if (on.count(name)) return true;
+  const WarningInfo* w = find_warning(name);
+  return w == nullptr || w->on_by_default;
+}
+
+bool WarningOptions::is_error(std::string_view name) const { return all_errors || errors.count(name) > 0; }
+
+bool WarningOptions::parse(std::string_view arg, std::string& error) {
+  error.clear();
+  if (arg == "-Werror") {
+    all_errors = true;
+    return true;
+  }
+  if (arg.substr(0, 2) != "-W" || arg.size() == 2) return false;
+  std::string_view name = arg.substr(2);
+  std::set<std::string, std::less<>>* into = &on;
+  if (name.substr(0, 6) == "error=") {
+    name = name.substr(6);
+    into = &errors;
+  } else if (name.substr(0, 3) == "no-") {
+    name = name.substr(3);
+    into = &off;
+  }
+  if (!find_warning(name)) {
+    std::vector<std::string_view> names;
+    for (const auto& w : warning_table()) names.push_back(w.name);
+    error = "unknown warning '" + std::string(name) + "' in " + std::string(arg);
+    std::string hint = closest_match(name, names);
+    if (!hint.empty()) error += " (did you mean '" + hint + "'?)";
+    return false;
+  }
+  if (into != &off) off.erase(std::string(name));
+  if (into == &off) {
+    on.erase(std::string(name));
+    errors.erase(std::string(name));
+  }
+  into->insert(std::string(name));
+  return true;
+}
+
 void Diagnostics::note(Diagnostic& d, SourceLoc loc, std::string message) {
-  d.notes.push_back({Severity::Note, loc, std::move(message), {}});
+  d.notes.push_back({Severity::Note, loc, std::move(message), {}, {}});
 }
 
 namespace {
@@ -96,7 +182,9 @@ void render_one(std::string& out, const Diagnostic& d, const SourceSet& sources,
   else
     out += "tmclasm: ";
   out += severity_word(d.severity);
-  out += ": " + d.message + "\n";
+  out += ": " + d.message;
+  if (!d.name.empty()) out += (d.severity == Severity::Error ? " [-Werror=" : " [-W") + d.name + "]";
+  out += "\n";
   if (f && d.loc.line > 0 && d.loc.col > 0) {
     std::string_view line = f->line(d.loc.line);
     if (!line.empty() || d.loc.col <= 1) {

@@ -329,7 +329,7 @@ class Parser {
     if (!room_for_symbol(loc(name))) return;
     if (is_keyword(name.text))
       diags_.warning(loc(name), "constant '" + std::string(name.text) + "' has the name of a keyword; where " +
-                                    "that keyword may stand, the keyword wins");
+                                    "that keyword may stand, the keyword wins", "keyword-name");
     SymDef d;
     d.name = std::string(name.text);
     d.kind = SymbolKind::Constant;

@@ -59,7 +59,7 @@ class Checker {
       d_.warning(operand_loc(s_, Field::Motor), "motor " + std::to_string(ins_.motor) + " does not exist on " +
                                                     std::string(p_.title) +
                                                     (p_.motors == 1 ? std::string(" (it has motor 0 only)")
-                                                                    : " (motors 0 to " + std::to_string(p_.motors - 1) + ")"));
+                                                                    : " (motors 0 to " + std::to_string(p_.motors - 1) + ")"), "target");
     if (has_role(info, Role::AxisParam)) axis(op);
     if (has_role(info, Role::GlobalParam)) global(op);
     for (const auto& spec : info.operands) {
@@ -67,21 +67,21 @@ class Checker {
       if (spec.role == Role::Var && v >= p_.user_vars)
         d_.warning(operand_loc(s_, spec.field), "user variable " + std::to_string(v) + " does not exist on " +
                                                     std::string(p_.title) + " (0 to " +
-                                                    std::to_string(p_.user_vars - 1) + ")");
+                                                    std::to_string(p_.user_vars - 1) + ")", "target");
       if (spec.role == Role::Coord && v >= p_.coords)
         d_.warning(operand_loc(s_, spec.field), "coordinate " + std::to_string(v) + " does not exist on " +
                                                     std::string(p_.title) +
                                                     (p_.coords > 0 ? " (0 to " + std::to_string(p_.coords - 1) + ")"
-                                                                   : std::string(" (it has no coordinates)")));
+                                                                   : std::string(" (it has no coordinates)")), "target");
       if (spec.role == Role::Interrupt && !p_.vector(v) && !(v == 255 && op != Op::VECT))
         d_.warning(operand_loc(s_, spec.field),
-                   "interrupt " + std::to_string(v) + " does not exist on " + std::string(p_.title));
+                   "interrupt " + std::to_string(v) + " does not exist on " + std::string(p_.title), "target");
     }
     if ((op == Op::ROR || op == Op::ROL))
       if (const ParamInfo* speed = p_.axis_param(2); speed && !in_range(ins_.value, speed->min, speed->max))
         d_.warning(operand_loc(s_, Field::Value), "velocity " + std::to_string(ins_.value) +
                                                       " is outside the range of " + std::string(p_.title) + " (" +
-                                                      range_text(*speed) + ")");
+                                                      range_text(*speed) + ")", "target");
   }
 
  private:
@@ -89,7 +89,7 @@ class Checker {
     const ParamInfo* p = p_.axis_param(ins_.type);
     SourceLoc at = operand_loc(s_, Field::Type);
     if (!p) {
-      d_.warning(at, "axis parameter " + std::to_string(ins_.type) + " does not exist on " + std::string(p_.title));
+      d_.warning(at, "axis parameter " + std::to_string(ins_.type) + " does not exist on " + std::string(p_.title), "target");
       return;
     }
     check_param(op, *p, param_text("axis parameter", ins_.type, p), at);
@@ -101,34 +101,34 @@ class Checker {
     if (bank == 2) {
       if (ins_.type >= p_.user_vars)
         d_.warning(at, "user variable " + std::to_string(ins_.type) + " does not exist on " + std::string(p_.title) +
-                           " (0 to " + std::to_string(p_.user_vars - 1) + ")");
+                           " (0 to " + std::to_string(p_.user_vars - 1) + ")", "target");
       else if ((op == Op::STGP || op == Op::RSGP) && ins_.type >= p_.eeprom_user_vars)
         d_.warning(at, "user variable " + std::to_string(ins_.type) + " cannot be stored in the EEPROM of " +
-                           std::string(p_.title) + " (only 0 to " + std::to_string(p_.eeprom_user_vars - 1) + ")");
+                           std::string(p_.title) + " (only 0 to " + std::to_string(p_.eeprom_user_vars - 1) + ")", "target");
       return;
     }
     if (bank != 0 && !(bank == 3 && !p_.bank3.empty())) {
       d_.warning(operand_loc(s_, Field::Motor), "bank " + std::to_string(bank) + " does not exist on " +
                                                     std::string(p_.title) +
-                                                    (p_.bank3.empty() ? " (banks 0 and 2)" : " (banks 0, 2 and 3)"));
+                                                    (p_.bank3.empty() ? " (banks 0 and 2)" : " (banks 0, 2 and 3)"), "target");
       return;
     }
     const ParamInfo* p = p_.global_param(bank, ins_.type);
     if (!p) {
       d_.warning(at, "global parameter " + std::to_string(ins_.type) + " of bank " + std::to_string(bank) +
-                         " does not exist on " + std::string(p_.title));
+                         " does not exist on " + std::string(p_.title), "target");
       return;
     }
     check_param(op, *p, param_text("global parameter", ins_.type, p), at);
   }
 
   void check_param(Op op, const ParamInfo& p, const std::string& what, SourceLoc at) {
-    if (writes(op) && !(p.access & kWrite)) d_.warning(at, what + " is read-only");
+    if (writes(op) && !(p.access & kWrite)) d_.warning(at, what + " is read-only", "target");
     if ((op == Op::GAP || op == Op::GGP || op == Op::GAPX) && !(p.access & kRead))
-      d_.warning(at, what + " cannot be read");
+      d_.warning(at, what + " cannot be read", "target");
     if (writes_immediate(op) && (p.access & kWrite) && !in_range(ins_.value, p.min, p.max))
       d_.warning(operand_loc(s_, Field::Value),
-                 "value " + std::to_string(ins_.value) + " is outside the range of " + what + ": " + range_text(p));
+                 "value " + std::to_string(ins_.value) + " is outside the range of " + what + ": " + range_text(p), "target");
   }
 
   const Profile& p_;

@@ -54,6 +54,8 @@ options:
   -I DIR             search DIR for #include files (after the including file's folder)
   -D NAME=VALUE      define a constant (VALUE is an expression)
   -Werror            treat warnings as errors
+  -Werror=NAME       treat the warning NAME as an error
+  -Wno-NAME          do not report the warning NAME (names: docs/analysis.md, tmclasm.md)
   --no-append-stop   do not append STOP when the program does not end in one
   --help             show this help
   --version          show the version
@@ -255,9 +257,11 @@ int main(int argc, char** argv) {
       std::string name = v.substr(0, eq);
       if (!tmcl::is_valid_name(name)) return usage_error("-D " + v + ": '" + name + "' is not a valid name");
       opts.defines.emplace_back(name, eq == std::string::npos ? "1" : v.substr(eq + 1));
-    } else if (a == "-Werror") {
-      opts.warnings_are_errors = true;
-      dopts.warnings_are_errors = true;
+    } else if (a.rfind("-W", 0) == 0) {
+      std::string error;
+      if (!opts.warnings.parse(a, error))
+        return usage_error(error.empty() ? "unknown option '" + a + "'" : error);
+      if (a == "-Werror") dopts.warnings_are_errors = true;
     } else if (a == "--no-append-stop") {
       opts.append_stop = false;
     } else if (a == "-") {

@@ -11,6 +11,7 @@ set(LAYERS
   "module|vm/module|module,vm,motion,isa,base"
   "asm|asm|asm,isa,base"
   "report|cli/report|report,vm,motion,isa,base"
+  "host|cli/host|host,asm,isa,base"
 )
 
 # Which library owns each public header.

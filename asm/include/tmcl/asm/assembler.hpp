@@ -63,6 +63,7 @@ struct AsmOptions {
   std::vector<std::string> include_dirs;        // -I, searched after the including file's folder
   std::vector<std::pair<std::string, std::string>> defines;  // -D NAME=VALUE (VALUE an expression)
   bool warnings_are_errors = false;             // -Werror
+  WarningOptions warnings;                      // -Wno-name, -Werror=name (diag.hpp)
   bool append_stop = true;                      // append STOP unless the program ends in one
   bool relocatable = false;                     // -c: one source file into an object (AsmResult::object)
   bool symbols = true;     // fill AsmResult::symbols (a tool that prints none skips the work)

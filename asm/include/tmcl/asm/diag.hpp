@@ -8,6 +8,7 @@
 
 #include <cstdint>
 #include <deque>
+#include <set>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -39,6 +40,33 @@ struct Diagnostic {
   SourceLoc loc;
   std::string message;
   std::vector<Diagnostic> notes;
+  // A named warning's name ("call-depth"), rendered after the message as " [-Wcall-depth]", or as
+  // " [-Werror=call-depth]" when -Werror made it an error. Empty: an error or an unnamed warning.
+  std::string name;
+};
+
+// Every named warning: its name (-Wname, -Wno-name, -Werror=name), whether it is on without
+// options, and what it is about (shown by docs and --help). One table for every tool.
+struct WarningInfo {
+  std::string_view name;
+  bool on_by_default;
+  std::string_view what;
+};
+const std::vector<WarningInfo>& warning_table();
+const WarningInfo* find_warning(std::string_view name);
+
+// The -W options of a run: which named warnings are shown and which are errors.
+struct WarningOptions {
+  bool all_errors = false;          // -Werror
+  std::set<std::string, std::less<>> on;      // -Wname (turns on one that is off by default)
+  std::set<std::string, std::less<>> off;     // -Wno-name
+  std::set<std::string, std::less<>> errors;  // -Werror=name (also turns it on)
+  bool enabled(std::string_view name) const;
+  bool is_error(std::string_view name) const;
+  // Applies one option: -Werror, -Werror=name, -Wno-name or -Wname. Returns false with `error`
+  // set when `arg` is such an option with an unknown name; false with `error` empty when `arg`
+  // is not a -W option at all.
+  bool parse(std::string_view arg, std::string& error);
 };
 
 // All source buffers of one run, so a location can be rendered with its line and include chain.
@@ -51,6 +79,10 @@ class Diagnostics {
  public:
   Diagnostic& error(SourceLoc loc, std::string message);
   Diagnostic& warning(SourceLoc loc, std::string message);
+  // A named warning: dropped (the reference is to a scratch diagnostic) when -Wno-name turned it
+  // off, an error when -Werror or -Werror=name made it one.
+  Diagnostic& warning(SourceLoc loc, std::string message, std::string_view name);
+  bool enabled(std::string_view name) const { return flags_.enabled(name); }
   void note(Diagnostic& d, SourceLoc loc, std::string message);
 
   bool has_errors() const { return errors_ > 0; }
@@ -58,7 +90,9 @@ class Diagnostics {
   int warning_count() const { return warnings_; }
   const std::vector<Diagnostic>& all() const { return list_; }
   // -Werror: warnings count as errors from now on, and are shown as errors.
-  void set_warnings_are_errors(bool on) { werror_ = on; }
+  void set_warnings_are_errors(bool on) { flags_.all_errors = on; }
+  void set_warning_options(const WarningOptions& flags) { flags_ = flags; }
+  const WarningOptions& warning_options() const { return flags_; }
 
   // Renders every diagnostic in the order reported.
   std::string render(const SourceSet& sources) const;
@@ -67,7 +101,8 @@ class Diagnostics {
   std::vector<Diagnostic> list_;
   int errors_ = 0;
   int warnings_ = 0;
-  bool werror_ = false;
+  WarningOptions flags_;
+  Diagnostic dropped_{Severity::Note, {}, {}, {}, {}};
 };
 
 // Renders one diagnostic (with its notes).

@@ -1,0 +1,52 @@
+// What tmclctl's words mean, kept out of the tool so that tests and embedders reach it: one
+// instruction from source syntax (through the assembler, so constants, keywords and #include
+// names work), parameters by number or by the profile's name, and the decoded forms of the
+// status replies (135, 136).
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "tmcl/isa.hpp"
+#include "tmcl/profile.hpp"
+
+namespace tmcl::host {
+
+// Assembles one line of source (several lines: the last instruction counts) for `profile`.
+// Nullopt with the rendered diagnostics in `messages` when it does not assemble to exactly one
+// instruction; `messages` may hold warnings on success too.
+std::optional<Instruction> assemble_one(const std::string& source, const Profile& profile,
+                                        const std::vector<std::string>& include_dirs, std::string& messages);
+
+// A parameter: axis (GAP/SAP/STAP), global (GGP/SGP/STGP) or I/O (GIO/SIO).
+struct ParamRef {
+  enum Kind : std::uint8_t { Axis, Global, Io } kind = Axis;
+  int number = 0;
+  int index = 0;  // motor (axis), bank (global, I/O)
+  const ParamInfo* info = nullptr;  // from the profile, when it has the parameter
+  std::string label() const;        // "axis parameter 1 (Actual position), motor 0"
+};
+
+// Reads a parameter from words[at..], advancing `at`:
+//   ap N [MOTOR] | gp N [BANK] | io N [BANK] | ap:N[:MOTOR] | gp:N[:BANK] | io:N[:BANK]
+//   | NAME [MOTOR]   (an axis or bank-0 global parameter of the profile, any case, e.g.
+//                     'actual position'; an unknown name gets a did-you-mean)
+// With `single_word`, only the one-word forms (for monitor, which takes a list).
+bool parse_param(const std::vector<std::string>& words, std::size_t& at, const Profile& profile, bool single_word,
+                 ParamRef& out, std::string& error);
+
+enum class ParamAction : std::uint8_t { Get, Set, Store };
+// The instruction for an action on `p` (Set with `value`); false with `error` when the module's
+// profile says the parameter cannot do it (not writable, not stored in EEPROM, I/O store).
+bool param_instruction(const ParamRef& p, ParamAction action, std::int32_t value, const Profile& profile, Instruction& out,
+                       std::string& error);
+
+// 135 type 0/1 value: mode byte 3, wait flag byte 2, pointer or pc bytes 1-0.
+std::string mode_name(std::uint32_t mode);  // "stopped", "running", "step", "reset", "download"
+
+// The profile whose 136 version string is `version` (nullptr: none of ours).
+const Profile* profile_by_firmware(const std::string& version);
+
+}  // namespace tmcl::host

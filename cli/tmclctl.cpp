@@ -1,0 +1,760 @@
+// tmclctl: talks to a TMCL module (or tmclrun --serve) over a serial port or TCP: send one
+// instruction, get/set/store parameters, download/verify/upload programs, run/stop/step/reset,
+// status, monitor, an interactive console and a bus scan. A thin tool: the protocol, transfers
+// and parameter names live in cli/host/ (tmcl_host); see docs/tmclctl.md for every command.
+// Exit status: 0 ok, 1 verify mismatch, 2 error status from the module, 64 usage, 65 bad input,
+// 69 no reply, 74 port or output file error, 130 interrupted.
+#include <signal.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <cinttypes>
+#include <csignal>
+#include <cstdio>
+#include <cstdlib>
+#include <iostream>
+#include <memory>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "tmcl/asm/assembler.hpp"
+#include "tmcl/asm/disasm.hpp"
+#include "tmcl/duration.hpp"
+#include "tmcl/fileio.hpp"
+#include "tmcl/host/client.hpp"
+#include "tmcl/host/commands.hpp"
+#include "tmcl/host/port.hpp"
+#include "tmcl/host/transfer.hpp"
+#include "tmcl/image.hpp"
+#include "tmcl/program_image.hpp"
+
+#ifndef TMCL_VERSION
+#define TMCL_VERSION "unknown"
+#endif
+
+namespace {
+
+using tmcl::Instruction;
+using tmcl::Op;
+namespace host = tmcl::host;
+
+constexpr int kExitOk = 0, kExitMismatch = 1, kExitStatus = 2, kExitUsage = 64, kExitInput = 65, kExitNoReply = 69,
+              kExitPort = 74, kExitInterrupted = 130;
+
+const char* kUsage = R"(usage: tmclctl [options] PORT COMMAND [ARGS...]
+
+Talks to a TMCL module over a serial port or TCP.
+PORT: a serial device (/dev/ttyACM0, /dev/ttyUSB0, the pty of tmclrun --serve pty) or tcp:HOST:PORT
+
+commands:
+  send 'INSTRUCTION'          one instruction in source syntax, e.g. send 'SAP 4, 0, 51200'
+  get PARAM                   read a parameter: ap N [MOTOR], gp N [BANK], io N [BANK], or a name
+  set PARAM VALUE             write a parameter (SAP, SGP, SIO)
+  store PARAM                 store a parameter in the EEPROM (STAP, STGP)
+  download FILE...            .tmc (assembled for -t), .bin, .dgm or objects: store, then verify
+  upload -o FILE.bin          read program memory into a TMCL-IDE .bin
+  run [ADDRESS]               start the program (from ADDRESS, else where it stands)
+  stop | step | reset         128, 130, 131
+  status                      application status, program counter, registers, firmware
+  monitor PARAM...            poll parameters (ap:N[:MOTOR], gp:N[:BANK], io:N[:BANK], NAME[@MOTOR])
+  console                     interactive direct mode: instructions in source syntax
+  scan                        find the modules on a bus: address, firmware, module type
+
+options:
+  -a N                   module address (default 1)
+  --host-address N       host address replies are sent to (default 2)
+  -t, --target NAME      module profile for names, ranges and memory (default usb-2-sd)
+  --baud N               serial baud rate, 9600 to 1000000 (default 9600; raw 8N1)
+  --timeout DURATION     wait this long for each reply (default 1s)
+  --retries N            resend a request this often when no reply comes (default 2)
+  --raw                  show every frame sent (>) and received (<) in hex
+  -q, --quiet            no progress bar or banners
+  -I DIR                 search DIR for #include files (send, console, download)
+  download: --no-verify  skip reading the program back with 134
+            --run        reset and start the program afterwards
+            --autostart  set global parameter 77 and store it: the program starts at power-on
+            --from N     resume an interrupted download at address N
+  upload:   -o FILE      the .bin to write (atomically)
+  monitor:  --every DURATION (default 100ms)  --for DURATION (default: until Ctrl-C)
+            --csv FILE   write the rows to FILE instead of standard output
+  scan:     --range A-B  addresses to try (default 1-255)
+            --bauds LIST baud rates to try, comma-separated (serial ports only)
+  --help, --version
+DURATION: an integer with us, ms, s or min (500ms, 2s).
+
+examples:
+  tmclctl /dev/ttyACM0 download --run prog.tmc
+  tmclctl tcp:127.0.0.1:2001 get 'actual position'
+  tmclctl /dev/ttyUSB0 --baud 115200 monitor ap:1 ap:3 --every 50ms --for 10s --csv run.csv
+  tmclctl /dev/pts/5 scan --range 1-8
+
+exit status: 0 ok, 1 verify mismatch, 2 the module answered with an error status, 64 usage error,
+             65 bad input file, 69 no reply from the module, 74 port error or output file not
+             written, 130 interrupted (Ctrl-C)
+)";
+
+volatile std::sig_atomic_t g_stop = 0;
+extern "C" void on_sigint(int) { g_stop = 1; }
+
+struct Options {
+  std::string port, command;
+  std::vector<std::string> args;
+  host::ClientOptions client;
+  std::string target = "usb-2-sd";
+  long baud = 9600;
+  bool raw = false, quiet = false;
+  std::vector<std::string> include_dirs;
+  bool verify = true, run = false, autostart = false;
+  int from = 0;
+  std::string output, csv;
+  tmcl::SimTime every = 100 * tmcl::kUsPerMs, for_time = 0;
+  int range_lo = 1, range_hi = 255;
+  std::vector<long> bauds;
+  bool timeout_given = false;
+  const tmcl::Profile* profile = nullptr;
+};
+
+int usage_error(const std::string& msg) {
+  std::fprintf(stderr, "tmclctl: %s\n(see tmclctl --help)\n", msg.c_str());
+  return kExitUsage;
+}
+
+bool parse_long(const std::string& s, long lo, long hi, long& out) {
+  if (s.empty()) return false;
+  char* end = nullptr;
+  errno = 0;
+  const long v = std::strtol(s.c_str(), &end, 0);
+  if (*end || errno || v < lo || v > hi) return false;
+  out = v;
+  return true;
+}
+
+int parse_args(int argc, char** argv, Options& o) {
+  std::vector<std::string> args(argv + 1, argv + argc);
+  std::vector<std::string> words;
+  for (std::size_t i = 0; i < args.size(); ++i) {
+    std::string a = args[i];
+    auto value = [&](std::string& out) {
+      if (i + 1 >= args.size()) return false;
+      out = args[++i];
+      return true;
+    };
+    std::string v;
+    long n = 0;
+    if (a == "--help" || a == "-h") {
+      std::fputs(kUsage, stdout);
+      return kExitOk;
+    } else if (a == "--version") {
+      std::printf("tmclctl (tmcl) %s\n", TMCL_VERSION);
+      return kExitOk;
+    } else if (a == "-a" || a == "--host-address") {
+      if (!value(v) || !parse_long(v, 0, 255, n)) return usage_error(a + " needs an address from 0 to 255");
+      (a == "-a" ? o.client.module : o.client.host) = static_cast<std::uint8_t>(n);
+    } else if (a == "-t" || a == "--target") {
+      if (!value(o.target)) return usage_error("-t needs a module name");
+    } else if (a == "--baud") {
+      if (!value(v) || !parse_long(v, 1, 100000000, n) || !host::valid_baud(n))
+        return usage_error("--baud takes 9600, 19200, 38400, 57600, 115200, 230400, 460800, 500000, 576000, 921600 or 1000000");
+      o.baud = n;
+    } else if (a == "--timeout" || a == "--every" || a == "--for") {
+      auto d = value(v) ? tmcl::parse_duration(v) : std::nullopt;
+      if (!d || *d <= 0) return usage_error(a + " needs a duration greater than 0 (e.g. 500ms, 2s)");
+      if (a == "--timeout") {
+        o.client.timeout_ms = static_cast<int>(std::min<tmcl::SimTime>(*d / 1000 + (*d % 1000 ? 1 : 0), 600000));
+        o.timeout_given = true;
+      } else {
+        (a == "--every" ? o.every : o.for_time) = *d;
+      }
+    } else if (a == "--retries") {
+      if (!value(v) || !parse_long(v, 0, 100, n)) return usage_error("--retries needs a number from 0 to 100");
+      o.client.retries = static_cast<int>(n);
+    } else if (a == "--raw") {
+      o.raw = true;
+    } else if (a == "-q" || a == "--quiet") {
+      o.quiet = true;
+    } else if (a == "-I") {
+      if (!value(v)) return usage_error("-I needs a directory");
+      o.include_dirs.push_back(v);
+    } else if (a == "--no-verify") {
+      o.verify = false;
+    } else if (a == "--run") {
+      o.run = true;
+    } else if (a == "--autostart") {
+      o.autostart = true;
+    } else if (a == "--from") {
+      if (!value(v) || !parse_long(v, 0, 1 << 20, n)) return usage_error("--from needs an address");
+      o.from = static_cast<int>(n);
+    } else if (a == "-o") {
+      if (!value(o.output)) return usage_error("-o needs a file");
+    } else if (a == "--csv") {
+      if (!value(o.csv)) return usage_error("--csv needs a file");
+    } else if (a == "--range") {
+      long lo = 0, hi = 0;
+      const auto dash = value(v) ? v.find('-') : std::string::npos;
+      if (dash == std::string::npos || !parse_long(v.substr(0, dash), 0, 255, lo) || !parse_long(v.substr(dash + 1), lo, 255, hi))
+        return usage_error("--range needs A-B with 0 <= A <= B <= 255");
+      o.range_lo = static_cast<int>(lo);
+      o.range_hi = static_cast<int>(hi);
+    } else if (a == "--bauds") {
+      if (!value(v)) return usage_error("--bauds needs a list such as 9600,115200");
+      for (std::size_t p = 0; p <= v.size();) {
+        const std::size_t q = std::min(v.find(',', p), v.size());
+        if (!parse_long(v.substr(p, q - p), 1, 100000000, n) || !host::valid_baud(n))
+          return usage_error("--bauds: '" + v.substr(p, q - p) + "' is not a supported baud rate");
+        o.bauds.push_back(n);
+        p = q + 1;
+      }
+    } else if (a.size() > 1 && a[0] == '-' && !(words.size() >= 2 && (a[1] == '-' || std::isdigit(static_cast<unsigned char>(a[1]))))) {
+      return usage_error("unknown option '" + a + "'");
+    } else if (a.size() > 2 && a[0] == '-' && a[1] == '-') {
+      return usage_error("unknown option '" + a + "'");
+    } else {
+      words.push_back(a);  // negative numbers after the command are values
+    }
+  }
+  if (words.empty()) return usage_error("no PORT given");
+  if (words.size() < 2) return usage_error("no COMMAND given after " + words[0]);
+  o.port = words[0];
+  o.command = words[1];
+  o.args.assign(words.begin() + 2, words.end());
+  o.profile = tmcl::find_profile(o.target);
+  if (!o.profile) return usage_error("unknown module '" + o.target + "' (usb-2-sd, tmc2300-eval, generic)");
+  return -1;
+}
+
+// ---- output helpers ----
+
+std::string hex(const std::uint8_t* p, std::size_t n) {
+  std::string s;
+  char b[4];
+  for (std::size_t i = 0; i < n; ++i) {
+    std::snprintf(b, sizeof b, i ? " %02X" : "%02X", p[i]);
+    s += b;
+  }
+  return s;
+}
+
+int exit_for(host::Fail f) {
+  switch (f) {
+    case host::Fail::None: return kExitOk;
+    case host::Fail::NoReply: return kExitNoReply;
+    case host::Fail::Port: return kExitPort;
+    case host::Fail::Cancelled: return kExitInterrupted;
+  }
+  return kExitPort;
+}
+
+int exit_for(host::Outcome o) {
+  switch (o) {
+    case host::Outcome::Ok: return kExitOk;
+    case host::Outcome::NoReply: return kExitNoReply;
+    case host::Outcome::Port: return kExitPort;
+    case host::Outcome::BadStatus: return kExitStatus;
+    case host::Outcome::Mismatch: return kExitMismatch;
+    case host::Outcome::Cancelled: return kExitInterrupted;
+  }
+  return kExitPort;
+}
+
+double seconds_since(host::Clock::time_point t0) {
+  return std::chrono::duration<double>(host::Clock::now() - t0).count();
+}
+
+// avrdude's bar on a terminal ("Writing | ####   | 60% 0.31s"); nothing otherwise.
+struct Bar {
+  const char* label;
+  bool on;
+  host::Clock::time_point t0 = host::Clock::now();
+  int shown = -1;
+  void operator()(int done, int total) {
+    if (!on || total <= 0) return;
+    const int pct = done * 100 / total;
+    if (pct == shown) return;
+    shown = pct;
+    std::string bar(static_cast<std::size_t>(pct / 2), '#');
+    bar.resize(50, ' ');
+    std::fprintf(stderr, "\r%s | %s | %3d%% %.2fs", label, bar.c_str(), pct, seconds_since(t0));
+    if (done == total) std::fputc('\n', stderr);
+    std::fflush(stderr);
+  }
+  void end() {
+    if (on && shown >= 0 && shown < 100) std::fputc('\n', stderr);
+  }
+};
+
+// ---- commands ----
+
+struct Session {
+  Options& o;
+  host::Port& port;
+  host::Client client;
+
+  // Sends one instruction; prints the failure (naming port, address and frame) and returns the exit status.
+  int ask(const Instruction& ins, host::Result& r, bool need_ok = true) {
+    r = client.request(ins);
+    if (!r.ok()) {
+      std::fprintf(stderr, "tmclctl: error: %s\n", r.error.c_str());
+      return exit_for(r.fail);
+    }
+    print_events();
+    if (need_ok && r.reply.status != host::kStatusOk) {
+      std::fprintf(stderr, "tmclctl: error: module %d answered %d (%s) to %s\n", o.client.module, r.reply.status,
+                   host::status_text(r.reply.status).c_str(), client.describe(ins).c_str());
+      return kExitStatus;
+    }
+    return kExitOk;
+  }
+
+  void print_events() {
+    for (const auto& e : client.take_events())
+      std::printf("event: position reached (motor mask 0x%" PRIX32 ")\n", static_cast<std::uint32_t>(e.value));
+  }
+
+  // send / console: status in words and the value.
+  int send_and_print(const Instruction& ins) {
+    host::Result r;
+    if (int rc = ask(ins, r, false); rc != kExitOk) return rc;
+    if (ins.op == static_cast<std::uint8_t>(Op::GetFirmwareVersion) && ins.type == 0) {
+      std::printf("firmware %s\n", r.reply.version.c_str());
+    } else if (ins.op == static_cast<std::uint8_t>(Op::ReadProgramMemory) && ins.type == 0 && r.reply.status == host::kStatusOk) {
+      std::printf("address %d: %s\n", ins.value, tmcl::format_instruction(r.reply.stored).c_str());
+    } else if (ins.op == static_cast<std::uint8_t>(Op::RestoreFactorySettings) && ins.value == 1234) {
+      std::printf("sent (137 is not answered)\n");
+    } else {
+      std::printf("%d %s, value %" PRId32 "\n", r.reply.status, host::status_text(r.reply.status).c_str(), r.reply.value);
+    }
+    return r.reply.status == host::kStatusOk || r.reply.status == host::kStatusLoaded ? kExitOk : kExitStatus;
+  }
+
+  std::optional<Instruction> assemble(const std::string& text) {
+    std::string messages;
+    auto ins = host::assemble_one(text, *o.profile, o.include_dirs, messages);
+    std::fputs(messages.c_str(), stderr);
+    return ins;
+  }
+
+  int cmd_send() {
+    if (o.args.size() != 1) return usage_error("send takes one instruction in quotes, e.g. send 'SAP 4, 0, 51200'");
+    auto ins = assemble(o.args[0]);
+    if (!ins) return kExitInput;
+    return send_and_print(*ins);
+  }
+
+  int cmd_param(host::ParamAction action) {
+    std::size_t at = 0;
+    host::ParamRef p;
+    std::string err;
+    if (!host::parse_param(o.args, at, *o.profile, false, p, err)) return usage_error(err);
+    long value = 0;
+    if (action == host::ParamAction::Set) {
+      if (at >= o.args.size() || !parse_long(o.args[at], INT32_MIN, INT32_MAX, value))
+        return usage_error("set needs a value (a 32-bit integer) after the parameter");
+      ++at;
+    }
+    if (at != o.args.size()) return usage_error("unexpected '" + o.args[at] + "'");
+    Instruction ins;
+    if (!host::param_instruction(p, action, static_cast<std::int32_t>(value), *o.profile, ins, err)) {
+      std::fprintf(stderr, "tmclctl: error: %s\n", err.c_str());
+      return kExitInput;
+    }
+    host::Result r;
+    if (int rc = ask(ins, r); rc != kExitOk) return rc;
+    if (action == host::ParamAction::Get)
+      std::printf("%" PRId32 "\n", r.reply.value);
+    else if (!o.quiet)
+      std::printf("%s: %s\n", p.label().c_str(), action == host::ParamAction::Set ? "set" : "stored");
+    return kExitOk;
+  }
+
+  int load_program(std::vector<Instruction>& program) {
+    if (o.args.empty()) return usage_error("download needs a FILE");
+    const std::string& first = o.args[0];
+    auto ext = [](const std::string& s, const char* e) {
+      const std::string x(e);
+      if (s.size() < x.size()) return false;
+      for (std::size_t i = 0; i < x.size(); ++i)
+        if (std::tolower(static_cast<unsigned char>(s[s.size() - x.size() + i])) != x[i]) return false;
+      return true;
+    };
+    if (o.args.size() == 1 && (ext(first, ".bin") || ext(first, ".dgm"))) {
+      std::vector<std::uint8_t> bytes;
+      std::string err, messages;
+      if (!tmcl::read_file(first, bytes, err)) {
+        std::fprintf(stderr, "tmclctl: error: %s\n", err.c_str());
+        return kExitInput;
+      }
+      const bool ok = tmcl::read_program_image(first, bytes, program, messages);
+      std::fputs(messages.c_str(), stderr);
+      if (!ok) return kExitInput;
+    } else {
+      tmcl::AsmOptions opt;
+      opt.profile = o.profile;
+      opt.include_dirs = o.include_dirs;
+      opt.symbols = false;
+      tmcl::DiskReader reader;
+      tmcl::AsmResult r = tmcl::assemble(o.args, opt, reader);
+      std::fputs(r.diags.render(r.sources).c_str(), stderr);
+      if (!r.ok()) return kExitInput;
+      program = r.program;
+    }
+    if (program.empty()) {
+      std::fprintf(stderr, "%s: error: the program is empty\n", first.c_str());
+      return kExitInput;
+    }
+    const int memory = o.profile->program_memory;
+    if (memory > 0 && program.size() > static_cast<std::size_t>(memory)) {
+      std::fprintf(stderr, "%s: error: %zu instructions do not fit the %d of %s program memory\n", first.c_str(), program.size(),
+                   memory, std::string(o.profile->name).c_str());
+      return kExitInput;
+    }
+    if (o.from > static_cast<int>(program.size())) {
+      std::fprintf(stderr, "tmclctl: error: --from %d is past the end of the program (%zu instructions)\n", o.from, program.size());
+      return kExitUsage;
+    }
+    return -1;
+  }
+
+  int cmd_download() {
+    std::vector<Instruction> program;
+    if (int rc = load_program(program); rc >= 0) return rc;
+    const bool tty = !o.quiet && ::isatty(2);
+    const int memory = o.profile->program_memory;
+    const int total = static_cast<int>(program.size());
+    const auto t0 = host::Clock::now();
+    Bar bar{"Writing  ", tty};
+    host::TransferResult tr = host::download(client, program, o.from, memory, std::ref(bar));
+    bar.end();
+    if (tr.outcome == host::Outcome::Cancelled) {
+      // Leave download mode so that the module answers normally again, then say how to resume.
+      g_stop = 0;
+      client.set_retries(0);
+      client.request(Instruction{static_cast<std::uint8_t>(Op::ExitDownloadMode), 0, 0, 0});
+      std::fprintf(stderr,
+                   "tmclctl: interrupted after %d of %d instructions; the module holds a partial program.\n"
+                   "tmclctl: resume with: tmclctl %s download --from %d",
+                   tr.done, total, o.port.c_str(), tr.done);
+      if (o.client.module != 1) std::fprintf(stderr, " -a %d", o.client.module);
+      for (const auto& a : o.args) std::fprintf(stderr, " %s", a.c_str());
+      std::fputc('\n', stderr);
+      return kExitInterrupted;
+    }
+    if (tr.outcome != host::Outcome::Ok) {
+      std::fprintf(stderr, "tmclctl: error: %s\n", tr.message.c_str());
+      if (tr.done > o.from)
+        std::fprintf(stderr, "tmclctl: %d of %d instructions were stored; resume with --from %d\n", tr.done, total, tr.done);
+      return exit_for(tr.outcome);
+    }
+    const double t_write = seconds_since(t0);
+    if (!o.quiet)
+      std::printf("wrote %d instructions to module %d in %.2fs\n", total - o.from, o.client.module, t_write);
+    if (o.verify) {
+      const auto t1 = host::Clock::now();
+      Bar vbar{"Reading  ", tty};
+      tr = host::verify(client, program, 0, memory, std::ref(vbar));
+      vbar.end();
+      if (tr.outcome == host::Outcome::Cancelled) {
+        std::fprintf(stderr, "tmclctl: interrupted while verifying; the program is stored but not verified\n");
+        return kExitInterrupted;
+      }
+      if (tr.outcome != host::Outcome::Ok) {
+        std::fprintf(stderr, "tmclctl: error: %s\n", tr.message.c_str());
+        return exit_for(tr.outcome);
+      }
+      if (!o.quiet) std::printf("verified %d instructions in %.2fs\n", total, seconds_since(t1));
+    }
+    host::Result r;
+    if (o.autostart) {
+      const Instruction set77{static_cast<std::uint8_t>(Op::SGP), 77, 0, 1};
+      if (int rc = ask(set77, r); rc != kExitOk) return rc;
+      const tmcl::ParamInfo* p = o.profile->global_param(0, 77);
+      if (!p || !(p->access & tmcl::kAutoStore)) {  // auto-stored parameters are in the EEPROM already
+        if (int rc = ask(Instruction{static_cast<std::uint8_t>(Op::STGP), 77, 0, 0}, r); rc != kExitOk) return rc;
+      }
+      if (!o.quiet) std::printf("autostart on (global parameter 77 = 1, stored)\n");
+    }
+    if (o.run) {
+      if (int rc = ask(Instruction{static_cast<std::uint8_t>(Op::ResetApplication), 0, 0, 0}, r); rc != kExitOk) return rc;
+      if (int rc = ask(Instruction{static_cast<std::uint8_t>(Op::RunApplication), 0, 0, 0}, r); rc != kExitOk) return rc;
+      if (!o.quiet) std::printf("running\n");
+    }
+    return kExitOk;
+  }
+
+  int cmd_upload() {
+    if (o.output.empty()) return usage_error("upload needs -o FILE.bin");
+    if (!o.args.empty()) return usage_error("upload takes no arguments besides -o FILE");
+    std::vector<Instruction> program;
+    Bar bar{"Reading  ", false};
+    host::TransferResult tr = host::upload(client, o.profile->program_memory, program, std::ref(bar));
+    if (tr.outcome != host::Outcome::Ok) {
+      std::fprintf(stderr, "tmclctl: error: %s%s\n", tr.message.c_str(),
+                   tr.outcome == host::Outcome::Cancelled ? "; nothing written" : "");
+      return exit_for(tr.outcome);
+    }
+    std::string err;
+    if (!tmcl::write_file_atomic(o.output, tmcl::write_bin(program), err)) {
+      std::fprintf(stderr, "tmclctl: error: %s\n", err.c_str());
+      return kExitPort;
+    }
+    if (!o.quiet) std::printf("read %zu instructions into %s\n", program.size(), o.output.c_str());
+    return kExitOk;
+  }
+
+  int cmd_control(Op op) {
+    Instruction ins{static_cast<std::uint8_t>(op), 0, 0, 0};
+    if (op == Op::RunApplication && !o.args.empty()) {
+      long at = 0;
+      if (o.args.size() != 1 || !parse_long(o.args[0], 0, 1 << 20, at)) return usage_error("run takes one program address");
+      ins.type = 1;
+      ins.value = static_cast<std::int32_t>(at);
+    } else if (!o.args.empty()) {
+      return usage_error(o.command + " takes no arguments");
+    }
+    host::Result r;
+    if (int rc = ask(ins, r); rc != kExitOk) return rc;
+    return kExitOk;
+  }
+
+  int cmd_status() {
+    if (!o.args.empty()) return usage_error("status takes no arguments");
+    const auto ctl = [](Op op, std::uint8_t type) { return Instruction{static_cast<std::uint8_t>(op), type, 0, 0}; };
+    host::Result r0, r1, r2, r3, v0, v1;
+    for (auto [ins, r] : {std::pair{ctl(Op::GetApplicationStatus, 0), &r0}, std::pair{ctl(Op::GetApplicationStatus, 1), &r1},
+                          std::pair{ctl(Op::GetApplicationStatus, 2), &r2}, std::pair{ctl(Op::GetApplicationStatus, 3), &r3},
+                          std::pair{ctl(Op::GetFirmwareVersion, 0), &v0}, std::pair{ctl(Op::GetFirmwareVersion, 1), &v1}})
+      if (int rc = ask(ins, *r); rc != kExitOk) return rc;
+    const auto s0 = static_cast<std::uint32_t>(r0.reply.value), s1 = static_cast<std::uint32_t>(r1.reply.value);
+    std::printf("mode:             %s\n", host::mode_name(s0 >> 24).c_str());
+    std::printf("waiting:          %s\n", (s0 >> 16 & 0xFF) ? "yes" : "no");
+    std::printf("program counter:  %u\n", s1 & 0xFFFF);
+    std::printf("download pointer: %u\n", s0 & 0xFFFF);
+    std::printf("accumulator:      %" PRId32 "\n", r2.reply.value);
+    std::printf("x register:       %" PRId32 "\n", r3.reply.value);
+    const tmcl::Profile* p = host::profile_by_firmware(v0.reply.version);
+    std::printf("firmware:         %s (0x%08" PRIX32 ")%s%s\n", v0.reply.version.c_str(), static_cast<std::uint32_t>(v1.reply.value),
+                p ? ", " : "", p ? std::string(p->title).c_str() : "");
+    return kExitOk;
+  }
+
+  int cmd_monitor() {
+    std::vector<host::ParamRef> params;
+    std::vector<Instruction> reads;
+    for (std::size_t at = 0; at < o.args.size();) {
+      host::ParamRef p;
+      std::string err;
+      if (!host::parse_param(o.args, at, *o.profile, true, p, err)) return usage_error(err);
+      Instruction ins;
+      if (!host::param_instruction(p, host::ParamAction::Get, 0, *o.profile, ins, err)) {
+        std::fprintf(stderr, "tmclctl: error: %s\n", err.c_str());
+        return kExitInput;
+      }
+      params.push_back(p);
+      reads.push_back(ins);
+    }
+    if (params.empty()) return usage_error("monitor needs at least one parameter (e.g. ap:1, gp:128, 'actual position')");
+    const bool table = o.csv.empty() && ::isatty(1);
+    std::string csv = "time_s";
+    for (const auto& p : params) {
+      std::string label = p.info ? std::string(p.info->name) : p.label();
+      for (char& c : label)
+        if (c == ',') c = ';';
+      csv += "," + label + (p.kind == host::ParamRef::Axis ? " [" + std::to_string(p.index) + "]" : "");
+    }
+    csv += "\n";
+    if (table) {
+      std::printf("%10s", "time (s)");
+      for (const auto& p : params) {
+        const char* kind = p.kind == host::ParamRef::Axis ? "ap:" : p.kind == host::ParamRef::Global ? "gp:" : "io:";
+        std::printf(" %14s", (kind + std::to_string(p.number) + ":" + std::to_string(p.index)).c_str());
+      }
+      std::printf("\n");
+    } else if (o.csv.empty()) {
+      std::fputs(csv.c_str(), stdout);
+    }
+    const auto t0 = host::Clock::now();
+    const auto every = std::chrono::microseconds(o.every);
+    int rc = kExitOk;
+    for (std::int64_t row = 0;; ++row) {
+      const auto due = t0 + every * row;
+      if (o.for_time > 0 && due - t0 >= std::chrono::microseconds(o.for_time)) break;
+      while (host::Clock::now() < due && !g_stop) std::this_thread::sleep_for(std::min<host::Clock::duration>(due - host::Clock::now(), std::chrono::milliseconds(50)));
+      if (g_stop) break;
+      char line[64];
+      std::snprintf(line, sizeof line, "%.3f", std::chrono::duration<double>(every * row).count());
+      std::string text = line;
+      if (table) std::printf("%10s", line);
+      for (const auto& ins : reads) {
+        host::Result r;
+        rc = ask(ins, r);
+        if (rc != kExitOk) break;
+        text += "," + std::to_string(r.reply.value);
+        if (table) std::printf(" %14" PRId32, r.reply.value);
+      }
+      if (rc == kExitInterrupted) {
+        rc = kExitOk;  // Ctrl-C is how a monitor without --for ends
+        break;
+      }
+      if (rc != kExitOk) break;
+      csv += text + "\n";
+      if (table) {
+        std::printf("\n");
+        std::fflush(stdout);
+      } else if (o.csv.empty()) {
+        std::printf("%s\n", text.c_str());
+        std::fflush(stdout);
+      }
+    }
+    if (!o.csv.empty()) {
+      std::string err;
+      if (!tmcl::write_file_atomic(o.csv, std::vector<std::uint8_t>(csv.begin(), csv.end()), err)) {
+        std::fprintf(stderr, "tmclctl: error: %s\n", err.c_str());
+        return kExitPort;
+      }
+    }
+    return rc;
+  }
+
+  int cmd_console() {
+    if (!o.args.empty()) return usage_error("console takes no arguments");
+    const bool tty = ::isatty(0);
+    std::vector<std::string> history;
+    std::string line;
+    int last = kExitOk;
+    for (;;) {
+      if (tty) {
+        std::printf("tmcl> ");
+        std::fflush(stdout);
+      }
+      g_stop = 0;
+      if (!std::getline(std::cin, line)) break;
+      const auto b = line.find_first_not_of(" \t"), e = line.find_last_not_of(" \t\r");
+      line = b == std::string::npos ? "" : line.substr(b, e - b + 1);
+      if (line.empty()) continue;
+      if (line == "quit" || line == "exit") break;
+      if (line == "!!") {
+        if (history.empty()) {
+          std::printf("no earlier instruction\n");
+          continue;
+        }
+        line = history.back();
+        std::printf("%s\n", line.c_str());
+      }
+      if (line == "help") {
+        std::printf(
+            "Type an instruction in source syntax (SAP 4, 0, 51200; GAP 1, 0; MVP ABS, 0, 1000; .raw 136, 0, 0, 0);\n"
+            "constants and keywords work as in a program. 'history' lists this session's instructions, '!!' repeats\n"
+            "the last one, 'quit' (or end of input) leaves.\n");
+        continue;
+      }
+      if (line == "history") {
+        for (std::size_t i = 0; i < history.size(); ++i) std::printf("%4zu  %s\n", i + 1, history[i].c_str());
+        continue;
+      }
+      auto ins = assemble(line);
+      if (!ins) {
+        last = kExitInput;
+        continue;
+      }
+      history.push_back(line);
+      last = send_and_print(*ins);
+      std::fflush(stdout);
+      if (last == kExitPort) return last;  // the line is gone
+    }
+    return last == kExitInput || last == kExitStatus || last == kExitNoReply ? kExitOk : last;
+  }
+
+  int scan_here(int& found) {
+    client.set_retries(0);
+    if (!o.timeout_given) client.set_timeout(50);
+    for (int a = o.range_lo; a <= o.range_hi && !g_stop; ++a) {
+      client.set_module(static_cast<std::uint8_t>(a));
+      host::Result r = client.request(Instruction{static_cast<std::uint8_t>(Op::GetFirmwareVersion), 1, 0, 0});
+      if (r.fail == host::Fail::Cancelled) break;
+      if (r.fail == host::Fail::Port) {
+        std::fprintf(stderr, "tmclctl: error: %s\n", r.error.c_str());
+        return kExitPort;
+      }
+      if (!r.ok()) continue;
+      host::Result v = client.request(Instruction{static_cast<std::uint8_t>(Op::GetFirmwareVersion), 0, 0, 0});
+      const std::string version = v.ok() ? v.reply.version : "?";
+      const tmcl::Profile* p = host::profile_by_firmware(version);
+      std::printf("address %3d: firmware %s (0x%08" PRIX32 "), %s\n", a, version.c_str(), static_cast<std::uint32_t>(r.reply.value),
+                  p ? std::string(p->title).c_str() : "unknown module type");
+      std::fflush(stdout);
+      ++found;
+    }
+    return g_stop ? kExitInterrupted : kExitOk;
+  }
+};
+
+int cmd_scan(Options& o, std::unique_ptr<host::Port>& port) {
+  if (!o.args.empty()) return usage_error("scan takes no arguments (--range A-B, --bauds LIST)");
+  int found = 0;
+  std::vector<long> bauds = o.bauds.empty() ? std::vector<long>{o.baud} : o.bauds;
+  if (!port->is_serial() && !o.bauds.empty()) return usage_error("--bauds goes with a serial port, not " + o.port);
+  for (std::size_t i = 0; i < bauds.size(); ++i) {
+    if (i > 0) {
+      port.reset();
+      std::string err;
+      port = host::Port::open(o.port, bauds[i], o.client.timeout_ms, err);
+      if (!port) {
+        std::fprintf(stderr, "tmclctl: error: %s\n", err.c_str());
+        return kExitPort;
+      }
+    }
+    if (bauds.size() > 1) std::printf("at %ld baud:\n", bauds[i]);
+    Session s{o, *port, host::Client(*port, o.client)};
+    if (int rc = s.scan_here(found); rc != kExitOk) return rc;
+  }
+  if (!o.quiet) std::printf("%d module%s found\n", found, found == 1 ? "" : "s");
+  return found > 0 ? kExitOk : kExitNoReply;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  Options o;
+  if (int r = parse_args(argc, argv, o); r >= 0) return r;
+
+  struct sigaction sa{};
+  sa.sa_handler = on_sigint;
+  sigemptyset(&sa.sa_mask);
+  sa.sa_flags = 0;  // no SA_RESTART: a blocked poll returns and the flag is seen at once
+  ::sigaction(SIGINT, &sa, nullptr);
+  ::sigaction(SIGTERM, &sa, nullptr);
+  host::Port::set_cancel_flag(&g_stop);
+
+  static const char* const kCommands[] = {"send", "get", "set", "store", "download", "upload", "run", "stop", "step",
+                                          "reset", "status", "monitor", "console", "scan"};
+  bool known = false;
+  for (const char* c : kCommands) known = known || o.command == c;
+  if (!known) return usage_error("unknown command '" + o.command + "'");
+
+  std::string err;
+  std::unique_ptr<host::Port> port = host::Port::open(o.port, o.baud, o.client.timeout_ms, err);
+  if (!port) {
+    std::fprintf(stderr, "tmclctl: error: %s\n", err.c_str());
+    return kExitPort;
+  }
+  if (o.raw)
+    o.client.on_frame = [](bool out, const std::uint8_t* p, std::size_t n) {
+      std::printf("%s %s\n", out ? ">" : "<", hex(p, n).c_str());
+    };
+  if (o.command == "scan") return cmd_scan(o, port);
+  Session s{o, *port, host::Client(*port, o.client)};
+  const std::string& c = o.command;
+  if (c == "send") return s.cmd_send();
+  if (c == "get") return s.cmd_param(host::ParamAction::Get);
+  if (c == "set") return s.cmd_param(host::ParamAction::Set);
+  if (c == "store") return s.cmd_param(host::ParamAction::Store);
+  if (c == "download") return s.cmd_download();
+  if (c == "upload") return s.cmd_upload();
+  if (c == "run") return s.cmd_control(Op::RunApplication);
+  if (c == "stop") return s.cmd_control(Op::StopApplication);
+  if (c == "step") return s.cmd_control(Op::StepApplication);
+  if (c == "reset") return s.cmd_control(Op::ResetApplication);
+  if (c == "status") return s.cmd_status();
+  if (c == "monitor") return s.cmd_monitor();
+  return s.cmd_console();
+}
