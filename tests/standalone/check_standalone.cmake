@@ -1,0 +1,121 @@
+# The tree stands alone: nothing in its build, tests, benchmarks or CI reads outside it.
+# Run as: cmake -DROOT=<source dir> [-DWORK=<scratch dir>] [-DGENERATOR=<generator>] -P check_standalone.cmake
+#
+# 1. Greps the CMake files, scripts and sources for paths that leave the tree: `../shared`,
+#    `${PROJECT_SOURCE_DIR}/..`, `${CMAKE_SOURCE_DIR}/..` and absolute `/work/` paths.
+# 2. Copies the tree (without build*/ and .git) into a fresh folder under WORK that has nothing
+#    beside it, configures it, checks that the generated build names no file of the original
+#    tree, and builds one small target (tmcl_base) from the copy. Configuring plus one library
+#    keeps this a few seconds (docs/performance.md, "Build time"); the whole suite from a copy is
+#    what .ci/run does.
+cmake_minimum_required(VERSION 3.25)
+if(NOT DEFINED ROOT)
+  message(FATAL_ERROR "check_standalone.cmake needs -DROOT=<source dir>")
+endif()
+# The scratch folder is the system's temporary folder, far from the tree and whatever is beside it.
+if(NOT WORK)
+  set(WORK "$ENV{TMPDIR}")
+  if(NOT WORK)
+    set(WORK /tmp)
+  endif()
+endif()
+get_filename_component(ROOT "${ROOT}" REALPATH)
+set(failures 0)
+
+# ---- 1. grep ---------------------------------------------------------------------------------
+# Top-level entries of the tree, without build folders and .git (never walked: they are big).
+file(GLOB top LIST_DIRECTORIES true RELATIVE "${ROOT}" "${ROOT}/*" "${ROOT}/.ci")
+list(FILTER top EXCLUDE REGEX "^(build.*|\\.git)$")
+set(candidates "")
+foreach(entry IN LISTS top)
+  if(IS_DIRECTORY "${ROOT}/${entry}")
+    file(GLOB_RECURSE found LIST_DIRECTORIES false RELATIVE "${ROOT}"
+      "${ROOT}/${entry}/*CMakeLists.txt" "${ROOT}/${entry}/*.cmake" "${ROOT}/${entry}/*.in"
+      "${ROOT}/${entry}/*.sh" "${ROOT}/${entry}/*.py" "${ROOT}/${entry}/*.cpp" "${ROOT}/${entry}/*.hpp"
+      "${ROOT}/${entry}/*.h" "${ROOT}/${entry}/*.def" "${ROOT}/${entry}/*.run")
+    list(APPEND candidates ${found})
+  elseif(entry STREQUAL "CMakeLists.txt")
+    list(APPEND candidates ${entry})
+  endif()
+endforeach()
+list(APPEND candidates .ci/run)
+list(REMOVE_DUPLICATES candidates)
+# The patterns, spelled so that this file does not match itself.
+set(dotdot "..")
+set(patterns "${dotdot}/shared" "PROJECT_SOURCE_DIR}/${dotdot}" "CMAKE_SOURCE_DIR}/${dotdot}" "/work/")
+foreach(rel IN LISTS candidates)
+  if(rel STREQUAL "tests/standalone/check_standalone.cmake" OR NOT EXISTS "${ROOT}/${rel}")
+    continue()
+  endif()
+  file(STRINGS "${ROOT}/${rel}" lines)
+  set(n 0)
+  foreach(line IN LISTS lines)
+    math(EXPR n "${n} + 1")
+    foreach(p IN LISTS patterns)
+      string(FIND "${line}" "${p}" at)
+      if(at GREATER -1)
+        message(SEND_ERROR "${rel}:${n}: reaches outside the tree (`${p}`): ${line}")
+        math(EXPR failures "${failures} + 1")
+      endif()
+    endforeach()
+  endforeach()
+endforeach()
+list(LENGTH candidates scanned)
+message(STATUS "grep: ${scanned} files scanned, ${failures} paths leaving the tree")
+
+# ---- 2. a copy with nothing beside it ------------------------------------------------------
+string(RANDOM LENGTH 8 tag)
+set(box "${WORK}/standalone-${tag}")
+set(copy "${box}/tmcl")
+file(REMOVE_RECURSE "${box}")
+file(MAKE_DIRECTORY "${copy}")
+foreach(entry IN LISTS top)
+  file(COPY "${ROOT}/${entry}" DESTINATION "${copy}")
+endforeach()
+
+string(TIMESTAMP t0 "%s")
+set(gen_args "")
+if(GENERATOR)
+  set(gen_args -G "${GENERATOR}")
+endif()
+execute_process(COMMAND ${CMAKE_COMMAND} -S "${copy}" -B "${copy}/build" ${gen_args}
+  RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+if(NOT rc EQUAL 0)
+  message(SEND_ERROR "configuring a copy of the tree in ${copy} failed (${rc}):\n${out}\n${err}")
+  math(EXPR failures "${failures} + 1")
+else()
+  # The generated build must name no file of the original tree (a path that escaped the copy).
+  file(GLOB_RECURSE generated "${copy}/build/*.ninja" "${copy}/build/*Makefile*" "${copy}/build/*.make"
+       "${copy}/build/*CTestTestfile.cmake")
+  foreach(g IN LISTS generated)
+    file(STRINGS "${g}" lines)
+    foreach(line IN LISTS lines)
+      string(FIND "${line}" "${ROOT}/" original)
+      string(FIND "${line}" "${dotdot}/shared" shared)
+      if(original GREATER -1 OR shared GREATER -1)
+        message(SEND_ERROR "${g}: the copy's build names a file outside it: ${line}")
+        math(EXPR failures "${failures} + 1")
+        break()
+      endif()
+    endforeach()
+  endforeach()
+  string(TIMESTAMP t1 "%s")
+  math(EXPR secs "${t1} - ${t0}")
+  message(STATUS "copy and configure: ${secs} s")
+  execute_process(COMMAND ${CMAKE_COMMAND} --build "${copy}/build" --parallel 2 --target tmcl_base
+    RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+  if(NOT rc EQUAL 0)
+    message(SEND_ERROR "building tmcl_base in the copy ${copy} failed (${rc}):\n${out}\n${err}")
+    math(EXPR failures "${failures} + 1")
+  endif()
+  string(TIMESTAMP t2 "%s")
+  math(EXPR secs "${t2} - ${t1}")
+  message(STATUS "build tmcl_base: ${secs} s")
+endif()
+
+if(failures EQUAL 0)
+  file(REMOVE_RECURSE "${box}")
+  message(STATUS "standalone: the tree configures and builds from ${copy} with nothing beside it")
+else()
+  message(FATAL_ERROR "standalone: ${failures} problem(s); the copy is kept in ${copy}")
+endif()
