@@ -13,6 +13,7 @@
 #include "tmcl/asm/object.hpp"
 #include "tmcl/asm/output.hpp"
 #include "tmcl/fileio.hpp"
+#include "tmcl/version.hpp"
 
 namespace {
 
@@ -204,7 +205,7 @@ int main(int argc, char** argv) {
       std::fputs(kUsage, stdout);
       return 0;
     } else if (a == "--version") {
-      std::puts("tmclasm 0.1.0");
+      std::puts(tmcl::version_line("tmclasm").c_str());
       return 0;
     } else if (a == "-o" || (a.rfind("-o", 0) == 0 && a.size() > 2 && a[2] != '-')) {
       if (!value("-o", v)) return usage_error("-o needs a file name");

@@ -28,10 +28,7 @@
 #include "tmcl/host/transfer.hpp"
 #include "tmcl/image.hpp"
 #include "tmcl/program_image.hpp"
-
-#ifndef TMCL_VERSION
-#define TMCL_VERSION "unknown"
-#endif
+#include "tmcl/version.hpp"
 
 namespace {
 
@@ -146,7 +143,7 @@ int parse_args(int argc, char** argv, Options& o) {
       std::fputs(kUsage, stdout);
       return kExitOk;
     } else if (a == "--version") {
-      std::printf("tmclctl (tmcl) %s\n", TMCL_VERSION);
+      std::puts(tmcl::version_line("tmclctl").c_str());
       return kExitOk;
     } else if (a == "-a" || a == "--host-address") {
       if (!value(v) || !parse_long(v, 0, 255, n)) return usage_error(a + " needs an address from 0 to 255");

@@ -19,12 +19,9 @@
 #include "tmcl/program_image.hpp"
 #include "tmcl/scenario.hpp"
 #include "tmcl/server.hpp"
+#include "tmcl/version.hpp"
 #include "tmcl/vm.hpp"
 #include "tmcl/vm_output.hpp"
-
-#ifndef TMCL_VERSION
-#define TMCL_VERSION "unknown"
-#endif
 
 namespace {
 
@@ -166,7 +163,7 @@ int parse_args(int argc, char** argv, Options& o) {
       std::printf(kUsage, joined(tmcl::motion_core_names()).c_str());
       return kExitOk;
     } else if (a == "--version") {
-      std::printf("tmclrun (tmcl) %s\n", TMCL_VERSION);
+      std::puts(tmcl::version_line("tmclrun").c_str());
       return kExitOk;
     } else if (a == "-t" || a == "--target") {
       if (!value(o.target)) return usage_error("-t needs a module name");
