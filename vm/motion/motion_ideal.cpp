@@ -31,6 +31,7 @@ struct Motor {
 class IdealCore final : public MotionCore {
  public:
   std::string_view name() const override { return "ideal"; }
+  std::unique_ptr<MotionCore> clone() const override { return std::make_unique<IdealCore>(*this); }
 
   void reset(const Profile& profile, int motors) override {
     motors_.assign(static_cast<std::size_t>(motors), Motor{});

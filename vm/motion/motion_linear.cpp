@@ -47,6 +47,7 @@ std::int32_t fallback_default(int p) {
 class LinearCore final : public ramp::RampCore<Motor> {
  public:
   std::string_view name() const override { return "linear"; }
+  std::unique_ptr<MotionCore> clone() const override { return std::make_unique<LinearCore>(*this); }
 
   void reset(const Profile& profile, int motors) override { reset_motors(profile, motors, kOwned, fallback_default); }
 

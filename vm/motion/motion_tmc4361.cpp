@@ -60,6 +60,7 @@ struct Motor {
 class Tmc4361Core final : public ramp::RampCore<Motor> {
  public:
   std::string_view name() const override { return "tmc4361"; }
+  std::unique_ptr<MotionCore> clone() const override { return std::make_unique<Tmc4361Core>(*this); }
 
   void reset(const Profile& profile, int motors) override { reset_motors(profile, motors, kOwned, fallback_default); }
 

@@ -102,6 +102,11 @@ class MotionCore {
     (void)t;
     return {position(motor), 0.0, 0.0};
   }
+
+  // A copy of the core with its whole state, for the debugger's checkpoints (reverse execution,
+  // vm/debug). nullptr (the default) when the core cannot be copied: the debugger then says
+  // that reverse execution needs a core that can.
+  virtual std::unique_ptr<MotionCore> clone() const { return nullptr; }
 };
 
 // Motion-core registry: --motion NAME. Built-in cores register themselves; an embedder may add
