@@ -34,21 +34,10 @@ void Vm::load(const std::vector<Instruction>& prog) {
   source_of.clear();
 }
 
-void Vm::store_instruction(std::int32_t address, const Instruction& ins) {
-  if (address < 0) return;
-  auto a = static_cast<std::size_t>(address);
-  if (a >= static_cast<std::size_t>(program_size)) {
-    program.resize(a + 2, Instruction{});
-    program_size = address + 1;
-  }
-  program[a] = ins;
-  decode_all();
-}
-
 void Vm::decode_all() {
-  code.resize(program.size());
-  for (std::size_t i = 0; i + 1 < program.size(); ++i) code[i] = ops::decode_for_run(program[i], program[i + 1], program_size, *profile);
-  code.back() = Instruction{};
+  code_.resize(program.size());
+  for (std::size_t i = 0; i + 1 < program.size(); ++i) code_[i] = ops::decode_for_run(program[i], program[i + 1], program_size, *profile);
+  code_.back() = Instruction{};
 }
 
 void Vm::power_on(const EepromImage* image) {
@@ -89,10 +78,10 @@ void Vm::power_on(const EepromImage* image) {
   tick_offset_ms = 0;
   random_state = 1;
   halt_pc = -1;
-  fault_set = false;
-  fault_message.clear();
+  fault_set_ = false;
+  fault_message_.clear();
   input_next = 0;
-  next_check = 0;
+  next_check_ = 0;
 
   eeprom = image ? *image : EepromImage{};
   eeprom.profile = std::string(profile->name);
@@ -125,9 +114,28 @@ void Vm::start(std::int32_t address) {
   pc = address;
   status = AppStatus::Running;
   halt_pc = -1;
-  fault_set = false;
-  fault_message.clear();
-  next_check = 0;
+  fault_set_ = false;
+  fault_message_.clear();
+  next_check_ = 0;
+}
+
+RunResult Vm::step() {
+  start(pc);
+  // A one-microsecond window: a WAIT is entered (or checked) but never jumps time ahead.
+  RunResult r = run(Limits{steps + 1, now + 1});
+  if (status == AppStatus::Running) status = AppStatus::Step;
+  return r;
+}
+
+void Vm::stop_application() {
+  if (status == AppStatus::Running || status == AppStatus::Step) status = AppStatus::Stopped;
+}
+
+void Vm::reset_application() {
+  reset_interpreter();
+  pc = 0;
+  halt_pc = -1;
+  status = AppStatus::Reset;
 }
 
 void Vm::reset_interpreter() {
@@ -138,7 +146,7 @@ void Vm::reset_interpreter() {
   in_handler = false;
   saved = InterruptContext{};
   pending.fill(0);
-  next_check = 0;
+  next_check_ = 0;
 }
 
 void Vm::add_inputs(std::vector<InputEvent> events) {
@@ -147,7 +155,7 @@ void Vm::add_inputs(std::vector<InputEvent> events) {
   for (auto& e : events) inputs_queue.push_back(e);
   std::stable_sort(inputs_queue.begin(), inputs_queue.end(),
                    [](const InputEvent& a, const InputEvent& b) { return a.at < b.at; });
-  next_check = 0;
+  next_check_ = 0;
 }
 
 std::string Vm::where(std::int32_t address) const {
@@ -159,12 +167,12 @@ std::string Vm::where(std::int32_t address) const {
 }
 
 void Vm::fault(std::string message) {
-  if (fault_set) return;
-  fault_set = true;
-  fault_message = std::move(message);
+  if (fault_set_) return;
+  fault_set_ = true;
+  fault_message_ = std::move(message);
   halt_pc = pc;
   status = AppStatus::Stopped;
-  next_check = 0;
+  next_check_ = 0;
 }
 
 bool Vm::jump_ok(std::int32_t target) {
@@ -187,7 +195,7 @@ std::int32_t Vm::tick_ms() const {
 void Vm::raise(int n) {
   if (n < 0 || n > 254 || vectors[static_cast<std::size_t>(n)] < 0 || !is_enabled(n)) return;
   pending[static_cast<std::size_t>(n >> 6)] |= std::uint64_t{1} << (n & 63);
-  next_check = 0;
+  next_check_ = 0;
 }
 
 // Serves the highest-priority (lowest-numbered) pending interrupt if it may be served now.
@@ -239,9 +247,9 @@ void Vm::handle_motion_event(const MotionEvent& ev) {
 }
 
 void Vm::sync_motion() {
-  event_buf.clear();
-  motion->advance(now, event_buf);
-  for (const auto& ev : event_buf) handle_motion_event(ev);
+  event_buf_.clear();
+  motion->advance(now, event_buf_);
+  for (const auto& ev : event_buf_) handle_motion_event(ev);
 }
 
 namespace {

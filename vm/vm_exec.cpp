@@ -1,5 +1,5 @@
 // The run loop. The fast path costs one predictable branch per instruction: a counter of the
-// instructions that start before `next_check` (the earliest timer, motion event, input or time
+// instructions that start before `next_check_` (the earliest timer, motion event, input or time
 // limit) and within the step limit. Everything else (interrupt entry, WAIT, events, limits) is
 // the slow path in service(). A WAIT never spins: the slow path jumps time to the next event.
 #include <algorithm>
@@ -27,8 +27,22 @@ std::string stuck_core(const Vm& vm) {
          " us without getting past it (a bug in the core)";
 }
 
+}  // namespace
+
+// The run loop's parts: static members of a nested struct, so they reach the VM's private
+// bookkeeping (next_check_, fault_set_, code_, ...) that nothing outside the VM touches.
+struct Vm::Loop {
+  static RunResult settle(Vm& vm, const Limits& lim);
+  static std::optional<RunResult> service(Vm& vm, const Limits& lim);
+  static void unknown_instruction(Vm& vm, std::int32_t at);
+  static void execute(Vm& vm, std::int32_t at);
+  static RunResult run_traced(Vm& vm, const Limits& lim);
+  static std::uint64_t burst_length(const Vm& vm, const Limits& lim);
+  static RunResult run_fast(Vm& vm, const Limits& lim);
+};
+
 // After STOP (or a fault): let the motors finish what they were told, up to the time limit.
-RunResult settle(Vm& vm, const Limits& lim) {
+RunResult Vm::Loop::settle(Vm& vm, const Limits& lim) {
   int rounds = 0;
   for (SimTime last = -1;; last = vm.now) {
     SimTime t = vm.motion->next_event();
@@ -43,19 +57,19 @@ RunResult settle(Vm& vm, const Limits& lim) {
     vm.now = std::max(vm.now, t);
     vm.sync_motion();
   }
-  if (vm.fault_set) return {Halt::Fault, vm.fault_message};
+  if (vm.fault_set_) return {Halt::Fault, vm.fault_message_};
   if (vm.halt_pc < 0) return {Halt::NotRunning, "the program is not running"};
   return {Halt::Stop, "STOP at " + vm.where(vm.halt_pc)};
 }
 
 // The slow path: brings the world up to `now`, ends or continues a WAIT, enters interrupts,
 // sleeps until the next event while waiting. Returns a result when run() must return.
-std::optional<RunResult> service(Vm& vm, const Limits& lim) {
+std::optional<RunResult> Vm::Loop::service(Vm& vm, const Limits& lim) {
   int rounds = 0;
   for (SimTime last = -1;; last = vm.now) {
     rounds = vm.now == last ? rounds + 1 : 0;
     if (rounds > kMaxRoundsPerInstant) vm.fault(stuck_core(vm));
-    if (vm.fault_set) return settle(vm, lim);
+    if (vm.fault_set_) return settle(vm, lim);
     // Commands and queries advance the core themselves; here only its events matter.
     if (vm.motion->next_event() <= vm.now) vm.sync_motion();
     while (vm.input_next < vm.inputs_queue.size() && vm.inputs_queue[vm.input_next].at <= vm.now)
@@ -76,8 +90,8 @@ std::optional<RunResult> service(Vm& vm, const Limits& lim) {
     if (vm.now >= lim.until) return RunResult{Halt::TimeLimit, "simulated time limit reached (--max-time)"};
     SimTime wake = vm.next_wakeup();
     if (!vm.wait.active) {
-      vm.next_check = std::min(wake, lim.until);
-      if (vm.next_check <= vm.now) vm.next_check = vm.now + 1;  // never spin on a stale instant
+      vm.next_check_ = std::min(wake, lim.until);
+      if (vm.next_check_ <= vm.now) vm.next_check_ = vm.now + 1;  // never spin on a stale instant
       return std::nullopt;
     }
     if (wake == kNever && lim.until == kNever)
@@ -86,9 +100,9 @@ std::optional<RunResult> service(Vm& vm, const Limits& lim) {
   }
 }
 
-// Reports an instruction the table dispatch did not know (code[] maps every opcode the profile
+// Reports an instruction the table dispatch did not know (code_[] maps every opcode the profile
 // lacks to 0): says which of the four reasons applies.
-void unknown_instruction(Vm& vm, std::int32_t at) {
+void Vm::Loop::unknown_instruction(Vm& vm, std::int32_t at) {
   const Instruction& raw = vm.program[static_cast<std::size_t>(at)];
   const OpInfo* info = op_info(raw.op);
   if (at == vm.program_size)
@@ -102,16 +116,16 @@ void unknown_instruction(Vm& vm, std::int32_t at) {
 }
 
 // One instruction through the table dispatch (every row of opcodes.def), registers in `vm`.
-inline void execute(Vm& vm, std::int32_t at) {
+inline void Vm::Loop::execute(Vm& vm, std::int32_t at) {
   bool known = false;
-  if (vm.code[static_cast<std::size_t>(at)].op != 0) ops::dispatch<false>(vm, vm.program[static_cast<std::size_t>(at)], known);
+  if (vm.code_[static_cast<std::size_t>(at)].op != 0) ops::dispatch<false>(vm, vm.program[static_cast<std::size_t>(at)], known);
   if (!known) [[unlikely]] unknown_instruction(vm, at);
 }
 
 // Traced execution: one instruction at a time, each reported after it ran.
-RunResult run_traced(Vm& vm, const Limits& lim) {
+RunResult Vm::Loop::run_traced(Vm& vm, const Limits& lim) {
   for (;;) {
-    if (vm.now >= vm.next_check || vm.steps >= lim.max_steps) {
+    if (vm.now >= vm.next_check_ || vm.steps >= lim.max_steps) {
       if (auto r = service(vm, lim)) return *r;
       continue;
     }
@@ -129,11 +143,11 @@ RunResult run_traced(Vm& vm, const Limits& lim) {
 // How many instructions start before the next check instant and within the step limit. Every
 // instruction advances time by exactly instr_time, so the fast loop needs one counter instead of
 // two comparisons.
-std::uint64_t burst_length(const Vm& vm, const Limits& lim) {
-  if (vm.now >= vm.next_check || vm.steps >= lim.max_steps) return 0;
+std::uint64_t Vm::Loop::burst_length(const Vm& vm, const Limits& lim) {
+  if (vm.now >= vm.next_check_ || vm.steps >= lim.max_steps) return 0;
   std::uint64_t n = lim.max_steps - vm.steps;
-  if (vm.next_check != kNever && vm.instr_time > 0) {
-    auto by_time = static_cast<std::uint64_t>((vm.next_check - vm.now + vm.instr_time - 1) / vm.instr_time);
+  if (vm.next_check_ != kNever && vm.instr_time > 0) {
+    auto by_time = static_cast<std::uint64_t>((vm.next_check_ - vm.now + vm.instr_time - 1) / vm.instr_time);
     n = std::min(n, by_time);
   }
   return n;
@@ -144,7 +158,7 @@ std::uint64_t burst_length(const Vm& vm, const Limits& lim) {
 // pure instructions run inline through the same primitives as vm_ops.hpp (arith, flags_of,
 // compare_flags, condition); every other instruction, and every case that could fault, writes
 // the registers back and goes through the table dispatch.
-RunResult run_fast(Vm& vm, const Limits& lim) {
+RunResult Vm::Loop::run_fast(Vm& vm, const Limits& lim) {
   using namespace ops;
   for (;;) {
     std::uint64_t total = burst_length(vm, lim);
@@ -152,7 +166,7 @@ RunResult run_fast(Vm& vm, const Limits& lim) {
       if (auto r = service(vm, lim)) return *r;
       continue;
     }
-    const Instruction* const code = vm.code.data();
+    const Instruction* const code = vm.code_.data();
     const auto size = static_cast<std::uint32_t>(vm.program_size);
     const SimTime dt = vm.instr_time;
     SimTime base_now = vm.now;
@@ -272,12 +286,10 @@ RunResult run_fast(Vm& vm, const Limits& lim) {
   }
 }
 
-}  // namespace
-
 RunResult Vm::run(const Limits& limits) {
-  if (status != AppStatus::Running && !fault_set) return settle(*this, limits);
-  next_check = 0;
-  return trace ? run_traced(*this, limits) : run_fast(*this, limits);
+  if (status != AppStatus::Running && !fault_set_) return Loop::settle(*this, limits);
+  next_check_ = 0;
+  return trace ? Loop::run_traced(*this, limits) : Loop::run_fast(*this, limits);
 }
 
 }  // namespace tmcl

@@ -13,6 +13,15 @@
 
 namespace tmcl::ops {
 
+// The instruction semantics' door to the VM's private run-loop state (vm.hpp befriends it).
+struct Internal {
+  // Something changed that the run loop must look at before the next instruction.
+  static void recheck(Vm& vm) { vm.next_check_ = 0; }
+  static bool jump_ok(Vm& vm, std::int32_t target) { return vm.jump_ok(target); }
+  static bool vector_ok(const Vm& vm, int n) { return vm.vector_ok(n); }
+  static void fault(Vm& vm, std::string message) { vm.fault(std::move(message)); }
+};
+
 using R = DirectReply;
 inline constexpr R ok(std::int32_t v = 0) { return {kStatusOk, v}; }
 inline constexpr R status(std::uint8_t s, std::int32_t v = 0) { return {s, v}; }
@@ -301,17 +310,17 @@ template <bool D> R op_POPV(Vm& vm, const Instruction& i) { return pop<D>(vm, vm
 // ---------------------------------------------------------------- control flow
 template <bool D> R op_JA(Vm& vm, const Instruction& i) {
   TMCL_FLOW_IN_DIRECT(i);
-  if (vm.jump_ok(i.value)) vm.pc = i.value;
+  if (Internal::jump_ok(vm, i.value)) vm.pc = i.value;
   return ok();
 }
 template <bool D> R op_JC(Vm& vm, const Instruction& i) {
   TMCL_FLOW_IN_DIRECT(i);
   if (!condition(vm, i.type)) return done<D>(vm, kStatusOk);
-  if (vm.jump_ok(i.value)) vm.pc = i.value;
+  if (Internal::jump_ok(vm, i.value)) vm.pc = i.value;
   return ok();
 }
 template <bool D> R call(Vm& vm, const Instruction& i) {
-  if (!vm.jump_ok(i.value)) return ok();
+  if (!Internal::jump_ok(vm, i.value)) return ok();
   if (vm.sp >= Vm::kStackDepth) return done<D>(vm, kStatusOk);  // E5: the 9th CSUB is ignored
   vm.stack[static_cast<std::size_t>(vm.sp++)] = vm.pc + 1;
   vm.pc = i.value;
@@ -339,19 +348,19 @@ template <bool D> R op_DJNZ(Vm& vm, const Instruction& i) {
   std::int32_t& v = vm.vars[i.type];
   v = wrap(static_cast<std::uint32_t>(v) - 1u);  // E4: flags unchanged; jumps while != 0
   if (v == 0) return done<D>(vm, kStatusOk);
-  if (vm.jump_ok(i.value)) vm.pc = i.value;
+  if (Internal::jump_ok(vm, i.value)) vm.pc = i.value;
   return ok();
 }
 template <bool D> R op_STOP(Vm& vm, const Instruction& i) {
   TMCL_FLOW_IN_DIRECT(i);
   vm.status = AppStatus::Stopped;
   vm.halt_pc = vm.pc;
-  vm.next_check = 0;
+  Internal::recheck(vm);
   return ok();
 }
 template <bool D> R op_RST(Vm& vm, const Instruction& i) {
   TMCL_FLOW_IN_DIRECT(i);
-  if (!vm.jump_ok(i.value)) return ok();
+  if (!Internal::jump_ok(vm, i.value)) return ok();
   vm.reset_interpreter();
   vm.pc = i.value;
   return ok();
@@ -366,7 +375,7 @@ template <bool D> R op_WAIT(Vm& vm, const Instruction& i) {
   vm.wait.kind = i.type;
   vm.wait.motor = i.type == 0 ? 0 : i.motor;
   vm.wait.deadline = (i.type == 0 || ticks > 0) ? start + ticks * kUsPerTick : kNever;
-  vm.next_check = 0;
+  Internal::recheck(vm);
   return ok();  // pc stays on the WAIT until it ends (the run loop's slow path)
 }
 
@@ -374,18 +383,18 @@ template <bool D> R op_WAIT(Vm& vm, const Instruction& i) {
 template <bool D> R op_EI(Vm& vm, const Instruction& i) {
   if (i.type == 255) {
     vm.global_enable = true;
-  } else if (vm.vector_ok(i.type)) {
+  } else if (Internal::vector_ok(vm, i.type)) {
     vm.enabled[i.type >> 6] |= std::uint64_t{1} << (i.type & 63);
   } else {
     return done<D>(vm, kStatusWrongType);
   }
-  vm.next_check = 0;
+  Internal::recheck(vm);
   return done<D>(vm, kStatusOk);
 }
 template <bool D> R op_DI(Vm& vm, const Instruction& i) {
   if (i.type == 255) {
     vm.global_enable = false;
-  } else if (vm.vector_ok(i.type)) {
+  } else if (Internal::vector_ok(vm, i.type)) {
     vm.enabled[i.type >> 6] &= ~(std::uint64_t{1} << (i.type & 63));
     vm.pending[i.type >> 6] &= ~(std::uint64_t{1} << (i.type & 63));  // E10: DI n drops a latched n
   } else {
@@ -394,10 +403,10 @@ template <bool D> R op_DI(Vm& vm, const Instruction& i) {
   return done<D>(vm, kStatusOk);
 }
 template <bool D> R op_VECT(Vm& vm, const Instruction& i) {
-  if (!vm.vector_ok(i.type)) return done<D>(vm, kStatusWrongType);
+  if (!Internal::vector_ok(vm, i.type)) return done<D>(vm, kStatusWrongType);
   if (i.value < 0 || i.value >= vm.program_size) {
     if constexpr (D) return status(kStatusInvalidValue);
-    vm.jump_ok(i.value);  // faults: a vector outside the program
+    Internal::jump_ok(vm, i.value);  // faults: a vector outside the program
     return ok();
   }
   vm.vectors[i.type] = i.value;
@@ -413,7 +422,7 @@ template <bool D> R op_RETI(Vm& vm, const Instruction& i) {
   vm.wait = vm.saved.wait;
   vm.sp = vm.saved.stack_depth;  // frames the handler left behind are dropped
   vm.in_handler = false;
-  vm.next_check = 0;
+  Internal::recheck(vm);
   return ok();  // the traced run loop reports leaving the handler
 }
 template <bool D> R op_CLE(Vm& vm, const Instruction& i) {
@@ -427,7 +436,7 @@ template <bool D> R op_CLE(Vm& vm, const Instruction& i) {
 // E15: a virtual module has no customer firmware extensions.
 template <bool D> R user_function(Vm& vm, const Instruction& i) {
   if constexpr (D) return status(kStatusNotAvailable);
-  vm.fault("UF" + std::to_string(i.op - 64) + " (a customer-specific user function) has no implementation in the virtual module, at " +
+  Internal::fault(vm, "UF" + std::to_string(i.op - 64) + " (a customer-specific user function) has no implementation in the virtual module, at " +
            vm.where(vm.pc));
   return ok();
 }

@@ -46,7 +46,7 @@ std::uint8_t Vm::set_axis(int motor, int param, std::int32_t value) {
   if (motion->owns(param)) {
     sync_motion();
     std::uint8_t st = from_core(motion->set_param(motor, param, value));
-    next_check = 0;
+    next_check_ = 0;
     return st;
   }
   axis[static_cast<std::size_t>(motor)][static_cast<std::size_t>(param)] = value;
@@ -92,7 +92,7 @@ std::uint8_t Vm::restore_axis(int motor, int param) {
   if (motion->owns(param)) {
     sync_motion();
     (void)motion->set_param(motor, param, v);
-    next_check = 0;
+    next_check_ = 0;
   } else {
     axis[static_cast<std::size_t>(motor)][static_cast<std::size_t>(param)] = v;
   }
@@ -121,7 +121,7 @@ std::uint8_t Vm::set_global(int bank, int param, std::int32_t value) {
   if (bank == 3) {
     bank3[idx] = value;
     if (param < kTimers) set_timer(param, value);
-    next_check = 0;
+    next_check_ = 0;
     return kStatusOk;
   }
   if (param == 128 || param == 129 || param == 130) return kStatusWrongType;  // read-only status
@@ -284,7 +284,7 @@ std::uint8_t Vm::move(int type, int motor, std::int32_t value) {
       break;
     default: return kStatusWrongType;
   }
-  next_check = 0;
+  next_check_ = 0;
   return kStatusOk;
 }
 
@@ -294,7 +294,7 @@ std::uint8_t Vm::rotate(int motor, std::int64_t velocity) {
   if (p ? !in_range(*p, velocity) : (velocity < INT32_MIN || velocity > INT32_MAX)) return kStatusInvalidValue;
   sync_motion();
   motion->rotate(motor, static_cast<std::int32_t>(velocity));
-  next_check = 0;
+  next_check_ = 0;
   return kStatusOk;
 }
 
@@ -302,7 +302,7 @@ std::uint8_t Vm::motor_stop(int motor) {
   if (!motor_ok(motor)) return kStatusInvalidValue;
   sync_motion();
   motion->stop(motor);
-  next_check = 0;
+  next_check_ = 0;
   return kStatusOk;
 }
 
@@ -311,7 +311,7 @@ std::uint8_t Vm::rfs(int type, int motor, std::int32_t& value) {
   if (type > 2) return kStatusWrongType;
   sync_motion();
   value = motion->reference_search(motor, static_cast<RfsAction>(type));
-  next_check = 0;
+  next_check_ = 0;
   return kStatusOk;
 }
 

@@ -41,7 +41,7 @@ TEST(calc_division_by_zero_leaves_target) {  // E1
   CHECK_EQ(calc_acc(4, 77, 0), 77);
   auto m = calc_run({I(Op::CALC, 3, 0, 0)}, 77);
   CHECK_EQ(m.vm.flags, tmcl::kFlagGreater);  // flags from the (unchanged) result
-  CHECK(!m.vm.fault_set);
+  CHECK(!m.vm.faulted());
 }
 
 TEST(calc_overflow_wraps) {  // E1
@@ -119,7 +119,7 @@ TEST(calc_variable_family) {
   }
   {
     auto m = calc_run({I(Op::CALCVV, 0, 1, 300)});  // var2 outside 0..255: ignored
-    CHECK(!m.vm.fault_set);
+    CHECK(!m.vm.faulted());
     CHECK_EQ(m.vm.pc, 1);
   }
   // CALCVA / CALCAV / CALCVX / CALCXV

@@ -213,3 +213,56 @@ TEST(fast_path_and_fused_forms_are_unobservable) {
       check_paths_agree(p, {steps, tmcl::kNever}, instr);
   check_paths_agree(p, {UINT64_MAX, 123'457}, 20);
 }
+
+// The life cycle belongs to the VM (control commands 128, 130, 131 and a debugger use these):
+// step runs exactly one instruction and leaves the program in Step; a WAIT is entered, not
+// jumped over; stop_application stops a stepping program; reset_application clears registers
+// and goes to address 0 in Reset; start clears a fault.
+TEST(life_cycle_step_stop_reset) {
+  Machine m({I(Op::CALC, 9, 0, 5), I(Op::CALC, 0, 0, 2), I(Op::WAIT, 0, 0, 10), I(Op::CSUB, 0, 0, 5), I(Op::STOP),
+             I(Op::RSUB)},
+            test_profile(), 20);
+  m.vm.reset_application();
+  CHECK(m.vm.status == tmcl::AppStatus::Reset);
+  CHECK(m.vm.step().halt == Halt::StepLimit);
+  CHECK_EQ(m.vm.pc, 1);
+  CHECK_EQ(m.vm.acc, 5);
+  CHECK_EQ(m.vm.steps, 1u);
+  CHECK_EQ(m.vm.now, 20);
+  CHECK(m.vm.status == tmcl::AppStatus::Step);
+  m.vm.step();
+  CHECK_EQ(m.vm.acc, 7);
+  m.vm.step();  // WAIT TICKS 10: entered, time does not jump to its end
+  CHECK_EQ(m.vm.pc, 2);
+  CHECK(m.vm.wait.active);
+  CHECK_EQ(m.vm.now, 60);
+  CHECK(m.vm.status == tmcl::AppStatus::Step);
+  m.vm.stop_application();
+  CHECK(m.vm.status == tmcl::AppStatus::Stopped);
+  m.vm.stop_application();  // stopping a stopped program changes nothing
+  CHECK(m.vm.status == tmcl::AppStatus::Stopped);
+  m.vm.reset_application();
+  CHECK_EQ(m.vm.pc, 0);
+  CHECK_EQ(m.vm.acc, 0);
+  CHECK(!m.vm.wait.active);
+  CHECK(m.vm.status == tmcl::AppStatus::Reset);
+  CHECK_EQ(m.vm.halt_pc, -1);
+  m.vm.start(3);
+  CHECK(m.vm.step().halt == Halt::StepLimit);  // CSUB: one stack entry
+  CHECK_EQ(m.vm.pc, 5);
+  CHECK_EQ(m.vm.sp, 1);
+  m.vm.reset_application();
+  CHECK_EQ(m.vm.sp, 0);
+  CHECK_EQ(m.vm.pc, 0);
+
+  Machine f({I(Op::JA, 0, 0, 99), I(Op::STOP)});
+  auto r = f.vm.step();
+  CHECK(r.halt == Halt::Fault);
+  CHECK(f.vm.faulted());
+  CHECK(f.vm.fault_message().find("outside the program") != std::string::npos);
+  CHECK(f.vm.status == tmcl::AppStatus::Stopped);
+  f.vm.start(1);
+  CHECK(!f.vm.faulted());
+  CHECK(f.vm.fault_message().empty());
+  CHECK(f.run().halt == Halt::Stop);
+}

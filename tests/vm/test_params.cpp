@@ -77,7 +77,7 @@ TEST(indexed_variables) {  // E8
                I(Op::STOP)});
     n.run();
     CHECK_EQ(n.vm.acc, 9);
-    CHECK(!n.vm.fault_set);
+    CHECK(!n.vm.faulted());
     for (auto v : n.vm.vars) CHECK_EQ(v, 0);
   }
 }

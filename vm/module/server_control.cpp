@@ -32,7 +32,7 @@ void TmclModule::control(const Instruction& ins) {
   switch (static_cast<Op>(op)) {
     case Op::StopApplication:  // 128: the program stops; motors finish what they were told
       commit_download();
-      if (vm_.status == AppStatus::Running || vm_.status == AppStatus::Step) vm_.status = AppStatus::Stopped;
+      vm_.stop_application();
       reply(kStatusOk, op, 0);
       return;
 
@@ -60,11 +60,8 @@ void TmclModule::control(const Instruction& ins) {
     case Op::StepApplication: {  // 130: exactly one instruction, then the program waits in Step
       commit_download();
       download_ = false;
-      vm_.start(vm_.pc);
-      // A one-microsecond window: a WAIT is entered (or checked) but never jumps time ahead.
-      const RunResult r = vm_.run(Limits{vm_.steps + 1, vm_.now + 1});
+      const RunResult r = vm_.step();
       if (r.halt == Halt::Fault) note("program fault: " + r.message);
-      if (vm_.status == AppStatus::Running) vm_.status = AppStatus::Step;
       reply(kStatusOk, op, 0);
       check_events();
       return;
@@ -72,10 +69,7 @@ void TmclModule::control(const Instruction& ins) {
 
     case Op::ResetApplication:  // 131: stop, pc, stacks, registers and flags to zero
       commit_download();
-      vm_.reset_interpreter();
-      vm_.pc = 0;
-      vm_.halt_pc = -1;
-      vm_.status = AppStatus::Reset;
+      vm_.reset_application();
       reply(kStatusOk, op, 0);
       return;
 
@@ -95,7 +89,7 @@ void TmclModule::control(const Instruction& ins) {
       }
       download_ = true;
       download_ptr_ = ins.value;
-      if (vm_.status == AppStatus::Running || vm_.status == AppStatus::Step) vm_.status = AppStatus::Stopped;  // S5
+      vm_.stop_application();  // S5
       reply(kStatusOk, op, ins.value);
       return;
     }

@@ -34,7 +34,6 @@ struct RampMotor {
 
   double secs(SimTime t) const { return static_cast<double>(t - origin) * 1e-6; }
   State state(SimTime t) const { return plan.at(secs(t)); }
-  const Segment& segment(SimTime t) const { return plan.segs[plan.find(secs(t))]; }
   std::int64_t xactual(SimTime t) const {
     double s = secs(t);
     const Segment& seg = plan.segs[plan.find(s)];
@@ -44,7 +43,6 @@ struct RampMotor {
   SimTime event_time(std::size_t i) const { return origin + ceil_us(plan.events[i].t); }
   SimTime next_event() const { return next < plan.events.size() ? event_time(next) : kNever; }
   bool at_rest(SimTime now) const { return plan.t_rest != kInf && origin + ceil_us(plan.t_rest) <= now; }
-  bool moving(SimTime now) const { return !at_rest(now); }
 
   // Starts a new plan at `now` from the state the old one has then; returns the builder. The new
   // base is the current step wrapped to 32 bits, as the chip's position register is.

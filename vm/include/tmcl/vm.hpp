@@ -7,6 +7,11 @@
 //   vm.start(0);
 //   RunResult r = vm.run(limits);  // until STOP, a fault, a limit, or blocked forever
 //
+// The life cycle (start, step, stop_application, reset_application) is the VM's: the virtual
+// module's control commands and a debugger call these methods rather than writing registers.
+// The state a user inspects (registers, memory, time) is plain public data; the run loop's
+// bookkeeping is private.
+//
 // Standalone mode (run) and direct mode (execute_direct) share one state, as on a real module.
 // Semantics where the manuals are silent are recorded in docs/errata.md.
 #pragma once
@@ -25,6 +30,9 @@
 namespace tmcl {
 
 struct Vm;
+namespace ops {
+struct Internal;  // vm_ops.hpp: the instruction semantics' door to the VM's internals
+}
 
 // Comparison flags (set by COMP, by every CALC variant and by every read in standalone mode).
 enum Flag : std::uint8_t { kFlagZero = 1, kFlagEqual = 2, kFlagGreater = 4, kFlagLower = 8 };
@@ -132,8 +140,6 @@ struct Vm {
 
   // ---- program memory: `program` ends with one sentinel (opcode 0) past the last instruction ----
   std::vector<Instruction> program;
-  std::vector<Instruction> code;  // what the run loop executes: `program` pre-decoded (opcode 0
-                                  // where the profile lacks the command: faults with a message)
   std::int32_t program_size = 0;  // without the sentinel
   // Where a .tmc program came from (tmclrun fills it), for fault messages: "prog.tmc:12".
   std::vector<std::string> source_of;
@@ -187,44 +193,47 @@ struct Vm {
 
   Vm(const Profile& p, MotionCore& core);
 
+  // ---- life cycle: loading, power, and what the control commands and a debugger do ----
   // Replaces program memory (the VM appends its own sentinel).
   void load(const std::vector<Instruction>& prog);
   // Power-up: every register, parameter and variable to its default, then what `image`
   // restores (user variables, axis parameters, coordinates, bank 0). Time restarts at 0.
   void power_on(const EepromImage* image = nullptr);
-  // Starts (or continues) the program at `address`.
+  // Starts (or continues) the program at `address` (control command 129); clears a fault.
   void start(std::int32_t address);
-  // RST / reset application: stack, registers, flags, interrupt state cleared.
+  // Control command 130: exactly one instruction from `pc` at the current instant (a WAIT is
+  // entered or checked, never jumped over), then the program waits in AppStatus::Step. Motion
+  // and inputs are brought up to the new instant.
+  RunResult step();
+  // Control command 128: a running or stepping program stops where it is; the motors finish
+  // what they were told (the next run() lets them).
+  void stop_application();
+  // Control command 131: the program stops, pc 0, stacks, registers, flags and interrupt state
+  // cleared; status AppStatus::Reset.
+  void reset_application();
+  // RST and the reset above: stack, registers, flags, interrupt state cleared (pc and status
+  // unchanged).
   void reset_interpreter();
   // Queues external input changes (sorted by time, stable).
   void add_inputs(std::vector<InputEvent> events);
 
+  // Runs the program until STOP, a fault, a limit, or blocked forever.
   RunResult run(const Limits& limits);
   // Direct mode: one command from a host. Reads do not touch the accumulator.
   DirectReply execute_direct(const Instruction& ins);
 
-  // Reads for output and tests.
+  // ---- reads for output, tests and a debugger ----
   std::int32_t axis_param(int motor, int param);  // through the core where it owns the number
   std::int32_t global_param(int bank, int param);
   std::int32_t tick_ms() const;
   bool motion_pending() const { return motion->next_event() != kNever; }
-
-  // ---- internals shared by the implementation files (vm*.cpp) ----
-  SimTime next_check = 0;     // the run loop leaves its fast path when now >= next_check
-  bool fault_set = false;
-  std::string fault_message;
-  std::vector<MotionEvent> event_buf;
-
-  void fault(std::string message);
-  void sync_motion();              // advance the core to `now`, handle its events
-  void handle_motion_event(const MotionEvent& ev);
-  void apply_input(const InputEvent& ev);
-  void raise(int vector);          // latch an interrupt if it is enabled and has a vector
-  bool try_enter_interrupt();
+  bool faulted() const { return fault_set_; }                          // since the last start()
+  const std::string& fault_message() const { return fault_message_; }  // empty without a fault
+  bool is_enabled(int n) const { return (enabled[n >> 6] >> (n & 63)) & 1; }
   SimTime next_wakeup() const;     // earliest timer, motion event, input, WAIT deadline
-  void fire_due_timers();
-  int wait_check();                // 0 still waiting, 1 condition met, 2 timed out (ETO set)
-  void set_timer(int n, std::int32_t period_ms);
+  void sync_motion();              // advance the core to `now`, handle its events
+  std::string where(std::int32_t address) const;  // "address 12 (prog.tmc:13)"
+
 
   // Parameter access with the profile's rules. Return a direct-mode status.
   std::uint8_t set_axis(int motor, int param, std::int32_t value);
@@ -245,13 +254,31 @@ struct Vm {
   std::uint8_t motor_stop(int motor);
   std::uint8_t rfs(int type, int motor, std::int32_t& value);
   bool motor_ok(int motor) const { return motor >= 0 && motor < profile->motors; }
+
+ private:
+  // The run loop (vm_exec.cpp) and the instruction semantics (vm_ops.hpp) reach the internals
+  // below; nothing else does.
+  struct Loop;
+  friend struct ops::Internal;
+
+  std::vector<Instruction> code_;  // what the run loop executes: `program` pre-decoded (opcode 0
+                                   // where the profile lacks the command: faults with a message)
+  SimTime next_check_ = 0;         // the run loop leaves its fast path when now >= next_check_
+  bool fault_set_ = false;
+  std::string fault_message_;
+  std::vector<MotionEvent> event_buf_;
+
+  void fault(std::string message);
+  void handle_motion_event(const MotionEvent& ev);
+  void apply_input(const InputEvent& ev);
+  void raise(int vector);          // latch an interrupt if it is enabled and has a vector
+  bool try_enter_interrupt();
+  void fire_due_timers();
+  int wait_check();                // 0 still waiting, 1 condition met, 2 timed out (ETO set)
+  void set_timer(int n, std::int32_t period_ms);
   bool vector_ok(int n) const;
   bool jump_ok(std::int32_t target);  // faults when the target is outside the program
-  bool is_enabled(int n) const { return (enabled[n >> 6] >> (n & 63)) & 1; }
-  bool is_pending(int n) const { return (pending[n >> 6] >> (n & 63)) & 1; }
-  std::string where(std::int32_t address) const;  // "address 12 (prog.tmc:13)"
-  void store_instruction(std::int32_t address, const Instruction& ins);  // download mode
-  void decode_all();  // rebuilds code[] from program[]
+  void decode_all();  // rebuilds code_[] from program[]
 };
 
 }  // namespace tmcl
