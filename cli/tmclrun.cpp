@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "tmcl/asm/assembler.hpp"
+#include "tmcl/debug_cli.hpp"
 #include "tmcl/duration.hpp"
 #include "tmcl/eeprom.hpp"
 #include "tmcl/fileio.hpp"
@@ -122,6 +123,7 @@ struct Options {
   tmcl::ServeOptions serve_opts;
   tmcl::SimTime sample = 10 * tmcl::kUsPerMs;
   tmcl::AsmOptions asm_opts;
+  tmcl::debug::FrontEnd debug;  // --debug, --debug-commands, --symbols, --checkpoint-memory
 };
 
 // Returns -1 when the run should go on, otherwise an exit status.
@@ -229,6 +231,8 @@ int parse_args(int argc, char** argv, Options& o) {
       auto eq = v.find('=');
       if (eq == std::string::npos || eq == 0) return usage_error("bad -D '" + v + "' (expected NAME=VALUE)");
       o.asm_opts.defines.emplace_back(v.substr(0, eq), v.substr(eq + 1));
+    } else if (int r = tmcl::debug::parse_option(a, has_inline, value, o.debug); r != 0) {
+      if (r < 0) return usage_error(o.debug.error);
     } else if (a != "-" && a.size() > 1 && a[0] == '-') {
       return usage_error("unknown option '" + args[i] + "'");
     } else {
@@ -324,7 +328,7 @@ int main(int argc, char** argv) {
   std::vector<tmcl::Instruction> program;
   tmcl::SourceMap sources;
   std::string err;
-  if (!o.program.empty())
+  if (!o.program.empty() && !o.debug.enabled)
     if (int r = load_program(o, profile, program, sources); r >= 0) return r;
 
   // ---- scenario and EEPROM ----
@@ -360,6 +364,11 @@ int main(int argc, char** argv) {
       return kExitInput;
     }
   }
+
+  // --debug, --dap: the debugger runs the program (vm/debug, docs/debugger.md).
+  if (o.debug.enabled)
+    return tmcl::debug::main(o.debug, *profile, std::move(core), o.program, o.asm_opts, o.instr_time, o.limits, std::move(inputs),
+                             o.eeprom.empty() ? nullptr : &image);
 
   // ---- run ----
   // --csv/--plot: the VM drives a recording decorator around the real core.

@@ -1,0 +1,232 @@
+// The debugging engine against the library: a trap stops before its instruction and costs the
+// run nothing; stepping and re-execution are deterministic (one instruction at a time gives the
+// state one run gives); reverse steps return to the exact earlier state; checkpoint memory stays
+// within its bound.
+#define TMCL_TEST_MAIN
+#include "check.hpp"
+
+#include <map>
+
+#include "tmcl/asm/assembler.hpp"
+#include "tmcl/debugger.hpp"
+
+using namespace tmcl;
+using namespace tmcl::debug;
+
+namespace {
+
+class MemReader final : public FileReader {
+ public:
+  explicit MemReader(std::string text) : text_(std::move(text)) {}
+  bool read(const std::string&, std::string& out) override {
+    out = text_;
+    return true;
+  }
+
+ private:
+  std::string text_;
+};
+
+ProgramInfo assemble_info(const std::string& source, const Profile& profile) {
+  MemReader reader(source);
+  AsmOptions opts;
+  opts.profile = &profile;
+  AsmResult res = assemble({"t.tmc"}, opts, reader);
+  CHECK(res.ok());
+  ProgramInfo info;
+  info.program = res.program;
+  info.files.push_back({"t.tmc", {}});
+  for (const auto& l : res.lines) info.lines.push_back({l.file, l.line});
+  for (const auto& s : res.symbols) (s.kind == SymbolKind::Label ? info.labels : info.constants).emplace_back(s.name, s.value);
+  return info;
+}
+
+// A program with a loop, a fused CALC+DJNZ pair, a subroutine, a timer interrupt and motion.
+const char* kProgram = R"(
+        VECT 0, tick
+        SGP 0, 3, 7
+        EI 0
+        EI 255
+        SAP 4, 0, 20000
+        SAP 5, 0, 50000
+        MVP ABS, 0, 30000
+again:  SGP 9, 2, 40
+inner:  CALC ADD, 3
+        DJNZ 9, inner
+        CSUB sub
+        GAP 1, 0
+        AGP 20, 2
+        GGP 30, 2
+        CALC ADD, 1
+        AGP 30, 2
+        COMP 25
+        JC LT, again
+        WAIT POS, 0, 0
+        STOP
+sub:    CALCX ADD
+        RSUB
+tick:   GGP 3, 2
+        CALC ADD, 1
+        AGP 3, 2
+        RETI
+)";
+
+struct Fixture {
+  const Profile* profile = find_profile("usb-2-sd");
+  std::unique_ptr<Engine> engine;
+  explicit Fixture(std::uint64_t interval = 64, std::size_t budget = std::size_t{64} << 20) {
+    Setup s;
+    s.profile = profile;
+    s.core_name = std::string(profile->default_motion);
+    s.checkpoint_interval = interval;
+    s.checkpoint_bytes = budget;
+    engine = std::make_unique<Engine>(s, assemble_info(kProgram, *profile), make_motion_core(s.core_name));
+  }
+  Vm& vm() { return engine->vm(); }
+};
+
+// Everything a user can see of the machine, as one comparable text.
+std::string state(Vm& vm) {
+  std::string s = "pc=" + std::to_string(vm.pc) + " acc=" + std::to_string(vm.acc) + " x=" + std::to_string(vm.x) +
+                  " flags=" + std::to_string(vm.flags) + " sp=" + std::to_string(vm.sp) + " now=" + std::to_string(vm.now) +
+                  " steps=" + std::to_string(vm.steps) + " h=" + std::to_string(vm.in_handler) +
+                  " pos=" + std::to_string(vm.motion->position(0));
+  for (int v : {3, 9, 20, 30}) s += " v" + std::to_string(v) + "=" + std::to_string(vm.vars[static_cast<std::size_t>(v)]);
+  return s;
+}
+
+}  // namespace
+
+TEST(breakpoint_stops_before_its_instruction_without_counting_it) {
+  Fixture f;
+  std::int32_t at = 0;
+  std::string err;
+  CHECK(f.engine->resolve("sub", at, err));
+  int id = f.engine->add_breakpoint(at, "sub", false);
+  Stop s = f.engine->start(false);
+  CHECK(s.kind == StopKind::Breakpoint);
+  CHECK_EQ(s.id, id);
+  CHECK_EQ(f.vm().pc, at);
+  // The CSUB before it ran; the instruction at the trap did not.
+  CHECK_EQ(f.vm().sp, 1);
+  std::uint64_t steps = f.vm().steps;
+  s = f.engine->step(1);
+  CHECK(s.kind == StopKind::Step);
+  CHECK_EQ(f.vm().steps, steps + 1);
+}
+
+TEST(a_trap_on_the_djnz_of_a_fused_pair_stops_there) {
+  Fixture f;
+  std::int32_t inner = 0;
+  std::string err;
+  CHECK(f.engine->resolve("inner", inner, err));
+  f.engine->add_breakpoint(inner + 1, "*", false);  // the DJNZ fused with the CALC before it
+  Stop s = f.engine->start(false);
+  CHECK(s.kind == StopKind::Breakpoint);
+  CHECK_EQ(f.vm().pc, inner + 1);
+}
+
+TEST(breakpoints_do_not_change_the_run) {
+  Fixture plain, traced;
+  Stop a = plain.engine->start(false);
+  CHECK(a.kind == StopKind::Exited);
+  for (const char* l : {"inner", "sub", "tick", "again"}) {
+    std::int32_t at = 0;
+    std::string err;
+    CHECK(traced.engine->resolve(l, at, err));
+    traced.engine->add_breakpoint(at, l, false);
+  }
+  Stop b = traced.engine->start(false);
+  int hits = 0;
+  while (b.kind == StopKind::Breakpoint) {
+    ++hits;
+    b = traced.engine->cont();
+  }
+  CHECK(b.kind == StopKind::Exited);
+  CHECK(hits > 100);
+  CHECK_EQ(state(traced.vm()), state(plain.vm()));
+}
+
+TEST(one_instruction_at_a_time_gives_the_state_one_run_gives) {
+  Fixture stepped, run;
+  stepped.engine->start(true);
+  run.engine->start(true);
+  std::map<std::uint64_t, std::string> seen;
+  for (int i = 0; i < 3000; ++i) {
+    Stop s = stepped.engine->step(1);
+    if (s.kind != StopKind::Step) break;
+    seen[stepped.vm().steps] = state(stepped.vm());
+  }
+  for (std::uint64_t at : {std::uint64_t{1}, std::uint64_t{77}, std::uint64_t{500}, std::uint64_t{1234}, std::uint64_t{2999}}) {
+    Fixture fresh;
+    fresh.engine->start(true);
+    fresh.engine->step(at);
+    CHECK_EQ(state(fresh.vm()), seen[at]);
+  }
+}
+
+TEST(reverse_steps_return_to_the_exact_earlier_state) {
+  Fixture f(50);
+  f.engine->start(true);
+  std::map<std::uint64_t, std::string> seen;
+  seen[0] = state(f.vm());
+  for (int i = 0; i < 1500; ++i) {
+    f.engine->step(1);
+    seen[f.vm().steps] = state(f.vm());
+  }
+  for (std::uint64_t back : {1, 2, 7, 49, 50, 51, 333}) {
+    std::uint64_t target = f.vm().steps - back;
+    Stop s = f.engine->reverse_step(back);
+    CHECK(s.kind == StopKind::Step);
+    CHECK_EQ(state(f.vm()), seen[target]);
+  }
+  // Forward again from a replayed state: the same states as the first time.
+  f.engine->step(10);
+  CHECK_EQ(state(f.vm()), seen[f.vm().steps]);
+}
+
+TEST(reverse_finish_and_next_land_on_the_call) {
+  Fixture f;
+  std::int32_t sub = 0;
+  std::string err;
+  CHECK(f.engine->resolve("sub", sub, err));
+  f.engine->add_breakpoint(sub + 1, "*", false);  // the RSUB
+  CHECK(f.engine->start(false).kind == StopKind::Breakpoint);
+  CHECK_EQ(f.engine->depth(), 1);
+  Stop s = f.engine->reverse_finish();
+  CHECK(s.kind == StopKind::Step);
+  CHECK_EQ(f.engine->depth(), 0);
+  CHECK_EQ(f.vm().program[static_cast<std::size_t>(f.vm().pc)].op, static_cast<std::uint8_t>(Op::CSUB));
+}
+
+TEST(checkpoint_memory_stays_within_its_bound) {
+  Fixture f(16, 64 * 1024);
+  f.engine->start(false);
+  CHECK(f.engine->checkpoint_count() > 2);
+  CHECK(f.engine->checkpoint_memory() <= std::size_t{64} * 1024);
+  // Still able to go back one instruction from the end.
+  std::uint64_t steps = f.vm().steps;
+  CHECK(f.engine->reverse_step(1).kind == StopKind::Step);
+  CHECK_EQ(f.vm().steps, steps - 1);
+}
+
+TEST(watchpoint_on_a_variable_stops_after_the_instruction_that_changed_it) {
+  Fixture f;
+  std::string err;
+  int id = f.engine->add_watchpoint("v[30]", err);
+  CHECK(id > 0);
+  Stop s = f.engine->start(false);
+  CHECK(s.kind == StopKind::Watchpoint);
+  CHECK_EQ(s.old_value, 0);
+  CHECK_EQ(s.new_value, 1);
+  CHECK_EQ(f.vm().program[static_cast<std::size_t>(f.vm().pc - 1)].op, static_cast<std::uint8_t>(Op::AGP));
+}
+
+TEST(watchpoint_on_time_stops_at_the_exact_instant) {
+  Fixture f;
+  std::string err;
+  CHECK(f.engine->add_watchpoint("time >= 123457us", err) > 0);
+  Stop s = f.engine->start(false);
+  CHECK(s.kind == StopKind::Watchpoint);
+  CHECK_EQ(f.vm().now, SimTime{123457});
+}

@@ -1,0 +1,797 @@
+// The gdb-like command line of `tmclrun --debug`: command names and abbreviations as gdb's, so
+// hands that know gdb know this; output is stable text (golden transcripts pin it). Commands
+// come from a file (--debug-commands), a pipe, or a terminal (Enter repeats the last command,
+// Ctrl-C pauses a running program). All behaviour is the engine's; this file parses and prints.
+#include <unistd.h>
+
+#include <csignal>
+#include <cstring>
+#include <sstream>
+
+#include "tmcl/asm/disasm.hpp"
+#include "tmcl/debug_cli.hpp"
+#include "tmcl/duration.hpp"
+#include "tmcl/fileio.hpp"
+#include "tmcl/program_image.hpp"
+
+namespace tmcl::debug {
+namespace {
+
+Engine* g_engine = nullptr;
+extern "C" void on_sigint(int) {
+  if (g_engine) g_engine->pause();
+}
+
+std::string trim(const std::string& s) {
+  std::size_t a = s.find_first_not_of(" \t\r\n"), b = s.find_last_not_of(" \t\r\n");
+  return a == std::string::npos ? "" : s.substr(a, b - a + 1);
+}
+
+std::string flags_text(std::uint8_t f) {
+  std::string s;
+  if (f & kFlagZero) s += " Z";
+  if (f & kFlagEqual) s += " EQ";
+  if (f & kFlagGreater) s += " GT";
+  if (f & kFlagLower) s += " LT";
+  return "[" + (s.empty() ? std::string() : s.substr(1)) + "]";
+}
+std::string errors_text(std::uint8_t f) {
+  std::string s;
+  if (f & kErrTimeout) s += " ETO";
+  if (f & kErrAlarm) s += " EAL";
+  if (f & kErrDeviation) s += " EDV";
+  if (f & kErrPosition) s += " EPO";
+  if (f & kErrShutdown) s += " SHUTDOWN";
+  return "[" + (s.empty() ? std::string() : s.substr(1)) + "]";
+}
+std::string hex(std::int64_t v) {
+  char b[32];
+  std::snprintf(b, sizeof b, "0x%llx", static_cast<unsigned long long>(static_cast<std::uint32_t>(v)));
+  return b;
+}
+
+struct Display {
+  int id;
+  std::string text;
+  Expr expr;
+};
+
+class Cli {
+ public:
+  Cli(Engine& e, std::FILE* out) : e_(e), out_(out) {
+    e_.on_output = [this](const std::string& s) { print(s); };
+  }
+
+  // Returns false on quit.
+  bool command(const std::string& line);
+  int status() const { return status_; }
+
+ private:
+  void print(const std::string& s) { std::fputs(s.c_str(), out_); }
+  void println(const std::string& s) { print(s + "\n"); }
+  void error(const std::string& s) { println(s); }
+
+  std::string frame_line(std::int32_t address) {
+    const ProgramInfo& info = e_.info();
+    std::string fn = info.function_of(address), place = info.place(address);
+    std::string s = fn.empty() ? "address " + std::to_string(address) : fn + " (address " + std::to_string(address) + ")";
+    if (!place.empty()) s += " at " + place;
+    return s;
+  }
+  std::string code_line(std::int32_t address) {
+    const ProgramInfo& info = e_.info();
+    if (const std::string* text = info.source_text(address))
+      return std::to_string(info.lines[static_cast<std::size_t>(address)].line) + "\t" + *text;
+    Vm& vm = e_.vm();
+    if (address >= 0 && address < vm.program_size)
+      return std::to_string(address) + "\t" + format_instruction(vm.program[static_cast<std::size_t>(address)]);
+    return std::to_string(address) + "\t(outside the program)";
+  }
+  void where_now() {
+    Vm& vm = e_.vm();
+    std::int32_t at = vm.faulted() && vm.halt_pc >= 0 ? vm.halt_pc : vm.pc;
+    println(frame_line(at) + ", time " + format_time(vm.now));
+    println(code_line(at));
+  }
+  void report(const Stop& s);
+  void show_displays();
+  bool need_running() {
+    if (e_.running()) return true;
+    error("The program is not being run.");
+    return false;
+  }
+  bool parse_count(const std::string& arg, std::uint64_t& n) {
+    if (arg.empty()) return n = 1, true;
+    Expr x;
+    std::int64_t v = 0;
+    std::string err;
+    if (!parse_expr(arg, e_.info(), x, err) || !eval_expr(x, e_.vm(), v, err) || v < 1) {
+      error("expected a positive count, not '" + arg + "'");
+      return false;
+    }
+    n = static_cast<std::uint64_t>(v);
+    return true;
+  }
+
+  void cmd_break(const std::string& arg, bool temporary);
+  void cmd_info(const std::string& arg);
+  void cmd_backtrace();
+  void cmd_list(const std::string& arg);
+  void cmd_disassemble(const std::string& arg);
+  void cmd_x(const std::string& fmt, const std::string& arg);
+  void cmd_print(const std::string& fmt, const std::string& arg);
+  void cmd_set(const std::string& arg);
+  void info_breakpoints();
+  void info_registers();
+  void info_interrupts();
+  void info_timers();
+  void info_motors();
+
+  Engine& e_;
+  std::FILE* out_;
+  int status_ = 0;
+  int history_ = 0;  // $N of print
+  std::vector<Display> displays_;
+  int next_display_ = 1;
+  int list_next_ = -1;  // line after the last `list`, -1: around pc
+  int list_file_ = -1;
+};
+
+void Cli::report(const Stop& s) {
+  Vm& vm = e_.vm();
+  switch (s.kind) {
+    case StopKind::Entry: break;
+    case StopKind::Breakpoint:
+      if (s.message.rfind("error in the condition", 0) == 0) {
+        println(s.message);
+      } else {
+        println("");
+        print(std::string(s.message == "temporary" ? "Temporary breakpoint " : "Breakpoint ") + std::to_string(s.id) + ", ");
+      }
+      break;
+    case StopKind::Watchpoint: {
+      std::string text;
+      for (const auto& w : e_.watchpoints())
+        if (w.id == s.id) text = w.text;
+      println("");
+      println("Watchpoint " + std::to_string(s.id) + ": " + text);
+      println("");
+      println("Old value = " + std::to_string(s.old_value));
+      println("New value = " + std::to_string(s.new_value));
+      break;
+    }
+    case StopKind::Step: break;
+    case StopKind::Pause: println("\nProgram paused."); break;
+    case StopKind::Exited:
+      println("[program stopped: " + s.message + ", time " + format_time(vm.now) + "]");
+      status_ = 0;
+      list_next_ = -1;
+      return;
+    case StopKind::Fault:
+      println("\nProgram faulted: " + s.message);
+      status_ = 70;
+      break;
+    case StopKind::Limit:
+      println("\nLimit reached: " + s.message);
+      status_ = 3;
+      break;
+    case StopKind::Blocked:
+      println("\nProgram blocked: " + s.message);
+      status_ = 3;
+      break;
+    case StopKind::NotRunning: println(s.message.empty() ? "The program is not being run." : s.message); return;
+    case StopKind::HistoryStart: println("\nNo more reverse-execution history."); break;
+  }
+  list_next_ = -1;
+  where_now();
+  show_displays();
+}
+
+void Cli::show_displays() {
+  for (const auto& d : displays_) {
+    std::int64_t v = 0;
+    std::string err;
+    if (eval_expr(d.expr, e_.vm(), v, err))
+      println(std::to_string(d.id) + ": " + d.text + " = " + std::to_string(v));
+    else
+      println(std::to_string(d.id) + ": " + d.text + " = <" + err + ">");
+  }
+}
+
+void Cli::cmd_break(const std::string& arg, bool temporary) {
+  std::string loc = arg, cond;
+  // break LOCATION if CONDITION
+  auto pos = (" " + arg + " ").find(" if ");
+  if (pos != std::string::npos) {
+    loc = trim(arg.substr(0, pos));
+    cond = trim(arg.substr(std::min(arg.size(), pos + 3)));
+  }
+  std::int32_t address = 0;
+  std::string err;
+  if (loc.empty()) {
+    if (!e_.running()) return error("No default breakpoint location: the program is not being run.");
+    address = e_.vm().pc;
+    loc = "*" + std::to_string(address);
+  } else if (!e_.resolve(loc, address, err)) {
+    return error(err);
+  }
+  if (!cond.empty()) {
+    Expr x;
+    if (!parse_expr(cond, e_.info(), x, err)) return error(err);
+  }
+  int id = e_.add_breakpoint(address, loc, temporary);
+  if (!cond.empty()) e_.set_condition(id, cond, err);
+  println(std::string(temporary ? "Temporary breakpoint " : "Breakpoint ") + std::to_string(id) + " at " + frame_line(address));
+}
+
+void Cli::info_breakpoints() {
+  if (e_.breakpoints().empty() && e_.watchpoints().empty()) return println("No breakpoints or watchpoints.");
+  println("Num     Type           Disp Enb Address  What");
+  struct Row {
+    int id;
+    std::string text;
+  };
+  std::vector<Row> rows;
+  char buf[512];
+  for (const auto& b : e_.breakpoints()) {
+    std::string what = e_.info().function_of(b.address);
+    std::string place = e_.info().place(b.address);
+    if (!place.empty()) what += (what.empty() ? "" : " ") + std::string("at ") + place;
+    std::snprintf(buf, sizeof buf, "%-7d %-14s %-4s %-3s %-8d %s\n", b.id, "breakpoint", b.temporary ? "del" : "keep",
+                  b.enabled ? "y" : "n", b.address, what.c_str());
+    std::string t = buf;
+    if (!b.condition.empty()) t += "\tstop only if " + b.condition + "\n";
+    if (b.hits) t += "\tbreakpoint already hit " + std::to_string(b.hits) + " time" + (b.hits == 1 ? "" : "s") + "\n";
+    if (b.ignore) t += "\tignore next " + std::to_string(b.ignore) + " hits\n";
+    rows.push_back({b.id, t});
+  }
+  for (const auto& w : e_.watchpoints()) {
+    std::snprintf(buf, sizeof buf, "%-7d %-14s %-4s %-3s %-8s %s\n", w.id, "watchpoint", "keep", w.enabled ? "y" : "n", "",
+                  w.text.c_str());
+    std::string t = buf;
+    if (w.hits) t += "\tbreakpoint already hit " + std::to_string(w.hits) + " time" + (w.hits == 1 ? "" : "s") + "\n";
+    rows.push_back({w.id, t});
+  }
+  std::sort(rows.begin(), rows.end(), [](const Row& a, const Row& b) { return a.id < b.id; });
+  for (const auto& r : rows) print(r.text);
+}
+
+void Cli::info_registers() {
+  Vm& vm = e_.vm();
+  char buf[256];
+  auto row = [&](const char* name, std::int64_t v, const std::string& note) {
+    std::snprintf(buf, sizeof buf, "%-8s %-12lld %s", name, static_cast<long long>(v), note.c_str());
+    println(trim(buf));
+  };
+  row("A", vm.acc, hex(vm.acc));
+  row("X", vm.x, hex(vm.x));
+  row("pc", vm.pc, frame_line(vm.pc));
+  row("sp", vm.sp, "");
+  row("flags", vm.flags, flags_text(vm.flags));
+  row("errors", vm.errors, errors_text(vm.errors));
+  static constexpr const char* kStatus[] = {"stopped", "running", "step", "reset"};
+  std::string st = kStatus[static_cast<int>(vm.status) & 3];
+  if (vm.wait.active) st += ", in WAIT";
+  if (vm.in_handler) st += ", in interrupt " + std::to_string(vm.saved.vector);
+  println("status   " + st);
+  println("time     " + format_time(vm.now));
+  println("steps    " + std::to_string(vm.steps));
+}
+
+void Cli::cmd_backtrace() {
+  Vm& vm = e_.vm();
+  int n = 0;
+  auto frame = [&](std::int32_t at) { println("#" + std::to_string(n++) + "  " + frame_line(at)); };
+  frame(vm.faulted() && vm.halt_pc >= 0 ? vm.halt_pc : vm.pc);
+  int bottom = 0;
+  if (vm.in_handler) bottom = vm.saved.stack_depth;
+  for (int i = vm.sp - 1; i >= bottom; --i) frame(vm.stack[static_cast<std::size_t>(i)]);
+  if (vm.in_handler) {
+    const auto& s = vm.saved;
+    const InterruptVector* v = vm.profile->vector(s.vector);
+    std::string name = v ? " " + std::string(v->name) : "";
+    println("#" + std::to_string(n++) + "  <interrupt " + std::to_string(s.vector) + name + "> saved A=" + std::to_string(s.acc) +
+            " X=" + std::to_string(s.x) + " flags=" + flags_text(s.flags) + (s.wait.active ? " (in WAIT)" : "") +
+            ", resumes " + frame_line(s.pc));
+    for (int i = bottom - 1; i >= 0; --i) frame(vm.stack[static_cast<std::size_t>(i)]);
+  }
+}
+
+void Cli::info_interrupts() {
+  Vm& vm = e_.vm();
+  println(std::string("interrupts globally ") + (vm.global_enable ? "enabled" : "disabled") +
+          (vm.in_handler ? ", in the handler of " + std::to_string(vm.saved.vector) : ""));
+  bool any = false;
+  for (int n = 0; n < 255; ++n) {
+    std::int32_t h = vm.vectors[static_cast<std::size_t>(n)];
+    bool pending = (vm.pending[static_cast<std::size_t>(n >> 6)] >> (n & 63)) & 1;
+    if (h < 0 && !vm.is_enabled(n)) continue;
+    any = true;
+    const InterruptVector* v = vm.profile->vector(n);
+    std::string name = v ? std::string(v->name) : "";
+    char buf[256];
+    std::snprintf(buf, sizeof buf, "%3d %-16s handler %-28s %s%s", n, name.c_str(),
+                  h < 0 ? "(none)" : frame_line(h).c_str(), vm.is_enabled(n) ? "enabled" : "disabled", pending ? ", pending" : "");
+    println(buf);
+  }
+  if (!any) println("no vectors defined and no interrupt enabled");
+}
+
+void Cli::info_timers() {
+  Vm& vm = e_.vm();
+  for (int n = 0; n < Vm::kTimers; ++n) {
+    const Timer& t = vm.timers[static_cast<std::size_t>(n)];
+    if (t.period_ms == 0)
+      println("timer " + std::to_string(n) + ": off");
+    else
+      println("timer " + std::to_string(n) + ": every " + std::to_string(t.period_ms) + " ms, next at " + format_time(t.next));
+  }
+}
+
+void Cli::info_motors() {
+  Vm& vm = e_.vm();
+  for (int m = 0; m < vm.profile->motors; ++m) {
+    MotionSample s = vm.motion->sample_at(m, vm.now);
+    std::int32_t target = 0;
+    bool has_target = vm.get_axis(m, 0, target) == kStatusOk;
+    const char* phase = s.velocity == 0 && s.acceleration == 0 ? "standing"
+                        : s.acceleration == 0                  ? "constant velocity"
+                        : (s.acceleration > 0) == (s.velocity >= 0) ? "accelerating"
+                                                                     : "decelerating";
+    char buf[256];
+    std::snprintf(buf, sizeof buf, "motor %d: position %lld, velocity %.0f pps, acceleration %.0f pps/s, %s", m,
+                  static_cast<long long>(s.position), s.velocity, s.acceleration, phase);
+    std::string line = buf;
+    if (has_target) line += ", target " + std::to_string(target);
+    if (vm.motion->target_reached(m)) line += ", target reached";
+    println(line);
+  }
+}
+
+void Cli::cmd_list(const std::string& arg) {
+  const ProgramInfo& info = e_.info();
+  int file = list_file_, center = 0;
+  if (!arg.empty()) {
+    std::int32_t a = 0;
+    std::string err;
+    if (!e_.resolve(arg, a, err)) return error(err);
+    if (static_cast<std::size_t>(a) >= info.lines.size() || info.lines[static_cast<std::size_t>(a)].file < 0)
+      return error("no source for address " + std::to_string(a));
+    file = info.lines[static_cast<std::size_t>(a)].file;
+    center = info.lines[static_cast<std::size_t>(a)].line;
+    list_next_ = std::max(1, center - 5);
+  } else if (list_next_ < 0) {
+    std::int32_t a = e_.vm().pc;
+    if (static_cast<std::size_t>(a) >= info.lines.size() || info.lines[static_cast<std::size_t>(a)].file < 0)
+      return cmd_disassemble("");
+    file = info.lines[static_cast<std::size_t>(a)].file;
+    center = info.lines[static_cast<std::size_t>(a)].line;
+    list_next_ = std::max(1, center - 5);
+  }
+  if (file < 0 || static_cast<std::size_t>(file) >= info.files.size() || info.files[static_cast<std::size_t>(file)].text.empty())
+    return error("no source text at hand");
+  list_file_ = file;
+  const auto& text = info.files[static_cast<std::size_t>(file)].text;
+  if (static_cast<std::size_t>(list_next_) > text.size())
+    return error("Line number " + std::to_string(list_next_) + " out of range; \"" + info.files[static_cast<std::size_t>(file)].name +
+                 "\" has " + std::to_string(text.size()) + " lines.");
+  int last = std::min<int>(static_cast<int>(text.size()), list_next_ + 9);
+  for (int l = list_next_; l <= last; ++l) println(std::to_string(l) + "\t" + text[static_cast<std::size_t>(l - 1)]);
+  list_next_ = last + 1;
+}
+
+void Cli::cmd_disassemble(const std::string& arg) {
+  Vm& vm = e_.vm();
+  const ProgramInfo& info = e_.info();
+  std::int32_t from = 0, to = vm.program_size - 1;
+  std::string err;
+  if (auto comma = arg.find(','); comma != std::string::npos) {
+    if (!e_.resolve(arg.substr(0, comma), from, err) || !e_.resolve(arg.substr(comma + 1), to, err)) return error(err);
+  } else {
+    std::int32_t at = vm.pc;
+    if (!arg.empty() && !e_.resolve(arg, at, err)) return error(err);
+    // The "function" around `at`: from its label to the next label.
+    std::int64_t lo = 0, hi = vm.program_size;
+    for (const auto& l : info.labels) {
+      if (l.second <= at && l.second > lo) lo = l.second;
+      if (l.second > at && l.second < hi) hi = l.second;
+    }
+    from = static_cast<std::int32_t>(lo);
+    to = static_cast<std::int32_t>(hi - 1);
+  }
+  std::string fn = info.function_of(from);
+  println("Dump of program memory " + std::to_string(from) + ".." + std::to_string(to) + (fn.empty() ? "" : " (" + fn + ")") + ":");
+  for (std::int32_t a = from; a <= to && a < vm.program_size; ++a) {
+    std::string f = info.function_of(a), place = info.place(a);
+    char buf[512];
+    std::snprintf(buf, sizeof buf, "%s%5d %-16s %-32s %s", a == vm.pc && e_.running() ? "=> " : "   ", a,
+                  f.empty() ? "" : ("<" + f + ">").c_str(), format_instruction(vm.program[static_cast<std::size_t>(a)]).c_str(),
+                  place.c_str());
+    std::string row = buf;
+    row.erase(row.find_last_not_of(' ') + 1);
+    println(row);
+  }
+  println("End of dump.");
+}
+
+void Cli::cmd_x(const std::string& fmt, const std::string& arg) {
+  std::uint64_t n = 1;
+  if (!fmt.empty()) {
+    std::string digits;
+    for (char c : fmt)
+      if (std::isdigit(static_cast<unsigned char>(c))) digits += c;
+    if (!digits.empty() && digits.size() < 6) n = std::stoul(digits);
+  }
+  Vm& vm = e_.vm();
+  std::int32_t at = vm.pc;
+  std::string err;
+  if (!arg.empty() && !e_.resolve(arg[0] == '*' ? arg : "*" + arg, at, err)) return error(err);
+  for (std::uint64_t i = 0; i < n && at < vm.program_size; ++i, ++at) {
+    const Instruction& ins = vm.program[static_cast<std::size_t>(at)];
+    std::string f = e_.info().function_of(at);
+    char buf[256];
+    std::snprintf(buf, sizeof buf, "%d%s:\t%02X %02X %02X %08X\t%s", at, f.empty() ? "" : (" <" + f + ">").c_str(), ins.op, ins.type,
+                  ins.motor, static_cast<std::uint32_t>(ins.value), format_instruction(ins).c_str());
+    println(buf);
+  }
+}
+
+void Cli::cmd_print(const std::string& fmt, const std::string& arg) {
+  Expr x;
+  std::string err;
+  std::int64_t v = 0;
+  if (arg.empty()) return error("print needs an expression");
+  // print LV = EXPR assigns, as in gdb.
+  auto eq = arg.find('=');
+  if (eq != std::string::npos && eq > 0 && arg[eq - 1] != '!' && arg[eq - 1] != '<' && arg[eq - 1] != '>' && arg[eq - 1] != '=' &&
+      (eq + 1 >= arg.size() || arg[eq + 1] != '=')) {
+    cmd_set("var " + arg);
+    if (!parse_expr(trim(arg.substr(0, eq)), e_.info(), x, err)) return;
+  } else if (!parse_expr(arg, e_.info(), x, err)) {
+    return error(err);
+  }
+  if (!eval_expr(x, e_.vm(), v, err)) return error(err);
+  std::string text = fmt == "x" ? hex(v) : fmt == "t" ? "" : std::to_string(v);
+  if (fmt == "t") {
+    auto u = static_cast<std::uint32_t>(v);
+    for (int b = 31; b >= 0; --b)
+      if (!text.empty() || ((u >> b) & 1) || b == 0) text += ((u >> b) & 1) ? '1' : '0';
+  }
+  println("$" + std::to_string(++history_) + " = " + text);
+}
+
+void Cli::cmd_set(const std::string& arg) {
+  std::string a = trim(arg);
+  if (a.rfind("var ", 0) == 0 || a.rfind("variable ", 0) == 0) a = trim(a.substr(a.find(' ')));
+  auto eq = a.find('=');
+  if (eq == std::string::npos) return error("usage: set var LVALUE = EXPRESSION");
+  Expr lhs, rhs;
+  std::string err;
+  std::int64_t v = 0;
+  if (!parse_expr(trim(a.substr(0, eq)), e_.info(), lhs, err)) return error(err);
+  if (!parse_expr(trim(a.substr(eq + 1)), e_.info(), rhs, err)) return error(err);
+  if (!eval_expr(rhs, e_.vm(), v, err)) return error(err);
+  if (!assign_expr(lhs, e_.vm(), v, err)) return error(err);
+  e_.state_changed();
+}
+
+void Cli::cmd_info(const std::string& arg) {
+  std::string what = trim(arg);
+  auto is = [&](std::initializer_list<const char*> names) {
+    for (const char* n : names)
+      if (what == n) return true;
+    return false;
+  };
+  if (is({"breakpoints", "break", "b", "br", "watchpoints", "watch"})) return info_breakpoints();
+  if (is({"registers", "reg", "r", "all-registers"})) return info_registers();
+  if (is({"interrupts", "int"})) return info_interrupts();
+  if (is({"timers"})) return info_timers();
+  if (is({"motors", "motor"})) return info_motors();
+  if (is({"frame", "f"})) return where_now();
+  if (is({"stack", "s"})) return cmd_backtrace();
+  if (is({"display"})) {
+    if (displays_.empty()) return println("There are no auto-display expressions now.");
+    for (const auto& d : displays_) println(std::to_string(d.id) + ":   " + d.text);
+    return;
+  }
+  if (is({"checkpoints"})) {
+    return println(std::to_string(e_.checkpoint_count()) + " checkpoints, " + std::to_string(e_.checkpoint_memory() / 1024) +
+                   " KiB of at most " + std::to_string(e_.setup().checkpoint_bytes / 1024) + " KiB");
+  }
+  error("Undefined info command: \"" + what +
+        "\".  Try breakpoints, registers, frame, stack, interrupts, timers, motors, display or checkpoints.");
+}
+
+bool Cli::command(const std::string& raw) {
+  std::string line = trim(raw);
+  if (line.empty() || line[0] == '#') return true;
+  std::string word = line.substr(0, line.find_first_of(" \t/"));
+  std::string fmt;
+  std::string rest = trim(line.substr(word.size()));
+  if (!rest.empty() && rest[0] == '/') {
+    auto sp = rest.find_first_of(" \t");
+    fmt = rest.substr(1, sp == std::string::npos ? std::string::npos : sp - 1);
+    rest = sp == std::string::npos ? "" : trim(rest.substr(sp));
+  }
+  auto is = [&](std::initializer_list<const char*> names) {
+    for (const char* n : names)
+      if (word == n) return true;
+    return false;
+  };
+  std::uint64_t n = 1;
+  std::string err;
+  if (is({"quit", "q", "exit"})) return false;
+  if (is({"break", "b", "br", "bre", "brea"})) return cmd_break(rest, false), true;
+  if (is({"tbreak", "tb", "tbr"})) return cmd_break(rest, true), true;
+  if (is({"delete", "d", "del"})) {
+    if (rest.empty()) return e_.delete_all(), true;
+    std::istringstream ids(rest);
+    for (std::string id; ids >> id;)
+      if (!e_.delete_point(std::atoi(id.c_str()))) error("No breakpoint number " + id + ".");
+    return true;
+  }
+  if (is({"disable", "disa", "dis", "enable", "en"})) {
+    bool on = word[0] == 'e';
+    std::istringstream ids(rest);
+    if (rest.empty()) {
+      for (auto& b : e_.breakpoints()) e_.enable_point(b.id, on);
+      for (auto& w : e_.watchpoints()) e_.enable_point(w.id, on);
+    }
+    for (std::string id; ids >> id;)
+      if (!e_.enable_point(std::atoi(id.c_str()), on)) error("No breakpoint number " + id + ".");
+    return true;
+  }
+  if (is({"condition", "cond"})) {
+    std::string id = rest.substr(0, rest.find(' '));
+    std::string cond = rest.size() > id.size() ? trim(rest.substr(id.size())) : "";
+    if (!e_.set_condition(std::atoi(id.c_str()), cond, err)) error(err);
+    else if (cond.empty()) println("Breakpoint " + id + " now unconditional.");
+    return true;
+  }
+  if (is({"ignore"})) {
+    std::istringstream a(rest);
+    int id = 0, count = 0;
+    if (!(a >> id >> count)) return error("usage: ignore N COUNT"), true;
+    if (!e_.set_ignore(id, count)) return error("No breakpoint number " + std::to_string(id) + "."), true;
+    println("Will ignore next " + std::to_string(count) + " crossings of breakpoint " + std::to_string(id) + ".");
+    return true;
+  }
+  if (is({"watch", "wa"})) {
+    int id = e_.add_watchpoint(rest, err);
+    if (!id) return error(err), true;
+    println("Watchpoint " + std::to_string(id) + ": " + rest);
+    return true;
+  }
+  if (is({"run", "r", "start"})) {
+    Stop s = e_.start(word == "start");
+    if (word == "start") println("Program started at " + frame_line(0) + ".");
+    report(s);
+    return true;
+  }
+  if (is({"continue", "c", "cont", "fg"})) {
+    if (!need_running()) return true;
+    // continue N: ignore this breakpoint N-1 more times, as in gdb.
+    if (!rest.empty() && parse_count(rest, n))
+      for (auto& b : e_.breakpoints())
+        if (b.address == e_.vm().pc && b.enabled) {
+          e_.set_ignore(b.id, static_cast<int>(n - 1));
+          println("Will ignore next " + std::to_string(n - 1) + " crossings of breakpoint " + std::to_string(b.id) + ".  Continuing.");
+        }
+    report(e_.cont());
+    return true;
+  }
+  if (is({"step", "s", "stepi", "si"})) {
+    if (!need_running() || !parse_count(rest, n)) return true;
+    return report(e_.step(n)), true;
+  }
+  if (is({"next", "n", "nexti", "ni"})) {
+    if (!need_running() || !parse_count(rest, n)) return true;
+    Stop s;
+    for (std::uint64_t i = 0; i < n; ++i) {
+      s = e_.next();
+      if (s.kind != StopKind::Step) break;
+    }
+    return report(s), true;
+  }
+  if (is({"finish", "fin"})) {
+    if (!need_running()) return true;
+    std::string from = frame_line(e_.vm().pc);
+    if (e_.depth() == 0) return error("\"finish\" not meaningful in the outermost frame."), true;
+    println("Run till exit from " + from);
+    return report(e_.finish()), true;
+  }
+  if (is({"until", "u", "advance"})) {
+    if (!need_running()) return true;
+    if (rest.empty()) return report(word == "advance" ? Stop{StopKind::NotRunning, 0, "advance needs a duration or a location", 0, 0} : e_.next()), true;
+    if (word == "advance")
+      if (auto d = parse_duration(rest)) return report(e_.advance(*d)), true;
+    std::int32_t a = 0;
+    if (!e_.resolve(rest, a, err)) return error(err), true;
+    return report(e_.until(a)), true;
+  }
+  if (is({"jump", "j"})) {
+    if (!need_running()) return true;
+    std::int32_t a = 0;
+    if (!e_.resolve(rest, a, err)) return error(err), true;
+    e_.set_pc(a);
+    return where_now(), true;
+  }
+  if (is({"kill", "k"})) {
+    if (!need_running()) return true;
+    e_.kill();
+    println("[program killed]");
+    return true;
+  }
+  if (is({"reverse-step", "rs", "reverse-stepi", "rsi", "reverse-next", "rn", "reverse-nexti", "rni", "reverse-finish",
+          "reverse-continue", "rc"})) {
+    if (!parse_count(rest, n)) return true;
+    Stop s;
+    if (word == "reverse-finish") {
+      s = e_.reverse_finish();
+      if (s.kind == StopKind::Step) println("Run back to call of " + frame_line(e_.vm().pc));
+    } else if (word == "reverse-continue" || word == "rc") {
+      s = e_.reverse_continue();
+    } else if (word.find("next") != std::string::npos || word == "rn" || word == "rni") {
+      for (std::uint64_t i = 0; i < n; ++i)
+        if ((s = e_.reverse_next()).kind != StopKind::Step) break;
+    } else {
+      s = e_.reverse_step(n);
+    }
+    if (s.kind == StopKind::NotRunning) return error(s.message), true;
+    return report(s), true;
+  }
+  if (is({"backtrace", "bt", "where"})) return cmd_backtrace(), true;
+  if (is({"info", "i"})) return cmd_info(rest), true;
+  if (is({"list", "l"})) return cmd_list(rest), true;
+  if (is({"disassemble", "disas"})) return cmd_disassemble(rest), true;
+  if (is({"x"})) return cmd_x(fmt, rest), true;
+  if (is({"print", "p", "inspect", "call"})) return cmd_print(fmt, rest), true;
+  if (is({"display", "disp"})) {
+    if (rest.empty()) return show_displays(), true;
+    Display d{next_display_, rest, {}};
+    if (!parse_expr(rest, e_.info(), d.expr, err)) return error(err), true;
+    ++next_display_;
+    displays_.push_back(d);
+    std::int64_t v = 0;
+    if (eval_expr(d.expr, e_.vm(), v, err)) println(std::to_string(d.id) + ": " + d.text + " = " + std::to_string(v));
+    return true;
+  }
+  if (is({"undisplay"})) {
+    int id = std::atoi(rest.c_str());
+    std::erase_if(displays_, [&](const Display& d) { return rest.empty() || d.id == id; });
+    return true;
+  }
+  if (is({"set"})) return cmd_set(rest), true;
+  if (is({"help", "h"})) {
+    println("Breakpoints: break/b, tbreak, delete/d, disable, enable, condition, ignore, watch, info breakpoints");
+    println("Running: run/r, start, continue/c [N], step/s [N], next/n [N], finish, until/u LOC, advance DURATION|LOC,");
+    println("         jump LOC, kill, quit/q");
+    println("Reverse: reverse-step/rs [N], reverse-next/rn, reverse-finish, reverse-continue/rc");
+    println("Looking: info registers|frame|interrupts|timers|motors|display|checkpoints, backtrace/bt, list/l,");
+    println("         disassemble, x/N ADDRESS, print/p[/x] EXPR, display EXPR, undisplay, set var LV = EXPR");
+    println("Locations: LABEL, LINE, FILE:LINE, *ADDRESS.  Expressions: A X flags errors pc sp time steps v[n]");
+    println("         ap(param, motor) gp(bank, n) in(n) ain(n) out(n) labels constants, C operators, 2s = 2000000.");
+    return true;
+  }
+  error("Undefined command: \"" + word + "\".  Try \"help\".");
+  return true;
+}
+
+}  // namespace
+
+int run_cli(Engine& engine, const CliOptions& options, std::FILE* in, std::FILE* out) {
+  Cli cli(engine, out);
+  std::FILE* src = in;
+  bool from_file = !options.commands_file.empty();
+  std::vector<std::string> script;
+  if (from_file) {
+    std::vector<std::uint8_t> bytes;
+    std::string err;
+    if (!read_file(options.commands_file, bytes, err)) {
+      std::fprintf(stderr, "tmclrun: error: %s\n", err.c_str());
+      return 65;
+    }
+    std::string text(bytes.begin(), bytes.end());
+    std::istringstream lines(text);
+    for (std::string l; std::getline(lines, l);) script.push_back(l);
+  }
+  const bool tty = !from_file && ::isatty(::fileno(src));
+  g_engine = &engine;
+  struct sigaction sa {};
+  sa.sa_handler = on_sigint;
+  sigemptyset(&sa.sa_mask);
+  struct sigaction old {};
+  sigaction(SIGINT, &sa, &old);
+  std::string last;
+  std::size_t next_line = 0;
+  for (;;) {
+    std::string line;
+    if (from_file) {
+      if (next_line >= script.size()) break;
+      line = script[next_line++];
+    } else {
+      if (tty) {
+        std::fputs("(tmdb) ", out);
+        std::fflush(out);
+      }
+      char buf[4096];
+      if (!std::fgets(buf, sizeof buf, src)) break;
+      line = buf;
+    }
+    if (!line.empty() && line.back() == '\n') line.pop_back();
+    if (!line.empty() && line.back() == '\r') line.pop_back();
+    if (!tty) std::fprintf(out, "(tmdb) %s\n", line.c_str());
+    if (trim(line).empty() && !from_file) line = last;  // Enter repeats the last command
+    else if (!trim(line).empty()) last = line;
+    if (!cli.command(line)) break;
+    std::fflush(out);
+  }
+  sigaction(SIGINT, &old, nullptr);
+  g_engine = nullptr;
+  std::fflush(out);
+  return cli.status();
+}
+
+// ---- loading ----
+
+bool load_program_info(const std::string& path, const Profile& profile, AsmOptions asm_options, const std::string& symbols,
+                       ProgramInfo& info, std::string& messages) {
+  std::vector<std::uint8_t> bytes;
+  std::string err;
+  if (!read_file(path, bytes, err)) {
+    messages += "tmclrun: error: " + err + "\n";
+    return false;
+  }
+  auto ends = [&](const char* suf) {
+    std::string s = path, f = suf;
+    if (s.size() < f.size()) return false;
+    for (std::size_t i = 0; i < f.size(); ++i)
+      if (std::tolower(static_cast<unsigned char>(s[s.size() - f.size() + i])) != f[i]) return false;
+    return true;
+  };
+  info = ProgramInfo{};
+  if (ends(".bin") || ends(".dgm")) {
+    if (!read_program_image(path, bytes, info.program, messages)) return false;
+    if (!symbols.empty()) {
+      std::vector<std::uint8_t> sb;
+      if (!read_file(symbols, sb, err)) {
+        messages += "tmclrun: error: " + err + "\n";
+        return false;
+      }
+      LabelNames names;
+      if (!parse_symbols(std::string(sb.begin(), sb.end()), names, err)) {
+        messages += symbols + ":" + err + "\n";
+        return false;
+      }
+      info.labels = names.labels;
+    }
+  } else {
+    DiskReader reader;
+    asm_options.profile = &profile;
+    asm_options.symbols = true;
+    AsmResult res = assemble({path}, asm_options, reader);
+    if (!res.diags.all().empty()) messages += res.diags.render(res.sources);
+    if (!res.ok()) return false;
+    info.program = res.program;
+    for (const auto& f : res.sources.files) {
+      ProgramInfo::File pf;
+      pf.name = f.name;
+      std::istringstream lines(f.text);
+      for (std::string l; std::getline(lines, l);) {
+        if (!l.empty() && l.back() == '\r') l.pop_back();
+        pf.text.push_back(l);
+      }
+      info.files.push_back(std::move(pf));
+    }
+    for (const auto& li : res.lines) info.lines.push_back({li.file, li.line});
+    for (const auto& s : res.symbols)
+      (s.kind == SymbolKind::Label ? info.labels : info.constants).emplace_back(s.name, s.value);
+  }
+  if (info.program.empty()) {
+    messages += path + ": error: the program is empty\n";
+    return false;
+  }
+  return true;
+}
+
+}  // namespace tmcl::debug

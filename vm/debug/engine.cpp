@@ -1,0 +1,574 @@
+// The engine's forward execution: breakpoints (VM traps), watchpoints, stepping by instruction,
+// over subroutines and handlers, out of frames, to a location or an instant. Every command runs
+// the VM through run() with step and time limits; the chunks between checkpoints are also where
+// a pause request is noticed. Reverse execution is in reverse.cpp.
+#include <algorithm>
+#include <cctype>
+
+#include "tmcl/debugger.hpp"
+
+namespace tmcl::debug {
+
+std::string stop_kind_name(StopKind k) {
+  switch (k) {
+    case StopKind::Entry: return "entry";
+    case StopKind::Breakpoint: return "breakpoint";
+    case StopKind::Watchpoint: return "watchpoint";
+    case StopKind::Step: return "step";
+    case StopKind::Pause: return "pause";
+    case StopKind::Exited: return "exited";
+    case StopKind::Fault: return "fault";
+    case StopKind::Limit: return "limit";
+    case StopKind::Blocked: return "blocked";
+    case StopKind::NotRunning: return "not-running";
+    case StopKind::HistoryStart: return "history-start";
+  }
+  return "?";
+}
+
+// ---- ProgramInfo ----
+
+std::string ProgramInfo::place(std::int32_t address) const {
+  if (address < 0 || static_cast<std::size_t>(address) >= lines.size()) return "";
+  const Line& l = lines[static_cast<std::size_t>(address)];
+  if (l.file < 0 || static_cast<std::size_t>(l.file) >= files.size()) return "";
+  return files[static_cast<std::size_t>(l.file)].name + ":" + std::to_string(l.line);
+}
+
+std::string ProgramInfo::function_of(std::int32_t address) const {
+  const std::pair<std::string, std::int64_t>* best = nullptr;
+  for (const auto& l : labels)
+    if (l.second <= address && (!best || l.second > best->second)) best = &l;
+  if (!best) return "";
+  return best->second == address ? best->first : best->first + "+" + std::to_string(address - best->second);
+}
+
+std::optional<std::int64_t> ProgramInfo::symbol(const std::string& name) const {
+  auto same = [&](const std::string& s) {
+    if (s.size() != name.size()) return false;
+    for (std::size_t i = 0; i < s.size(); ++i)
+      if (std::tolower(static_cast<unsigned char>(s[i])) != std::tolower(static_cast<unsigned char>(name[i]))) return false;
+    return true;
+  };
+  for (const auto& l : labels)
+    if (same(l.first)) return l.second;
+  for (const auto& c : constants)
+    if (same(c.first)) return c.second;
+  return std::nullopt;
+}
+
+const std::string* ProgramInfo::source_text(std::int32_t address) const {
+  if (address < 0 || static_cast<std::size_t>(address) >= lines.size()) return nullptr;
+  const Line& l = lines[static_cast<std::size_t>(address)];
+  if (l.file < 0 || static_cast<std::size_t>(l.file) >= files.size()) return nullptr;
+  const auto& text = files[static_cast<std::size_t>(l.file)].text;
+  if (l.line < 1 || static_cast<std::size_t>(l.line) > text.size()) return nullptr;
+  return &text[static_cast<std::size_t>(l.line - 1)];
+}
+
+// ---- Engine: set-up and points ----
+
+Engine::Engine(Setup setup, ProgramInfo info, std::unique_ptr<MotionCore> core)
+    : setup_(std::move(setup)), info_(std::move(info)), core_(std::move(core)) {
+  vm_ = std::make_unique<Vm>(*setup_.profile, *core_);
+  vm_->instr_time = setup_.instr_time;
+  vm_->load(info_.program);
+  for (std::size_t a = 0; a < info_.program.size(); ++a) vm_->source_of.push_back(info_.place(static_cast<std::int32_t>(a)));
+  vm_->power_on(setup_.eeprom ? &*setup_.eeprom : nullptr);
+  vm_->add_inputs(setup_.inputs);
+  reversible_ = core_->clone() != nullptr;
+  checkpoint_size_ = sizeof(Vm) + sizeof(Checkpoint) + 2048 +
+                     static_cast<std::size_t>(setup_.profile->motors) * (256 * 5 + 4 * static_cast<std::size_t>(setup_.profile->coords) + 512);
+}
+
+int Engine::depth() const { return vm_->sp + (vm_->in_handler ? 1 : 0); }
+
+bool Engine::resolve(const std::string& location, std::int32_t& address, std::string& error) const {
+  std::string loc = location;
+  while (!loc.empty() && std::isspace(static_cast<unsigned char>(loc.back()))) loc.pop_back();
+  while (!loc.empty() && std::isspace(static_cast<unsigned char>(loc.front()))) loc.erase(0, 1);
+  const std::int32_t size = vm_->program_size;
+  if (loc.empty()) {
+    error = "a location is needed: a label, a line, FILE:LINE or *ADDRESS";
+    return false;
+  }
+  if (loc[0] == '*') {
+    Expr e;
+    std::int64_t v = 0;
+    if (!parse_expr(loc.substr(1), info_, e, error) || !eval_expr(e, *vm_, v, error)) return false;
+    if (v < 0 || v >= size) {
+      error = "address " + std::to_string(v) + " is outside the program (0.." + std::to_string(size - 1) + ")";
+      return false;
+    }
+    address = static_cast<std::int32_t>(v);
+    return true;
+  }
+  // LINE or FILE:LINE: the first instruction on that line or the next line that has one.
+  std::string file;
+  std::string line_text = loc;
+  if (auto colon = loc.rfind(':'); colon != std::string::npos) {
+    file = loc.substr(0, colon);
+    line_text = loc.substr(colon + 1);
+  }
+  bool numeric = !line_text.empty() && std::all_of(line_text.begin(), line_text.end(), [](char c) { return std::isdigit(static_cast<unsigned char>(c)); });
+  if (numeric && line_text.size() < 9) {
+    int line = std::stoi(line_text);
+    int file_index = -1;
+    if (!file.empty()) {
+      for (std::size_t i = 0; i < info_.files.size(); ++i) {
+        const std::string& n = info_.files[i].name;
+        bool tail = n.size() > file.size() && n.compare(n.size() - file.size(), file.size(), file) == 0 && n[n.size() - file.size() - 1] == '/';
+        if (n == file || tail) {
+          file_index = static_cast<int>(i);
+          break;
+        }
+      }
+      if (file_index < 0) {
+        error = "no source file '" + file + "' in the program";
+        return false;
+      }
+    } else {
+      std::int32_t at = vm_->pc >= 0 && static_cast<std::size_t>(vm_->pc) < info_.lines.size() ? vm_->pc : 0;
+      file_index = info_.lines.empty() ? -1 : info_.lines[static_cast<std::size_t>(at)].file;
+      if (file_index < 0 && !info_.files.empty()) file_index = 0;
+    }
+    if (file_index < 0) {
+      error = "no line table for this program: use a label or *ADDRESS (or tmclasm -f symbols with --symbols)";
+      return false;
+    }
+    std::int32_t best = -1;
+    int best_line = 0;
+    for (std::size_t a = 0; a < info_.lines.size() && static_cast<std::int32_t>(a) < size; ++a) {
+      const auto& l = info_.lines[a];
+      if (l.file != file_index || l.line < line) continue;
+      if (best < 0 || l.line < best_line) {
+        best = static_cast<std::int32_t>(a);
+        best_line = l.line;
+      }
+    }
+    if (best < 0) {
+      error = "no code at or after line " + std::to_string(line) + " of " + info_.files[static_cast<std::size_t>(file_index)].name;
+      return false;
+    }
+    address = best;
+    return true;
+  }
+  for (const auto& l : info_.labels) {
+    std::string a = l.first, b = loc;
+    for (auto& c : a) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    for (auto& c : b) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    if (a == b) {
+      address = static_cast<std::int32_t>(l.second);
+      return true;
+    }
+  }
+  error = "no label, line or address '" + loc + "' (labels: a name; lines: 12 or FILE:12; addresses: *12)";
+  return false;
+}
+
+void Engine::set_traps() {
+  std::vector<std::uint8_t> want(static_cast<std::size_t>(std::max(vm_->program_size, 0)), 0);
+  for (const auto& b : breaks_)
+    if (b.enabled && b.address >= 0 && b.address < vm_->program_size) want[static_cast<std::size_t>(b.address)] = 1;
+  for (std::size_t a = 0; a < want.size(); ++a)
+    if (vm_->trapped(static_cast<std::int32_t>(a)) != (want[a] != 0)) vm_->set_trap(static_cast<std::int32_t>(a), want[a] != 0);
+}
+
+int Engine::add_breakpoint(std::int32_t address, std::string location, bool temporary) {
+  Breakpoint b;
+  b.id = next_id_++;
+  b.address = address;
+  b.location = std::move(location);
+  b.temporary = temporary;
+  breaks_.push_back(std::move(b));
+  set_traps();
+  return breaks_.back().id;
+}
+
+bool Engine::delete_point(int id) {
+  auto bi = std::find_if(breaks_.begin(), breaks_.end(), [&](const Breakpoint& b) { return b.id == id; });
+  if (bi != breaks_.end()) {
+    breaks_.erase(bi);
+    set_traps();
+    return true;
+  }
+  auto wi = std::find_if(watches_.begin(), watches_.end(), [&](const Watchpoint& w) { return w.id == id; });
+  if (wi == watches_.end()) return false;
+  watches_.erase(wi);
+  return true;
+}
+
+void Engine::delete_all() {
+  breaks_.clear();
+  watches_.clear();
+  set_traps();
+}
+
+bool Engine::enable_point(int id, bool on) {
+  for (auto& b : breaks_)
+    if (b.id == id) {
+      b.enabled = on;
+      set_traps();
+      return true;
+    }
+  for (auto& w : watches_)
+    if (w.id == id) {
+      w.enabled = on;
+      refresh_watches();
+      return true;
+    }
+  return false;
+}
+
+bool Engine::set_condition(int id, const std::string& text, std::string& error) {
+  for (auto& b : breaks_)
+    if (b.id == id) {
+      if (text.empty()) {
+        b.condition.clear();
+        b.cond = Expr{};
+        return true;
+      }
+      Expr e;
+      if (!parse_expr(text, info_, e, error)) return false;
+      b.condition = text;
+      b.cond = std::move(e);
+      return true;
+    }
+  error = "no breakpoint number " + std::to_string(id);
+  return false;
+}
+
+bool Engine::set_ignore(int id, int count) {
+  for (auto& b : breaks_)
+    if (b.id == id) {
+      b.ignore = std::max(count, 0);
+      return true;
+    }
+  return false;
+}
+
+int Engine::add_watchpoint(const std::string& text, std::string& error) {
+  Watchpoint w;
+  if (!parse_expr(text, info_, w.expr, error)) return 0;
+  std::int64_t v = 0;
+  if (!eval_expr(w.expr, *vm_, v, error)) return 0;
+  w.id = next_id_++;
+  w.text = text;
+  w.old_value = v;
+  w.valid = true;
+  watches_.push_back(std::move(w));
+  return watches_.back().id;
+}
+
+void Engine::refresh_watches() {
+  for (auto& w : watches_) {
+    std::string err;
+    w.valid = eval_expr(w.expr, *vm_, w.old_value, err);
+  }
+}
+
+// ---- execution ----
+
+Stop Engine::start(bool stop_at_entry) {
+  vm_->power_on(setup_.eeprom ? &*setup_.eeprom : nullptr);
+  vm_->start(0);
+  running_ = true;
+  pause_.store(false);
+  checkpoints_.clear();
+  next_checkpoint_ = 0;
+  for (auto& b : breaks_) b.hits = 0;
+  refresh_watches();
+  if (stop_at_entry) {
+    if (reversible_) take_checkpoint();
+    return Stop{StopKind::Entry, 0, "", 0, 0};
+  }
+  return cont();
+}
+
+void Engine::kill() {
+  running_ = false;
+  checkpoints_.clear();
+  vm_->power_on(setup_.eeprom ? &*setup_.eeprom : nullptr);
+}
+
+void Engine::set_pc(std::int32_t address) {
+  vm_->pc = address;
+  vm_->wait = WaitState{};
+  state_changed();
+}
+
+RunResult Engine::exec(std::uint64_t max_steps, SimTime until) {
+  max_steps = std::min(max_steps, setup_.limits.max_steps);
+  until = std::min(until, setup_.limits.until);
+  for (;;) {
+    if (pause_.exchange(false)) {
+      paused_ = true;
+      return RunResult{Halt::StepLimit, "paused"};
+    }
+    if (reversible_ && vm_->steps >= next_checkpoint_) take_checkpoint();
+    const std::uint64_t interval = std::max<std::uint64_t>(setup_.checkpoint_interval, 1);
+    std::uint64_t mark = (vm_->steps / interval + 1) * interval;
+    RunResult r = vm_->run(Limits{std::min(max_steps, mark), until});
+    if (r.halt == Halt::StepLimit && vm_->steps < max_steps) continue;  // a checkpoint mark
+    return r;
+  }
+}
+
+RunResult Engine::exec_over_trap(std::uint64_t max_steps, SimTime until) {
+  std::int32_t at = vm_->pc;
+  if (vm_->trapped(at) && vm_->steps < max_steps && vm_->now < until) {
+    vm_->set_trap(at, false);
+    RunResult r = exec(vm_->steps + 1, until);
+    vm_->set_trap(at, true);
+    if (r.halt != Halt::StepLimit || vm_->steps >= max_steps || paused_) return r;
+  }
+  return exec(max_steps, until);
+}
+
+bool Engine::check_break(Stop& stop) {
+  bool hit = false;
+  for (std::size_t i = 0; i < breaks_.size(); ++i) {
+    Breakpoint& b = breaks_[i];
+    if (!b.enabled || b.address != vm_->pc) continue;
+    if (b.cond.root >= 0) {
+      std::int64_t v = 0;
+      std::string err;
+      if (!eval_expr(b.cond, *vm_, v, err)) {
+        stop = Stop{StopKind::Breakpoint, b.id, "error in the condition of breakpoint " + std::to_string(b.id) + ": " + err, 0, 0};
+        return true;
+      }
+      if (v == 0) continue;
+    }
+    ++b.hits;
+    if (b.ignore > 0) {
+      --b.ignore;
+      continue;
+    }
+    if (!b.log_message.empty()) {
+      if (on_output) on_output(interpolate(b.log_message) + "\n");
+      continue;
+    }
+    if (!hit) stop = Stop{StopKind::Breakpoint, b.id, b.temporary ? "temporary" : "", 0, 0};
+    hit = true;
+  }
+  if (hit && stop.message == "temporary") {
+    delete_point(stop.id);
+  }
+  return hit;
+}
+
+std::string Engine::interpolate(const std::string& text) {
+  std::string out;
+  for (std::size_t i = 0; i < text.size(); ++i) {
+    if (text[i] != '{') {
+      out += text[i];
+      continue;
+    }
+    auto close = text.find('}', i);
+    if (close == std::string::npos) {
+      out += text.substr(i);
+      break;
+    }
+    Expr e;
+    std::string err;
+    std::int64_t v = 0;
+    if (parse_expr(text.substr(i + 1, close - i - 1), info_, e, err) && eval_expr(e, *vm_, v, err))
+      out += std::to_string(v);
+    else
+      out += "<" + err + ">";
+    i = close;
+  }
+  return out;
+}
+
+bool Engine::watch_changed(Stop& stop) {
+  for (auto& w : watches_) {
+    if (!w.enabled) continue;
+    std::int64_t v = 0;
+    std::string err;
+    if (!eval_expr(w.expr, *vm_, v, err)) continue;
+    if (w.valid && v == w.old_value) continue;
+    bool was_valid = w.valid;
+    stop = Stop{StopKind::Watchpoint, w.id, "", w.old_value, v};
+    w.old_value = v;
+    w.valid = true;
+    ++w.hits;
+    if (was_valid) return true;
+  }
+  return false;
+}
+
+bool Engine::watching() const {
+  for (const auto& w : watches_)
+    if (w.enabled) return true;
+  return false;
+}
+
+// One instruction with the watchpoints checked after it. When a watched value that depends on
+// time (time itself, a motor's position) changed while time jumped (a WAIT, an idle handler
+// wait), the exact instant is searched for by re-running the step from a copy of the machine
+// with a time limit: the change is reported at the first microsecond it shows.
+bool Engine::watched_step(const Goal& g, Stop& stop, RunResult& r) {
+  bool timed = false;
+  for (const auto& w : watches_) timed = timed || (w.enabled && w.expr.uses_time());
+  std::optional<Vm> before;
+  std::unique_ptr<MotionCore> core_before;
+  const std::uint64_t steps0 = vm_->steps;
+  const SimTime t0 = vm_->now;
+  std::vector<Watchpoint> saved;
+  if (timed && reversible_) {
+    before.emplace(vm_->checkpoint());
+    core_before = core_->clone();
+    saved = watches_;
+  }
+  r = exec_over_trap(std::min(g.max_steps, steps0 + 1), g.until);
+  if (paused_ || r.halt == Halt::Break) return false;
+  Stop s;
+  if (!watch_changed(s)) return false;
+  if (before && vm_->now - t0 > vm_->instr_time && r.halt != Halt::Fault) {
+    auto redo = [&](SimTime until) {
+      vm_->restore(*before);
+      core_ = core_before->clone();
+      vm_->motion = core_.get();
+      watches_ = saved;
+      return exec_over_trap(steps0 + 1, until);
+    };
+    SimTime lo = t0, hi = vm_->now;
+    while (hi - lo > 1) {
+      SimTime mid = lo + (hi - lo) / 2;
+      redo(mid);
+      Stop probe;
+      (watch_changed(probe) ? hi : lo) = mid;
+    }
+    r = redo(hi);
+    watch_changed(s);
+  }
+  stop = s;
+  return true;
+}
+
+Stop Engine::go(const Goal& g) {
+  paused_ = false;
+  if (!running_) return Stop{StopKind::NotRunning, 0, "the program is not being run", 0, 0};
+  std::int32_t temp = g.temp_addr;
+  bool temp_set = false;
+  if (temp >= 0 && temp < vm_->program_size && !vm_->trapped(temp)) {
+    vm_->set_trap(temp, true);
+    temp_set = true;
+  }
+  struct Untrap {
+    Engine& e;
+    std::int32_t at;
+    bool on;
+    ~Untrap() {
+      if (on) e.set_traps();
+    }
+  } untrap{*this, temp, temp_set};
+  bool first = true;
+  for (;;) {
+    RunResult r;
+    if (watching()) {
+      // Breakpoints by address after each single step (the trap is stepped over otherwise).
+      if (!first && vm_->trapped(vm_->pc)) {
+        if (vm_->pc == temp && depth() <= g.depth) return Stop{StopKind::Step, 0, "", 0, 0};
+        Stop s;
+        if (check_break(s)) return s;
+      }
+      first = false;
+      Stop s;
+      if (watched_step(g, s, r)) return s;
+      if (r.halt == Halt::StepLimit && !paused_ && vm_->steps < g.max_steps && vm_->now < g.until) continue;
+    } else {
+      r = exec_over_trap(g.max_steps, g.until);
+    }
+    if (paused_) return Stop{StopKind::Pause, 0, "", 0, 0};
+    if (r.halt == Halt::Break) {
+      if (vm_->pc == temp && depth() <= g.depth) return Stop{StopKind::Step, 0, "", 0, 0};
+      Stop s;
+      if (check_break(s)) return s;
+      first = true;  // resume from here
+      continue;
+    }
+    bool user_steps = vm_->steps >= setup_.limits.max_steps, user_time = vm_->now >= setup_.limits.until;
+    if (r.halt == Halt::StepLimit && vm_->steps >= g.max_steps && !user_steps) return Stop{StopKind::Step, 0, "", 0, 0};
+    if (r.halt == Halt::TimeLimit && vm_->now >= g.until && !user_time) return Stop{StopKind::Step, 0, "", 0, 0};
+    return from_result(r);
+  }
+}
+
+Stop Engine::from_result(const RunResult& r) {
+  switch (r.halt) {
+    case Halt::Stop: running_ = false; return Stop{StopKind::Exited, 0, r.message, 0, 0};
+    case Halt::Fault: running_ = false; return Stop{StopKind::Fault, 0, r.message, 0, 0};
+    case Halt::StepLimit:
+    case Halt::TimeLimit: return Stop{StopKind::Limit, 0, r.message, 0, 0};
+    case Halt::Blocked: return Stop{StopKind::Blocked, 0, r.message, 0, 0};
+    case Halt::NotRunning: running_ = false; return Stop{StopKind::NotRunning, 0, r.message, 0, 0};
+    case Halt::Break: return Stop{StopKind::Breakpoint, 0, r.message, 0, 0};
+  }
+  return Stop{StopKind::NotRunning, 0, r.message, 0, 0};
+}
+
+Stop Engine::cont() { return go(Goal{}); }
+
+Stop Engine::step(std::uint64_t n) {
+  Goal g;
+  g.max_steps = vm_->steps + n;
+  return go(g);
+}
+
+// The address the frame at the current depth returns to: the interrupted instruction for a
+// handler's own frame, else the top of the call stack.
+std::int32_t Engine::return_address() const {
+  if (vm_->in_handler && vm_->sp == vm_->saved.stack_depth) return vm_->saved.pc;
+  if (vm_->sp <= 0) return -1;
+  return vm_->stack[static_cast<std::size_t>(vm_->sp - 1)];
+}
+
+Stop Engine::finish() {
+  if (!running_) return Stop{StopKind::NotRunning, 0, "the program is not being run", 0, 0};
+  int d = depth();
+  if (d == 0) return Stop{StopKind::NotRunning, 0, "\"finish\" not meaningful in the outermost frame", 0, 0};
+  Goal g;
+  g.temp_addr = return_address();
+  g.depth = d - 1;
+  return go(g);
+}
+
+Stop Engine::next() {
+  if (!running_) return Stop{StopKind::NotRunning, 0, "the program is not being run", 0, 0};
+  const int d = depth();
+  for (int round = 0; round < 1000; ++round) {
+    const std::int32_t pc0 = vm_->pc;
+    const bool handler0 = vm_->in_handler;
+    Stop s = step(1);
+    if (s.kind != StopKind::Step) return s;
+    // An interrupt entered before the instruction ran: run the handler out, then the
+    // instruction at pc0 is still to do.
+    bool preempted = !handler0 && vm_->in_handler && vm_->saved.pc == pc0;
+    while (depth() > d) {
+      Goal g;
+      g.temp_addr = return_address();
+      g.depth = depth() - 1;
+      s = go(g);
+      if (s.kind != StopKind::Step) return s;
+    }
+    if (!(preempted && vm_->pc == pc0)) return s;
+  }
+  return Stop{StopKind::Step, 0, "", 0, 0};
+}
+
+Stop Engine::until(std::int32_t address) {
+  Goal g;
+  g.temp_addr = address;
+  g.depth = depth();
+  return go(g);
+}
+
+Stop Engine::advance(SimTime duration) {
+  Goal g;
+  g.until = vm_->now + duration;
+  return go(g);
+}
+
+}  // namespace tmcl::debug

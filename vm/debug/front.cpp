@@ -1,0 +1,72 @@
+// tmclrun's debugger entry: its options and the set-up of an engine from tmclrun's loaded
+// inputs, so that tmclrun itself only forwards (one branch and one option hook).
+#include <unistd.h>
+
+#include <cstdlib>
+
+#include "tmcl/debug_cli.hpp"
+
+namespace tmcl::debug {
+
+int parse_option(const std::string& a, bool has_inline, const std::function<bool(std::string&)>& value, FrontEnd& fe) {
+  if (a == "--debug" && !has_inline) {
+    fe.enabled = true;
+    return 1;
+  }
+  if (a == "--dap" && !has_inline) {
+    fe.enabled = fe.dap = true;
+    return 1;
+  }
+  if (a == "--debug-commands") {
+    if (!value(fe.commands_file)) return fe.error = "--debug-commands needs a file", -1;
+    fe.enabled = true;
+    return 1;
+  }
+  if (a == "--symbols") {
+    if (!value(fe.symbols)) return fe.error = "--symbols needs a file (tmclasm -f symbols)", -1;
+    return 1;
+  }
+  if (a == "--checkpoint-memory") {
+    std::string v;
+    if (!value(v)) return fe.error = "--checkpoint-memory needs a size in MiB", -1;
+    char* end = nullptr;
+    long long n = std::strtoll(v.c_str(), &end, 10);
+    if (v.empty() || *end || n < 1 || n > 1 << 20) return fe.error = "--checkpoint-memory needs a size in MiB from 1 to 1048576", -1;
+    fe.checkpoint_bytes = static_cast<std::size_t>(n) << 20;
+    return 1;
+  }
+  return 0;
+}
+
+int main(const FrontEnd& fe, const Profile& profile, std::unique_ptr<MotionCore> core, const std::string& program,
+         const AsmOptions& asm_options, SimTime instr_time, const Limits& limits, std::vector<InputEvent> inputs,
+         const EepromImage* eeprom) {
+  if (program.empty() || program == "-") {
+    std::fprintf(stderr, "tmclrun: --debug needs a PROGRAM file (standard input carries the commands)\n(see tmclrun --help)\n");
+    return 64;
+  }
+  if (fe.dap) {
+    std::fprintf(stderr, "tmclrun: --dap is not implemented yet (docs/debugger.md)\n");
+    return 64;
+  }
+  ProgramInfo info;
+  std::string messages;
+  bool ok = load_program_info(program, profile, asm_options, fe.symbols, info, messages);
+  std::fputs(messages.c_str(), stderr);
+  if (!ok) return 65;
+  Setup setup;
+  setup.profile = &profile;
+  setup.core_name = std::string(core->name());
+  setup.instr_time = instr_time;
+  setup.limits = limits;
+  setup.inputs = std::move(inputs);
+  if (eeprom) setup.eeprom = *eeprom;
+  setup.checkpoint_bytes = fe.checkpoint_bytes;
+  Engine engine(std::move(setup), std::move(info), std::move(core));
+  CliOptions co;
+  co.commands_file = fe.commands_file;
+  co.program_name = program;
+  return run_cli(engine, co, stdin, stdout);
+}
+
+}  // namespace tmcl::debug

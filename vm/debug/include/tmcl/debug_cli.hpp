@@ -1,0 +1,48 @@
+// The debugger's front ends as tmclrun uses them: loading a program with its source positions
+// and symbols, and the gdb-like command line of `tmclrun --debug` (docs/debugger.md).
+#pragma once
+
+#include <cstdio>
+#include <functional>
+#include <string>
+
+#include "tmcl/asm/assembler.hpp"
+#include "tmcl/debugger.hpp"
+
+namespace tmcl::debug {
+
+// Reads PROGRAM (.tmc assembled with its line table and symbols, or a .bin/.dgm image with an
+// optional symbols file `symbols`, as tmclasm -f symbols writes it) into `info`. Diagnostics go
+// to `messages`; false when the program cannot be debugged.
+bool load_program_info(const std::string& path, const Profile& profile, AsmOptions asm_options,
+                       const std::string& symbols, ProgramInfo& info, std::string& messages);
+
+struct CliOptions {
+  std::string commands_file;  // --debug-commands FILE: run these, then quit (like gdb -batch -x)
+  std::string program_name;   // for messages
+};
+
+// Runs the command line on `engine` until quit or the end of the commands. Commands come from
+// the file, else standard input (echoed with the prompt when it is not a terminal, so a
+// transcript reads like a session). Returns tmclrun's exit status for how the program ended.
+int run_cli(Engine& engine, const CliOptions& options, std::FILE* in, std::FILE* out);
+
+// tmclrun's debugger options, parsed by parse_option so tmclrun stays thin.
+struct FrontEnd {
+  bool enabled = false;         // --debug, --debug-commands or --dap
+  bool dap = false;             // --dap
+  std::string commands_file;    // --debug-commands FILE
+  std::string symbols;          // --symbols FILE (labels for a .bin)
+  std::size_t checkpoint_bytes = std::size_t{64} << 20;  // --checkpoint-memory MiB
+  std::string error;            // when parse_option returns -1
+};
+// 1: `arg` was one of the options above (its value taken through `value`), 0: not one of
+// them, -1: a bad value (FrontEnd::error says why).
+int parse_option(const std::string& arg, bool has_inline, const std::function<bool(std::string&)>& value, FrontEnd& fe);
+
+// Loads PROGRAM and runs the command line (or DAP) on it. Returns tmclrun's exit status.
+int main(const FrontEnd& fe, const Profile& profile, std::unique_ptr<MotionCore> core, const std::string& program,
+         const AsmOptions& asm_options, SimTime instr_time, const Limits& limits, std::vector<InputEvent> inputs,
+         const EepromImage* eeprom);
+
+}  // namespace tmcl::debug

@@ -1,0 +1,221 @@
+// The debugging engine: one engine, two front ends (the gdb-like command line of
+// `tmclrun --debug` and the Debug Adapter Protocol of `tmclrun --dap`), as lldb-dap shares
+// lldb's. It drives a Vm through run() with step and time limits, breakpoints as VM traps (free
+// on the fast path), watchpoints, and reverse execution by checkpoints of the whole machine (VM,
+// motion core, scenario position) plus deterministic re-execution. docs/debugger.md.
+#pragma once
+
+#include <atomic>
+#include <cstdint>
+#include <functional>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "tmcl/eeprom.hpp"
+#include "tmcl/motion.hpp"
+#include "tmcl/vm.hpp"
+
+namespace tmcl::debug {
+
+// What the debugger knows of the program: its instructions, the source place of each, the
+// sources' text (for `list`), labels and constants.
+struct ProgramInfo {
+  std::vector<Instruction> program;
+  struct Line {
+    int file = -1;  // index into files; -1: unknown (a .bin without line table, appended STOP)
+    int line = 0;
+  };
+  std::vector<Line> lines;  // per address (may be shorter than program)
+  struct File {
+    std::string name;
+    std::vector<std::string> text;  // lines; empty when the text is not at hand
+  };
+  std::vector<File> files;
+  std::vector<std::pair<std::string, std::int64_t>> labels;     // name, address
+  std::vector<std::pair<std::string, std::int64_t>> constants;  // name, value
+
+  std::string place(std::int32_t address) const;         // "prog.tmc:12", or "" when unknown
+  std::string function_of(std::int32_t address) const;   // "loop", "loop+2", or ""
+  std::optional<std::int64_t> symbol(const std::string& name) const;  // label or constant (case-insensitive)
+  const std::string* source_text(std::int32_t address) const;  // that address's source line, if known
+};
+
+// ---- expressions: registers, v[n], ap(param, motor), gp(bank, n), in(n), ain(n), out(n), time,
+// steps, pc, labels and constants, with C's operators; durations like 2s are microseconds ----
+struct Expr {
+  struct Node {
+    enum Kind : std::uint8_t { Num, Reg, Var, Ap, Gp, In, Ain, Out, Unary, Binary } kind = Num;
+    std::int64_t value = 0;  // Num; Reg: which register; Unary/Binary: the operator
+    int a = -1, b = -1;      // operand nodes
+  };
+  std::vector<Node> nodes;
+  int root = -1;
+  std::string text;
+  bool uses_time() const;    // reads time or motion state: may change between instructions
+  bool assignable() const;   // the root is a register, variable or parameter
+};
+bool parse_expr(const std::string& text, const ProgramInfo& info, Expr& out, std::string& error);
+// Evaluates on the VM; false with `error` (e.g. "no axis parameter 300 on usb-2-sd").
+bool eval_expr(const Expr& e, Vm& vm, std::int64_t& value, std::string& error);
+// Assigns to the expression's root (set var): through the VM's parameter rules.
+bool assign_expr(const Expr& e, Vm& vm, std::int64_t value, std::string& error);
+
+// ---- breakpoints and watchpoints (numbered together, as in gdb) ----
+struct Breakpoint {
+  int id = 0;
+  std::int32_t address = 0;
+  std::string location;  // as the user gave it
+  bool enabled = true;
+  bool temporary = false;
+  std::string condition;  // expression text; empty: none
+  Expr cond;
+  int ignore = 0;         // hits to skip
+  int hits = 0;
+  std::string log_message;  // DAP logpoints: print instead of stopping ({expr} interpolated)
+};
+struct Watchpoint {
+  int id = 0;
+  std::string text;
+  Expr expr;
+  bool enabled = true;
+  std::int64_t old_value = 0;
+  bool valid = false;  // old_value was read
+  int hits = 0;
+};
+
+enum class StopKind : std::uint8_t {
+  Entry,       // the program was started and stopped before its first instruction
+  Breakpoint,
+  Watchpoint,
+  Step,        // a step, next, finish, until or advance completed
+  Pause,       // interrupted (Ctrl-C, DAP pause)
+  Exited,      // STOP executed, the motors came to rest
+  Fault,       // runtime fault at vm.halt_pc
+  Limit,       // --max-time / --max-steps
+  Blocked,     // waiting for an event that can never come
+  NotRunning,  // nothing to run
+  HistoryStart,// a reverse command reached the oldest checkpoint
+};
+struct Stop {
+  StopKind kind = StopKind::Step;
+  int id = 0;                   // breakpoint or watchpoint number
+  std::string message;          // fault, limit, or why nothing ran
+  std::int64_t old_value = 0, new_value = 0;
+};
+
+struct Setup {
+  const Profile* profile = nullptr;
+  std::string core_name;             // motion core
+  SimTime instr_time = 20;
+  Limits limits;                     // --max-time / --max-steps
+  std::vector<InputEvent> inputs;    // scenario
+  std::optional<EepromImage> eeprom; // power-up image
+  std::size_t checkpoint_bytes = std::size_t{64} << 20;  // --checkpoint-memory
+  std::uint64_t checkpoint_interval = std::uint64_t{1} << 20;  // instructions between checkpoints
+};
+
+class Engine {
+ public:
+  // `core` must be a fresh core of setup.core_name; the engine owns it.
+  Engine(Setup setup, ProgramInfo info, std::unique_ptr<MotionCore> core);
+  Engine(const Engine&) = delete;
+  Engine& operator=(const Engine&) = delete;
+
+  Vm& vm() { return *vm_; }
+  const ProgramInfo& info() const { return info_; }
+  const Setup& setup() const { return setup_; }
+  bool running() const { return running_; }  // started and not exited or killed
+
+  // ---- breakpoints and watchpoints ----
+  // Resolves a location: label, line, file:line, *address (gdb's forms). false with `error`.
+  bool resolve(const std::string& location, std::int32_t& address, std::string& error) const;
+  int add_breakpoint(std::int32_t address, std::string location, bool temporary);
+  bool delete_point(int id);
+  void delete_all();
+  bool enable_point(int id, bool on);
+  bool set_condition(int id, const std::string& text, std::string& error);
+  bool set_ignore(int id, int count);
+  int add_watchpoint(const std::string& text, std::string& error);
+  std::vector<Breakpoint>& breakpoints() { return breaks_; }
+  std::vector<Watchpoint>& watchpoints() { return watches_; }
+  // Where logpoints print (DAP output events, the CLI's standard output).
+  std::function<void(const std::string&)> on_output;
+  // A log message with {EXPR} replaced by the expression's value.
+  std::string interpolate(const std::string& text);
+
+  // ---- execution (each returns why it stopped) ----
+  Stop start(bool stop_at_entry);  // power on, pc 0; runs unless stop_at_entry
+  Stop cont();
+  Stop step(std::uint64_t n = 1);  // n instructions, into CSUB and handlers
+  Stop next();                     // one instruction at this depth: over CSUB and handlers
+  Stop finish();                   // until the RSUB or RETI that leaves this frame
+  Stop until(std::int32_t address);// run to address (or a breakpoint), at this depth or above
+  Stop advance(SimTime duration);  // run for that much simulated time
+  void kill();
+  void pause() { pause_.store(true); }  // from a signal handler or another thread
+  // Moves pc (DAP goto, `jump`); history before it stays, a reverse step comes back here.
+  void set_pc(std::int32_t address);
+
+  // ---- reverse execution ----
+  Stop reverse_step(std::uint64_t n = 1);
+  Stop reverse_next();
+  Stop reverse_finish();
+  Stop reverse_continue();
+  bool can_reverse(std::string& why) const;
+  std::size_t checkpoint_count() const { return checkpoints_.size(); }
+  std::size_t checkpoint_memory() const;
+  // After a change to the machine's state (set var, set pc): history starts again here.
+  void state_changed();
+
+  int depth() const;  // call-stack depth plus one inside an interrupt handler
+
+ private:
+  struct Checkpoint {
+    std::uint64_t steps;
+    Vm vm;
+    std::unique_ptr<MotionCore> core;
+  };
+  struct Goal {
+    std::uint64_t max_steps = UINT64_MAX;  // stop (Step) when steps reach this
+    SimTime until = kNever;                // stop (Step) when time reaches this
+    std::int32_t temp_addr = -1;           // stop (Step) at this address ...
+    int depth = -1;                        // ... when the depth is at most this
+  };
+  Stop go(const Goal& g);
+  RunResult exec(std::uint64_t max_steps, SimTime until);  // with checkpoints and pause
+  RunResult exec_over_trap(std::uint64_t max_steps, SimTime until);
+  Stop from_result(const RunResult& r);
+  bool watched_step(const Goal& g, Stop& stop, RunResult& r);
+  bool check_break(Stop& stop);  // a Break at pc: stop here? (conditions, ignore counts)
+  bool watch_changed(Stop& stop);
+  bool watching() const;
+  void refresh_watches();
+  std::int32_t return_address() const;
+  void take_checkpoint();
+  void restore_checkpoint(const Checkpoint& cp);
+  const Checkpoint* checkpoint_before(std::uint64_t steps) const;
+  void replay_to(std::uint64_t steps);  // from the last checkpoint at or before `steps`
+  void set_traps();
+  Stop reverse_scan(int kind);
+
+  Setup setup_;
+  ProgramInfo info_;
+  std::unique_ptr<MotionCore> core_;
+  std::unique_ptr<Vm> vm_;
+  bool running_ = false;
+  std::vector<Breakpoint> breaks_;
+  std::vector<Watchpoint> watches_;
+  int next_id_ = 1;
+  std::atomic<bool> pause_{false};
+  std::vector<Checkpoint> checkpoints_;
+  std::uint64_t next_checkpoint_ = 0;
+  std::size_t checkpoint_size_ = 0;  // bytes of one checkpoint (estimate)
+  bool reversible_ = true;
+  bool paused_ = false;
+};
+
+std::string stop_kind_name(StopKind k);
+
+}  // namespace tmcl::debug
