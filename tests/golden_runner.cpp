@@ -1,18 +1,27 @@
-// Golden-file test runner. A case is a file NAME.tmc or NAME.run in a suite folder whose lines
-// "// RUN: TOOL ARGS..." (also "; RUN:") give commands to run from the case's folder, with
-//   %s  the case file's name        %t  a fresh temporary output file
-//   %S  the case's folder            %{TOOL}  is replaced by the tool's path from --tool
-// For each command the runner records the exit status, standard error, standard output and the
-// contents of %t (as hex when not text) and compares the whole record with NAME.golden.
-// --update rewrites the .golden files instead, for review in git diff.
+// The one golden-file test runner for every tool's stable text: assembler, linker, disassembler,
+// VM traces and JSON, motion CSVs and server transcripts. A case is a file NAME.tmc or NAME.run
+// whose comment lines ("// ..." or "; ...") hold directives:
+//   RUN: TOOL ARGS... [< FILE]   run a command; TOOL is a name given with --tool
+//   CWD: DIR                     run the following commands in DIR (relative to the case's folder)
+// In a RUN line
+//   %s  the case file's name        %S  the case's folder (absolute)
+//   %t  a fresh temporary file      %T  a temporary folder shared by the case's commands
+//   %{TOOL}  the path of a tool (for a command run through `sh -c "..."`)
+// Arguments split at blanks; '...' and "..." quote (nothing is escaped inside either). Standard
+// input is FILE (relative to the command's folder) or /dev/null.
+// For each command the runner records the exit status, standard output, standard error and the
+// contents of %t (as hex when not text), with the %t and %T paths shown as "%t" and "%T", and
+// compares the whole record with NAME.golden. --update rewrites the .golden files instead, for
+// review in git diff. CTest runs one case per test (tests/CMakeLists.txt), so a failure names it.
 //
-// usage: golden_runner --tool NAME=PATH... [--update] [--filter SUBSTR] SUITE_DIR...
+// usage: golden_runner --tool NAME=PATH... [--update] [--filter SUBSTR] (SUITE_DIR | CASE_FILE)...
 #include <sys/stat.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
 #include <algorithm>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -49,15 +58,21 @@ std::string hex(const std::string& s) {
   return out;
 }
 
+// Blanks separate arguments; a quote ('...' or "...") keeps its text, blanks and the other quote
+// character included, as one argument or part of one.
 std::vector<std::string> split_args(const std::string& line) {
   std::vector<std::string> out;
   std::string cur;
-  bool in = false, quoted = false;
+  bool in = false;
+  char quote = 0;
   for (char c : line) {
-    if (c == '\'') {
-      quoted = !quoted;
+    if (quote) {
+      if (c == quote) quote = 0;
+      else cur += c;
+    } else if (c == '\'' || c == '"') {
+      quote = c;
       in = true;
-    } else if ((c == ' ' || c == '\t') && !quoted) {
+    } else if (c == ' ' || c == '\t') {
       if (in) out.push_back(cur);
       cur.clear();
       in = false;
@@ -70,12 +85,17 @@ std::vector<std::string> split_args(const std::string& line) {
   return out;
 }
 
+void replace_all(std::string& s, const std::string& from, const std::string& to) {
+  if (from.empty()) return;
+  for (std::size_t p = 0; (p = s.find(from, p)) != std::string::npos; p += to.size()) s.replace(p, from.size(), to);
+}
+
 struct Run {
   int status = 0;
   std::string out, err;
 };
 
-// Runs argv in `dir` with stdin from `input` (or /dev/null), capturing stdout and stderr.
+// Runs argv in `dir` with stdin from `stdin_file` (or /dev/null), capturing stdout and stderr.
 Run run(const std::vector<std::string>& argv, const fs::path& dir, const std::string& stdin_file) {
   Run r;
   fs::path tmp = fs::temp_directory_path() / ("golden." + std::to_string(::getpid()));
@@ -113,101 +133,166 @@ std::string section(const std::string& title, const std::string& body) {
   return s;
 }
 
-void replace_all(std::string& s, const std::string& from, const std::string& to) {
-  for (std::size_t p = 0; (p = s.find(from, p)) != std::string::npos; p += to.size()) s.replace(p, from.size(), to);
+// The directive on a comment line ("// KEY: rest" or "; KEY: rest"): rest, or false. RUN: may
+// follow other words on the line (as it always could); CWD: must come first.
+bool directive(const std::string& line, const char* key, std::string& rest) {
+  if (!(line.rfind("//", 0) == 0 || line.rfind(";", 0) == 0)) return false;
+  std::size_t at = line.find(key);
+  if (at == std::string::npos) return false;
+  if (std::strcmp(key, "RUN:") != 0 && line.find_first_not_of("/; \t") != at) return false;
+  rest = line.substr(at + std::strlen(key));
+  return true;
 }
+
+struct Runner {
+  std::map<std::string, std::string> tools;
+  bool update = false;
+  int passed = 0, failed = 0, updated = 0;
+
+  // A temporary folder for the case's commands (%T), made on first use.
+  struct CaseDir {
+    std::string path;
+    const std::string& get() {
+      if (path.empty()) {
+        std::string tmpl = (fs::temp_directory_path() / "golden.XXXXXX").string();
+        if (::mkdtemp(tmpl.data())) path = tmpl;
+      }
+      return path;
+    }
+    ~CaseDir() {
+      std::error_code ec;
+      if (!path.empty()) fs::remove_all(path, ec);
+    }
+  };
+
+  // Runs one case and compares (or rewrites) its record; false when it has no RUN line.
+  bool run_case(const fs::path& c) {
+    std::string text = slurp(c);
+    std::istringstream lines(text);
+    std::string line, record, rest;
+    fs::path folder = fs::absolute(c.parent_path()), cwd = folder;
+    CaseDir shared;
+    int runs = 0;
+    bool broken = false;
+    while (std::getline(lines, line)) {
+      if (!line.empty() && line.back() == '\r') line.pop_back();  // CRLF case files
+      if (directive(line, "CWD:", rest)) {
+        auto dir = split_args(rest);
+        if (dir.size() == 1) cwd = fs::weakly_canonical(folder / dir[0]);
+        else broken = true;
+        continue;
+      }
+      if (!directive(line, "RUN:", rest)) continue;
+      std::string cmd = rest;
+      fs::path tmpout = fs::temp_directory_path() / ("golden_t." + std::to_string(::getpid()));
+      fs::remove(tmpout);
+      for (const auto& [name, path] : tools) replace_all(cmd, "%{" + name + "}", path);
+      replace_all(cmd, "%s", c.filename().string());
+      replace_all(cmd, "%t", tmpout.string());
+      replace_all(cmd, "%S", folder.string());
+      if (cmd.find("%T") != std::string::npos) replace_all(cmd, "%T", shared.get());
+      std::string stdin_file;
+      auto lt = cmd.find(" < ");
+      if (lt != std::string::npos) {
+        auto in = split_args(cmd.substr(lt + 3));
+        stdin_file = in.empty() ? std::string("/nonexistent") : fs::absolute(cwd / in[0]).string();
+        cmd = cmd.substr(0, lt);
+      }
+      auto args = split_args(cmd);
+      if (args.empty() || !tools.count(args[0])) {
+        std::fprintf(stderr, "%s: unknown tool in '%s'\n", c.string().c_str(), line.c_str());
+        broken = true;
+        continue;
+      }
+      args[0] = tools[args[0]];
+      Run r = run(args, cwd, stdin_file);
+      ++runs;
+      std::string output;
+      bool has_output = fs::exists(tmpout);
+      if (has_output) {
+        output = slurp(tmpout);
+        fs::remove(tmpout);
+      }
+      for (std::string* s : {&r.out, &r.err, &output}) {  // temporary paths are not the tools' text
+        replace_all(*s, shared.path, "%T");
+        replace_all(*s, tmpout.string(), "%t");
+      }
+      record += "=== RUN:" + rest + "\nexit: " + std::to_string(r.status) + "\n";
+      record += section("stdout", r.out);
+      record += section("stderr", r.err);
+      if (has_output) record += section("output", output.empty() ? std::string("(empty)\n") : output);
+    }
+    if (runs == 0 && !broken) return false;
+    fs::path golden = c;
+    golden.replace_extension(".golden");
+    if (broken) {
+      ++failed;
+      return true;
+    }
+    if (update) {
+      if (!fs::exists(golden) || slurp(golden) != record) {
+        std::ofstream(golden, std::ios::binary) << record;
+        ++updated;
+      }
+      ++passed;
+      return true;
+    }
+    std::string want = fs::exists(golden) ? slurp(golden) : "";
+    if (want == record) {
+      ++passed;
+      return true;
+    }
+    ++failed;
+    std::fprintf(stderr, "FAIL %s (expected %s; --update or the golden-update target rewrites it)\n",
+                 c.string().c_str(), golden.string().c_str());
+    fs::path got = fs::temp_directory_path() / (c.filename().string() + "." + std::to_string(::getpid()) + ".actual");
+    std::ofstream(got, std::ios::binary) << record;
+    std::string diff = "diff -u '" + golden.string() + "' '" + got.string() + "' | head -60 1>&2";
+    if (std::system(diff.c_str()) != 0) {
+    }
+    fs::remove(got);
+    return true;
+  }
+};
 
 }  // namespace
 
 int main(int argc, char** argv) {
-  std::map<std::string, std::string> tools;
-  bool update = false;
+  Runner runner;
   std::string filter;
-  std::vector<fs::path> suites;
+  std::vector<fs::path> paths;
   for (int i = 1; i < argc; ++i) {
     std::string a = argv[i];
-    if (a == "--update") update = true;
+    if (a == "--update") runner.update = true;
     else if (a == "--filter" && i + 1 < argc) filter = argv[++i];
     else if (a == "--tool" && i + 1 < argc) {
       std::string t = argv[++i];
       auto eq = t.find('=');
-      tools[t.substr(0, eq)] = fs::absolute(t.substr(eq + 1)).string();
-    } else suites.emplace_back(a);
+      if (eq == std::string::npos) {
+        std::fprintf(stderr, "golden_runner: --tool wants NAME=PATH, not '%s'\n", t.c_str());
+        return 64;
+      }
+      runner.tools[t.substr(0, eq)] = fs::absolute(t.substr(eq + 1)).string();
+    } else paths.emplace_back(a);
   }
-  int passed = 0, failed = 0, updated = 0;
-  for (const auto& suite : suites) {
+  for (const auto& path : paths) {
+    if (!fs::is_directory(path)) {  // one case, named on the command line: it must have a RUN line
+      if (!fs::exists(path) || !runner.run_case(path)) {
+        std::fprintf(stderr, "%s: not a golden case (no file, or no RUN: line)\n", path.string().c_str());
+        ++runner.failed;
+      }
+      continue;
+    }
     std::vector<fs::path> cases;
-    for (const auto& entry : fs::recursive_directory_iterator(suite)) {
+    for (const auto& entry : fs::recursive_directory_iterator(path)) {
       auto ext = entry.path().extension();
       if (ext == ".tmc" || ext == ".run") cases.push_back(entry.path());
     }
     std::sort(cases.begin(), cases.end());
-    for (const auto& c : cases) {
-      if (!filter.empty() && c.string().find(filter) == std::string::npos) continue;
-      std::string text = slurp(c);
-      std::istringstream lines(text);
-      std::string line, record;
-      int runs = 0;
-      while (std::getline(lines, line)) {
-        if (!line.empty() && line.back() == '\r') line.pop_back();  // CRLF case files
-        std::size_t at = line.find("RUN:");
-        if (at == std::string::npos || !(line.rfind("//", 0) == 0 || line.rfind(";", 0) == 0)) continue;
-        std::string cmd = line.substr(at + 4);
-        fs::path tmpout = fs::temp_directory_path() / ("golden_t." + std::to_string(::getpid()));
-        fs::remove(tmpout);
-        replace_all(cmd, "%s", c.filename().string());
-        replace_all(cmd, "%t", tmpout.string());
-        replace_all(cmd, "%S", fs::absolute(c.parent_path()).string());
-        std::string stdin_file;
-        auto lt = cmd.find(" < ");
-        if (lt != std::string::npos) {
-          stdin_file = fs::absolute(c.parent_path() / split_args(cmd.substr(lt + 3))[0]).string();
-          cmd = cmd.substr(0, lt);
-        }
-        auto args = split_args(cmd);
-        if (args.empty() || !tools.count(args[0])) {
-          std::fprintf(stderr, "%s: unknown tool in '%s'\n", c.string().c_str(), line.c_str());
-          ++failed;
-          continue;
-        }
-        args[0] = tools[args[0]];
-        Run r = run(args, c.parent_path(), stdin_file);
-        ++runs;
-        record += "=== RUN:" + line.substr(at + 4) + "\nexit: " + std::to_string(r.status) + "\n";
-        record += section("stdout", r.out);
-        record += section("stderr", r.err);
-        if (fs::exists(tmpout)) {
-          std::string body = slurp(tmpout);
-          record += section("output", body.empty() ? std::string("(empty)\n") : body);
-          fs::remove(tmpout);
-        }
-      }
-      if (runs == 0) continue;
-      fs::path golden = c;
-      golden.replace_extension(".golden");
-      if (update) {
-        if (!fs::exists(golden) || slurp(golden) != record) {
-          std::ofstream(golden, std::ios::binary) << record;
-          ++updated;
-        }
-        ++passed;
-        continue;
-      }
-      std::string want = fs::exists(golden) ? slurp(golden) : "";
-      if (want == record) {
-        ++passed;
-      } else {
-        ++failed;
-        std::fprintf(stderr, "FAIL %s (expected %s)\n", c.string().c_str(), golden.string().c_str());
-        fs::path got = fs::temp_directory_path() / (c.filename().string() + ".actual");
-        std::ofstream(got, std::ios::binary) << record;
-        std::string diff = "diff -u '" + golden.string() + "' '" + got.string() + "' | head -40 1>&2";
-        if (std::system(diff.c_str()) != 0) {
-        }
-      }
-    }
+    for (const auto& c : cases)
+      if (filter.empty() || c.string().find(filter) != std::string::npos) runner.run_case(c);
   }
-  if (update) std::printf("%d golden file%s rewritten\n", updated, updated == 1 ? "" : "s");
-  std::printf("%d passed, %d failed\n", passed, failed);
-  return failed == 0 && passed > 0 ? 0 : 1;
+  if (runner.update) std::printf("%d golden file%s rewritten\n", runner.updated, runner.updated == 1 ? "" : "s");
+  std::printf("%d passed, %d failed\n", runner.passed, runner.failed);
+  return runner.failed == 0 && runner.passed > 0 ? 0 : 1;
 }
