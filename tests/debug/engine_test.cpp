@@ -230,3 +230,28 @@ TEST(watchpoint_on_time_stops_at_the_exact_instant) {
   CHECK(s.kind == StopKind::Watchpoint);
   CHECK_EQ(f.vm().now, SimTime{123457});
 }
+
+TEST(variable_watchpoint_sees_a_change_that_is_undone_at_once_and_indexed_writes) {
+  const Profile* profile = find_profile("usb-2-sd");
+  Setup s;
+  s.profile = profile;
+  s.core_name = "ideal";
+  Engine e(s, assemble_info("SGP 7, 2, 5\nSGP 7, 2, 0\nCALC LOAD, 7\nCALCX LOAD\nSIV 9\nSIV 9\nCALCVA ADD, 7\nSTOP\n", *profile),
+           make_motion_core("ideal"));
+  std::string err;
+  CHECK(e.add_watchpoint("v[7] * 2", err) > 0);
+  std::vector<std::int64_t> seen;
+  Stop st = e.start(false);
+  while (st.kind == StopKind::Watchpoint) {
+    seen.push_back(st.new_value);
+    st = e.cont();
+  }
+  CHECK(st.kind == StopKind::Exited);
+  CHECK_EQ(seen.size(), std::size_t{4});  // 10, 0, 18 (SIV), 32 (CALCVA); the second SIV changes nothing
+  if (seen.size() == 4) {
+    CHECK_EQ(seen[0], 10);
+    CHECK_EQ(seen[1], 0);
+    CHECK_EQ(seen[2], 18);
+    CHECK_EQ(seen[3], 32);
+  }
+}

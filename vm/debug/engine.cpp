@@ -170,6 +170,10 @@ void Engine::set_traps() {
   std::vector<std::uint8_t> want(static_cast<std::size_t>(std::max(vm_->program_size, 0)), 0);
   for (const auto& b : breaks_)
     if (b.enabled && b.address >= 0 && b.address < vm_->program_size) want[static_cast<std::size_t>(b.address)] = 1;
+  std::vector<std::uint8_t> vars;
+  if (watching() && watch_by_traps(&vars))
+    for (std::size_t a = 0; a < want.size(); ++a)
+      if (writes_var(vm_->program[a], vars)) want[a] = 1;
   for (std::size_t a = 0; a < want.size(); ++a)
     if (vm_->trapped(static_cast<std::int32_t>(a)) != (want[a] != 0)) vm_->set_trap(static_cast<std::int32_t>(a), want[a] != 0);
 }
@@ -195,6 +199,7 @@ bool Engine::delete_point(int id) {
   auto wi = std::find_if(watches_.begin(), watches_.end(), [&](const Watchpoint& w) { return w.id == id; });
   if (wi == watches_.end()) return false;
   watches_.erase(wi);
+  set_traps();
   return true;
 }
 
@@ -215,6 +220,7 @@ bool Engine::enable_point(int id, bool on) {
     if (w.id == id) {
       w.enabled = on;
       refresh_watches();
+      set_traps();
       return true;
     }
   return false;
@@ -257,6 +263,7 @@ int Engine::add_watchpoint(const std::string& text, std::string& error) {
   w.old_value = v;
   w.valid = true;
   watches_.push_back(std::move(w));
+  set_traps();
   return watches_.back().id;
 }
 
@@ -458,41 +465,91 @@ Stop Engine::go(const Goal& g) {
   }
   struct Untrap {
     Engine& e;
-    std::int32_t at;
     bool on;
     ~Untrap() {
       if (on) e.set_traps();
     }
-  } untrap{*this, temp, temp_set};
-  bool first = true;
+  } untrap{*this, temp_set};
+  // Watchpoints on user variables trap the instructions that may write them (set_traps), so
+  // the run stays on the fast path; any other watchpoint needs one instruction at a time.
+  const bool single = watching() && !watch_by_traps();
+  bool resume = true;  // the instruction at pc is where the last stop was: not reported again
   for (;;) {
-    RunResult r;
-    if (watching()) {
-      // Breakpoints by address after each single step (the trap is stepped over otherwise).
-      if (!first && vm_->trapped(vm_->pc)) {
-        if (vm_->pc == temp && depth() <= g.depth) return Stop{StopKind::Step, 0, "", 0, 0};
-        Stop s;
-        if (check_break(s)) return s;
-      }
-      first = false;
-      Stop s;
-      if (watched_step(g, s, r)) return s;
-      if (r.halt == Halt::StepLimit && !paused_ && vm_->steps < g.max_steps && vm_->now < g.until) continue;
-    } else {
-      r = exec_over_trap(g.max_steps, g.until);
-    }
-    if (paused_) return Stop{StopKind::Pause, 0, "", 0, 0};
-    if (r.halt == Halt::Break) {
+    if (!resume && vm_->trapped(vm_->pc)) {
       if (vm_->pc == temp && depth() <= g.depth) return Stop{StopKind::Step, 0, "", 0, 0};
       Stop s;
       if (check_break(s)) return s;
-      first = true;  // resume from here
-      continue;
     }
+    resume = false;
+    RunResult r;
+    if (single || vm_->trapped(vm_->pc)) {
+      // One instruction (a breakpoint's, a variable writer's, or every one), then watchpoints.
+      Stop s;
+      if (single) {
+        if (watched_step(g, s, r)) return s;
+      } else {
+        r = exec_over_trap(std::min(g.max_steps, vm_->steps + 1), g.until);
+        if (!paused_ && r.halt != Halt::Break && watching() && watch_changed(s)) return s;
+      }
+      if (r.halt == Halt::StepLimit && !paused_ && vm_->steps < g.max_steps && vm_->now < g.until) continue;
+    } else {
+      r = exec(g.max_steps, g.until);
+    }
+    if (paused_) return Stop{StopKind::Pause, 0, "", 0, 0};
+    if (r.halt == Halt::Break) continue;  // reported at the top of the loop
     bool user_steps = vm_->steps >= setup_.limits.max_steps, user_time = vm_->now >= setup_.limits.until;
     if (r.halt == Halt::StepLimit && vm_->steps >= g.max_steps && !user_steps) return Stop{StopKind::Step, 0, "", 0, 0};
     if (r.halt == Halt::TimeLimit && vm_->now >= g.until && !user_time) return Stop{StopKind::Step, 0, "", 0, 0};
     return from_result(r);
+  }
+}
+
+// The user variables the enabled watchpoints read, when they read nothing else (constants and
+// operators aside): such watchpoints are served by traps on the instructions that may write
+// those variables.
+bool Engine::watch_by_traps(std::vector<std::uint8_t>* vars) const {
+  std::vector<std::uint8_t> want(256, 0);
+  for (const auto& w : watches_) {
+    if (!w.enabled) continue;
+    const auto& nodes = w.expr.nodes;
+    // Nodes under a Var index must be constant.
+    std::function<bool(int)> constant = [&](int i) {
+      if (i < 0) return true;
+      const auto& n = nodes[static_cast<std::size_t>(i)];
+      if (n.kind == Expr::Node::Num) return true;
+      if (n.kind == Expr::Node::Unary || n.kind == Expr::Node::Binary) return constant(n.a) && constant(n.b);
+      return false;
+    };
+    for (const auto& n : nodes) {
+      if (n.kind == Expr::Node::Num || n.kind == Expr::Node::Unary || n.kind == Expr::Node::Binary) continue;
+      if (n.kind != Expr::Node::Var || !constant(n.a)) return false;
+      Expr sub = w.expr;
+      sub.root = n.a;
+      std::int64_t v = 0;
+      std::string err;
+      if (!eval_expr(sub, *vm_, v, err) || v < 0 || v > 255) return false;
+      want[static_cast<std::size_t>(v)] = 1;
+    }
+  }
+  if (vars) *vars = std::move(want);
+  return true;
+}
+
+bool Engine::writes_var(const Instruction& ins, const std::vector<std::uint8_t>& vars) {
+  auto in = [&](int n) { return vars[static_cast<std::size_t>(n & 255)] != 0; };
+  switch (static_cast<Op>(ins.op)) {
+    case Op::CALCVV:
+    case Op::CALCVA:
+    case Op::CALCVX:
+    case Op::CALCV: return in(ins.motor);
+    case Op::DJNZ:
+    case Op::POPV: return in(ins.type);
+    case Op::SIV:
+    case Op::AIV: return true;  // indexed by X: any variable
+    case Op::SGP:
+    case Op::AGP:
+    case Op::RSGP: return ins.motor == 2 && in(ins.type);
+    default: return false;
   }
 }
 

@@ -191,6 +191,8 @@ class Engine {
   bool check_break(Stop& stop);  // a Break at pc: stop here? (conditions, ignore counts)
   bool watch_changed(Stop& stop);
   bool watching() const;
+  bool watch_by_traps(std::vector<std::uint8_t>* vars = nullptr) const;
+  static bool writes_var(const Instruction& ins, const std::vector<std::uint8_t>& vars);
   void refresh_watches();
   std::int32_t return_address() const;
   void take_checkpoint();
