@@ -17,6 +17,7 @@ std::string_view halt_name(Halt h) {
     case Halt::TimeLimit: return "max-time";
     case Halt::Blocked: return "blocked";
     case Halt::NotRunning: return "not-running";
+    case Halt::Break: return "break";
   }
   return "?";
 }
@@ -38,6 +39,20 @@ void Vm::decode_all() {
   code_.resize(program.size());
   for (std::size_t i = 0; i + 1 < program.size(); ++i) code_[i] = ops::decode_for_run(program[i], program[i + 1], program_size, *profile);
   code_.back() = Instruction{};
+  for (std::size_t i = 0; i < traps.size() && i + 1 < program.size(); ++i)
+    if (traps[i]) set_trap(static_cast<std::int32_t>(i), true);
+}
+
+void Vm::set_trap(std::int32_t address, bool on) {
+  if (address < 0 || address >= program_size) return;
+  auto a = static_cast<std::size_t>(address);
+  if (traps.size() < program.size()) traps.resize(program.size(), 0);
+  traps[a] = on ? 1 : 0;
+  const bool next_trapped = a + 1 < traps.size() && traps[a + 1];
+  code_[a] = on ? Instruction{} : ops::decode_for_run(program[a], next_trapped ? Instruction{} : program[a + 1], program_size, *profile);
+  // A CALC fused with the DJNZ after it would run a trapped DJNZ without stopping: unfuse it.
+  if (a > 0 && !traps[a - 1])
+    code_[a - 1] = ops::decode_for_run(program[a - 1], on ? Instruction{} : program[a], program_size, *profile);
 }
 
 void Vm::power_on(const EepromImage* image) {
@@ -334,6 +349,47 @@ SimTime Vm::next_wakeup() const {
   for (int n = 0; n < kTimers; ++n)
     if (vectors[static_cast<std::size_t>(n)] >= 0 && is_enabled(n)) t = std::min(t, timers[static_cast<std::size_t>(n)].next);
   return t;
+}
+
+// The shared parts move out while the rest is copied, so a checkpoint costs the state, not the
+// program.
+namespace {
+struct SharedParts {
+  std::vector<Instruction> program;
+  std::vector<std::string> source_of;
+  std::vector<std::uint8_t> traps;
+  std::vector<InputEvent> inputs_queue;
+};
+}  // namespace
+
+Vm Vm::checkpoint() {
+  SharedParts keep{std::move(program), std::move(source_of), std::move(traps), std::move(inputs_queue)};
+  std::vector<Instruction> code = std::move(code_);
+  Vm copy(*this);
+  program = std::move(keep.program);
+  source_of = std::move(keep.source_of);
+  traps = std::move(keep.traps);
+  inputs_queue = std::move(keep.inputs_queue);
+  code_ = std::move(code);
+  return copy;
+}
+
+void Vm::restore(const Vm& cp) {
+  SharedParts keep{std::move(program), std::move(source_of), std::move(traps), std::move(inputs_queue)};
+  std::vector<Instruction> code = std::move(code_);
+  MotionCore* core = motion;
+  TraceSink* sink = trace;
+  auto hook = std::move(on_motion_event);
+  *this = cp;
+  program = std::move(keep.program);
+  source_of = std::move(keep.source_of);
+  traps = std::move(keep.traps);
+  inputs_queue = std::move(keep.inputs_queue);
+  code_ = std::move(code);
+  motion = core;
+  trace = sink;
+  on_motion_event = std::move(hook);
+  trap_hit = false;
 }
 
 }  // namespace tmcl

@@ -65,6 +65,10 @@ RunResult Vm::Loop::settle(Vm& vm, const Limits& lim) {
 // The slow path: brings the world up to `now`, ends or continues a WAIT, enters interrupts,
 // sleeps until the next event while waiting. Returns a result when run() must return.
 std::optional<RunResult> Vm::Loop::service(Vm& vm, const Limits& lim) {
+  if (vm.trap_hit) {
+    vm.trap_hit = false;
+    return RunResult{Halt::Break, "breakpoint at " + vm.where(vm.pc)};
+  }
   int rounds = 0;
   for (SimTime last = -1;; last = vm.now) {
     rounds = vm.now == last ? rounds + 1 : 0;
@@ -119,7 +123,17 @@ void Vm::Loop::unknown_instruction(Vm& vm, std::int32_t at) {
 inline void Vm::Loop::execute(Vm& vm, std::int32_t at) {
   bool known = false;
   if (vm.code_[static_cast<std::size_t>(at)].op != 0) ops::dispatch<false>(vm, vm.program[static_cast<std::size_t>(at)], known);
-  if (!known) [[unlikely]] unknown_instruction(vm, at);
+  if (!known) [[unlikely]] {
+    if (vm.trapped(at)) {
+      // A debugger trap: undo the instruction's time and count, leave run() from the slow path.
+      vm.now -= vm.instr_time;
+      --vm.steps;
+      vm.trap_hit = true;
+      vm.next_check_ = vm.now;
+      return;
+    }
+    unknown_instruction(vm, at);
+  }
 }
 
 // Traced execution: one instruction at a time, each reported after it ran.
@@ -135,6 +149,7 @@ RunResult Vm::Loop::run_traced(Vm& vm, const Limits& lim) {
     vm.now += vm.instr_time;
     ++vm.steps;
     execute(vm, at);
+    if (vm.trap_hit) continue;
     vm.trace->instruction(vm, t0, at, vm.program[static_cast<std::size_t>(at)]);
     if (was_in_handler && !vm.in_handler) vm.trace->interrupt_leave(vm, vm.pc);  // RETI (or RST)
   }

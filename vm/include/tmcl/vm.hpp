@@ -50,6 +50,7 @@ enum class Halt : std::uint8_t {
   TimeLimit,  // simulated time reached Limits::until
   Blocked,    // waiting for an event that can never come (no timer, motion, input or timeout)
   NotRunning, // run() called while the program is stopped and no motion is pending
+  Break,      // a debugger trap (Vm::set_trap) at pc: the instruction there has not executed
 };
 std::string_view halt_name(Halt h);
 
@@ -234,6 +235,21 @@ struct Vm {
   void sync_motion();              // advance the core to `now`, handle its events
   std::string where(std::int32_t address) const;  // "address 12 (prog.tmc:13)"
 
+  // ---- debugger traps (vm/debug): run() returns Halt::Break before executing a trapped
+  // address. A trap decodes to opcode 0 in the run loop's code, so the fast path pays nothing
+  // for it; only the slow path that reports unknown instructions looks at `traps`.
+  std::vector<std::uint8_t> traps;  // per address, 1 = trapped; empty when none was ever set
+  bool trap_hit = false;            // set by the run loop, cleared when run() returns Break
+  void set_trap(std::int32_t address, bool on);
+  bool trapped(std::int32_t address) const {
+    return address >= 0 && static_cast<std::size_t>(address) < traps.size() && traps[static_cast<std::size_t>(address)];
+  }
+  // Checkpoints for reverse execution (vm/debug): a copy of the whole machine without program
+  // memory, its decoded form, traps, sources and the input queue (which do not change while
+  // debugging, so a checkpoint shares the live VM's), and restoring one. The motion core is
+  // copied on its own (MotionCore::clone); restore() keeps this VM's core, trace and hooks.
+  Vm checkpoint();
+  void restore(const Vm& checkpoint);
 
   // Parameter access with the profile's rules. Return a direct-mode status.
   std::uint8_t set_axis(int motor, int param, std::int32_t value);
