@@ -6,6 +6,7 @@
 #include <set>
 
 #include "tmcl/duration.hpp"
+#include "tmcl/json.hpp"
 
 namespace tmcl {
 
@@ -102,40 +103,13 @@ void TextTrace::input_event(const Vm& vm, const std::string& what) {
 
 namespace {
 
-std::string json_string(std::string_view s) {
-  std::string out = "\"";
-  for (char c : s) {
-    switch (c) {
-      case '"': out += "\\\""; break;
-      case '\\': out += "\\\\"; break;
-      case '\n': out += "\\n"; break;
-      case '\t': out += "\\t"; break;
-      default:
-        if (static_cast<unsigned char>(c) < 0x20) {
-          char buf[8];
-          std::snprintf(buf, sizeof buf, "\\u%04x", c);
-          out += buf;
-        } else {
-          out += c;
-        }
-    }
-  }
-  return out + "\"";
-}
-
+// Every JSON text of tmclrun is written by the project's JSON library (tmcl/json.hpp).
 template <typename Range>
-std::string json_int_array(const Range& r) {
-  std::string s = "[";
-  bool first = true;
-  for (auto v : r) {
-    if (!first) s += ",";
-    first = false;
-    s += std::to_string(v);
-  }
-  return s + "]";
+json::Value int_array(const Range& r) {
+  json::Value a = json::Value::array();
+  for (auto v : r) a.push(static_cast<long long>(v));
+  return a;
 }
-
-std::string json_bool(bool b) { return b ? "true" : "false"; }
 
 // Axis parameter numbers worth reporting for a motor: the profile's, the core's, any written.
 std::set<int> axis_numbers(const Vm& vm, int motor) {
@@ -150,128 +124,71 @@ std::set<int> axis_numbers(const Vm& vm, int motor) {
 }  // namespace
 
 std::string state_json(Vm& vm, const RunResult& result) {
-  std::string s = "{";
-  auto key = [&](const char* k) {
-    if (s.size() > 1) s += ",\n ";
-    s += "\"";
-    s += k;
-    s += "\":";
-  };
-  key("halt");
-  s += json_string(halt_name(result.halt));
-  key("message");
-  s += json_string(result.message);
-  key("profile");
-  s += json_string(vm.profile->name);
-  key("motion");
-  s += json_string(vm.motion->name());
-  key("time_us");
-  s += std::to_string(vm.now);
-  key("time_ms");
+  json::Value s = json::Value::object();
+  s.set("halt", halt_name(result.halt));
+  s.set("message", result.message);
+  s.set("profile", vm.profile->name);
+  s.set("motion", vm.motion->name());
+  s.set("time_us", static_cast<long long>(vm.now));
   char ms[48];
   std::snprintf(ms, sizeof ms, "%lld.%03lld", static_cast<long long>(vm.now / 1000), static_cast<long long>(vm.now % 1000));
-  s += ms;
-  key("steps");
-  s += std::to_string(vm.steps);
-  key("pc");
-  s += std::to_string(vm.pc);
-  key("acc");
-  s += std::to_string(vm.acc);
-  key("x");
-  s += std::to_string(vm.x);
-  key("flags");
-  s += "{\"ZE\":" + json_bool(vm.flags & kFlagZero) + ",\"EQ\":" + json_bool(vm.flags & kFlagEqual) +
-       ",\"GT\":" + json_bool(vm.flags & kFlagGreater) + ",\"LT\":" + json_bool(vm.flags & kFlagLower) + "}";
-  key("errors");
-  s += "{\"ETO\":" + json_bool(vm.errors & kErrTimeout) + ",\"EAL\":" + json_bool(vm.errors & kErrAlarm) +
-       ",\"EDV\":" + json_bool(vm.errors & kErrDeviation) + ",\"EPO\":" + json_bool(vm.errors & kErrPosition) +
-       ",\"ESD\":" + json_bool(vm.errors & kErrShutdown) + "}";
-  key("stack");
-  s += json_int_array(std::vector<std::int32_t>(vm.stack.begin(), vm.stack.begin() + vm.sp));
-  key("vars");
-  s += json_int_array(vm.vars);
-  key("axis");
-  s += "[";
+  s.set("time_ms", json::Value::number_text(ms));  // always three decimals
+  s.set("steps", static_cast<long long>(vm.steps));
+  s.set("pc", static_cast<long long>(vm.pc));
+  s.set("acc", static_cast<long long>(vm.acc));
+  s.set("x", static_cast<long long>(vm.x));
+  json::Value& flags = s.set("flags", json::Value::object());
+  flags.set("ZE", (vm.flags & kFlagZero) != 0);
+  flags.set("EQ", (vm.flags & kFlagEqual) != 0);
+  flags.set("GT", (vm.flags & kFlagGreater) != 0);
+  flags.set("LT", (vm.flags & kFlagLower) != 0);
+  json::Value& errors = s.set("errors", json::Value::object());
+  errors.set("ETO", (vm.errors & kErrTimeout) != 0);
+  errors.set("EAL", (vm.errors & kErrAlarm) != 0);
+  errors.set("EDV", (vm.errors & kErrDeviation) != 0);
+  errors.set("EPO", (vm.errors & kErrPosition) != 0);
+  errors.set("ESD", (vm.errors & kErrShutdown) != 0);
+  s.set("stack", int_array(std::vector<std::int32_t>(vm.stack.begin(), vm.stack.begin() + vm.sp)));
+  s.set("vars", int_array(vm.vars));
+  json::Value& axis = s.set("axis", json::Value::array());
   for (int m = 0; m < vm.profile->motors; ++m) {
-    if (m) s += ",";
-    s += "{";
-    bool first = true;
-    for (int p : axis_numbers(vm, m)) {
-      if (!first) s += ",";
-      first = false;
-      s += "\"";
-      s += std::to_string(p);
-      s += "\":";
-      s += std::to_string(vm.axis_param(m, p));
-    }
-    s += "}";
+    json::Value& motor = axis.push(json::Value::object());
+    for (int p : axis_numbers(vm, m)) motor.set(std::to_string(p), static_cast<long long>(vm.axis_param(m, p)));
   }
-  s += "]";
-  key("coords");
-  s += "[";
-  for (std::size_t m = 0; m < vm.coords.size(); ++m) {
-    if (m) s += ",";
-    s += json_int_array(vm.coords[m]);
-  }
-  s += "]";
-  key("inputs");
-  s += json_int_array(vm.inputs);
-  key("analog");
-  s += json_int_array(vm.analog);
-  key("outputs");
-  s += json_int_array(vm.outputs);
-  key("globals");
+  json::Value& coords = s.set("coords", json::Value::array());
+  for (const auto& c : vm.coords) coords.push(int_array(c));
+  s.set("inputs", int_array(vm.inputs));
+  s.set("analog", int_array(vm.analog));
+  s.set("outputs", int_array(vm.outputs));
+  json::Value& globals = s.set("globals", json::Value::object());
   {
-    std::string g = "{\"0\":{";
+    json::Value& g0 = globals.set("0", json::Value::object());
     std::set<int> nums;
     for (const auto& p : vm.profile->bank0) nums.insert(p.number);
     for (int p = 0; p < 256; ++p)
       if (vm.bank0[static_cast<std::size_t>(p)] != 0) nums.insert(p);
     nums.insert({128, 129, 130, 132});
     nums.erase(133);  // reading the random number would change it
-    bool first = true;
-    for (int p : nums) {
-      g += first ? "\"" : ",\"";
-      g += std::to_string(p);
-      g += "\":";
-      g += std::to_string(vm.global_param(0, p));
-      first = false;
-    }
-    g += "},\"3\":{";
+    for (int p : nums) g0.set(std::to_string(p), static_cast<long long>(vm.global_param(0, p)));
+    json::Value& g3 = globals.set("3", json::Value::object());
     nums.clear();
     for (const auto& p : vm.profile->bank3) nums.insert(p.number);
     for (int p = 0; p < 256; ++p)
       if (vm.bank3[static_cast<std::size_t>(p)] != 0) nums.insert(p);
-    first = true;
-    for (int p : nums) {
-      g += first ? "\"" : ",\"";
-      g += std::to_string(p);
-      g += "\":";
-      g += std::to_string(vm.bank3[static_cast<std::size_t>(p)]);
-      first = false;
-    }
-    s += g + "}}";
+    for (int p : nums) g3.set(std::to_string(p), static_cast<long long>(vm.bank3[static_cast<std::size_t>(p)]));
   }
-  key("interrupts");
-  {
-    std::string e = "[", v = "{";
-    for (int n = 0; n < 255; ++n) {
-      if (vm.is_enabled(n)) {
-        if (e.size() > 1) e += ",";
-        e += std::to_string(n);
-      }
-      if (vm.vectors[static_cast<std::size_t>(n)] >= 0) {
-        v += v.size() > 1 ? ",\"" : "\"";
-        v += std::to_string(n);
-        v += "\":";
-        v += std::to_string(vm.vectors[static_cast<std::size_t>(n)]);
-      }
-    }
-    s += "{\"global\":" + json_bool(vm.global_enable) + ",\"enabled\":" + e + "],\"vectors\":" + v +
-         "},\"in_handler\":" + json_bool(vm.in_handler) + "}";
+  json::Value enabled = json::Value::array(), vectors = json::Value::object();
+  for (int n = 0; n < 255; ++n) {
+    if (vm.is_enabled(n)) enabled.push(n);
+    if (vm.vectors[static_cast<std::size_t>(n)] >= 0)
+      vectors.set(std::to_string(n), static_cast<long long>(vm.vectors[static_cast<std::size_t>(n)]));
   }
-  s += "}\n";
-  return s;
+  json::Value& interrupts = s.set("interrupts", json::Value::object());
+  interrupts.set("global", vm.global_enable);
+  interrupts.set("enabled", std::move(enabled));
+  interrupts.set("vectors", std::move(vectors));
+  interrupts.set("in_handler", vm.in_handler);
+  return json::write_lines(s) + "\n";
 }
 
 std::string state_summary(Vm& vm, const RunResult& result, const SourceMap* sources) {
