@@ -7,6 +7,7 @@
 #include <cerrno>
 #include <cstdio>
 #include <cstdlib>
+#include <memory>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -52,6 +53,10 @@ options:
   --host-address N       with --serve: address replies to N (default: global 76, 2)
   --eeprom-locked        with --serve: refuse commands that write the EEPROM (status 5)
   --max-wall-time DURATION  with --serve: stop by itself after this much real time
+  --faults SPEC          with --serve: drop, corrupt, delay, split, silence or stale replies, by
+                         count, command or seeded chance (docs/virtual-module.md, "Faults")
+  --module ADDR[/TARGET][:FILE]  with --serve, repeatable: modules on one bus, each its own VM,
+                         EEPROM and address (the first replaces PROGRAM and --module-address)
   --csv FILE             write time, position, velocity, acceleration of every motor to FILE
                          at each --sample period, plus one row per event
   --sample DURATION      the sampling period of --csv and --plot (default 10ms)
@@ -121,10 +126,34 @@ struct Options {
   std::string csv, plot;
   std::string serve;
   tmcl::ServeOptions serve_opts;
+  std::vector<std::string> modules;  // --module ADDR[/TARGET][:FILE], in order
   tmcl::SimTime sample = 10 * tmcl::kUsPerMs;
   tmcl::AsmOptions asm_opts;
   tmcl::debug::FrontEnd debug;  // --debug, --debug-commands, --symbols, --checkpoint-memory
 };
+
+// --module ADDR[/TARGET][:FILE]: one module of a bus.
+struct BusSpec {
+  std::uint8_t address = 1;
+  std::string target, file;
+};
+bool parse_bus_spec(const std::string& spec, BusSpec& out, std::string& error) {
+  const std::size_t colon = spec.find(':');
+  std::string head = spec.substr(0, colon);
+  out.file = colon == std::string::npos ? "" : spec.substr(colon + 1);
+  if (const std::size_t slash = head.find('/'); slash != std::string::npos) {
+    out.target = head.substr(slash + 1);
+    head = head.substr(0, slash);
+  }
+  char* end = nullptr;
+  const long n = std::strtol(head.c_str(), &end, 0);
+  if (head.empty() || *end || n < 1 || n > 255 || (colon != std::string::npos && out.file.empty())) {
+    error = "--module needs ADDR[/TARGET][:FILE] with ADDR from 1 to 255, not '" + spec + "'";
+    return false;
+  }
+  out.address = static_cast<std::uint8_t>(n);
+  return true;
+}
 
 // Returns -1 when the run should go on, otherwise an exit status.
 int parse_args(int argc, char** argv, Options& o) {
@@ -208,6 +237,13 @@ int parse_args(int argc, char** argv, Options& o) {
       if (v.empty() || *end || n < 0 || n > 255) return usage_error(a + " needs a number from 0 to 255");
       (a == "--module-address" ? o.serve_opts.protocol.module_address : o.serve_opts.protocol.host_address) =
           static_cast<std::uint8_t>(n);
+    } else if (a == "--faults") {
+      std::string err;
+      if (!value(v)) return usage_error("--faults needs a SPEC (e.g. drop@3,corrupt@p=0.1,seed=7)");
+      if (!tmcl::parse_faults(v, o.serve_opts.faults, err)) return usage_error(err);
+    } else if (a == "--module") {
+      if (!value(v)) return usage_error("--module needs ADDR[/TARGET][:FILE]");
+      o.modules.push_back(v);
     } else if (a == "--max-wall-time") {
       tmcl::SimTime wall = 0;
       if (int r = duration("--max-wall-time", wall); r >= 0) return r;
@@ -243,13 +279,21 @@ int parse_args(int argc, char** argv, Options& o) {
   }
   if (o.serve.empty()) {
     for (const char* opt : {"--autostart", "--time-scale", "--module-address", "--host-address", "--eeprom-locked",
-                            "--max-wall-time"})
+                            "--max-wall-time", "--faults", "--module"})
       for (const auto& arg : args)
         if (arg == opt || arg.rfind(std::string(opt) + "=", 0) == 0)
           return usage_error(std::string(opt) + " goes with --serve");
   } else if (o.trace || o.json || !o.csv.empty() || !o.plot.empty() || o.limits.until != tmcl::kNever ||
              o.limits.max_steps != UINT64_MAX) {
     return usage_error("--serve runs until stopped: --trace, --json, --csv, --plot, --max-time and --max-steps do not go with it");
+  }
+  if (!o.modules.empty()) {  // the first --module is the primary module: its program and address
+    if (have_program) return usage_error("with --module, give each module's program there, not as PROGRAM");
+    BusSpec first;
+    if (std::string err; !parse_bus_spec(o.modules.front(), first, err)) return usage_error(err);
+    if (!first.target.empty()) o.target = first.target;
+    o.program = first.file;
+    o.serve_opts.protocol.module_address = first.address;
   }
   if (!have_program && o.serve.empty()) return usage_error("no PROGRAM given");
   return -1;
@@ -299,6 +343,44 @@ int load_program(Options& o, const tmcl::Profile* profile, std::vector<tmcl::Ins
     return kExitInput;
   }
 
+  return -1;
+}
+
+// The second and later --module: each its own profile, motion core, VM (program, EEPROM image
+// in memory) and address on the primary's line. Returns -1 on success, else an exit status.
+int build_bus(Options& o, std::vector<std::unique_ptr<tmcl::MotionCore>>& cores, std::vector<std::unique_ptr<tmcl::Vm>>& vms) {
+  std::vector<int> seen{o.serve_opts.protocol.module_address.value_or(1)};
+  for (std::size_t i = 1; i < o.modules.size(); ++i) {
+    BusSpec b;
+    if (std::string err; !parse_bus_spec(o.modules[i], b, err)) return usage_error(err);
+    for (int a : seen)
+      if (a == b.address) return usage_error("--module: two modules with address " + std::to_string(a));
+    seen.push_back(b.address);
+    const tmcl::Profile* profile = tmcl::find_profile(b.target.empty() ? o.target : b.target);
+    if (!profile) return usage_error("--module " + o.modules[i] + ": unknown module '" + b.target + "'");
+    auto core = tmcl::make_motion_core(std::string(profile->default_motion));
+    if (!core) core = tmcl::make_ideal_motion_core();
+    std::vector<tmcl::Instruction> program;
+    tmcl::SourceMap sources;
+    if (!b.file.empty()) {
+      Options each = o;
+      each.program = b.file;
+      each.target = std::string(profile->name);
+      if (int r = load_program(each, profile, program, sources); r >= 0) return r;
+    }
+    auto vm = std::make_unique<tmcl::Vm>(*profile, *core);
+    vm->instr_time = o.instr_time;
+    vm->load(program);
+    vm->source_of = sources;
+    vm->power_on(nullptr);
+    tmcl::BusModule member{vm.get(), {}};
+    member.protocol.module_address = b.address;
+    member.protocol.host_address = o.serve_opts.protocol.host_address;
+    member.protocol.eeprom_locked = o.serve_opts.protocol.eeprom_locked;
+    o.serve_opts.bus.push_back(member);
+    cores.push_back(std::move(core));
+    vms.push_back(std::move(vm));
+  }
   return -1;
 }
 
@@ -388,6 +470,9 @@ int main(int argc, char** argv) {
   if (!o.serve.empty()) {
     // The virtual module runs until SIGINT/SIGTERM (or --max-wall-time) and saves the EEPROM.
     o.serve_opts.eeprom_path = o.eeprom;
+    std::vector<std::unique_ptr<tmcl::MotionCore>> bus_cores;
+    std::vector<std::unique_ptr<tmcl::Vm>> bus_vms;
+    if (int r = build_bus(o, bus_cores, bus_vms); r >= 0) return r;
     return tmcl::serve(vm, o.serve_opts);
   }
   vm.start(0);

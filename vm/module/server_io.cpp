@@ -25,6 +25,7 @@
 #include <cstring>
 #include <iostream>
 
+#include "tmcl/bus.hpp"
 #include "tmcl/eeprom.hpp"
 #include "tmcl/server.hpp"
 
@@ -218,7 +219,7 @@ bool flush_some(int fd, std::vector<std::uint8_t>& out, bool socket) {
 
 enum class ReadResult { Data, Again, Closed };
 
-ReadResult read_into(int fd, TmclModule& module, std::vector<std::uint8_t>& buf) {
+ReadResult read_into(int fd, Line& module, std::vector<std::uint8_t>& buf) {
   for (;;) {
     ssize_t n = ::read(fd, buf.data(), buf.size());
     if (n > 0) {
@@ -247,8 +248,8 @@ int serve(Vm& vm, const ServeOptions& opt) {
     return 71;
   }
 
-  TmclModule module(vm, opt.protocol);
-  module.on_message = note;
+  Line module(vm, opt);  // one module, or a bus of them, with faults if asked (bus.hpp)
+  module.set_on_message(note);
   const bool autostart_param = vm.profile->global_param(0, 77) && vm.bank0[77] != 0;
   if ((opt.autostart || autostart_param) && vm.program_size > 0) vm.start(0);
 

@@ -26,6 +26,7 @@
 #include <string_view>
 #include <vector>
 
+#include "tmcl/faults.hpp"
 #include "tmcl/vm.hpp"
 
 namespace tmcl {
@@ -134,6 +135,13 @@ class TmclModule {
 
 enum class Transport : std::uint8_t { Tcp, Pty, Stdio };
 
+// A further module on the same line (tmclrun --module): its own VM (profile, program, EEPROM)
+// and protocol options, the address above all (bus.hpp).
+struct BusModule {
+  Vm* vm = nullptr;
+  ProtocolOptions protocol;
+};
+
 struct ServeOptions {
   Transport transport = Transport::Tcp;
   std::string host = "127.0.0.1";  // Tcp: address to listen on (IPv4 or IPv6 literal or name)
@@ -154,6 +162,8 @@ struct ServeOptions {
   std::ostream* announce = nullptr;  // where the ready line goes; nullptr: stdout (stderr for stdio)
   std::ostream* log = nullptr;       // notes and errors; nullptr: stderr
   bool quiet = false;                // no announce line, no notes (errors still go to `log`)
+  std::vector<BusModule> bus;        // more modules on the line, each answering its own address
+  FaultPlan faults;                  // faults injected into the replies (faults.hpp)
 };
 
 // Serves until SIGINT/SIGTERM, stop_fd, max_wall_ms, or end of input (stdio). The caller has
