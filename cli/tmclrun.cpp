@@ -61,6 +61,11 @@ options:
                          at each --sample period, plus one row per event
   --sample DURATION      the sampling period of --csv and --plot (default 10ms)
   --plot FILE.svg        draw position, velocity and acceleration against time as an SVG
+  --debug                debug PROGRAM with gdb's commands (docs/debugger.md), read from
+                         standard input: a terminal, or a pipe or file for scripts
+  --debug-commands FILE  debug PROGRAM with the commands in FILE, then quit (gdb -batch -x)
+  --symbols FILE         with --debug: the labels of a .bin (tmclasm -f symbols)
+  --checkpoint-memory MIB  with --debug: memory for reverse execution (default 64)
   -I DIR                 search DIR for #include files
   -D NAME=VALUE          define an assembler constant
   --help                 show this help
