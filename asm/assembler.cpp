@@ -212,6 +212,14 @@ AsmResult assemble(const std::vector<std::string>& files, const AsmOptions& opti
     }
   }
 
+  // A program without a single instruction is almost always a mistake (the wrong file, one still
+  // to be written): it assembles, to a lone STOP, but says so.
+  if (!reloc && out.program.empty() && !out.diags.has_errors()) {
+    SourceLoc at;
+    if (!out.sources.files.empty()) at = SourceLoc{0, 1, 0, 1};
+    out.diags.warning(at, options.append_stop ? "the program has no instructions; it assembles to a single STOP"
+                                              : "the program has no instructions");
+  }
   bool appended = false;
   bool append = options.append_stop && !reloc &&
                 std::none_of(units.begin(), units.end(), [](const Unit& u) { return u.no_append_stop; });

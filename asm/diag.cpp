@@ -211,7 +211,7 @@ std::string render_diagnostic(const Diagnostic& d, const SourceSet& sources) {
   return out;
 }
 
-std::string Diagnostics::render(const SourceSet& sources) const {
+std::vector<const Diagnostic*> Diagnostics::sorted(const SourceSet& sources) const {
   // In source order, whichever phase found them; location-less ones (limits, files) last.
   std::vector<const Diagnostic*> order;
   for (const auto& d : list_) order.push_back(&d);
@@ -236,55 +236,27 @@ std::string Diagnostics::render(const SourceSet& sources) const {
   std::vector<std::size_t> idx(order.size());
   for (std::size_t i = 0; i < idx.size(); ++i) idx[i] = i;
   std::stable_sort(idx.begin(), idx.end(), [&keys](std::size_t a, std::size_t b) { return keys[a] < keys[b]; });
-  std::vector<const Diagnostic*> sorted;
-  for (auto i : idx) sorted.push_back(order[i]);
-  order.swap(sorted);
+  std::vector<const Diagnostic*> by_place;
+  for (auto i : idx) by_place.push_back(order[i]);
+  return by_place;
+}
+
+std::string Diagnostics::render(const SourceSet& sources, int error_limit) const {
+  // Past the limit (--error-limit) nothing more is shown, only how much was left out: 1 MB of
+  // garbage gives 100,000 errors, and the first ones are the ones a user reads.
   std::string out;
-  for (const auto* d : order) out += render_diagnostic(*d, sources);
+  int shown = 0;
+  long long more_errors = 0, more_warnings = 0;
+  for (const auto* d : sorted(sources)) {
+    if (error_limit > 0 && shown >= error_limit) {
+      ++(d->severity == Severity::Error ? more_errors : more_warnings);
+      continue;
+    }
+    out += render_diagnostic(*d, sources);
+    if (d->severity == Severity::Error) ++shown;
+  }
+  if (more_errors + more_warnings > 0) out += more_errors_note("", more_errors, more_warnings);
   return out;
-}
-
-namespace {
-bool upper_eq(char x, char y) {
-  return std::toupper(static_cast<unsigned char>(x)) == std::toupper(static_cast<unsigned char>(y));
-}
-
-// Optimal string alignment distance, case-insensitive.
-int edit_distance(std::string_view a, std::string_view b) {
-  std::vector<int> before(b.size() + 1), prev(b.size() + 1), cur(b.size() + 1);
-  for (std::size_t j = 0; j <= b.size(); ++j) prev[j] = static_cast<int>(j);
-  for (std::size_t i = 1; i <= a.size(); ++i) {
-    cur[0] = static_cast<int>(i);
-    for (std::size_t j = 1; j <= b.size(); ++j) {
-      bool same = std::toupper(static_cast<unsigned char>(a[i - 1])) == std::toupper(static_cast<unsigned char>(b[j - 1]));
-      cur[j] = std::min({prev[j] + 1, cur[j - 1] + 1, prev[j - 1] + (same ? 0 : 1)});
-      // Two swapped letters (SPA for SAP) count as one edit, not two.
-      if (i > 1 && j > 1 && upper_eq(a[i - 1], b[j - 2]) && upper_eq(a[i - 2], b[j - 1]))
-        cur[j] = std::min(cur[j], before[j - 2] + 1);
-    }
-    before = prev;
-    std::swap(prev, cur);
-  }
-  return prev[b.size()];
-}
-}  // namespace
-
-std::string closest_match(std::string_view word, const std::vector<std::string_view>& candidates) {
-  if (word.size() > 64) return {};
-  std::string_view best;
-  int best_d = 1 << 30;
-  for (auto c : candidates) {
-    if (c.size() > 64) continue;
-    int d = edit_distance(word, c);
-    if (d < best_d) {
-      best_d = d;
-      best = c;
-    }
-  }
-  // Close enough: at most a third of the word wrong, and never the whole word.
-  int limit = static_cast<int>(word.size()) / 3;  // names of one or two letters get no guess
-  if (best_d == 0 || best_d > limit) return {};
-  return std::string(best);
 }
 
 }  // namespace tmcl

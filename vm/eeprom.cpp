@@ -11,12 +11,16 @@
 #include <vector>
 
 #include "tmcl/fileio.hpp"
+#include "tmcl/numbers.hpp"
 
 #include <fcntl.h>
 #include <unistd.h>
 
 namespace tmcl {
 namespace {
+
+// Said with every checksum complaint: a hand-edited file is mended by re-sealing it.
+constexpr const char* kSealHint = "; if you edited it on purpose, run 'tmclrun --eeprom-seal FILE'";
 
 std::uint32_t fnv1a(std::string_view s) {
   std::uint32_t h = 2166136261u;
@@ -27,18 +31,12 @@ std::uint32_t fnv1a(std::string_view s) {
   return h;
 }
 
+// EEPROM numbers are decimal integers in range, read by the one decimal reader, written as
+// eeprom_to_text writes them: a minus sign, never a plus.
 bool parse_int(const std::string& s, long long lo, long long hi, long long& out) {
-  if (s.empty()) return false;
-  std::size_t i = (s[0] == '-') ? 1 : 0;
-  if (i == s.size()) return false;
-  long long v = 0;
-  for (; i < s.size(); ++i) {
-    if (s[i] < '0' || s[i] > '9') return false;
-    v = v * 10 + (s[i] - '0');
-    if (v > 4294967296LL) return false;
-  }
-  if (s[0] == '-') v = -v;
-  if (v < lo || v > hi) return false;
+  std::int64_t v = 0;
+  if (!s.empty() && s[0] == '+') return false;
+  if (!tmcl::parse_int(s, lo, hi, v)) return false;
   out = v;
   return true;
 }
@@ -59,7 +57,8 @@ std::string eeprom_to_text(const EepromImage& image) {
   return body + check;
 }
 
-bool eeprom_from_text(const std::string& text, const std::string& file, EepromImage& image, std::string& error) {
+bool eeprom_from_text(const std::string& text, const std::string& file, EepromImage& image, std::string& error,
+                      bool check_checksum) {
   image = EepromImage{};
   auto fail = [&](int line, const std::string& msg) {
     error = file + ":" + std::to_string(line) + ": error: " + msg;
@@ -70,10 +69,13 @@ bool eeprom_from_text(const std::string& text, const std::string& file, EepromIm
   bool checked = false;
   while (pos < text.size()) {
     std::size_t end = text.find('\n', pos);
-    if (end == std::string::npos) return fail(line_no + 1, "EEPROM file is truncated (no final newline)");
+    if (end == std::string::npos) {
+      if (check_checksum) return fail(line_no + 1, "EEPROM file is truncated (no final newline)" + std::string(kSealHint));
+      end = text.size();  // sealing: a hand-edited last line may lack its newline
+    }
     std::string line = text.substr(pos, end - pos);
     ++line_no;
-    if (checked) return fail(line_no, "text after the checksum line");
+    if (checked && check_checksum) return fail(line_no, "text after the checksum line");
     std::istringstream is(line);
     std::vector<std::string> w;
     for (std::string t; is >> t;) w.push_back(t);
@@ -83,10 +85,12 @@ bool eeprom_from_text(const std::string& text, const std::string& file, EepromIm
       if (w[1] != "1") return fail(1, "unsupported EEPROM file version " + w[1] + " (this tmclrun reads version 1)");
     } else if (!w.empty() && w[0] == "check") {
       unsigned long expect = 0;
-      if (w.size() != 2 || w[1].size() != 8 || std::sscanf(w[1].c_str(), "%8lx", &expect) != 1)
-        return fail(line_no, "malformed checksum line");
-      if (fnv1a(std::string_view(text).substr(0, pos)) != expect)
-        return fail(line_no, "EEPROM file is corrupt (checksum mismatch)");
+      if (check_checksum) {
+        if (w.size() != 2 || w[1].size() != 8 || std::sscanf(w[1].c_str(), "%8lx", &expect) != 1)
+          return fail(line_no, "malformed checksum line" + std::string(kSealHint));
+        if (fnv1a(std::string_view(text).substr(0, pos)) != expect)
+          return fail(line_no, "EEPROM file is corrupt (checksum mismatch)" + std::string(kSealHint));
+      }
       checked = true;
     } else if (w.size() == 2 && w[0] == "profile") {
       image.profile = w[1];
@@ -105,7 +109,7 @@ bool eeprom_from_text(const std::string& text, const std::string& file, EepromIm
     pos = end + 1;
   }
   if (line_no == 0) return fail(1, "EEPROM file is empty");
-  if (!checked) return fail(line_no, "EEPROM file is truncated (no checksum line)");
+  if (!checked && check_checksum) return fail(line_no, "EEPROM file is truncated (no checksum line)" + std::string(kSealHint));
   return true;
 }
 
@@ -134,6 +138,18 @@ bool save_eeprom_file(const std::string& path, const EepromImage& image, std::st
     return false;
   }
   return true;
+}
+
+bool seal_eeprom_file(const std::string& path, std::string& error) {
+  std::vector<std::uint8_t> bytes;
+  std::string why;
+  if (!read_file(path, bytes, why, kMaxEepromBytes)) {
+    error = path + ": error: cannot read EEPROM file: " + why;
+    return false;
+  }
+  EepromImage image;
+  if (!eeprom_from_text(std::string(bytes.begin(), bytes.end()), path, image, error, false)) return false;
+  return save_eeprom_file(path, image, error);
 }
 
 }  // namespace tmcl

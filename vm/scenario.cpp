@@ -1,78 +1,136 @@
-// Scenario files (format in scenario.hpp): timed input changes, parsed with FILE:LINE errors.
+// Scenario files (format in scenario.hpp): timed input changes. Every line is checked and every
+// error collected with its column, so a user mends the whole file in one go, as with the
+// assembler. Numbers and times go through the one decimal reader (numbers.hpp, duration.hpp).
 #include "tmcl/scenario.hpp"
 
-#include <sstream>
+#include <algorithm>
 
 #include "tmcl/duration.hpp"
+#include "tmcl/numbers.hpp"
 
 namespace tmcl {
 namespace {
-
-bool parse_value(const std::string& s, std::int32_t& out) {
-  if (s.empty()) return false;
-  std::size_t i = (s[0] == '-' || s[0] == '+') ? 1 : 0;
-  if (i == s.size()) return false;
-  long long v = 0;
-  for (; i < s.size(); ++i) {
-    if (s[i] < '0' || s[i] > '9') return false;
-    v = v * 10 + (s[i] - '0');
-    if (v > 2147483648LL) return false;
-  }
-  if (s[0] == '-') v = -v;
-  if (v > INT32_MAX) return false;
-  out = static_cast<std::int32_t>(v);
-  return true;
-}
 
 struct KindName {
   const char* name;
   InputEvent::Kind kind;
   int max_index;  // inclusive
+  bool motor;     // the index is a motor
 };
 constexpr KindName kKinds[] = {
-    {"input", InputEvent::Digital, Vm::kPorts - 1}, {"analog", InputEvent::Analog, Vm::kPorts - 1},
-    {"left", InputEvent::StopLeft, 255},            {"right", InputEvent::StopRight, 255},
-    {"home", InputEvent::Home, 255},                {"slip", InputEvent::Slip, 255},
+    {"input", InputEvent::Digital, Vm::kPorts - 1, false}, {"analog", InputEvent::Analog, Vm::kPorts - 1, false},
+    {"left", InputEvent::StopLeft, 255, true},            {"right", InputEvent::StopRight, 255, true},
+    {"home", InputEvent::Home, 255, true},                {"slip", InputEvent::Slip, 255, true},
+};
+
+struct Word {
+  std::string text;
+  int col;  // 1-based
 };
 
 }  // namespace
 
-bool parse_scenario(const std::string& text, const std::string& file, std::vector<InputEvent>& out, std::string& error) {
-  std::istringstream in(text);
-  std::string line;
+bool parse_scenario(const std::string& text, const std::string& file, std::vector<InputEvent>& out,
+                    std::vector<FileDiag>& diags, const ScenarioOptions& options) {
+  const std::size_t errors_before = diags.size();
   int line_no = 0;
-  auto fail = [&](const std::string& msg) {
-    error = file + ":" + std::to_string(line_no) + ": error: " + msg;
-    return false;
-  };
-  while (std::getline(in, line)) {
+  for (std::size_t pos = 0; pos < text.size();) {
+    std::size_t end = text.find('\n', pos);
+    if (end == std::string::npos) end = text.size();
+    std::string line = text.substr(pos, end - pos);
+    pos = end + 1;
     ++line_no;
+    if (!line.empty() && line.back() == '\r') line.pop_back();
+    std::string source = line;
     if (auto hash = line.find('#'); hash != std::string::npos) line.resize(hash);
-    std::istringstream ls(line);
-    std::vector<std::string> w;
-    for (std::string t; ls >> t;) w.push_back(t);
+    std::vector<Word> w;
+    for (std::size_t i = 0; i < line.size();) {
+      if (line[i] == ' ' || line[i] == '\t') {
+        ++i;
+        continue;
+      }
+      std::size_t j = i;
+      while (j < line.size() && line[j] != ' ' && line[j] != '\t') ++j;
+      w.push_back({line.substr(i, j - i), static_cast<int>(i) + 1});
+      i = j;
+    }
     if (w.empty()) continue;
-    if (w[0] != "at") return fail("expected 'at TIME WHAT INDEX = VALUE', found '" + w[0] + "'");
-    if (w.size() != 6 || w[4] != "=") return fail("expected 'at TIME WHAT INDEX = VALUE'");
-    auto t = parse_duration(w[1]);
-    if (!t) return fail("bad time '" + w[1] + "' (use e.g. 0, 250us, 10ms, 2s, 1min)");
+    auto error = [&](int col, int len, const std::string& msg) {
+      diags.push_back({file, line_no, col, len, msg, source});
+    };
+    auto at_word = [&](const Word& x, const std::string& msg) { error(x.col, static_cast<int>(x.text.size()), msg); };
+    static const char* kShape = "expected 'at TIME WHAT INDEX = VALUE'";
+    if (w[0].text != "at") {
+      at_word(w[0], std::string(kShape) + ", found '" + w[0].text + "'");
+      continue;
+    }
+    if (w.size() < 6) {
+      static const char* kParts[] = {"at", "TIME", "WHAT", "INDEX", "'='", "VALUE"};
+      error(static_cast<int>(line.find_last_not_of(" \t")) + 2, 1,
+            std::string(kShape) + ": " + kParts[w.size()] + " is missing");
+      continue;
+    }
+    if (w[4].text != "=") {
+      at_word(w[4], std::string(kShape) + ": '=' expected here");
+      continue;
+    }
+    if (w.size() > 6) {
+      at_word(w[6], "unexpected '" + w[6].text + "' after the value (a comment starts with '#')");
+      continue;
+    }
+    InputEvent ev;
+    bool ok = true;
+    std::string why;
+    if (auto t = parse_duration(w[1].text, why)) {
+      ev.at = *t;
+    } else {
+      at_word(w[1], "bad time: " + why);
+      ok = false;
+    }
     const KindName* kind = nullptr;
     for (const auto& k : kKinds)
-      if (w[2] == k.name) kind = &k;
-    if (!kind) return fail("unknown input '" + w[2] + "' (input, analog, left, right, home, slip)");
-    std::int32_t index = 0, value = 0;
-    if (!parse_value(w[3], index) || index < 0 || index > kind->max_index)
-      return fail("bad " + w[2] + " number '" + w[3] + "' (0.." + std::to_string(kind->max_index) + ")");
-    if (!parse_value(w[5], value)) return fail("bad value '" + w[5] + "' (a 32-bit integer)");
-    InputEvent ev;
-    ev.at = *t;
-    ev.kind = kind->kind;
-    ev.index = index;
-    ev.value = value;
+      if (w[2].text == k.name) kind = &k;
+    if (!kind) {
+      std::vector<std::string_view> names;
+      for (const auto& k : kKinds) names.emplace_back(k.name);
+      std::string hint = closest_match(w[2].text, names);
+      at_word(w[2], "unknown input '" + w[2].text + "' (input, analog, left, right, home, slip)" +
+                        (hint.empty() ? "" : "; did you mean '" + hint + "'?"));
+      ok = false;
+    } else {
+      std::int64_t index = 0;
+      int max = kind->motor ? std::min(kind->max_index, options.motors - 1) : kind->max_index;
+      if (!parse_int(w[3].text, 0, kind->max_index, index)) {
+        at_word(w[3], "bad " + w[2].text + " number '" + w[3].text + "' (0.." + std::to_string(max) + ")");
+        ok = false;
+      } else if (index > max) {
+        at_word(w[3], (options.module.empty() ? std::string("the module") : options.module) + " has no motor " +
+                          std::to_string(index) + " (0.." + std::to_string(max) + ")");
+        ok = false;
+      } else {
+        ev.kind = kind->kind;
+        ev.index = static_cast<int>(index);
+      }
+    }
+    std::int64_t value = 0;
+    if (!parse_int(w[5].text, INT32_MIN, INT32_MAX, value)) {
+      at_word(w[5], "bad value '" + w[5].text + "' (a 32-bit integer)");
+      ok = false;
+    }
+    if (!ok) continue;
+    ev.value = static_cast<std::int32_t>(value);
     ev.line = line_no;
     out.push_back(ev);
   }
-  return true;
+  return diags.size() == errors_before;
+}
+
+bool parse_scenario(const std::string& text, const std::string& file, std::vector<InputEvent>& out,
+                    std::string& error, const ScenarioOptions& options) {
+  std::vector<FileDiag> diags;
+  if (parse_scenario(text, file, out, diags, options)) return true;
+  error = render_file_diags(diags, options.error_limit);
+  return false;
 }
 
 }  // namespace tmcl

@@ -19,8 +19,8 @@ TEST(durations) {
   CHECK(!tmcl::parse_duration("10"));
   CHECK(!tmcl::parse_duration("ms"));
   CHECK(!tmcl::parse_duration("-1s"));
-  CHECK(!tmcl::parse_duration("1.5s"));
-  CHECK(!tmcl::parse_duration("1h"));
+  CHECK(!tmcl::parse_duration("1.5us"));
+  CHECK(!tmcl::parse_duration("1y"));
   CHECK(!tmcl::parse_duration("99999999999999999999min"));
   CHECK_EQ(tmcl::format_time(12'000'020), std::string("12.000020s"));
 }
@@ -38,7 +38,7 @@ TEST(scenario_parsing) {
   for (const char* b : bad) {
     ev.clear();
     CHECK(!tmcl::parse_scenario(std::string("\n") + b + "\n", "s.txt", ev, err));
-    CHECK(err.rfind("s.txt:2: error: ", 0) == 0);
+    CHECK(err.rfind("s.txt:2:", 0) == 0);
   }
 }
 

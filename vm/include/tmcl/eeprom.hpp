@@ -12,6 +12,10 @@
 // A file that does not match (header, syntax, duplicate record, checksum) is rejected with
 // FILE:LINE: error: ... . Saving writes FILE.tmp, flushes it, then renames it over FILE, so a
 // killed process leaves either the old or the new file, never half of one.
+//
+// Editing by hand: change, add or delete records in any text editor, then run
+// `tmclrun --eeprom-seal FILE` (seal_eeprom_file): it checks every record, sorts them and writes
+// a fresh checksum line. Without that a hand-edited file is refused as corrupt.
 #pragma once
 
 #include <cstdint>
@@ -32,12 +36,16 @@ struct EepromImage {
 
 std::string eeprom_to_text(const EepromImage& image);
 // Parses `text` (named `file` in messages). On error returns false and sets `error` to
-// "file:line: error: ...".
-bool eeprom_from_text(const std::string& text, const std::string& file, EepromImage& image, std::string& error);
+// "file:line: error: ...". `check_checksum` false (sealing) ignores the checksum line.
+bool eeprom_from_text(const std::string& text, const std::string& file, EepromImage& image, std::string& error,
+                      bool check_checksum = true);
 
 // Loads FILE; a missing file is an empty EEPROM (returns true, `existed` false).
 bool load_eeprom_file(const std::string& path, EepromImage& image, bool& existed, std::string& error);
 // Atomic save: temporary file + rename.
 bool save_eeprom_file(const std::string& path, const EepromImage& image, std::string& error);
+// --eeprom-seal: reads a hand-edited FILE without checking its checksum, checks every record and
+// saves it again (sorted, with a fresh checksum line).
+bool seal_eeprom_file(const std::string& path, std::string& error);
 
 }  // namespace tmcl

@@ -8,17 +8,30 @@
 //   at 2500ms home 0 = 1        reference (home) switch of motor 0 (WAIT REFSW)
 //   at 3s    slip 0 = -400      the encoder of motor 0 loses 400 counts (deviation check)
 // Times are absolute simulated instants (durations as in duration.hpp); events at the same
-// instant apply in file order. A bad line is reported as FILE:LINE: error: ... .
+// instant apply in file order. Every bad line is reported, like the assembler does, as
+// FILE:LINE:COL: error: ... with the line and a caret (and a did-you-mean for a misspelt
+// input kind), up to ScenarioOptions::error_limit errors.
 #pragma once
 
 #include <string>
 #include <vector>
 
+#include "tmcl/diag_text.hpp"
 #include "tmcl/vm.hpp"
 
 namespace tmcl {
 
+struct ScenarioOptions {
+  int motors = 256;        // a motor event for motor >= motors is an error naming `module`
+  std::string module;      // e.g. "usb-2-sd"
+  int error_limit = kDefaultErrorLimit;  // 0 = report every error
+};
+
+// Parses every line; returns false when any is bad, with `diags` holding every error in line order.
 bool parse_scenario(const std::string& text, const std::string& file, std::vector<InputEvent>& out,
-                    std::string& error);
+                    std::vector<FileDiag>& diags, const ScenarioOptions& options = {});
+// The same, with the errors rendered (capped at options.error_limit) into `error`.
+bool parse_scenario(const std::string& text, const std::string& file, std::vector<InputEvent>& out,
+                    std::string& error, const ScenarioOptions& options = {});
 
 }  // namespace tmcl

@@ -64,6 +64,7 @@ struct AsmOptions {
   bool warnings_are_errors = false;             // -Werror
   WarningOptions warnings;                      // -Wno-name, -Werror=name (diag.hpp)
   bool append_stop = true;                      // append STOP unless the program ends in one
+  int error_limit = kDefaultErrorLimit;         // --error-limit: errors a tool shows (0 = all)
   bool relocatable = false;                     // -c: one source file into an object (AsmResult::object)
   bool symbols = true;     // fill AsmResult::symbols (a tool that prints none skips the work)
   bool fast_path = true;  // try the fast path first (same result; tests turn it off to compare)

@@ -13,6 +13,8 @@
 #include <string_view>
 #include <vector>
 
+#include "tmcl/diag_text.hpp"  // closest_match (did-you-mean), shared with the VM's file readers
+
 namespace tmcl {
 
 // A loaded source buffer. `includer` is the file and line that included it (-1: a root file).
@@ -94,8 +96,11 @@ class Diagnostics {
   void set_warning_options(const WarningOptions& flags) { flags_ = flags; }
   const WarningOptions& warning_options() const { return flags_; }
 
-  // Renders every diagnostic in the order reported.
-  std::string render(const SourceSet& sources) const;
+  // Every diagnostic in source order (location-less ones last), as render() shows them.
+  std::vector<const Diagnostic*> sorted(const SourceSet& sources) const;
+  // Renders the diagnostics in source order, stopping after `error_limit` errors (0: no limit,
+  // --error-limit) with a last line saying how many more errors and warnings there were.
+  std::string render(const SourceSet& sources, int error_limit = kDefaultErrorLimit) const;
 
  private:
   std::vector<Diagnostic> list_;
@@ -107,8 +112,5 @@ class Diagnostics {
 
 // Renders one diagnostic (with its notes).
 std::string render_diagnostic(const Diagnostic& d, const SourceSet& sources);
-
-// The closest candidate by edit distance, if close enough to suggest ("did you mean ...?").
-std::string closest_match(std::string_view word, const std::vector<std::string_view>& candidates);
 
 }  // namespace tmcl
