@@ -117,6 +117,7 @@ class FastAssembler {
 
   bool finish(int root) {
     int size = static_cast<int>(out_.program.size());
+    if (size == 0) return false;  // an empty program gets the full pipeline's warning
     if (options_.append_stop && (out_.program.empty() || out_.program.back().op != static_cast<std::uint8_t>(Op::STOP))) {
       out_.appended_stop = true;
       out_.program.push_back(Instruction{static_cast<std::uint8_t>(Op::STOP), 0, 0, 0});

@@ -1,0 +1,61 @@
+# `cpack -G TGZ` and `cpack -G DEB` make packages from the build, the .deb installs with dpkg into
+# a throwaway root (its own dpkg database, so the system is untouched), and the tools run from
+# there with no source or build tree. Skipped (exit code 77 = CTest SKIP_RETURN_CODE) without dpkg.
+# Run as: cmake -DBUILD=<build dir> -DWORK=<scratch dir> -DVERSION=<x.y.z> "-DTOOLS=<tool;...>"
+#               -P check_package.cmake
+cmake_minimum_required(VERSION 3.25)
+find_program(DPKG dpkg)
+find_program(DPKG_DEB dpkg-deb)
+if(NOT DPKG OR NOT DPKG_DEB)
+  message(STATUS "package: dpkg not found, skipped")
+  cmake_language(EXIT 77)
+endif()
+file(REMOVE_RECURSE "${WORK}")
+file(MAKE_DIRECTORY "${WORK}")
+get_filename_component(cmake_dir "${CMAKE_COMMAND}" DIRECTORY)
+find_program(CPACK cpack HINTS "${cmake_dir}" REQUIRED)
+
+execute_process(COMMAND "${CPACK}" -G "TGZ;DEB" --config "${BUILD}/CPackConfig.cmake" -B "${WORK}"
+  RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+if(NOT rc EQUAL 0)
+  message(FATAL_ERROR "cpack failed (${rc}):\n${out}\n${err}")
+endif()
+file(GLOB deb "${WORK}/tmcl_${VERSION}_*.deb")
+file(GLOB tgz "${WORK}/tmcl-${VERSION}-*.tar.gz")
+if(NOT deb OR NOT tgz)
+  message(FATAL_ERROR "cpack made no tmcl_${VERSION}_*.deb or tmcl-${VERSION}-*.tar.gz in ${WORK}")
+endif()
+
+execute_process(COMMAND "${DPKG_DEB}" -f "${deb}" Package Version Depends OUTPUT_VARIABLE control)
+if(NOT control MATCHES "Package: tmcl\nVersion: ${VERSION}\nDepends: libc6")
+  message(FATAL_ERROR "unexpected control data of ${deb}:\n${control}")
+endif()
+
+set(root "${WORK}/root")
+file(MAKE_DIRECTORY "${root}/var/lib/dpkg/info" "${root}/var/lib/dpkg/updates")
+file(TOUCH "${root}/var/lib/dpkg/status" "${root}/var/lib/dpkg/available")
+# --force-depends: the throwaway root has no libc6 package registered (the host's libc runs it).
+execute_process(COMMAND "${DPKG}" --root=${root} --log=${WORK}/dpkg.log --force-depends
+  --force-script-chrootless -i "${deb}" RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+if(NOT rc EQUAL 0)
+  message(FATAL_ERROR "dpkg -i ${deb} into ${root} failed (${rc}):\n${out}\n${err}")
+endif()
+foreach(tool IN LISTS TOOLS)
+  foreach(f usr/bin/${tool} usr/share/man/man1/${tool}.1 usr/share/bash-completion/completions/${tool})
+    if(NOT EXISTS "${root}/${f}")
+      message(FATAL_ERROR "the .deb does not install /${f}")
+    endif()
+  endforeach()
+  execute_process(COMMAND "${root}/usr/bin/${tool}" --version WORKING_DIRECTORY "${root}"
+    RESULT_VARIABLE rc OUTPUT_VARIABLE out)
+  if(NOT rc EQUAL 0 OR NOT out STREQUAL "${tool} (tmcl) ${VERSION}\n")
+    message(FATAL_ERROR "${tool} from the .deb: exit ${rc}, '${out}'")
+  endif()
+endforeach()
+foreach(f usr/lib/cmake/tmcl/tmclConfig.cmake usr/include/tmcl/vm.hpp usr/share/tmcl/include/TMCLParam.tmc)
+  if(NOT EXISTS "${root}/${f}")
+    message(FATAL_ERROR "the .deb does not install /${f}")
+  endif()
+endforeach()
+file(REMOVE_RECURSE "${WORK}")
+message(STATUS "package: .tar.gz and .deb made; the .deb installs and its tools run")
