@@ -213,9 +213,11 @@ Result Client::request(const Instruction& ins, bool retry) {
       }
       const Scan s = scan(ins, res.reply);
       if (s == Scan::Found) {
-        // A later matching reply already here wins: a stale copy may precede the real one.
+        // A later matching reply already here wins: a stale copy may precede the real one. Part
+        // of a frame after the match is one on its way: wait for it (at most the quiet gap).
         long more;
-        while ((more = port_.read_some(buf, sizeof buf, Clock::time_point{}, res.error)) > 0) {
+        while ((more = port_.read_some(buf, sizeof buf, rx_.empty() ? Clock::time_point{} : Clock::now() + kQuietGap,
+                                       res.error)) > 0) {
           rx_.insert(rx_.end(), buf, buf + more);
           scan(ins, res.reply);
         }

@@ -9,7 +9,6 @@ namespace {
 constexpr std::uint8_t kDownload = static_cast<std::uint8_t>(Op::EnterDownloadMode);
 constexpr std::uint8_t kEndDownload = static_cast<std::uint8_t>(Op::ExitDownloadMode);
 constexpr std::uint8_t kRead = static_cast<std::uint8_t>(Op::ReadProgramMemory);
-constexpr int kStoreAttempts = 3;  // a lost store reply: set the pointer again and resend, this often
 
 Outcome outcome_of(const Result& r) {
   switch (r.fail) {
@@ -41,9 +40,10 @@ TransferResult download(Client& client, const std::vector<Instruction>& program,
   TransferResult result{Outcome::Ok, "", from};
   for (int i = from; i < total; ++i) {
     const Instruction& ins = program[static_cast<std::size_t>(i)];
+    // A lost store reply: set the pointer again and resend, as often as other requests are retried.
     for (int attempt = 1;; ++attempt) {
       r = client.request(ins, false);
-      if (r.ok() || r.fail != Fail::NoReply || attempt == kStoreAttempts) break;
+      if (r.ok() || r.fail != Fail::NoReply || attempt > client.options().retries) break;
       // The store may or may not have happened: point the module at this address again.
       const Instruction again{kDownload, 0, 0, i};
       Result p = client.request(again);
@@ -66,7 +66,7 @@ TransferResult download(Client& client, const std::vector<Instruction>& program,
   // End marker (opcode 0, errata S7) where it fits: memory beyond the program reads as its end.
   if (result.outcome == Outcome::Ok && (memory <= 0 || total < memory)) {
     const Instruction end{0, 0, 0, 0};
-    r = client.request(end, false);
+    r = client.request(end);  // idempotent: it only ends program memory at this address
     if (!r.ok()) result = failed(r, total);
   }
   // Leave download mode in every case where the module still listens.
@@ -104,15 +104,33 @@ TransferResult verify(Client& client, const std::vector<Instruction>& program, i
 }
 
 TransferResult upload(Client& client, int memory, std::vector<Instruction>& program, const Progress& progress) {
+  // 134's reply does not name the address it answers, so a stale copy of the previous reply
+  // cannot be told from the right one (errata H1): every address is read until two reads agree.
+  const int max_reads = 2 + client.options().retries;
   program.clear();
   for (int i = 0; memory <= 0 || i < memory; ++i) {
     const Instruction read{kRead, 0, 0, i};
-    Result r = client.request(read);
-    if (!r.ok()) return failed(r, i);
-    if (r.reply.status == 4 && r.reply.op == kRead) break;  // past the end of program memory
-    if (r.reply.status != kStatusOk) return bad_status(client, read, r.reply, i, "reading address " + std::to_string(i));
-    if (r.reply.stored.op == 0) break;
-    program.push_back(r.reply.stored);
+    Instruction word;
+    bool agreed = false, past_end = false;
+    for (int n = 0; n < max_reads && !agreed; ++n) {
+      Result r = client.request(read);
+      if (!r.ok()) return failed(r, i);
+      if (r.reply.status == 4 && r.reply.op == kRead) {  // past the end of program memory
+        past_end = true;
+        break;
+      }
+      if (r.reply.status != kStatusOk) return bad_status(client, read, r.reply, i, "reading address " + std::to_string(i));
+      agreed = n > 0 && r.reply.stored == word;
+      word = r.reply.stored;
+    }
+    if (past_end) break;
+    if (!agreed)
+      return TransferResult{Outcome::NoReply,
+                            "address " + std::to_string(i) + " read differently " + std::to_string(max_reads) +
+                                " times in a row: the line is too unreliable to upload over",
+                            i};
+    if (word.op == 0) break;
+    program.push_back(word);
     if (progress) progress(i + 1, 0);
   }
   return TransferResult{Outcome::Ok, "", static_cast<int>(program.size())};

@@ -1,0 +1,364 @@
+// tmclctl end to end against the virtual module: `tmclrun --serve pty` and `--serve tcp` run as
+// separate processes, tmclctl is run as a user would, and exit status and output are checked.
+// Covers download and verify of a program filling the USB-2-SD's memory, upload giving the
+// identical .bin, run/stop/step/reset/status, monitor rows, parameters by name, scan on a bus of
+// three modules, every fault kind of --faults recovered or reported, Ctrl-C during a download,
+// a silent module, exclusive ports and atomic output files.
+#define TMCL_TEST_MAIN
+#include <sys/stat.h>
+
+#include <algorithm>
+#include <cstdio>
+#include <fstream>
+#include <sstream>
+
+#include "check.hpp"
+#include "process.hpp"
+#include "tmcl/asm/assembler.hpp"
+#include "tmcl/faults.hpp"
+#include "tmcl/host/port.hpp"
+#include "tmcl/image.hpp"
+
+using hosttest::Output;
+using hosttest::Server;
+
+namespace {
+
+const std::string kCtl = TMCL_TMCLCTL;
+const std::string kRun = TMCL_TMCLRUN;
+
+std::string temp_dir() {
+  static std::string dir = [] {
+    char t[] = "/tmp/tmclctl-test-XXXXXX";
+    return std::string(::mkdtemp(t));
+  }();
+  return dir;
+}
+
+std::string write_temp(const std::string& name, const std::string& text) {
+  const std::string path = temp_dir() + "/" + name;
+  std::ofstream(path, std::ios::binary) << text;
+  return path;
+}
+
+std::string slurp(const std::string& path) {
+  std::ifstream f(path, std::ios::binary);
+  std::ostringstream s;
+  s << f.rdbuf();
+  return s.str();
+}
+
+bool exists(const std::string& path) {
+  struct stat st{};
+  return ::stat(path.c_str(), &st) == 0;
+}
+
+bool has(const std::string& text, const std::string& part) { return text.find(part) != std::string::npos; }
+
+Output ctl(const std::vector<std::string>& args, int timeout_ms = 30000) {
+  std::vector<std::string> argv{kCtl};
+  argv.insert(argv.end(), args.begin(), args.end());
+  return hosttest::run(argv, timeout_ms);
+}
+
+void show(const Output& o) {
+  if (o.status != 0) std::fprintf(stderr, "  status %d\n  stdout: %s\n  stderr: %s\n", o.status, o.out.c_str(), o.err.c_str());
+}
+
+// 577 instructions: the whole program memory of the USB-2-SD, every one different.
+std::string full_memory_source() {
+  std::string s;
+  for (int i = 0; i < 576; ++i) s += "SAP 4, 0, " + std::to_string(1000 + i * 7) + "\n";
+  return s + "STOP\n";
+}
+
+std::vector<std::uint8_t> assembled_bin(const std::string& path) {
+  tmcl::AsmOptions opt;
+  opt.profile = tmcl::find_profile("usb-2-sd");
+  tmcl::DiskReader reader;
+  tmcl::AsmResult r = tmcl::assemble({path}, opt, reader);
+  return tmcl::write_bin(r.program);
+}
+
+void download_upload_round_trip(const std::vector<std::string>& serve) {
+  Server server(kRun, serve);
+  CHECK(!server.port().empty());
+  const std::string src = write_temp("full.tmc", full_memory_source());
+  Output d = ctl({"-t", "usb-2-sd", server.port(), "download", src});
+  show(d);
+  CHECK_EQ(d.status, 0);
+  CHECK(has(d.out, "wrote 577 instructions to module 1"));
+  CHECK(has(d.out, "verified 577 instructions"));
+  CHECK(d.err.empty());  // no progress bar when standard error is not a terminal
+  const std::string up = temp_dir() + "/up-" + std::to_string(serve.size()) + ".bin";
+  Output u = ctl({"-t", "usb-2-sd", server.port(), "upload", "-o", up});
+  show(u);
+  CHECK_EQ(u.status, 0);
+  CHECK(has(u.out, "read 577 instructions"));
+  const std::string got = slurp(up);
+  const auto want = assembled_bin(src);
+  CHECK_EQ(got.size(), want.size());
+  CHECK(got == std::string(want.begin(), want.end()));
+}
+
+TEST(download_verify_upload_full_memory_pty) { download_upload_round_trip({"--serve", "pty", "-t", "usb-2-sd"}); }
+
+TEST(download_verify_upload_full_memory_tcp) {
+  download_upload_round_trip({"--serve", "tcp:127.0.0.1:0", "-t", "usb-2-sd", "--time-scale", "1"});
+}
+
+TEST(download_too_large_is_bad_input) {
+  Server server(kRun, {"--serve", "pty", "-t", "usb-2-sd"});
+  const std::string src = write_temp("toolarge.tmc", full_memory_source() + "STOP\n");
+  Output d = ctl({"-t", "usb-2-sd", server.port(), "download", src});
+  CHECK_EQ(d.status, 65);
+  CHECK(has(d.err, "578 instructions"));
+}
+
+TEST(run_stop_step_reset_status) {
+  Server server(kRun, {"--serve", "pty", "-t", "usb-2-sd"});
+  const std::string src = write_temp("loop.tmc", "loop: CALC ADD, 1\nJA loop\n");
+  const std::string& p = server.port();
+  CHECK_EQ(ctl({"-t", "usb-2-sd", "-q", p, "download", "--run", src}).status, 0);
+  Output s = ctl({p, "status"});
+  CHECK_EQ(s.status, 0);
+  CHECK(has(s.out, "mode:             running"));
+  CHECK(has(s.out, "firmware:         0015V114 (0x000F010E), USB-2-SD (firmware 1.14)"));
+  CHECK_EQ(ctl({p, "stop"}).status, 0);
+  s = ctl({p, "status"});
+  CHECK(has(s.out, "mode:             stopped"));
+  CHECK_EQ(ctl({p, "reset"}).status, 0);
+  s = ctl({p, "status"});
+  CHECK(has(s.out, "mode:             reset"));
+  CHECK(has(s.out, "program counter:  0\n"));
+  CHECK(has(s.out, "accumulator:      0\n"));
+  CHECK_EQ(ctl({p, "step"}).status, 0);
+  s = ctl({p, "status"});
+  CHECK(has(s.out, "mode:             step"));
+  CHECK(has(s.out, "program counter:  1\n"));
+  CHECK(has(s.out, "accumulator:      1\n"));
+  CHECK_EQ(ctl({p, "run", "1"}).status, 0);
+  CHECK(has(ctl({p, "status"}).out, "mode:             running"));
+  Output bad = ctl({p, "run", "9"});  // outside the program: status 4
+  CHECK_EQ(bad.status, 2);
+  CHECK(has(bad.err, "answered 4 (invalid value)"));
+}
+
+TEST(parameters_by_number_and_name) {
+  Server server(kRun, {"--serve", "tcp:127.0.0.1:0", "-t", "usb-2-sd"});
+  const std::string& p = server.port();
+  Output s = ctl({"-t", "usb-2-sd", p, "set", "maximum positioning speed", "1234"});
+  show(s);
+  CHECK_EQ(s.status, 0);
+  Output g = ctl({"-t", "usb-2-sd", p, "get", "ap", "4", "0"});
+  CHECK_EQ(g.out, "1234\n");
+  g = ctl({"-t", "usb-2-sd", p, "get", "ap:4:0"});
+  CHECK_EQ(g.out, "1234\n");
+  Output send = ctl({"-t", "usb-2-sd", p, "send", "GAP 4, 0"});
+  CHECK_EQ(send.out, "100 success, value 1234\n");
+  Output raw = ctl({"-t", "usb-2-sd", "--raw", p, "send", "GAP 4, 0"});
+  CHECK_EQ(raw.out, "> 01 06 04 00 00 00 00 00 0B\n< 02 01 64 06 00 00 04 D2 43\n100 success, value 1234\n");
+  Output unknown = ctl({"-t", "usb-2-sd", p, "get", "maximum positoning speed"});
+  CHECK_EQ(unknown.status, 64);
+  CHECK(has(unknown.err, "did you mean 'Maximum positioning speed'?"));
+  Output range = ctl({"-t", "usb-2-sd", p, "set", "ap", "4", "0", "-5"});
+  CHECK_EQ(range.status, 65);
+  CHECK(has(range.err, "takes 0 to"));
+  Output bad_src = ctl({"-t", "usb-2-sd", p, "send", "SAP 4, 0"});
+  CHECK_EQ(bad_src.status, 65);
+  CHECK(has(bad_src.err, "<command line>:1:"));
+  Output store = ctl({"-t", "usb-2-sd", p, "store", "ap", "4", "0"});  // no EEPROM copy on this module
+  CHECK_EQ(store.status, 65);
+  CHECK(has(store.err, "axis parameter 4 (Maximum positioning speed), motor 0 is not stored in the EEPROM on usb-2-sd"));
+  CHECK_EQ(ctl({"-t", "usb-2-sd", p, "store", "auto start mode"}).status, 0);
+  Output fw = ctl({p, "send", ".raw 136, 0, 0, 0"});
+  CHECK_EQ(fw.out, "firmware 0015V114\n");
+}
+
+TEST(monitor_rows_as_csv) {
+  Server server(kRun, {"--serve", "pty", "-t", "usb-2-sd"});
+  const std::string csv = temp_dir() + "/monitor.csv";
+  Output m = ctl({"-t", "usb-2-sd", server.port(), "monitor", "ap:4", "gp:128", "--every", "50ms", "--for", "200ms", "--csv", csv});
+  show(m);
+  CHECK_EQ(m.status, 0);
+  const std::string text = slurp(csv);
+  CHECK(text.rfind("time_s,Maximum positioning speed [0],TMCL application status\n", 0) == 0);
+  int rows = 0;
+  for (char c : text) rows += c == '\n';
+  CHECK_EQ(rows, 5);  // header and rows at 0, 50, 100, 150 ms
+  CHECK(has(text, "0.150,"));
+  Output out = ctl({"-t", "usb-2-sd", server.port(), "monitor", "ap:4", "--every", "10ms", "--for", "30ms"});
+  CHECK_EQ(out.status, 0);
+  CHECK(out.out.rfind("time_s,Maximum positioning speed [0]\n0.000,", 0) == 0);
+}
+
+TEST(silent_module_is_named) {
+  Server server(kRun, {"--serve", "pty", "-t", "usb-2-sd"});
+  Output o = ctl({"-a", "9", "--timeout", "100ms", "--retries", "1", server.port(), "get", "ap", "1", "0"}, 5000);
+  CHECK_EQ(o.status, 69);
+  CHECK(has(o.err, "no reply within 100 ms to GAP 1, 0 [09 06 01 00 00 00 00 00 10] to module 9 on " + server.port() +
+                       " (2 attempts)"));
+  const std::string out = temp_dir() + "/never.bin";
+  Output u = ctl({"-a", "9", "--timeout", "50ms", "--retries", "0", server.port(), "upload", "-o", out}, 5000);
+  CHECK_EQ(u.status, 69);
+  CHECK(!exists(out));  // never a half-written output file
+}
+
+TEST(port_errors) {
+  Output o = ctl({"/nonexistent/tty", "status"});
+  CHECK_EQ(o.status, 74);
+  CHECK(has(o.err, "/nonexistent/tty: No such file or directory"));
+  Output f = ctl({"/dev/null", "status"});
+  CHECK_EQ(f.status, 74);
+  CHECK(has(f.err, "not a serial port"));
+  Server server(kRun, {"--serve", "pty"});
+  std::string err;
+  auto held = tmcl::host::Port::open(server.port(), 9600, 1000, err);
+  CHECK(held != nullptr);
+  Output busy = ctl({server.port(), "status"});
+  CHECK_EQ(busy.status, 74);
+  CHECK(has(busy.err, "port in use by another program"));
+  CHECK_EQ(ctl({"tcp:127.0.0.1:1", "status"}).status, 74);
+  CHECK_EQ(ctl({"--baud", "1234", server.port(), "status"}).status, 64);
+  CHECK_EQ(ctl({server.port(), "frobnicate"}).status, 64);
+}
+
+TEST(scan_bus_of_three) {
+  const std::string a = write_temp("a.tmc", "SAP 4, 0, 111\nSTOP\n");
+  Server server(kRun, {"--serve", "pty", "-t", "usb-2-sd", "--module", "1:" + a, "--module", "3", "--module", "7/tmc2300-eval"});
+  Output s = ctl({server.port(), "scan", "--range", "1-8"});
+  show(s);
+  CHECK_EQ(s.status, 0);
+  CHECK_EQ(s.out,
+           "address   1: firmware 0015V114 (0x000F010E), USB-2-SD (firmware 1.14)\n"
+           "address   3: firmware 0015V114 (0x000F010E), USB-2-SD (firmware 1.14)\n"
+           "address   7: firmware 2300V100 (0x17000100), TMC2300-MOTOR-EVAL (firmware 1.00)\n"
+           "3 modules found\n");
+  // Each its own VM: a parameter set on one is not seen on another.
+  CHECK_EQ(ctl({"-a", "3", server.port(), "set", "ap", "4", "0", "777"}).status, 0);
+  CHECK_EQ(ctl({"-a", "3", server.port(), "get", "ap", "4", "0"}).out, "777\n");
+  CHECK_EQ(ctl({"-a", "1", server.port(), "get", "ap", "4", "0"}).out != "777\n", true);
+  Output none = ctl({server.port(), "scan", "--range", "10-12"});
+  CHECK_EQ(none.status, 69);
+  CHECK(has(none.out, "0 modules found"));
+}
+
+// One request under each fault kind: recovered with retries, reported without.
+void fault_case(const std::string& spec, const std::vector<std::string>& ctl_opts, int want_status, const std::string& want_err) {
+  Server server(kRun, {"--serve", "pty", "-t", "usb-2-sd", "--faults", spec});
+  std::vector<std::string> args = ctl_opts;
+  args.insert(args.end(), {server.port(), "get", "ap", "4", "0"});
+  Output o = ctl(args, 10000);
+  if (o.status != want_status) std::fprintf(stderr, "  fault %s: status %d, stderr %s\n", spec.c_str(), o.status, o.err.c_str());
+  CHECK_EQ(o.status, want_status);
+  if (!want_err.empty()) CHECK(has(o.err, want_err));
+  if (want_status == 0) CHECK(!o.out.empty());
+}
+
+TEST(faults_recovered_or_reported) {
+  fault_case("drop@1", {"--timeout", "100ms"}, 0, "");
+  fault_case("drop@1", {"--timeout", "100ms", "--retries", "0"}, 69, "no reply within 100 ms to GAP 4, 0");
+  fault_case("corrupt@1", {"--timeout", "300ms"}, 0, "");
+  fault_case("corrupt@1", {"--timeout", "300ms", "--retries", "0"}, 69, "only a corrupted reply (wrong checksum) to GAP 4, 0");
+  fault_case("delay=50ms", {"--timeout", "300ms", "--retries", "0"}, 0, "");
+  fault_case("delay=300ms@1", {"--timeout", "100ms", "--retries", "2"}, 0, "");
+  fault_case("split", {"--retries", "0"}, 0, "");
+  fault_case("split=30ms", {"--retries", "0"}, 0, "");
+  fault_case("silence=250ms@1", {"--timeout", "100ms", "--retries", "5"}, 0, "");
+  fault_case("silence=250ms@1", {"--timeout", "100ms", "--retries", "0"}, 69, "no reply");
+  fault_case("stale", {"--retries", "0"}, 0, "");
+  fault_case("drop@cmd=GAP", {"--timeout", "50ms", "--retries", "1"}, 69, "(2 attempts)");
+  fault_case("drop@cmd=6#1", {"--timeout", "50ms", "--retries", "1"}, 0, "");
+}
+
+TEST(download_verify_under_seeded_faults) {
+  // Stale copies before every reply, and 15% of the replies corrupted or dropped: a download and
+  // verify of 100 instructions still ends right, by recovery (132 again before a lost store).
+  std::string src;
+  for (int i = 0; i < 99; ++i) src += "SAP 4, 0, " + std::to_string(i) + "\n";
+  const std::string path = write_temp("faulty.tmc", src + "STOP\n");
+  Server server(kRun, {"--serve", "pty", "-t", "usb-2-sd", "--faults", "stale,corrupt@p=0.1,drop@p=0.05,split@every=7,seed=7"});
+  Output d = ctl({"-t", "usb-2-sd", "--timeout", "100ms", "--retries", "5", server.port(), "download", path}, 60000);
+  show(d);
+  CHECK_EQ(d.status, 0);
+  CHECK(has(d.out, "verified 100 instructions"));
+  const std::string up = temp_dir() + "/faulty.bin";
+  CHECK_EQ(ctl({"-t", "usb-2-sd", "--timeout", "100ms", "--retries", "5", server.port(), "upload", "-o", up}, 60000).status, 0);
+  const auto want = assembled_bin(path);
+  CHECK(slurp(up) == std::string(want.begin(), want.end()));
+}
+
+TEST(bad_fault_specs_are_usage_errors) {
+  Output o = hosttest::run({kRun, "--serve", "pty", "--faults", "explode@3"});
+  CHECK_EQ(o.status, 64);
+  CHECK(has(o.err, "--faults: 'explode@3': unknown fault"));
+  o = hosttest::run({kRun, "--serve", "pty", "--faults", "delay@3"});
+  CHECK(has(o.err, "delay needs a duration"));
+  o = hosttest::run({kRun, "--faults", "drop", "x.tmc"});
+  CHECK(has(o.err, "--faults goes with --serve"));
+  o = hosttest::run({kRun, "--serve", "pty", "--module", "1", "--module", "1"});
+  CHECK_EQ(o.status, 64);
+  CHECK(has(o.err, "two modules with address 1"));
+}
+
+TEST(fault_injector_is_deterministic_per_seed) {
+  auto hits = [](std::uint64_t seed) {
+    tmcl::FaultPlan plan;
+    std::string err;
+    CHECK(tmcl::parse_faults("drop@p=0.3,seed=" + std::to_string(seed), plan, err));
+    tmcl::FaultInjector f(plan, 1.0);
+    std::string pattern;
+    const std::uint8_t frame[9] = {2, 1, 100, 6, 0, 0, 0, 0, 109};
+    for (int i = 0; i < 64; ++i) {
+      std::vector<std::uint8_t> out;
+      f.reply(frame, 9, 6, i);
+      f.release(i, out);
+      pattern += out.empty() ? 'x' : '.';
+    }
+    return pattern;
+  };
+  CHECK_EQ(hits(7), hits(7));
+  CHECK(hits(7) != hits(8));
+  const std::string p = hits(7);
+  const auto dropped = std::count(p.begin(), p.end(), 'x');
+  CHECK(dropped > 5 && dropped < 40);
+}
+
+TEST(ctrl_c_during_download_stops_cleanly) {
+  // Every reply 2 ms late: 577 stores take over a second, so SIGINT lands in the middle.
+  Server server(kRun, {"--serve", "pty", "-t", "usb-2-sd", "--faults", "delay=2ms"});
+  const std::string src = write_temp("full2.tmc", full_memory_source());
+  Output d = hosttest::run({kCtl, "-t", "usb-2-sd", server.port(), "download", src}, 30000, 300,
+                           [](pid_t pid) { ::kill(pid, SIGINT); });
+  CHECK_EQ(d.status, 130);
+  CHECK(has(d.err, "interrupted after "));
+  const auto at = d.err.find("download --from ");
+  CHECK(at != std::string::npos);
+  if (at == std::string::npos) return;
+  const int from = std::atoi(d.err.c_str() + at + 16);
+  CHECK(from > 0 && from < 577);
+  // Out of download mode: the module answers normally.
+  Output s = ctl({server.port(), "status"});
+  CHECK_EQ(s.status, 0);
+  CHECK(!has(s.out, "download\n"));
+  // Resume where it stopped: the whole program verifies.
+  Output r = ctl({"-t", "usb-2-sd", server.port(), "download", "--from", std::to_string(from), src}, 30000);
+  show(r);
+  CHECK_EQ(r.status, 0);
+  CHECK(has(r.out, "verified 577 instructions"));
+}
+
+TEST(console_session) {
+  Server server(kRun, {"--serve", "pty", "-t", "usb-2-sd"});
+  const std::string in = write_temp("console.txt", "help\nSAP 4, 0, 99\nGAP 4, 0\n!!\nSAP 4, 0\nhistory\nquit\n");
+  // Standard input from a file: no prompt.
+  Output o = hosttest::run({"/bin/sh", "-c", kCtl + " -t usb-2-sd " + server.port() + " console < " + in});
+  CHECK_EQ(o.status, 0);
+  CHECK(has(o.out, "Type an instruction"));
+  CHECK(has(o.out, "100 success, value 99\n"));
+  CHECK(has(o.out, "GAP 4, 0\n100 success, value 99\n"));
+  CHECK(has(o.out, "   1  SAP 4, 0, 99\n   2  GAP 4, 0\n   3  GAP 4, 0\n"));
+  CHECK(has(o.err, "<command line>:1:"));
+}
+
+}  // namespace
