@@ -1,6 +1,7 @@
 // tmclasm: the command-line assembler, linker and disassembler. Parses arguments, calls the
 // assembler library, writes the output. Exit status: 0 success, 65 errors in the input, 64 usage
 // errors, 74 output not written.
+#include <cerrno>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
@@ -13,6 +14,7 @@
 #include "tmcl/asm/object.hpp"
 #include "tmcl/asm/output.hpp"
 #include "tmcl/fileio.hpp"
+#include "tmcl/numbers.hpp"
 #include "tmcl/version.hpp"
 
 namespace {
@@ -58,6 +60,7 @@ options:
   -Werror=NAME       treat the warning NAME as an error
   -Wno-NAME          do not report the warning NAME (names: docs/analysis.md, tmclasm.md)
   --no-append-stop   do not append STOP when the program does not end in one
+  --error-limit N    show at most N errors (default 20, 0 = all), then how many more there were
   --help             show this help
   --version          show the version
 
@@ -70,7 +73,8 @@ examples:
   tmclasm --map prog.map -o prog.bin main.tmc libmotion.a
   tmclasm -d prog.bin -o prog.tmc        source that reassembles to the identical prog.bin
 
-exit status: 0 success, 65 errors in the input, 64 usage error, 74 output could not be written
+exit status: 0 success, 65 errors in the input, 64 usage error, 74 output (a file or standard
+             output) could not be written
 )";
 
 int usage_error(const std::string& msg) {
@@ -169,9 +173,7 @@ int dump(const std::string& file, const std::string& output) {
   return write_output(output, bytes_of(text)) ? 0 : kExitOutput;
 }
 
-}  // namespace
-
-int main(int argc, char** argv) {
+int run(int argc, char** argv) {
   tmcl::AsmOptions opts;
   std::vector<std::string> files;
   std::string output, map_file, symbols_file;
@@ -265,6 +267,12 @@ int main(int argc, char** argv) {
       if (a == "-Werror") dopts.warnings_are_errors = true;
     } else if (a == "--no-append-stop") {
       opts.append_stop = false;
+    } else if (a == "--error-limit") {
+      if (!value(a, v)) return usage_error("--error-limit needs a number");
+      std::int64_t n = 0;
+      if (!tmcl::parse_int(v, 0, 1'000'000'000, n))
+        return usage_error("bad error limit '" + v + "' for --error-limit (a number, 0 for no limit)");
+      opts.error_limit = static_cast<int>(n);
     } else if (a == "-") {
       files.push_back(a);
     } else if (a.size() > 1 && a[0] == '-') {
@@ -308,7 +316,7 @@ int main(int argc, char** argv) {
     opts.relocatable = true;
     for (const auto& file : files) {
       tmcl::AsmResult r = tmcl::assemble({file}, opts, reader);
-      std::fputs(r.diags.render(r.sources).c_str(), stderr);
+      std::fputs(r.diags.render(r.sources, opts.error_limit).c_str(), stderr);
       errors += r.diags.error_count();
       warnings += r.diags.warning_count();
       if (!r.ok() || !r.object) continue;
@@ -328,7 +336,7 @@ int main(int argc, char** argv) {
 
   opts.symbols = format == tmcl::OutputFormat::Symbols || !map_file.empty();  // otherwise never printed
   tmcl::AsmResult result = tmcl::assemble(files, opts, reader);
-  std::string text = result.diags.render(result.sources);
+  std::string text = result.diags.render(result.sources, opts.error_limit);
   std::fputs(text.c_str(), stderr);
   if (!result.ok()) {
     print_failure(result.diags.error_count(), result.diags.warning_count());
@@ -348,4 +356,16 @@ int main(int argc, char** argv) {
   if (!map_file.empty() && !write_output(map_file, bytes_of(tmcl::format_map(result)))) return kExitOutput;
   if (!write_output(output, bytes)) return kExitOutput;
   return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  int status = run(argc, argv);
+  // Every write is checked, standard output included (--help, --version, -o -).
+  if (std::fflush(stdout) != 0 || std::ferror(stdout)) {
+    std::fprintf(stderr, "tmclasm: error: cannot write standard output: %s\n", std::strerror(errno));
+    return kExitOutput;
+  }
+  return status;
 }

@@ -2,11 +2,13 @@
 // the program (assembling .tmc in-process), scenario and EEPROM, runs the VM library, prints the
 // summary, trace, JSON, CSV or plot, or serves it as a virtual module (--serve). All semantics
 // live in vm/; see docs/tmclrun.md. Exit status: 0 STOP, 3 limit reached or blocked, 70 runtime
-// fault, 65 bad input, 64 usage, 71 --serve transport failed, 74 output file not written.
+// fault, 65 bad input, 64 usage, 71 --serve transport failed, 74 an output file or standard
+// output not written. With --json every outcome is one JSON object on standard output.
 #include <cctype>
 #include <cerrno>
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
 #include <memory>
 #include <sstream>
 #include <string>
@@ -14,10 +16,12 @@
 
 #include "tmcl/asm/assembler.hpp"
 #include "tmcl/debug_cli.hpp"
+#include "tmcl/diag_text.hpp"
 #include "tmcl/duration.hpp"
 #include "tmcl/eeprom.hpp"
 #include "tmcl/fileio.hpp"
 #include "tmcl/motion_recording.hpp"
+#include "tmcl/numbers.hpp"
 #include "tmcl/program_image.hpp"
 #include "tmcl/scenario.hpp"
 #include "tmcl/server.hpp"
@@ -34,16 +38,19 @@ const char* kUsage = R"(usage: tmclrun [options] PROGRAM        PROGRAM: .tmc so
 Runs a TMCL program on a deterministic virtual module. Simulated time: nothing waits for real.
 
 options:
-  -t, --target NAME      usb-2-sd (default) | tmc2300-eval | generic
+  -t, --target NAME      usb-2-sd | tmc2300-eval | generic (default, as for tmclasm)
   --motion NAME          motion core (default: the module's; available: %s)
   --instr-time DURATION  simulated time per instruction (default 20us)
   --max-time DURATION    stop when simulated time reaches DURATION
   --max-steps N          stop after N instructions
   --scenario FILE        timed inputs, switches and encoder slip (docs/tmclrun.md)
   --eeprom FILE          load the EEPROM from FILE at start, save it there at exit
+  --eeprom-seal FILE     after editing an EEPROM file by hand: check it, write a new checksum
   --trace                print a line per instruction, interrupt, wait and motion event
                          (to standard error when --json is given)
-  --json                 print the final state as one JSON object instead of the summary
+  --json                 print the final state as one JSON object instead of the summary;
+                         when there is no run (bad option or input), the errors as one object
+  --error-limit N        show at most N errors of the source or scenario (default 20, 0 = all)
   --serve SPEC           act as a virtual module: tcp:HOST:PORT (loopback unless told
                          otherwise; [::1]:PORT for IPv6), pty, or stdio (docs/virtual-module.md).
                          PROGRAM is then optional (a host can download one)
@@ -70,7 +77,7 @@ options:
   -D NAME=VALUE          define an assembler constant
   --help                 show this help
   --version              show the version
-DURATION: an integer with us, ms, s or min (50us, 10ms, 2s, 1min); 0 needs no unit.
+DURATION: a number with us, ms, s, min or h (50us, 0.25ms, 1.5s, 2min, 1h); 0 needs no unit.
 
 examples:
   tmclrun prog.tmc                              run until STOP, print a summary
@@ -82,7 +89,7 @@ examples:
 
 exit status: 0 STOP, 3 limit reached or blocked forever, 70 runtime fault, 65 bad input,
              64 usage error, 71 --serve transport failed, 74 an output file (EEPROM, --csv,
-             --plot) could not be written
+             --plot) or standard output could not be written
 )";
 
 std::string joined(const std::vector<std::string>& names) {
@@ -91,9 +98,63 @@ std::string joined(const std::vector<std::string>& names) {
   return s;
 }
 
+// --json: what went wrong when there is no run to report, printed as one object at exit.
+struct Failure {
+  bool json = false;
+  int error_limit = tmcl::kDefaultErrorLimit;
+  std::string kind;  // usage, input, io; empty: nothing failed before the run
+  std::vector<tmcl::JsonDiagnostic> diags;
+  long long more = 0;
+} g_failure;
+
+int fail(const char* kind, int status, tmcl::JsonDiagnostic d) {
+  if (g_failure.kind.empty()) g_failure.kind = kind;
+  g_failure.diags.push_back(std::move(d));
+  return status;
+}
+
 int usage_error(const std::string& msg) {
   std::fprintf(stderr, "tmclrun: %s\n(see tmclrun --help)\n", msg.c_str());
-  return kExitUsage;
+  return fail("usage", kExitUsage, {"", 0, 0, "error", "", msg});
+}
+
+// An error that has no line to point at: "tmclrun: error: ..." or "FILE: error: ...".
+int input_error(const std::string& file, const std::string& msg, int status = kExitInput) {
+  std::fprintf(stderr, "%s: error: %s\n", file.empty() ? "tmclrun" : file.c_str(), msg.c_str());
+  return fail(status == kExitIo ? "io" : "input", status, {file, 0, 0, "error", "", msg});
+}
+
+// Errors of a scenario file, collected with places, shown like the assembler's.
+int file_errors(const std::vector<tmcl::FileDiag>& diags) {
+  std::fputs(tmcl::render_file_diags(diags, g_failure.error_limit).c_str(), stderr);
+  for (const auto& d : diags) {
+    if (g_failure.error_limit > 0 && g_failure.diags.size() >= static_cast<std::size_t>(g_failure.error_limit)) {
+      ++g_failure.more;
+      continue;
+    }
+    fail("input", kExitInput, {d.file, d.line, d.col, "error", "", d.message});
+  }
+  return kExitInput;
+}
+
+// "FILE:LINE: error: MESSAGE" (as the EEPROM reader words it) into a JSON diagnostic.
+int located_error(const std::string& text) {
+  std::fprintf(stderr, "%s\n", text.c_str());
+  tmcl::JsonDiagnostic d;
+  d.message = text;
+  auto marker = text.find(": error: ");
+  if (marker != std::string::npos) {
+    d.message = text.substr(marker + 9);
+    std::string where = text.substr(0, marker);
+    auto colon = where.rfind(':');
+    if (colon != std::string::npos && colon + 1 < where.size() &&
+        where.find_first_not_of("0123456789", colon + 1) == std::string::npos) {
+      d.line = std::atoi(where.c_str() + colon + 1);
+      where.resize(colon);
+    }
+    d.file = where;
+  }
+  return fail("input", kExitInput, d);
 }
 
 bool ends_with_ci(const std::string& s, const char* suffix) {
@@ -122,11 +183,12 @@ class StdinFirstReader final : public tmcl::FileReader {
 };
 
 struct Options {
-  std::string target = "usb-2-sd";
+  std::string target = "generic";  // one default for every tool (docs/errata.md)
   std::string motion;
   tmcl::SimTime instr_time = 20;
   tmcl::Limits limits;
   std::string scenario, eeprom, program;
+  std::string eeprom_seal;
   bool trace = false, json = false;
   std::string csv, plot;
   std::string serve;
@@ -189,8 +251,9 @@ int parse_args(int argc, char** argv, Options& o) {
     auto duration = [&](const char* opt, tmcl::SimTime& out) -> int {
       std::string v;
       if (!value(v)) return usage_error(std::string(opt) + " needs a duration");
-      auto d = tmcl::parse_duration(v);
-      if (!d) return usage_error("bad duration '" + v + "' for " + opt + " (use e.g. 0, 50us, 10ms, 2s, 1min)");
+      std::string why;
+      auto d = tmcl::parse_duration(v, why);
+      if (!d) return usage_error("bad duration for " + std::string(opt) + ": " + why);
       out = *d;
       return -1;
     };
@@ -220,6 +283,14 @@ int parse_args(int argc, char** argv, Options& o) {
       if (!value(o.scenario)) return usage_error("--scenario needs a file");
     } else if (a == "--eeprom") {
       if (!value(o.eeprom)) return usage_error("--eeprom needs a file");
+    } else if (a == "--eeprom-seal") {
+      if (!value(o.eeprom_seal)) return usage_error("--eeprom-seal needs a file");
+    } else if (a == "--error-limit") {
+      if (!value(v)) return usage_error("--error-limit needs a number");
+      std::int64_t n = 0;
+      if (!tmcl::parse_int(v, 0, 1'000'000'000, n))
+        return usage_error("bad error limit '" + v + "' for --error-limit (a number, 0 for no limit)");
+      g_failure.error_limit = static_cast<int>(n);
     } else if (a == "--serve") {
       if (!value(o.serve)) return usage_error("--serve needs tcp:HOST:PORT, pty or stdio");
       std::string err;
@@ -300,6 +371,11 @@ int parse_args(int argc, char** argv, Options& o) {
     o.program = first.file;
     o.serve_opts.protocol.module_address = first.address;
   }
+  if (!o.eeprom_seal.empty()) {
+    if (have_program || !o.serve.empty() || !o.eeprom.empty())
+      return usage_error("--eeprom-seal FILE goes alone (it seals FILE and runs nothing)");
+    return -1;
+  }
   if (!have_program && o.serve.empty()) return usage_error("no PROGRAM given");
   return -1;
 }
@@ -310,10 +386,7 @@ int load_program(Options& o, const tmcl::Profile* profile, std::vector<tmcl::Ins
                  tmcl::SourceMap& sources) {
   std::vector<std::uint8_t> bytes;
   std::string err;
-  if (!tmcl::read_file(o.program, bytes, err)) {
-    std::fprintf(stderr, "tmclrun: error: %s\n", err.c_str());
-    return kExitInput;
-  }
+  if (!tmcl::read_file(o.program, bytes, err)) return input_error("", err);
   bool is_image = ends_with_ci(o.program, ".bin") || ends_with_ci(o.program, ".dgm");
   if (o.program == "-") {
     for (auto b : bytes) is_image = is_image || b == 0;  // a binary image always has zero bytes
@@ -322,14 +395,38 @@ int load_program(Options& o, const tmcl::Profile* profile, std::vector<tmcl::Ins
     std::string messages;
     std::string name = o.program == "-" ? "<stdin>" : o.program;
     bool ok = tmcl::read_program_image(name, bytes, program, messages);
+    if (!ok) {
+      // The image reader words its messages itself; the JSON diagnostic carries them whole.
+      while (!messages.empty() && messages.back() == '\n') messages.pop_back();
+      std::fprintf(stderr, "%s\n", messages.c_str());
+      return fail("input", kExitInput, {name, 0, 0, "error", "", messages});
+    }
     std::fputs(messages.c_str(), stderr);
-    if (!ok) return kExitInput;
   } else {
     StdinFirstReader reader(o.program == "-" ? std::string(bytes.begin(), bytes.end()) : std::string());
     o.asm_opts.profile = profile;
     tmcl::AsmResult res = tmcl::assemble({o.program}, o.asm_opts, reader);
-    if (!res.diags.all().empty()) std::fputs(res.diags.render(res.sources).c_str(), stderr);
-    if (!res.ok()) return kExitInput;
+    if (!res.diags.all().empty()) std::fputs(res.diags.render(res.sources, g_failure.error_limit).c_str(), stderr);
+    if (!res.ok()) {
+      // The same diagnostics as standard error shows, cut at the same --error-limit.
+      int shown = 0;
+      for (const tmcl::Diagnostic* d : res.diags.sorted(res.sources)) {
+        if (g_failure.error_limit > 0 && shown >= g_failure.error_limit) {
+          ++g_failure.more;
+          continue;
+        }
+        if (d->severity == tmcl::Severity::Error) ++shown;
+        auto file_of = [&res](const tmcl::SourceLoc& loc) {
+          bool known = loc.file >= 0 && static_cast<std::size_t>(loc.file) < res.sources.files.size();
+          return known ? res.sources.files[static_cast<std::size_t>(loc.file)].name : std::string();
+        };
+        fail("input", kExitInput,
+             {file_of(d->loc), d->loc.line, d->loc.col, d->severity == tmcl::Severity::Error ? "error" : "warning",
+              d->name, d->message});
+        for (const auto& n : d->notes) fail("input", kExitInput, {file_of(n.loc), n.loc.line, n.loc.col, "note", "", n.message});
+      }
+      return kExitInput;
+    }
     program = res.program;
     for (const auto& li : res.lines) {
       if (li.file >= 0 && static_cast<std::size_t>(li.file) < res.sources.files.size())
@@ -338,15 +435,10 @@ int load_program(Options& o, const tmcl::Profile* profile, std::vector<tmcl::Ins
         sources.emplace_back();
     }
   }
-  if (program.empty()) {
-    std::fprintf(stderr, "%s: error: the program is empty\n", o.program.c_str());
-    return kExitInput;
-  }
-  if (profile->program_memory > 0 && program.size() > static_cast<std::size_t>(profile->program_memory)) {
-    std::fprintf(stderr, "%s: error: %zu instructions do not fit the %d of %s program memory\n", o.program.c_str(),
-                 program.size(), profile->program_memory, o.target.c_str());
-    return kExitInput;
-  }
+  if (program.empty()) return input_error(o.program, "the program is empty");
+  if (profile->program_memory > 0 && program.size() > static_cast<std::size_t>(profile->program_memory))
+    return input_error(o.program, std::to_string(program.size()) + " instructions do not fit the " +
+                                      std::to_string(profile->program_memory) + " of " + o.target + " program memory");
 
   return -1;
 }
@@ -391,9 +483,19 @@ int build_bus(Options& o, std::vector<std::unique_ptr<tmcl::MotionCore>>& cores,
 
 }  // namespace
 
-int main(int argc, char** argv) {
+int run(int argc, char** argv) {
   Options o;
   if (int r = parse_args(argc, argv, o); r >= 0) return r;
+  if (!o.eeprom_seal.empty()) {
+    std::string why;
+    if (tmcl::seal_eeprom_file(o.eeprom_seal, why)) return kExitOk;
+    // A file that cannot be written is an I/O error; one that cannot be read or parsed, bad input.
+    if (why.find(": error: cannot write") != std::string::npos) {
+      std::fprintf(stderr, "%s\n", why.c_str());
+      return fail("io", kExitIo, {o.eeprom_seal, 0, 0, "error", "", why.substr(why.find(": error: ") + 9)});
+    }
+    return located_error(why);
+  }
 
   const tmcl::Profile* profile = tmcl::find_profile(o.target);
   if (!profile) {
@@ -422,34 +524,21 @@ int main(int argc, char** argv) {
   std::vector<tmcl::InputEvent> inputs;
   if (!o.scenario.empty()) {
     std::vector<std::uint8_t> sb;
-    if (!tmcl::read_file(o.scenario, sb, err, tmcl::kMaxScenarioBytes)) {
-      std::fprintf(stderr, "tmclrun: error: %s\n", err.c_str());
-      return kExitInput;
-    }
-    if (!tmcl::parse_scenario(std::string(sb.begin(), sb.end()), o.scenario, inputs, err)) {
-      std::fprintf(stderr, "%s\n", err.c_str());
-      return kExitInput;
-    }
-    for (const auto& ev : inputs) {
-      bool motor_event = ev.kind != tmcl::InputEvent::Digital && ev.kind != tmcl::InputEvent::Analog;
-      if (motor_event && ev.index >= profile->motors) {
-        std::fprintf(stderr, "%s:%d: error: %s has no motor %d\n", o.scenario.c_str(), ev.line, o.target.c_str(), ev.index);
-        return kExitInput;
-      }
-    }
+    if (!tmcl::read_file(o.scenario, sb, err, tmcl::kMaxScenarioBytes)) return input_error("", err);
+    tmcl::ScenarioOptions sopts;
+    sopts.motors = profile->motors;
+    sopts.module = o.target;
+    sopts.error_limit = g_failure.error_limit;
+    std::vector<tmcl::FileDiag> sdiags;
+    if (!tmcl::parse_scenario(std::string(sb.begin(), sb.end()), o.scenario, inputs, sdiags, sopts))
+      return file_errors(sdiags);
   }
   tmcl::EepromImage image;
   if (!o.eeprom.empty()) {
     bool existed = false;
-    if (!tmcl::load_eeprom_file(o.eeprom, image, existed, err)) {
-      std::fprintf(stderr, "%s\n", err.c_str());
-      return kExitInput;
-    }
-    if (existed && image.profile != profile->name) {
-      std::fprintf(stderr, "%s:2: error: EEPROM written for module '%s', not '%s'\n", o.eeprom.c_str(), image.profile.c_str(),
-                   o.target.c_str());
-      return kExitInput;
-    }
+    if (!tmcl::load_eeprom_file(o.eeprom, image, existed, err)) return located_error(err);
+    if (existed && image.profile != profile->name)
+      return located_error(o.eeprom + ":2: error: EEPROM written for module '" + image.profile + "', not '" + o.target + "'");
   }
 
   // --debug, --dap: the debugger runs the program (vm/debug, docs/debugger.md).
@@ -524,5 +613,21 @@ int main(int argc, char** argv) {
     std::fputs(tmcl::state_json(vm, result).c_str(), stdout);
   else
     std::fputs(tmcl::state_summary(vm, result, &sources).c_str(), stdout);
+  return status;
+}
+
+int main(int argc, char** argv) {
+  // --json is known before any other option is read, so even a bad option is reported as JSON.
+  for (int i = 1; i < argc; ++i)
+    if (std::strcmp(argv[i], "--json") == 0) g_failure.json = true;
+  int status = run(argc, argv);
+  if (g_failure.json && !g_failure.kind.empty())
+    std::fputs(tmcl::error_json(g_failure.kind, status, g_failure.diags, g_failure.more).c_str(), stdout);
+  // Every write is checked, standard output included: a full disk or a closed pipe is exit 74,
+  // never a silent success.
+  if (std::fflush(stdout) != 0 || std::ferror(stdout)) {
+    std::fprintf(stderr, "tmclrun: error: cannot write standard output: %s\n", std::strerror(errno));
+    return kExitIo;
+  }
   return status;
 }

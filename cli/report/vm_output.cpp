@@ -191,6 +191,22 @@ std::string state_json(Vm& vm, const RunResult& result) {
   return json::write_lines(s) + "\n";
 }
 
+std::string error_json(std::string_view kind, int exit_status, const std::vector<JsonDiagnostic>& diags,
+                       long long more) {
+  std::string s = "{\"error\":" + json_string(kind) + ",\n \"exit\":" + std::to_string(exit_status) +
+                  ",\n \"message\":" + json_string(diags.empty() ? std::string_view() : diags.front().message) +
+                  ",\n \"diagnostics\":[";
+  for (std::size_t i = 0; i < diags.size(); ++i) {
+    const auto& d = diags[i];
+    s += i ? ",\n  " : "\n  ";
+    s += "{\"file\":" + json_string(d.file) + ",\"line\":" + std::to_string(d.line) +
+         ",\"column\":" + std::to_string(d.column) + ",\"severity\":" + json_string(d.severity) +
+         ",\"name\":" + (d.name.empty() ? std::string("null") : json_string(d.name)) +
+         ",\"message\":" + json_string(d.message) + "}";
+  }
+  return s + "],\n \"more\":" + std::to_string(more) + "}\n";
+}
+
 std::string state_summary(Vm& vm, const RunResult& result, const SourceMap* sources) {
   (void)sources;
   std::string s = "halted: " + std::string(halt_name(result.halt));

@@ -4,6 +4,7 @@
 
 #include <cstdio>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "tmcl/vm.hpp"
@@ -43,5 +44,20 @@ std::string errors_text(std::uint8_t errors);
 std::string state_json(Vm& vm, const RunResult& result);
 // The default exit summary.
 std::string state_summary(Vm& vm, const RunResult& result, const SourceMap* sources);
+
+// --json when there is no run to report (a bad option, assembly errors, an unreadable program,
+// scenario or EEPROM file): one object, so a script always has JSON to parse:
+//   {"error":"input","exit":65,"message":"<the first diagnostic's message>",
+//    "diagnostics":[{"file":"p.tmc","line":3,"column":5,"severity":"error","name":null,"message":"..."}],
+//    "more":0}
+// `kind` is usage, input or io; `more` counts diagnostics left out by --error-limit; a missing
+// place is file "" and line/column 0; `name` is a warning's -W name, null for unnamed ones.
+struct JsonDiagnostic {
+  std::string file;
+  int line = 0, column = 0;
+  std::string severity = "error", name, message;
+};
+std::string error_json(std::string_view kind, int exit_status, const std::vector<JsonDiagnostic>& diags,
+                       long long more);
 
 }  // namespace tmcl
