@@ -91,9 +91,19 @@ void Lexer::step() {
     line_start_ = pos_;
     return;
   }
-  if (c == '/' && peek(1) == '/') return skip_to_eol();
-  if (c == ';') return skip_to_eol();
-  if (c == '/' && peek(1) == '*') return block_comment();
+  if ((c == '/' && peek(1) == '/') || c == ';') {
+    std::size_t start = pos_;
+    skip_to_eol();
+    if (comments_) comments_->push_back(Token{Tok::Bad, P::None, src_.substr(start, pos_ - start), 0, line_, static_cast<int>(start - line_start_) + 1});
+    return;
+  }
+  if (c == '/' && peek(1) == '*') {
+    std::size_t start = pos_, start_line_start = line_start_;
+    int start_line = line_;
+    block_comment();
+    if (comments_) comments_->push_back(Token{Tok::Bad, P::None, src_.substr(start, pos_ - start), 0, start_line, static_cast<int>(start - start_line_start) + 1});
+    return;
+  }
   if (c == '.' && ident_start(peek(1))) return ident();
   if (c == '$') return digits(pos_, 1, 16);
   if (c == '%' && !after_operand() && (peek(1) == '0' || peek(1) == '1')) return digits(pos_, 1, 2);

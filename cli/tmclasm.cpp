@@ -11,6 +11,7 @@
 
 #include "tmcl/asm/assembler.hpp"
 #include "tmcl/asm/disasm.hpp"
+#include "tmcl/asm/format.hpp"
 #include "tmcl/asm/object.hpp"
 #include "tmcl/asm/output.hpp"
 #include "tmcl/fileio.hpp"
@@ -28,6 +29,7 @@ const char* kUsage = R"(usage: tmclasm [options] FILE...        link sources, ob
        tmclasm -f lib -o LIB.a FILE...    bundle objects (sources are assembled) into a library
        tmclasm -d [--symbols SYM] FILE    disassemble a .bin, datagrams or an object to source
        tmclasm --dump-object FILE         show an object or library as text
+       tmclasm --fmt [-i | --check] FILE  lay a source out the canonical way (docs/tmclasm.md)
 FILE may be - for standard input.
 
 Assembles TMCL sources (.tmc) and links them with objects (.o) and libraries (.a) into a program
@@ -52,6 +54,9 @@ options:
   --from FMT         with -d: read FILE as bin, datagrams or object (default: by its contents
                      and extension)
   --dump-object      show an object or a library (every member) as text
+  --fmt              write the sources in the canonical layout (to standard output, or -o FILE)
+  -i                 with --fmt: rewrite each FILE in place
+  --check            with --fmt: write nothing; exit 65 naming each FILE not in the layout
   --address N        module address in datagrams (default 1)
   -t, --target NAME  usb-2-sd | tmc2300-eval | generic (default)
   -I DIR             search DIR for #include files (after the including file's folder)
@@ -97,7 +102,7 @@ bool write_output(const std::string& path, const std::vector<std::uint8_t>& byte
 
 std::vector<std::uint8_t> bytes_of(const std::string& s) { return {s.begin(), s.end()}; }
 
-enum class Mode { Link, Compile, Library, Disassemble, Dump };
+enum class Mode { Link, Compile, Library, Disassemble, Dump, Fmt };
 
 // -d: one image or object in, source out.
 int disassemble(const std::string& file, const std::string& output, const tmcl::DisasmOptions& options,
@@ -173,6 +178,37 @@ int dump(const std::string& file, const std::string& output) {
   return write_output(output, bytes_of(text)) ? 0 : kExitOutput;
 }
 
+// --fmt: each source formatted (format.hpp) to `output`, in place, or only checked.
+int format_sources(const std::vector<std::string>& files, bool in_place, bool check, const std::string& output) {
+  int status = 0;
+  for (const auto& file : files) {
+    std::string text;
+    tmcl::DiskReader reader;
+    if (!reader.read(file, text)) {
+      std::fprintf(stderr, "tmclasm: error: %s: %s\n", file.c_str(), reader.last_error().c_str());
+      status = kExitInput;
+      continue;
+    }
+    tmcl::FormatResult r = tmcl::format_source(text);
+    if (!r.ok) {
+      std::fprintf(stderr, "%s:%s (not formatted)\n", file.c_str(), r.error.c_str());
+      status = kExitInput;
+      continue;
+    }
+    if (check) {
+      if (r.text != text) {
+        std::fprintf(stderr, "%s: not in the canonical layout (tmclasm --fmt -i %s)\n", file.c_str(), file.c_str());
+        status = kExitInput;
+      }
+    } else if (in_place && file != "-") {
+      if (r.text != text && !write_output(file, bytes_of(r.text))) return kExitOutput;
+    } else if (!write_output(output, bytes_of(r.text))) {
+      return kExitOutput;
+    }
+  }
+  return status;
+}
+
 int run(int argc, char** argv) {
   tmcl::AsmOptions opts;
   std::vector<std::string> files;
@@ -181,6 +217,7 @@ int run(int argc, char** argv) {
   tmcl::OutputFormat format = tmcl::OutputFormat::Bin;
   Mode mode = Mode::Link;
   bool make_lib = false;
+  bool fmt_in_place = false, fmt_check = false;
   tmcl::DisasmOptions dopts;
   int address = 1;
   std::vector<std::string> args(argv + 1, argv + argc);
@@ -227,6 +264,12 @@ int run(int argc, char** argv) {
       if (!set_mode(Mode::Compile, "-c")) return usage_error("-c cannot be combined with -d or --dump-object");
     } else if (a == "-d" || a == "--disassemble") {
       if (!set_mode(Mode::Disassemble, "-d")) return usage_error("-d cannot be combined with -c or --dump-object");
+    } else if (a == "--fmt") {
+      if (!set_mode(Mode::Fmt, "--fmt")) return usage_error("--fmt cannot be combined with -c, -d, --analyze or --dump-object");
+    } else if (a == "-i") {
+      fmt_in_place = true;
+    } else if (a == "--check") {
+      fmt_check = true;
     } else if (a == "--dump-object") {
       if (!set_mode(Mode::Dump, "--dump-object")) return usage_error("--dump-object cannot be combined with -c or -d");
     } else if (a == "--map") {
@@ -282,6 +325,13 @@ int run(int argc, char** argv) {
     }
   }
   if (files.empty()) return usage_error("no input files");
+  if ((fmt_in_place || fmt_check) && mode != Mode::Fmt) return usage_error("-i and --check go with --fmt");
+  if (mode == Mode::Fmt) {
+    if (fmt_in_place && fmt_check) return usage_error("--fmt takes -i or --check, not both");
+    if (have_output && (fmt_in_place || fmt_check || files.size() != 1))
+      return usage_error("-o with --fmt names the output of one source (not with -i or --check)");
+    return format_sources(files, fmt_in_place, fmt_check, have_output ? output : "-");
+  }
   if (make_lib && mode != Mode::Link) return usage_error("-f lib cannot be combined with -c, -d or --dump-object");
   if (!map_file.empty() && (mode != Mode::Link || make_lib)) return usage_error("--map needs a link (not -c, -d, -f lib)");
   if ((!symbols_file.empty() || dopts.kind != tmcl::ImageKind::Auto) && mode != Mode::Disassemble)
