@@ -53,6 +53,9 @@ class Lexer {
  public:
   Lexer(const SourceFile& f, int index, Diagnostics& d) : src_(f.text), file_(index), diags_(d) {}
   Token next_token();
+  // Comments are skipped; a tool that keeps them (the formatter) gets each one here, as a Token
+  // whose text is the whole comment (kind Bad, never returned by next_token).
+  void keep_comments(std::vector<Token>* out) { comments_ = out; }
 
  private:
   void step();
@@ -80,6 +83,7 @@ class Lexer {
   std::size_t line_start_ = 0;
   int line_ = 1;
   int finished_ = 0;  // 1: final Newline sent, 2: End sent
+  std::vector<Token>* comments_ = nullptr;
 };
 
 // ---- expressions --------------------------------------------------------------------------
