@@ -1,0 +1,200 @@
+// A DAP test client: drives run_dap through every request the adapter supports, a refused
+// request, a runtime fault and reverse steps, and checks the responses and events (type,
+// success, reasons, values) as a client would see them.
+#define TMCL_TEST_MAIN
+#include "check.hpp"
+
+#include <cstdio>
+#include <cstdlib>
+#include <fstream>
+#include <string>
+#include <vector>
+
+#include "tmcl/debug_cli.hpp"
+#include "tmcl/json.hpp"
+
+using namespace tmcl;
+using tmcl::json::Value;
+
+namespace {
+
+const char* kProgram = R"(        VECT 0, tick
+        SGP 0, 3, 10
+        EI 0
+        EI 255
+main:   SGP 1, 2, 0
+loop:   CSUB bump
+        GGP 1, 2
+        COMP 3
+        JC LT, loop
+        JA 99
+bump:   GGP 1, 2
+        CALC ADD, 1
+        AGP 1, 2
+        RSUB
+tick:   RETI
+)";
+
+struct Session {
+  std::vector<Value> messages;  // everything the adapter sent, in order
+  const Value* response(const std::string& command, int nth = 0) const {
+    for (const auto& m : messages)
+      if (m["type"].as_string() == "response" && m["command"].as_string() == command && nth-- == 0) return &m;
+    return nullptr;
+  }
+  std::vector<const Value*> events(const std::string& name) const {
+    std::vector<const Value*> out;
+    for (const auto& m : messages)
+      if (m["type"].as_string() == "event" && m["event"].as_string() == name) out.push_back(&m);
+    return out;
+  }
+};
+
+Session run(const std::vector<std::string>& requests) {
+  std::FILE* in = std::tmpfile();
+  std::FILE* out = std::tmpfile();
+  int seq = 0;
+  for (const auto& r : requests) {
+    std::string body = "{\"seq\":" + std::to_string(++seq) + ",\"type\":\"request\"," + r + "}";
+    std::fprintf(in, "Content-Length: %zu\r\n\r\n%s", body.size(), body.c_str());
+  }
+  std::rewind(in);
+  debug::DapSetup setup;
+  setup.target = "usb-2-sd";
+  debug::run_dap(setup, in, out);
+  std::rewind(out);
+  std::string all;
+  char buf[4096];
+  for (std::size_t n; (n = std::fread(buf, 1, sizeof buf, out)) > 0;) all.append(buf, n);
+  std::fclose(in);
+  std::fclose(out);
+  Session s;
+  if (std::getenv("DAP_TEST_DUMP")) std::fputs(all.c_str(), stderr);
+  for (std::size_t pos = 0; (pos = all.find("Content-Length: ", pos)) != std::string::npos;) {
+    std::size_t len = std::stoul(all.substr(pos + 16));
+    std::size_t body = all.find("\r\n\r\n", pos) + 4;
+    Value v;
+    json::Error err;
+    CHECK(json::parse(all.substr(body, len), v, err));
+    s.messages.push_back(v);
+    if (std::getenv("DAP_TEST_DUMP")) std::fprintf(stderr, "\n[%s %s %s]\n", v["type"].as_string().c_str(), v["command"].as_string().c_str(), json::write(v).substr(0, 60).c_str());
+    pos = body + len;
+  }
+  return s;
+}
+
+std::string program_file() {
+  std::string path = "dap_test_prog.tmc";
+  std::ofstream(path) << kProgram;
+  return path;
+}
+
+}  // namespace
+
+TEST(a_whole_session_through_every_supported_request) {
+  std::string prog = program_file();
+  Session s = run({
+      R"("command":"initialize","arguments":{"adapterID":"tmcl"})",
+      R"("command":"launch","arguments":{"program":")" + prog + R"(","stopOnEntry":true})",
+      R"("command":"setBreakpoints","arguments":{"source":{"path":")" + prog + R"("},"breakpoints":[{"line":12},{"line":7,"condition":"v[1] == 2"},{"line":500}]})",
+      R"("command":"setFunctionBreakpoints","arguments":{"breakpoints":[{"name":"tick"},{"name":"nowhere"}]})",
+      R"("command":"setInstructionBreakpoints","arguments":{"breakpoints":[]})",
+      R"("command":"setExceptionBreakpoints","arguments":{"filters":["fault"]})",
+      R"("command":"dataBreakpointInfo","arguments":{"name":"v[1]"})",
+      R"("command":"setDataBreakpoints","arguments":{"breakpoints":[]})",
+      R"("command":"configurationDone")",
+      R"("command":"threads")",
+      R"("command":"continue","arguments":{"threadId":1})",
+      R"("command":"stackTrace","arguments":{"threadId":1})",
+      R"("command":"scopes","arguments":{"frameId":0})",
+      R"("command":"variables","arguments":{"variablesReference":1})",
+      R"("command":"variables","arguments":{"variablesReference":2})",
+      R"("command":"evaluate","arguments":{"expression":"bump + 1","context":"hover"})",
+      R"("command":"next","arguments":{"threadId":1})",
+      R"("command":"stepIn","arguments":{"threadId":1})",
+      R"("command":"stepOut","arguments":{"threadId":1})",
+      R"("command":"stepBack","arguments":{"threadId":1})",
+      R"("command":"reverseContinue","arguments":{"threadId":1})",
+      R"("command":"setVariable","arguments":{"variablesReference":2,"name":"v[7]","value":"41 + 1"})",
+      R"("command":"evaluate","arguments":{"expression":"v[7]"})",
+      R"("command":"disassemble","arguments":{"memoryReference":"10","instructionOffset":0,"instructionCount":2})",
+      R"("command":"gotoTargets","arguments":{"source":{"path":")" + prog + R"("},"line":5})",
+      R"("command":"goto","arguments":{"threadId":1,"targetId":4})",
+      R"("command":"pause","arguments":{"threadId":1})",
+      R"("command":"modules")",
+      R"("command":"setFunctionBreakpoints","arguments":{"breakpoints":[]})",
+      R"("command":"setBreakpoints","arguments":{"source":{"path":")" + prog + R"("},"breakpoints":[]})",
+      R"("command":"continue","arguments":{"threadId":1})",
+      R"("command":"stepBack","arguments":{"threadId":1})",
+      R"("command":"restart")",
+      R"("command":"disconnect")",
+  });
+  const Value* init = s.response("initialize");
+  CHECK(init && (*init)["success"].as_bool());
+  if (init) CHECK((*init)["body"]["supportsStepBack"].as_bool());
+  CHECK(s.events("initialized").size() == 1);
+  const Value* bps = s.response("setBreakpoints");
+  CHECK(bps != nullptr);
+  if (bps) {
+    const Value& list = (*bps)["body"]["breakpoints"];
+    CHECK_EQ(list.size(), std::size_t{3});
+    CHECK(list.at(0)["verified"].as_bool());
+    CHECK(list.at(1)["verified"].as_bool());
+    CHECK(!list.at(2)["verified"].as_bool());  // no code at line 500
+  }
+  const Value* fbs = s.response("setFunctionBreakpoints");
+  CHECK(fbs && (*fbs)["body"]["breakpoints"].at(0)["verified"].as_bool() && !(*fbs)["body"]["breakpoints"].at(1)["verified"].as_bool());
+  auto stops = s.events("stopped");
+  CHECK(stops.size() >= 8);
+  if (stops.size() >= 2) {
+    CHECK_EQ((*stops[0])["body"]["reason"].as_string(), std::string("entry"));
+    CHECK_EQ((*stops[1])["body"]["reason"].as_string(), std::string("breakpoint"));  // the timer's handler or bump
+  }
+  const Value* trace = s.response("stackTrace");
+  CHECK(trace && (*trace)["body"]["stackFrames"].size() >= 1);
+  const Value* hover = s.response("evaluate");
+  CHECK(hover && (*hover)["body"]["result"].as_string() == "11");
+  const Value* set = s.response("setVariable");
+  CHECK(set && (*set)["success"].as_bool() && (*set)["body"]["value"].as_string() == "42");
+  const Value* seven = s.response("evaluate", 1);
+  CHECK(seven && (*seven)["body"]["result"].as_string() == "42");
+  const Value* dis = s.response("disassemble");
+  CHECK(dis && (*dis)["body"]["instructions"].at(0)["instruction"].as_string() == "GGP 1, 2");
+  const Value* mods = s.response("modules");
+  CHECK(mods && !(*mods)["success"].as_bool());
+  CHECK(mods && (*mods)["message"].as_string().find("does not support") != std::string::npos);
+  // The run to the end faults (JA 99): an exception stop; a step back from it is a step stop.
+  bool fault = false, back = false;
+  for (std::size_t i = 0; i < stops.size(); ++i) {
+    std::string reason = (*stops[i])["body"]["reason"].as_string();
+    if (reason == "exception") fault = true;
+    if (fault && reason == "step") back = true;
+  }
+  CHECK(fault);
+  CHECK(back);
+  const Value* disc = s.response("disconnect");
+  CHECK(disc && (*disc)["success"].as_bool());
+  std::remove(prog.c_str());
+}
+
+TEST(requests_before_launch_and_a_bad_launch_get_error_responses) {
+  Session s = run({R"("command":"initialize","arguments":{})", R"("command":"threads")",
+                   R"("command":"launch","arguments":{"program":"no-such-file.tmc"})", R"("command":"disconnect")"});
+  const Value* threads = s.response("threads");
+  CHECK(threads && !(*threads)["success"].as_bool());
+  const Value* launch = s.response("launch");
+  CHECK(launch && !(*launch)["success"].as_bool());
+  CHECK(launch && (*launch)["message"].as_string().find("no-such-file.tmc") != std::string::npos);
+}
+
+TEST(a_program_run_to_stop_ends_with_exited_and_terminated) {
+  std::string path = "dap_test_stop.tmc";
+  std::ofstream(path) << "SGP 1, 2, 5\nSTOP\n";
+  Session s = run({R"("command":"initialize","arguments":{})", R"("command":"launch","arguments":{"program":")" + path + R"("})",
+                   R"("command":"configurationDone")", R"("command":"disconnect")"});
+  auto exited = s.events("exited");
+  CHECK_EQ(exited.size(), std::size_t{1});
+  if (!exited.empty()) CHECK_EQ((*exited[0])["body"]["exitCode"].as_int(), 0);
+  CHECK_EQ(s.events("terminated").size(), std::size_t{1});
+  std::remove(path.c_str());
+}

@@ -1,0 +1,438 @@
+// `tmclrun --dap`: the engine over the Debug Adapter Protocol on standard input and output
+// (Content-Length framed JSON, tmcl::json), so any DAP client (VS Code, nvim-dap, dape, Helix)
+// debugs TMCL source. One thread: a request that runs the program answers when it stops, so
+// `pause` can only find the program stopped. Every request it does not support gets an error
+// response. docs/debugger.md, "Debug Adapter Protocol".
+#include <cstring>
+#include <map>
+#include <sstream>
+
+#include "tmcl/asm/disasm.hpp"
+#include "tmcl/debug_cli.hpp"
+#include "tmcl/duration.hpp"
+#include "tmcl/json.hpp"
+
+namespace tmcl::debug {
+namespace {
+
+using json::Value;
+
+class Dap {
+ public:
+  Dap(const DapSetup& setup, std::FILE* in, std::FILE* out) : setup_(setup), in_(in), out_(out) {}
+
+  int serve() {
+    for (;;) {
+      std::string body;
+      if (!read_frame(body)) break;
+      Value req;
+      json::Error err;
+      if (!json::parse(body, req, err) || !req.is_object()) {
+        event("output", obj({{"category", "stderr"}, {"output", "tmclrun --dap: bad message: " + err.to_string() + "\n"}}));
+        continue;
+      }
+      if (req["type"].as_string() != "request") continue;
+      if (!handle(req)) break;
+    }
+    return exit_code_;
+  }
+
+ private:
+  static Value obj(std::initializer_list<std::pair<const char*, Value>> members) {
+    Value v = Value::object();
+    for (const auto& [k, m] : members) v.set(k, m);
+    return v;
+  }
+
+  bool read_frame(std::string& body) {
+    long length = -1;
+    char line[1024];
+    for (;;) {
+      if (!std::fgets(line, sizeof line, in_)) return false;
+      std::string l = line;
+      while (!l.empty() && (l.back() == '\n' || l.back() == '\r')) l.pop_back();
+      if (l.empty()) {
+        if (length >= 0) break;
+        continue;
+      }
+      if (l.rfind("Content-Length:", 0) == 0) length = std::strtol(l.c_str() + 15, nullptr, 10);
+    }
+    if (length < 0 || length > (64 << 20)) return false;
+    body.resize(static_cast<std::size_t>(length));
+    return std::fread(body.data(), 1, body.size(), in_) == body.size();
+  }
+
+  void send(Value msg) {
+    msg.set("seq", ++seq_);
+    std::string text = json::write(msg);
+    std::fprintf(out_, "Content-Length: %zu\r\n\r\n%s", text.size(), text.c_str());
+    std::fflush(out_);
+  }
+  void respond(const Value& req, bool ok, Value body = Value::object(), const std::string& message = "") {
+    Value r = obj({{"type", "response"}, {"request_seq", req["seq"].as_int()}, {"success", ok}, {"command", req["command"].as_string()}});
+    if (!message.empty()) r.set("message", message);
+    r.set("body", std::move(body));
+    send(std::move(r));
+  }
+  void fail(const Value& req, const std::string& message) { respond(req, false, obj({{"error", obj({{"id", 1}, {"format", message}})}}), message); }
+  void event(const char* name, Value body = Value::object()) { send(obj({{"type", "event"}, {"event", name}, {"body", std::move(body)}})); }
+
+  // After a run: the stopped event, or exited and terminated.
+  void stopped(const Stop& s, const char* step_reason = "step") {
+    const char* reason = step_reason;
+    Value body = Value::object();
+    switch (s.kind) {
+      case StopKind::Entry: reason = "entry"; break;
+      case StopKind::Breakpoint: reason = "breakpoint"; break;
+      case StopKind::Watchpoint: reason = "data breakpoint"; break;
+      case StopKind::Pause: reason = "pause"; break;
+      case StopKind::Fault: reason = "exception"; break;
+      case StopKind::Limit:
+      case StopKind::Blocked: reason = "pause"; break;
+      case StopKind::HistoryStart: reason = "step"; break;
+      case StopKind::Exited:
+      case StopKind::NotRunning:
+        exit_code_ = s.kind == StopKind::Exited ? 0 : exit_code_;
+        event("exited", obj({{"exitCode", exit_code_}}));
+        event("terminated");
+        return;
+      default: break;
+    }
+    if (s.kind == StopKind::Fault) exit_code_ = 70;
+    body.set("reason", reason);
+    body.set("threadId", 1);
+    body.set("allThreadsStopped", true);
+    if (!s.message.empty()) body.set("text", s.message);
+    if (s.kind == StopKind::Fault) body.set("description", "runtime fault: " + s.message);
+    if (s.kind == StopKind::Breakpoint || s.kind == StopKind::Watchpoint) {
+      Value ids = Value::array();
+      ids.push(s.id);
+      body.set("hitBreakpointIds", ids);
+    }
+    event("stopped", std::move(body));
+  }
+
+  Value source_of(std::int32_t address) const {
+    const ProgramInfo& info = engine_->info();
+    if (address < 0 || static_cast<std::size_t>(address) >= info.lines.size()) return Value();
+    int f = info.lines[static_cast<std::size_t>(address)].file;
+    if (f < 0) return Value();
+    const std::string& name = info.files[static_cast<std::size_t>(f)].name;
+    std::string base = name.substr(name.find_last_of('/') + 1);
+    return obj({{"name", base}, {"path", name}});
+  }
+  int line_of(std::int32_t address) const {
+    const ProgramInfo& info = engine_->info();
+    if (address < 0 || static_cast<std::size_t>(address) >= info.lines.size()) return 0;
+    return info.lines[static_cast<std::size_t>(address)].line;
+  }
+
+  bool launch(const Value& req, std::string& error);
+  void set_breakpoints(const Value& req);
+  Value variables(std::int64_t ref);
+  bool handle(const Value& req);
+
+  DapSetup setup_;
+  std::FILE* in_;
+  std::FILE* out_;
+  std::int64_t seq_ = 0;
+  int exit_code_ = 0;
+  std::unique_ptr<Engine> engine_;
+  bool stop_on_entry_ = false;
+  std::map<std::string, std::vector<int>> source_breaks_;  // source path -> breakpoint ids
+  std::vector<int> function_breaks_, instruction_breaks_;
+};
+
+bool Dap::launch(const Value& req, std::string& error) {
+  const Value& a = req["arguments"];
+  std::string program = a["program"].as_string();
+  if (program.empty()) return error = "launch needs \"program\": a .tmc, .bin or .dgm file", false;
+  std::string target = a["target"].as_string().empty() ? setup_.target : a["target"].as_string();
+  const Profile* profile = find_profile(target);
+  if (!profile) return error = "unknown target '" + target + "'", false;
+  std::string core_name = a["motion"].as_string().empty() ? std::string(profile->default_motion) : a["motion"].as_string();
+  auto core = make_motion_core(core_name);
+  if (!core) return error = "unknown motion core '" + core_name + "'", false;
+  Setup s;
+  s.profile = profile;
+  s.core_name = core_name;
+  s.instr_time = setup_.instr_time;
+  if (a.contains("instructionTime")) {
+    auto d = parse_duration(a["instructionTime"].as_string());
+    if (!d) return error = "bad instructionTime '" + a["instructionTime"].as_string() + "' (e.g. 20us)", false;
+    s.instr_time = *d;
+  }
+  ProgramInfo info;
+  std::string messages;
+  if (!load_program_info(program, *profile, setup_.asm_options, a["symbols"].as_string(), info, messages))
+    return error = messages.empty() ? "cannot load " + program : messages, false;
+  if (!messages.empty()) event("output", obj({{"category", "stderr"}, {"output", messages}}));
+  engine_ = std::make_unique<Engine>(std::move(s), std::move(info), std::move(core));
+  engine_->on_output = [this](const std::string& text) { event("output", obj({{"category", "console"}, {"output", text}})); };
+  stop_on_entry_ = a["stopOnEntry"].as_bool();
+  return true;
+}
+
+void Dap::set_breakpoints(const Value& req) {
+  const Value& a = req["arguments"];
+  std::string path = a["source"]["path"].as_string();
+  for (int id : source_breaks_[path]) engine_->delete_point(id);
+  source_breaks_[path].clear();
+  Value out = Value::array();
+  for (const auto& bp : a["breakpoints"].items()) {
+    std::int64_t line = bp["line"].as_int();
+    std::int32_t address = 0;
+    std::string err;
+    if (!engine_->resolve(path + ":" + std::to_string(line), address, err) && !engine_->resolve(std::to_string(line), address, err)) {
+      out.push(obj({{"verified", false}, {"line", line}, {"message", err}}));
+      continue;
+    }
+    int id = engine_->add_breakpoint(address, path + ":" + std::to_string(line), false);
+    source_breaks_[path].push_back(id);
+    std::string cond = bp["condition"].as_string();
+    if (!cond.empty() && !engine_->set_condition(id, cond, err)) {
+      out.push(obj({{"id", id}, {"verified", false}, {"line", line}, {"message", err}}));
+      continue;
+    }
+    // hitCondition: a number N stops at the Nth hit (gdb's ignore count N-1).
+    std::string hit = bp["hitCondition"].as_string();
+    if (!hit.empty()) engine_->set_ignore(id, std::max(0, std::atoi(hit.c_str()) - 1));
+    for (auto& b : engine_->breakpoints())
+      if (b.id == id) b.log_message = bp["logMessage"].as_string();
+    out.push(obj({{"id", id}, {"verified", true}, {"line", line_of(address)}, {"instructionReference", std::to_string(address)}}));
+  }
+  respond(req, true, obj({{"breakpoints", out}}));
+}
+
+Value Dap::variables(std::int64_t ref) {
+  Vm& vm = engine_->vm();
+  Value out = Value::array();
+  auto add = [&](std::string name, std::int64_t v, const char* eval = nullptr) {
+    Value item = obj({{"name", name}, {"value", std::to_string(v)}, {"variablesReference", 0}});
+    if (eval) item.set("evaluateName", eval);
+    out.push(std::move(item));
+  };
+  if (ref == 1) {
+    add("A", vm.acc, "A");
+    add("X", vm.x, "X");
+    add("pc", vm.pc, "pc");
+    add("sp", vm.sp, "sp");
+    add("flags", vm.flags, "flags");
+    add("errors", vm.errors, "errors");
+    out.push(obj({{"name", "time"}, {"value", format_time(vm.now)}, {"variablesReference", 0}}));
+    add("steps", static_cast<std::int64_t>(vm.steps), "steps");
+  } else if (ref == 2) {
+    for (int n = 0; n < 256; ++n) {
+      std::string e = "v[" + std::to_string(n) + "]";
+      add(e, vm.vars[static_cast<std::size_t>(n)], e.c_str());
+    }
+  } else if (ref == 3) {
+    for (int m = 0; m < vm.profile->motors; ++m) {
+      for (int p : {0, 1, 2, 3, 4, 5}) {
+        std::int32_t v = 0;
+        if (vm.get_axis(m, p, v) != kStatusOk) continue;
+        std::string e = "ap(" + std::to_string(p) + ", " + std::to_string(m) + ")";
+        add(e, v, e.c_str());
+      }
+    }
+  } else if (ref == 4) {
+    for (const auto& g : vm.profile->bank0) {
+      std::int32_t v = 0;
+      if (vm.get_global(0, g.number, v) != kStatusOk) continue;
+      std::string e = "gp(0, " + std::to_string(g.number) + ")";
+      add(e, v, e.c_str());
+    }
+  } else if (ref == 5) {
+    for (int t = 0; t < Vm::kTimers; ++t)
+      out.push(obj({{"name", "timer " + std::to_string(t)}, {"value", vm.timers[static_cast<std::size_t>(t)].period_ms ? std::to_string(vm.timers[static_cast<std::size_t>(t)].period_ms) + " ms" : "off"}, {"variablesReference", 0}}));
+    out.push(obj({{"name", "interrupts"}, {"value", vm.global_enable ? "enabled" : "disabled"}, {"variablesReference", 0}}));
+    for (int n = 0; n < 255; ++n)
+      if (vm.vectors[static_cast<std::size_t>(n)] >= 0)
+        out.push(obj({{"name", "vector " + std::to_string(n)}, {"value", "handler " + std::to_string(vm.vectors[static_cast<std::size_t>(n)]) + (vm.is_enabled(n) ? ", enabled" : ", disabled")}, {"variablesReference", 0}}));
+  }
+  return out;
+}
+
+bool Dap::handle(const Value& req) {
+  const std::string cmd = req["command"].as_string();
+  const Value& a = req["arguments"];
+  std::string err;
+  if (cmd == "initialize") {
+    Value caps = obj({{"supportsConfigurationDoneRequest", true}, {"supportsFunctionBreakpoints", true},
+                      {"supportsConditionalBreakpoints", true}, {"supportsHitConditionalBreakpoints", true},
+                      {"supportsLogPoints", true}, {"supportsStepBack", true}, {"supportsSetVariable", true},
+                      {"supportsEvaluateForHovers", true}, {"supportsInstructionBreakpoints", true},
+                      {"supportsDisassembleRequest", true}, {"supportsDataBreakpoints", true},
+                      {"supportsGotoTargetsRequest", true}, {"supportsRestartRequest", true},
+                      {"supportsTerminateRequest", true}, {"supportsSteppingGranularity", false},
+                      {"supportsExceptionInfoRequest", false}});
+    Value filters = Value::array();
+    filters.push(obj({{"filter", "fault"}, {"label", "Runtime faults"}, {"default", true}}));
+    caps.set("exceptionBreakpointFilters", filters);
+    respond(req, true, caps);
+    event("initialized");
+    return true;
+  }
+  if (cmd == "disconnect" || cmd == "terminate") {
+    respond(req, true);
+    if (cmd == "terminate") event("terminated");
+    return cmd != "disconnect";
+  }
+  if (cmd == "launch") {
+    if (!launch(req, err)) return fail(req, err), true;
+    respond(req, true);
+    return true;
+  }
+  if (!engine_) return fail(req, "'" + cmd + "' before launch"), true;
+  Engine& e = *engine_;
+  Vm& vm = e.vm();
+  if (cmd == "setBreakpoints") return set_breakpoints(req), true;
+  if (cmd == "setFunctionBreakpoints" || cmd == "setInstructionBreakpoints") {
+    auto& ids = cmd == "setFunctionBreakpoints" ? function_breaks_ : instruction_breaks_;
+    for (int id : ids) e.delete_point(id);
+    ids.clear();
+    Value out = Value::array();
+    for (const auto& bp : a["breakpoints"].items()) {
+      std::string loc = cmd == "setFunctionBreakpoints" ? bp["name"].as_string()
+                                                         : "*" + bp["instructionReference"].as_string() + "+" + std::to_string(bp["offset"].as_int());
+      std::int32_t address = 0;
+      if (!e.resolve(loc, address, err)) {
+        out.push(obj({{"verified", false}, {"message", err}}));
+        continue;
+      }
+      int id = e.add_breakpoint(address, loc, false);
+      ids.push_back(id);
+      if (!bp["condition"].as_string().empty()) e.set_condition(id, bp["condition"].as_string(), err);
+      Value b = obj({{"id", id}, {"verified", true}, {"instructionReference", std::to_string(address)}});
+      if (int l = line_of(address)) b.set("line", l);
+      out.push(std::move(b));
+    }
+    return respond(req, true, obj({{"breakpoints", out}})), true;
+  }
+  if (cmd == "setExceptionBreakpoints") return respond(req, true, obj({{"breakpoints", Value::array()}})), true;
+  if (cmd == "dataBreakpointInfo") {
+    std::string name = a["name"].as_string();
+    Expr x;
+    if (!parse_expr(name, e.info(), x, err)) return respond(req, true, obj({{"dataId", nullptr}, {"description", err}})), true;
+    Value types = Value::array();
+    types.push("write");
+    return respond(req, true, obj({{"dataId", name}, {"description", name}, {"accessTypes", types}})), true;
+  }
+  if (cmd == "setDataBreakpoints") {
+    for (auto& w : std::vector<Watchpoint>(e.watchpoints())) e.delete_point(w.id);
+    Value out = Value::array();
+    for (const auto& bp : a["breakpoints"].items()) {
+      int id = e.add_watchpoint(bp["dataId"].as_string(), err);
+      out.push(id ? obj({{"id", id}, {"verified", true}}) : obj({{"verified", false}, {"message", err}}));
+    }
+    return respond(req, true, obj({{"breakpoints", out}})), true;
+  }
+  if (cmd == "configurationDone" || cmd == "restart") {
+    respond(req, true);
+    stopped(e.start(stop_on_entry_));
+    return true;
+  }
+  if (cmd == "threads") {
+    Value threads = Value::array();
+    threads.push(obj({{"id", 1}, {"name", "TMCL program"}}));
+    return respond(req, true, obj({{"threads", threads}})), true;
+  }
+  if (cmd == "stackTrace") {
+    Value frames = Value::array();
+    auto frame = [&](std::int32_t at, std::string name) {
+      std::string fn = e.info().function_of(at);
+      Value f = obj({{"id", static_cast<std::int64_t>(frames.size())}, {"name", name.empty() ? (fn.empty() ? "address " + std::to_string(at) : fn) : name},
+                     {"line", line_of(at)}, {"column", 1}, {"instructionPointerReference", std::to_string(at)}});
+      if (Value s = source_of(at); !s.is_null()) f.set("source", s);
+      frames.push(std::move(f));
+    };
+    frame(vm.faulted() && vm.halt_pc >= 0 ? vm.halt_pc : vm.pc, "");
+    int bottom = vm.in_handler ? vm.saved.stack_depth : 0;
+    for (int i = vm.sp - 1; i >= bottom; --i) frame(vm.stack[static_cast<std::size_t>(i)], "");
+    if (vm.in_handler) {
+      frame(vm.saved.pc, "<interrupt " + std::to_string(vm.saved.vector) + ">");
+      for (int i = bottom - 1; i >= 0; --i) frame(vm.stack[static_cast<std::size_t>(i)], "");
+    }
+    return respond(req, true, obj({{"stackFrames", frames}, {"totalFrames", static_cast<std::int64_t>(frames.size())}})), true;
+  }
+  if (cmd == "scopes") {
+    Value scopes = Value::array();
+    const char* names[] = {"Registers and flags", "User variables", "Motors", "Global parameters", "Timers and interrupts"};
+    for (int i = 0; i < 5; ++i) scopes.push(obj({{"name", names[i]}, {"variablesReference", i + 1}, {"expensive", false}}));
+    return respond(req, true, obj({{"scopes", scopes}})), true;
+  }
+  if (cmd == "variables") return respond(req, true, obj({{"variables", variables(a["variablesReference"].as_int())}})), true;
+  if (cmd == "setVariable" || cmd == "evaluate") {
+    bool set = cmd == "setVariable";
+    std::string lhs = set ? a["name"].as_string() : a["expression"].as_string();
+    Expr x, rhs;
+    std::int64_t v = 0;
+    if (!parse_expr(lhs, e.info(), x, err)) return fail(req, err), true;
+    if (set) {
+      if (!parse_expr(a["value"].as_string(), e.info(), rhs, err) || !eval_expr(rhs, vm, v, err) || !assign_expr(x, vm, v, err))
+        return fail(req, err), true;
+      e.state_changed();
+    }
+    if (!eval_expr(x, vm, v, err)) return fail(req, err), true;
+    return respond(req, true, obj({{set ? "value" : "result", std::to_string(v)}, {"variablesReference", 0}})), true;
+  }
+  if (cmd == "pause") return respond(req, true), true;  // the program is always stopped between requests
+  if (cmd == "continue" || cmd == "next" || cmd == "stepIn" || cmd == "stepOut" || cmd == "stepBack" || cmd == "reverseContinue") {
+    if (cmd == "continue") respond(req, true, obj({{"allThreadsContinued", true}}));
+    else respond(req, true);
+    Stop s = cmd == "continue" ? e.cont() : cmd == "next" ? e.next() : cmd == "stepIn" ? e.step(1) : cmd == "stepOut" ? e.finish()
+           : cmd == "stepBack" ? e.reverse_step(1) : e.reverse_continue();
+    if (s.kind == StopKind::NotRunning && e.running()) {
+      event("output", obj({{"category", "console"}, {"output", s.message + "\n"}}));
+      s = Stop{StopKind::Step, 0, "", 0, 0};
+    }
+    stopped(s);
+    return true;
+  }
+  if (cmd == "gotoTargets") {
+    std::int32_t address = 0;
+    Value targets = Value::array();
+    if (e.resolve(a["source"]["path"].as_string() + ":" + std::to_string(a["line"].as_int()), address, err))
+      targets.push(obj({{"id", address}, {"label", "address " + std::to_string(address)}, {"line", line_of(address)}}));
+    return respond(req, true, obj({{"targets", targets}})), true;
+  }
+  if (cmd == "goto") {
+    std::int64_t t = a["targetId"].as_int(-1);
+    if (t < 0 || t >= vm.program_size) return fail(req, "no goto target " + std::to_string(t)), true;
+    e.set_pc(static_cast<std::int32_t>(t));
+    respond(req, true);
+    stopped(Stop{StopKind::Step, 0, "", 0, 0}, "goto");
+    return true;
+  }
+  if (cmd == "disassemble") {
+    std::int64_t start = std::atoll(a["memoryReference"].as_string().c_str()) + a["instructionOffset"].as_int();
+    std::int64_t count = a["instructionCount"].as_int();
+    Value list = Value::array();
+    for (std::int64_t i = 0; i < count && i < 100000; ++i) {
+      std::int64_t at = start + i;
+      Value ins = obj({{"address", std::to_string(at)}});
+      if (at < 0 || at >= vm.program_size) {
+        ins.set("instruction", "");
+        ins.set("presentationHint", "invalid");
+      } else {
+        ins.set("instruction", format_instruction(vm.program[static_cast<std::size_t>(at)]));
+        std::string fn = e.info().function_of(static_cast<std::int32_t>(at));
+        if (!fn.empty()) ins.set("symbol", fn);
+        if (int l = line_of(static_cast<std::int32_t>(at))) {
+          ins.set("line", l);
+          ins.set("location", source_of(static_cast<std::int32_t>(at)));
+        }
+      }
+      list.push(std::move(ins));
+    }
+    return respond(req, true, obj({{"instructions", list}})), true;
+  }
+  fail(req, "tmclrun --dap does not support the request '" + cmd + "'");
+  return true;
+}
+
+}  // namespace
+
+int run_dap(const DapSetup& setup, std::FILE* in, std::FILE* out) { return Dap(setup, in, out).serve(); }
+
+}  // namespace tmcl::debug
