@@ -175,7 +175,10 @@ Result Client::request(const Instruction& ins, bool retry) {
   for (int attempt = 1; attempt <= attempts; ++attempt) {
     res.attempts = attempt;
     if (attempt > 1) ++stats_.retries;
-    drain_now();
+    // Bytes waiting before a request are late or stale replies: only possible once something
+    // went wrong (a timeout, a corrupted or unmatched frame), so a clean line skips the syscall.
+    if (unclean_ || attempt > 1) drain_now();
+    unclean_ = true;  // until this request ends cleanly
     if (!send(ins, res.error)) {
       res.fail = res.error == "interrupted" ? Fail::Cancelled : Fail::Port;
       return res;
@@ -185,6 +188,7 @@ Result Client::request(const Instruction& ins, bool retry) {
       return res;
     }
     const auto deadline = Clock::now() + std::chrono::milliseconds(opt_.timeout_ms);
+    const auto drained_before = stats_.drained, corrupted_before = stats_.corrupted;
     auto last_byte = Clock::now();
     bool corrupt = false;
     for (;;) {
@@ -215,13 +219,13 @@ Result Client::request(const Instruction& ins, bool retry) {
       if (s == Scan::Found) {
         // A later matching reply already here wins: a stale copy may precede the real one. Part
         // of a frame after the match is one on its way: wait for it (at most the quiet gap).
-        long more;
-        while ((more = port_.read_some(buf, sizeof buf, rx_.empty() ? Clock::time_point{} : Clock::now() + kQuietGap,
-                                       res.error)) > 0) {
+        long more = 0;
+        while (!rx_.empty() && (more = port_.read_some(buf, sizeof buf, Clock::now() + kQuietGap, res.error)) > 0) {
           rx_.insert(rx_.end(), buf, buf + more);
           scan(ins, res.reply);
         }
         res.error.clear();
+        unclean_ = attempt > 1 || stats_.drained != drained_before || stats_.corrupted != corrupted_before;
         return res;
       }
       if (s == Scan::Corrupt) {

@@ -95,6 +95,7 @@ class Client {
   std::vector<std::uint8_t> rx_;
   std::vector<Reply> events_;
   Stats stats_;
+  bool unclean_ = true;  // the last request saw trouble (or there was none yet): drain first
 };
 
 }  // namespace tmcl::host
