@@ -4,6 +4,7 @@
 // build the object instead of a program.
 #include <algorithm>
 
+#include "finish.hpp"
 #include "internal.hpp"
 
 namespace tmcl {
@@ -223,19 +224,14 @@ AsmResult assemble(const std::vector<std::string>& files, const AsmOptions& opti
   bool appended = false;
   bool append = options.append_stop && !reloc &&
                 std::none_of(units.begin(), units.end(), [](const Unit& u) { return u.no_append_stop; });
-  if (append && (out.program.empty() || out.program.back().op != static_cast<std::uint8_t>(Op::STOP))) {
-    appended = true;
-    out.program.push_back(Instruction{static_cast<std::uint8_t>(Op::STOP), 0, 0, 0});
-    out.lines.push_back(LineInfo{-1, 0});
-  }
+  if (append) appended = append_stop(out.program, out.lines);  // finish.hpp, as the fast path does
   out.appended_stop = appended;
 
   // jump targets must lie inside the program (known only once it is linked)
   auto check_target = [&](const Instruction& ins, SourceLoc at) {
     auto target = static_cast<std::int64_t>(ins.value);
-    if (target < 0 || target >= static_cast<std::int64_t>(out.program.size()))
-      out.diags.warning(at, "address " + std::to_string(target) + " is outside the program (addresses 0 to " +
-                                std::to_string(out.program.size() - 1) + ")", "address");
+    if (outside_program(target, out.program.size()))
+      out.diags.warning(at, outside_program_message(target, out.program.size()), "address");
   };
   for (const auto& u : units) {
     if (reloc) break;
@@ -259,12 +255,8 @@ AsmResult assemble(const std::vector<std::string>& files, const AsmOptions& opti
     }
   }
 
-  if (profile.program_memory > 0 && static_cast<int>(out.program.size()) > profile.program_memory)
-    out.diags.error(SourceLoc{}, std::string(reloc ? "the object needs " : "the program needs ") +
-                                     std::to_string(out.program.size()) + " instructions" +
-                                     (appended ? " (with the appended STOP)" : "") + " but " +
-                                     std::string(profile.title) + " has room for " +
-                                     std::to_string(profile.program_memory));
+  if (exceeds_memory(profile, out.program.size()))
+    out.diags.error(SourceLoc{}, exceeds_memory_message(profile, out.program.size(), appended, reloc));
 
   for (int u = 0; u < static_cast<int>(units.size()); ++u) {
     for (int d = 0; d < static_cast<int>(units[static_cast<std::size_t>(u)].defs.size()); ++d) {

@@ -22,18 +22,8 @@ namespace {
 using detail::upper;
 
 
-
-std::uint32_t field_value(const Instruction& ins, Field f) {
-  switch (f) {
-    case Field::Type: return ins.type;
-    case Field::Motor: return ins.motor;
-    case Field::Value: return static_cast<std::uint32_t>(ins.value);
-  }
-  return 0;
-}
-
 std::string number(const Instruction& ins, Field f) {
-  return f == Field::Value ? std::to_string(ins.value) : std::to_string(field_value(ins, f));
+  return f == Field::Value ? std::to_string(ins.value) : std::to_string(field_of(ins, f));
 }
 
 std::string with_addend(const std::string& name, std::int64_t k) {
@@ -109,7 +99,7 @@ Form render(const std::vector<Instruction>& code, std::size_t i, const FieldText
     for (const auto& spec : info->operands) {
       used[static_cast<int>(spec.field)] = true;
       std::string text;
-      std::uint32_t v = field_value(ins, spec.field);
+      std::uint32_t v = field_of(ins, spec.field);
       if (const std::string* s = sym(spec.field)) {
         text = *s;
         // A lone name in a keyword position would be read as that keyword.
@@ -132,12 +122,11 @@ Form render(const std::vector<Instruction>& code, std::size_t i, const FieldText
       }
       ops += (ops.empty() ? " " : ", ") + text;
     }
-    static const char* field_names[] = {"type", "motor/bank", "value"};
     for (int f = 0; f < 3 && form.why.empty(); ++f)
-      if (!used[f] && (field_value(ins, static_cast<Field>(f)) != 0 || sym(static_cast<Field>(f))))
-        form.why = std::string(info->mnemonic) + " with " + field_names[f] + " " +
+      if (!used[f] && (field_of(ins, static_cast<Field>(f)) != 0 || sym(static_cast<Field>(f))))
+        form.why = std::string(info->mnemonic) + " with " + field_name(static_cast<Field>(f)) + " " +
                    number(ins, static_cast<Field>(f)) + " (" + std::string(info->mnemonic) + " has no " +
-                   field_names[f] + " operand)";
+                   field_name(static_cast<Field>(f)) + " operand)";
     if (form.why.empty()) {
       form.text = std::string(info->mnemonic) + ops;
       return form;
@@ -347,9 +336,7 @@ DisasmResult disassemble(const std::string& name, const std::string& bytes, cons
       std::set<int> addresses;
       for (std::size_t off = 0; off < bytes.size(); off += 9) {
         const std::uint8_t* p = data + off;
-        Instruction ins{p[1], p[2], p[3],
-                        static_cast<std::int32_t>((std::uint32_t{p[4]} << 24) | (std::uint32_t{p[5]} << 16) |
-                                                  (std::uint32_t{p[6]} << 8) | std::uint32_t{p[7]})};
+        const Instruction ins = decode7(p + 1);
         addresses.insert(p[0]);
         std::uint8_t want = sum8(p, 8);
         std::string note;

@@ -9,6 +9,7 @@
 #include <algorithm>
 
 #include "internal.hpp"
+#include "syntax.hpp"
 
 namespace tmcl::detail {
 
@@ -333,33 +334,20 @@ std::optional<Value> Resolver::combine(const ExprNode& n, Value a, Value b) {
   return std::nullopt;
 }
 
-// One binary operation, wrapping like the 64-bit two's complement machine it models.
+// One binary operation (apply_binary, syntax.hpp: the fast path computes with it too), with the
+// reason when it has no value.
 std::optional<std::int64_t> Resolver::apply(const ExprNode& n, std::int64_t a, std::int64_t b) {
-  auto ua = static_cast<std::uint64_t>(a), ub = static_cast<std::uint64_t>(b);
-  switch (n.op) {
-    case P::Plus: return static_cast<std::int64_t>(ua + ub);
-    case P::Minus: return static_cast<std::int64_t>(ua - ub);
-    case P::Star: return static_cast<std::int64_t>(ua * ub);
-    case P::Slash:
-    case P::Percent:
-      if (b == 0) {
-        diags_.error(n.loc, n.op == P::Slash ? "division by zero" : "modulo by zero");
-        return std::nullopt;
-      }
-      if (b == -1) return n.op == P::Slash ? static_cast<std::int64_t>(0 - ua) : 0;
-      return n.op == P::Slash ? a / b : a % b;
-    case P::Amp: return static_cast<std::int64_t>(ua & ub);
-    case P::Pipe: return static_cast<std::int64_t>(ua | ub);
-    case P::Caret: return static_cast<std::int64_t>(ua ^ ub);
-    case P::Shl:
-    case P::Shr:
-      if (b < 0 || b > 63) {
-        diags_.error(n.loc, "shift count " + std::to_string(b) + " is outside 0 to 63");
-        return std::nullopt;
-      }
-      return n.op == P::Shl ? static_cast<std::int64_t>(ua << ub) : (a >> b);
-    default: return std::nullopt;
+  std::int64_t v = 0;
+  switch (apply_binary(n.op, a, b, v)) {
+    case OpFault::None: return v;
+    case OpFault::DivisionByZero: diags_.error(n.loc, "division by zero"); break;
+    case OpFault::ModuloByZero: diags_.error(n.loc, "modulo by zero"); break;
+    case OpFault::ShiftCount:
+      diags_.error(n.loc, "shift count " + std::to_string(b) + " is outside 0 to 63");
+      break;
+    case OpFault::NotBinary: break;
   }
+  return std::nullopt;
 }
 
 void Resolver::check_redefinitions() {

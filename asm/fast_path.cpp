@@ -11,12 +11,13 @@
 // Giving up is always safe, so every doubtful case gives up. tests/asm/fast_path_test checks
 // that both paths agree on every source in the repository and on thousands of mutations.
 #include <algorithm>
-#include <cctype>
 #include <deque>
 
 #include "fast_symbols.hpp"
 #include "fast_text.hpp"
+#include "finish.hpp"
 #include "internal.hpp"
+#include "syntax.hpp"
 #include "tmcl/fileio.hpp"
 
 namespace tmcl::detail {
@@ -25,15 +26,16 @@ namespace {
 // Deeper than any real program nests; beyond it the full assembler, with its own limits, decides.
 constexpr int kMaxFastDepth = 64;
 
-// Binary operators by their first character: C precedence (| ^ & << >> + - * / %), 0 for none.
+// The binary operator each character starts and its precedence (0: none), from the one
+// definition the parser uses (syntax.hpp), as tables for the hot loop.
+constexpr auto kOperator = [] {
+  std::array<P, 256> t{};
+  for (int c = 0; c < 256; ++c) t[static_cast<std::size_t>(c)] = binary_operator_of(static_cast<char>(c));
+  return t;
+}();
 constexpr auto kPrecedence = [] {
   std::array<std::uint8_t, 256> t{};
-  t['|'] = 1;
-  t['^'] = 2;
-  t['&'] = 3;
-  t['<'] = t['>'] = 4;
-  t['+'] = t['-'] = 5;
-  t['*'] = t['/'] = t['%'] = 6;
+  for (int c = 0; c < 256; ++c) t[static_cast<std::size_t>(c)] = static_cast<std::uint8_t>(binary_precedence(kOperator[static_cast<std::size_t>(c)]));
   return t;
 }();
 
@@ -118,18 +120,15 @@ class FastAssembler {
   bool finish(int root) {
     int size = static_cast<int>(out_.program.size());
     if (size == 0) return false;  // an empty program gets the full pipeline's warning
-    if (options_.append_stop && (out_.program.empty() || out_.program.back().op != static_cast<std::uint8_t>(Op::STOP))) {
-      out_.appended_stop = true;
-      out_.program.push_back(Instruction{static_cast<std::uint8_t>(Op::STOP), 0, 0, 0});
-      out_.lines.push_back(LineInfo{-1, 0});
-    }
-    auto total = static_cast<std::int64_t>(out_.program.size());
+    // finish.hpp, as the full pipeline finishes; what it would report makes the fast path give up
+    if (options_.append_stop) out_.appended_stop = append_stop(out_.program, out_.lines);
+    std::size_t total = out_.program.size();
     for (int i = 0; i < size; ++i) {
       const Instruction& ins = out_.program[static_cast<std::size_t>(i)];
       for (const auto& spec : ops_[ins.op]->operands)  // a jump outside the program is a warning
-        if (spec.role == Role::Address && (ins.value < 0 || ins.value >= total)) return false;
+        if (spec.role == Role::Address && outside_program(ins.value, total)) return false;
     }
-    if (profile_.program_memory > 0 && total > profile_.program_memory) return false;
+    if (exceeds_memory(profile_, total)) return false;
     for (const auto& r : symbols_.redefinitions()) {  // harmless only with the same value
       std::int64_t first = 0, again = 0;
       if (!symbol_value(static_cast<int>(r.first), 0, first) || !symbol_value(static_cast<int>(r.again), 0, again) ||
@@ -206,22 +205,11 @@ class FastAssembler {
     const char* word = p++;
     while (ident_char(*p)) ++p;
     if (upper(std::string_view(word, static_cast<std::size_t>(p - word))) != "#INCLUDE") return false;
-    while (*p == ' ' || *p == '\t') ++p;
-    const char* eol = t.newline(p);
-    std::string name;
-    if (*p == '"' || *p == '<') {
-      const void* close = std::memchr(p + 1, *p == '"' ? '"' : '>', static_cast<std::size_t>(eol - p - 1));
-      if (!close) return false;
-      name.assign(p + 1, static_cast<const char*>(close));
-      p = static_cast<const char*>(close) + 1;
-    } else {
-      const char* e = p;
-      while (e < eol && *e != ';' && !(e[0] == '/' && (e[1] == '/' || e[1] == '*'))) ++e;
-      const char* trimmed = e;
-      while (trimmed > p && std::isspace(static_cast<unsigned char>(trimmed[-1]))) --trimmed;
-      name.assign(p, trimmed);
-      p = e;
-    }
+    std::string_view text(t.begin(), static_cast<std::size_t>(t.end() - t.begin()));
+    IncludeNameSpan span = scan_include_name(text, static_cast<std::size_t>(p - t.begin()));  // as the lexer reads it
+    if (span.unclosed) return false;
+    std::string name(include_file_name(text.substr(span.begin, span.end - span.begin)));
+    p = t.begin() + span.next;
     int line = lines.line;
     if (name.empty() || depth + 1 > kMaxIncludeDepth || !t.skip_space(p, &lines) || !t.at_end(p)) return false;
     p = t.newline(p);
@@ -281,31 +269,8 @@ class FastAssembler {
       if (prec == 4 && p[1] != op) return false;  // a lone '<' or '>'
       p += prec == 4 ? 2 : 1;
       std::int64_t rhs = 0;
-      if (depth >= kMaxFastDepth || !expr(t, p, prec + 1, depth + 1, rhs) || !apply(op, v, rhs)) return false;
-    }
-  }
-
-  static bool apply(char op, std::int64_t& a, std::int64_t b) {
-    auto ua = static_cast<std::uint64_t>(a), ub = static_cast<std::uint64_t>(b);
-    switch (op) {
-      case '+': a = static_cast<std::int64_t>(ua + ub); return true;
-      case '-': a = static_cast<std::int64_t>(ua - ub); return true;
-      case '*': a = static_cast<std::int64_t>(ua * ub); return true;
-      case '/':
-      case '%':
-        if (b == 0) return false;
-        if (b == -1) a = op == '/' ? static_cast<std::int64_t>(0 - ua) : 0;
-        else a = op == '/' ? a / b : a % b;
-        return true;
-      case '&': a = static_cast<std::int64_t>(ua & ub); return true;
-      case '|': a = static_cast<std::int64_t>(ua | ub); return true;
-      case '^': a = static_cast<std::int64_t>(ua ^ ub); return true;
-      case '<':
-      case '>':
-        if (b < 0 || b > 63) return false;
-        a = op == '<' ? static_cast<std::int64_t>(ua << ub) : (a >> b);
-        return true;
-      default: return false;
+      if (depth >= kMaxFastDepth || !expr(t, p, prec + 1, depth + 1, rhs)) return false;
+      if (apply_binary(kOperator[static_cast<unsigned char>(op)], v, rhs, v) != OpFault::None) return false;
     }
   }
 

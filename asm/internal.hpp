@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "tmcl/asm/assembler.hpp"
+#include "tmcl/codec.hpp"
 #include "tmcl/asm/object.hpp"
 
 namespace tmcl::detail {
@@ -52,6 +53,9 @@ class Lexer {
  public:
   Lexer(const SourceFile& f, int index, Diagnostics& d) : src_(f.text), file_(index), diags_(d) {}
   Token next_token();
+  // Comments are skipped; a tool that keeps them (the formatter) gets each one here, as a Token
+  // whose text is the whole comment (kind Bad, never returned by next_token).
+  void keep_comments(std::vector<Token>* out) { comments_ = out; }
 
  private:
   void step();
@@ -79,6 +83,7 @@ class Lexer {
   std::size_t line_start_ = 0;
   int line_ = 1;
   int finished_ = 0;  // 1: final Newline sent, 2: End sent
+  std::vector<Token>* comments_ = nullptr;
 };
 
 // ---- expressions --------------------------------------------------------------------------
@@ -203,21 +208,8 @@ inline FieldRange range_of(Field f) {
   if (f == Field::Value) return {INT32_MIN, UINT32_MAX, "-2147483648 to 4294967295"};
   return {0, 255, "0 to 255"};
 }
-inline const char* field_name(Field f) {
-  switch (f) {
-    case Field::Type: return "type";
-    case Field::Motor: return "motor/bank";
-    case Field::Value: return "value";
-  }
-  return "?";
-}
-inline void put_field(Instruction& ins, Field f, std::int64_t v) {
-  switch (f) {
-    case Field::Type: ins.type = static_cast<std::uint8_t>(v); break;
-    case Field::Motor: ins.motor = static_cast<std::uint8_t>(v); break;
-    case Field::Value: ins.value = static_cast<std::int32_t>(static_cast<std::uint32_t>(v)); break;
-  }
-}
+// The field's name (field_name) and how a value is stored come from the codec (codec.hpp).
+inline void put_field(Instruction& ins, Field f, std::int64_t v) { set_field(ins, f, v); }
 
 // Parses one root file (following its includes) into a unit.
 // `text` is the root file's contents when the caller has read it already (moved from; nullptr: read it).

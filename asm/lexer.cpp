@@ -7,6 +7,7 @@
 
 #include "chars.hpp"
 #include "internal.hpp"
+#include "syntax.hpp"
 
 namespace tmcl {
 bool is_valid_name(std::string_view name) {
@@ -90,9 +91,19 @@ void Lexer::step() {
     line_start_ = pos_;
     return;
   }
-  if (c == '/' && peek(1) == '/') return skip_to_eol();
-  if (c == ';') return skip_to_eol();
-  if (c == '/' && peek(1) == '*') return block_comment();
+  if ((c == '/' && peek(1) == '/') || c == ';') {
+    std::size_t start = pos_;
+    skip_to_eol();
+    if (comments_) comments_->push_back(Token{Tok::Bad, P::None, src_.substr(start, pos_ - start), 0, line_, static_cast<int>(start - line_start_) + 1});
+    return;
+  }
+  if (c == '/' && peek(1) == '*') {
+    std::size_t start = pos_, start_line_start = line_start_;
+    int start_line = line_;
+    block_comment();
+    if (comments_) comments_->push_back(Token{Tok::Bad, P::None, src_.substr(start, pos_ - start), 0, start_line, static_cast<int>(start - start_line_start) + 1});
+    return;
+  }
   if (c == '.' && ident_start(peek(1))) return ident();
   if (c == '$') return digits(pos_, 1, 16);
   if (c == '%' && !after_operand() && (peek(1) == '0' || peek(1) == '1')) return digits(pos_, 1, 2);
@@ -158,33 +169,20 @@ void Lexer::directive() {
   if (name == "#INCLUDE") include_name();
 }
 
-// The file name after #include: "quoted", <angled> or bare up to a comment or the line end.
+// The file name after #include: "quoted", <angled> or bare up to a comment or the line end
+// (scan_include_name, syntax.hpp, which the fast path reads it with too).
 void Lexer::include_name() {
-  while (pos_ < src_.size() && (src_[pos_] == ' ' || src_[pos_] == '\t')) ++pos_;
-  std::size_t start = pos_;
-  char open = peek(0);
-  if (open == '"' || open == '<') {
-    char close = open == '"' ? '"' : '>';
-    std::size_t end = src_.find(close, pos_ + 1);
-    std::size_t eol = src_.find('\n', pos_);
-    if (end == std::string_view::npos || (eol != std::string_view::npos && end > eol)) {
-      diags_.error(loc_at(start, 1), std::string("missing closing ") + close + " in #include");
-      push(Tok::Bad, start, 1);
-      skip_to_eol();
-      return;
-    }
-    push(Tok::IncludeName, start, end + 1 - start);
-    pos_ = end + 1;
+  IncludeNameSpan s = scan_include_name(src_, pos_);
+  if (s.unclosed) {
+    diags_.error(loc_at(s.begin, 1), std::string("missing closing ") + (src_[s.begin] == '"' ? '"' : '>') +
+                                         " in #include");
+    pos_ = s.begin;
+    push(Tok::Bad, s.begin, 1);
+    skip_to_eol();
     return;
   }
-  std::size_t end = pos_;
-  while (end < src_.size() && src_[end] != '\n' && src_[end] != ';' &&
-         !(src_[end] == '/' && end + 1 < src_.size() && (src_[end + 1] == '/' || src_[end + 1] == '*')))
-    ++end;
-  std::size_t trimmed = end;
-  while (trimmed > start && std::isspace(static_cast<unsigned char>(src_[trimmed - 1]))) --trimmed;
-  push(Tok::IncludeName, start, trimmed - start);
-  pos_ = end;
+  push(Tok::IncludeName, s.begin, s.end - s.begin);
+  pos_ = s.next;
 }
 
 void Lexer::number() {

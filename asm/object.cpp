@@ -166,15 +166,6 @@ const char* field_word(Field f) {
   return "?";
 }
 
-std::uint32_t field_of(const Instruction& ins, Field f) {
-  switch (f) {
-    case Field::Type: return ins.type;
-    case Field::Motor: return ins.motor;
-    case Field::Value: return static_cast<std::uint32_t>(ins.value);
-  }
-  return 0;
-}
-
 }  // namespace
 
 std::uint32_t crc32(const std::uint8_t* data, std::size_t size) {

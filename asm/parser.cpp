@@ -5,6 +5,7 @@
 #include <algorithm>
 
 #include "internal.hpp"
+#include "syntax.hpp"
 
 namespace tmcl::detail {
 namespace {
@@ -166,8 +167,7 @@ class Parser {
     if (cur().kind != Tok::IncludeName || cur().text.empty()) return fail("#include needs a file name");
     Token nt = cur();
     advance();
-    std::string name(nt.text);
-    if (name.front() == '"' || name.front() == '<') name = name.substr(1, name.size() - 2);
+    std::string name(include_file_name(nt.text));
     if (name.empty()) return diags_.error(loc(nt), "#include needs a file name"), void();
     if (depth + 1 > kMaxIncludeDepth) {
       diags_.error(loc(nt), "includes nested more than " + std::to_string(kMaxIncludeDepth) + " deep");
@@ -475,22 +475,8 @@ class Parser {
     unit_.stmts.push_back(s);
   }
 
-  // ---- expressions: precedence climbing, C precedence (| ^ & << >> + - * / %) ----
-  static int precedence(P p) {
-    switch (p) {
-      case P::Pipe: return 1;
-      case P::Caret: return 2;
-      case P::Amp: return 3;
-      case P::Shl:
-      case P::Shr: return 4;
-      case P::Plus:
-      case P::Minus: return 5;
-      case P::Star:
-      case P::Slash:
-      case P::Percent: return 6;
-      default: return 0;
-    }
-  }
+  // ---- expressions: precedence climbing, C precedence (binary_precedence, syntax.hpp) ----
+  static int precedence(P p) { return binary_precedence(p); }
 
   int node(ExprNode n) {
     unit_.nodes.push_back(n);

@@ -376,7 +376,7 @@ int parse_args(int argc, char** argv, Options& o) {
       return usage_error("--eeprom-seal FILE goes alone (it seals FILE and runs nothing)");
     return -1;
   }
-  if (!have_program && o.serve.empty()) return usage_error("no PROGRAM given");
+  if (!have_program && o.serve.empty() && !o.debug.dap) return usage_error("no PROGRAM given");
   return -1;
 }
 

@@ -41,12 +41,17 @@ int parse_option(const std::string& a, bool has_inline, const std::function<bool
 int main(const FrontEnd& fe, const Profile& profile, std::unique_ptr<MotionCore> core, const std::string& program,
          const AsmOptions& asm_options, SimTime instr_time, const Limits& limits, std::vector<InputEvent> inputs,
          const EepromImage* eeprom) {
+  if (fe.dap) {
+    DapSetup ds;
+    ds.target = std::string(profile.name);
+    ds.instr_time = instr_time;
+    ds.asm_options = asm_options;
+    (void)limits;
+    (void)eeprom;
+    return run_dap(ds, stdin, stdout);
+  }
   if (program.empty() || program == "-") {
     std::fprintf(stderr, "tmclrun: --debug needs a PROGRAM file (standard input carries the commands)\n(see tmclrun --help)\n");
-    return 64;
-  }
-  if (fe.dap) {
-    std::fprintf(stderr, "tmclrun: --dap is not implemented yet (docs/debugger.md)\n");
     return 64;
   }
   ProgramInfo info;

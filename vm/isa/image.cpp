@@ -1,4 +1,4 @@
-// Reading and writing TMCL-IDE .bin images and building 9-byte datagrams.
+// Reading and writing TMCL-IDE .bin images (the bytes through codec.hpp).
 #include "tmcl/image.hpp"
 
 #include "tmcl/fileio.hpp"
@@ -11,12 +11,6 @@ bool ImageReadResult::ok() const {
   for (const auto& i : issues)
     if (i.error) return false;
   return true;
-}
-
-std::uint8_t sum8(const std::uint8_t* bytes, std::size_t n) {
-  std::uint8_t s = 0;
-  for (std::size_t i = 0; i < n; ++i) s = static_cast<std::uint8_t>(s + bytes[i]);
-  return s;
 }
 
 std::vector<std::uint8_t> write_bin(const std::vector<Instruction>& program) {
@@ -43,12 +37,7 @@ ImageReadResult read_bin(const std::vector<std::uint8_t>& bytes) {
   r.program.reserve(bytes.size() / 8);
   for (std::size_t off = 0; off < bytes.size(); off += 8) {
     const std::uint8_t* p = bytes.data() + off;
-    Instruction ins;
-    ins.op = p[0];
-    ins.type = p[1];
-    ins.motor = p[2];
-    ins.value = static_cast<std::int32_t>((std::uint32_t{p[3]} << 24) | (std::uint32_t{p[4]} << 16) |
-                                          (std::uint32_t{p[5]} << 8) | std::uint32_t{p[6]});
+    const Instruction ins = decode7(p);
     std::uint8_t want = sum8(p, 7);
     if (want != p[7]) {
       char msg[128];
@@ -59,15 +48,6 @@ ImageReadResult read_bin(const std::vector<std::uint8_t>& bytes) {
     r.program.push_back(ins);
   }
   return r;
-}
-
-std::array<std::uint8_t, 9> datagram(std::uint8_t address, const Instruction& ins) {
-  std::array<std::uint8_t, 9> d{};
-  d[0] = address;
-  auto b = encode7(ins);
-  for (int i = 0; i < 7; ++i) d[1 + i] = b[i];
-  d[8] = sum8(d.data(), 8);
-  return d;
 }
 
 }  // namespace tmcl

@@ -180,16 +180,4 @@ std::string_view role_name(Role role) {
   return "?";
 }
 
-std::array<std::uint8_t, 7> encode7(const Instruction& ins) {
-  auto v = static_cast<std::uint32_t>(ins.value);
-  return {ins.op, ins.type, ins.motor, static_cast<std::uint8_t>(v >> 24), static_cast<std::uint8_t>(v >> 16),
-          static_cast<std::uint8_t>(v >> 8), static_cast<std::uint8_t>(v)};
-}
-
-std::uint8_t record_checksum(const Instruction& ins) {
-  std::uint8_t sum = 0;
-  for (auto b : encode7(ins)) sum = static_cast<std::uint8_t>(sum + b);
-  return sum;
-}
-
 }  // namespace tmcl

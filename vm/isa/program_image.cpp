@@ -16,9 +16,7 @@ ImageReadResult read_datagrams(const std::vector<std::uint8_t>& bytes) {
   for (std::size_t off = 0; off < bytes.size(); off += 9) {
     const std::uint8_t* d = &bytes[off];
     if (d[1] == 0) break;  // end marker
-    Instruction ins{d[1], d[2], d[3],
-                    static_cast<std::int32_t>(static_cast<std::uint32_t>(d[4]) << 24 | static_cast<std::uint32_t>(d[5]) << 16 |
-                                              static_cast<std::uint32_t>(d[6]) << 8 | d[7])};
+    const Instruction ins = decode7(d + 1);
     std::uint8_t sum = sum8(d, 8);
     if (sum != d[8])
       r.issues.push_back({off, false, "datagram " + std::to_string(off / 9) + ": checksum " + std::to_string(d[8]) +

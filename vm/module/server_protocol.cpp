@@ -14,20 +14,16 @@
 // overlaps, and the stream realigns on the next intact frame without any timing on the host.
 #include <algorithm>
 
+#include "tmcl/codec.hpp"
 #include "tmcl/image.hpp"
 #include "tmcl/server.hpp"
 
 namespace tmcl {
 namespace {
 
-constexpr std::size_t kFrame = 9;
+constexpr std::size_t kFrame = kFrameSize;
 
-std::int32_t be32(const std::uint8_t* p) {
-  return static_cast<std::int32_t>(static_cast<std::uint32_t>(p[0]) << 24 | static_cast<std::uint32_t>(p[1]) << 16 |
-                                   static_cast<std::uint32_t>(p[2]) << 8 | static_cast<std::uint32_t>(p[3]));
-}
-
-bool checksum_ok(const std::uint8_t* p) { return sum8(p, 8) == p[8]; }
+bool checksum_ok(const std::uint8_t* p) { return frame_checksum_ok(p); }
 
 }  // namespace
 
@@ -140,7 +136,7 @@ void TmclModule::handle_frame(const std::uint8_t* frame) {
   ++counters_.frames;
   reply_module_ = self;
   reply_host_ = host_address();
-  execute(Instruction{frame[1], frame[2], frame[3], be32(frame + 4)});
+  execute(decode_request(frame).ins);
 }
 
 // ---- replies ----
@@ -155,17 +151,7 @@ bool TmclModule::suppressed(std::uint8_t op) const {
 
 void TmclModule::reply(std::uint8_t status, std::uint8_t op, std::int32_t value) {
   if (suppressed(op)) return;
-  const auto v = static_cast<std::uint32_t>(value);
-  std::array<std::uint8_t, 9> r{reply_host_,
-                                reply_module_,
-                                status,
-                                op,
-                                static_cast<std::uint8_t>(v >> 24),
-                                static_cast<std::uint8_t>(v >> 16),
-                                static_cast<std::uint8_t>(v >> 8),
-                                static_cast<std::uint8_t>(v),
-                                0};
-  r[8] = sum8(r.data(), 8);
+  const Frame r = encode_reply(Reply{reply_host_, reply_module_, status, op, value});
   out_.insert(out_.end(), r.begin(), r.end());
 }
 

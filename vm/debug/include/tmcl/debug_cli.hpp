@@ -27,6 +27,16 @@ struct CliOptions {
 // transcript reads like a session). Returns tmclrun's exit status for how the program ended.
 int run_cli(Engine& engine, const CliOptions& options, std::FILE* in, std::FILE* out);
 
+// `tmclrun --dap`: the Debug Adapter Protocol on `in` and `out` until disconnect. The launch
+// request names the program (and may name target, motion, instructionTime, symbols,
+// stopOnEntry); these are the defaults from tmclrun's command line.
+struct DapSetup {
+  std::string target = "generic";
+  SimTime instr_time = 20;
+  AsmOptions asm_options;
+};
+int run_dap(const DapSetup& setup, std::FILE* in, std::FILE* out);
+
 // tmclrun's debugger options, parsed by parse_option so tmclrun stays thin.
 struct FrontEnd {
   bool enabled = false;         // --debug, --debug-commands or --dap

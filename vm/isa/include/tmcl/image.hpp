@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "tmcl/codec.hpp"
 #include "tmcl/isa.hpp"
 
 namespace tmcl {
@@ -29,8 +30,7 @@ std::vector<std::uint8_t> write_bin(const std::vector<Instruction>& program);
 // does not match is a warning naming the record and both checksums.
 ImageReadResult read_bin(const std::vector<std::uint8_t>& bytes);
 
-// A 9-byte TMCL request: address, op, type, motor, value (MSB first), checksum of the first 8.
-std::array<std::uint8_t, 9> datagram(std::uint8_t address, const Instruction& ins);
-std::uint8_t sum8(const std::uint8_t* bytes, std::size_t n);
+// A 9-byte TMCL request, as `tmclasm -f datagrams` writes one per instruction (codec.hpp).
+inline Frame datagram(std::uint8_t address, const Instruction& ins) { return encode_request(address, ins); }
 
 }  // namespace tmcl

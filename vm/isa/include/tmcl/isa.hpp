@@ -8,16 +8,9 @@
 #include <span>
 #include <string_view>
 
-namespace tmcl {
+#include "tmcl/codec.hpp"  // Instruction, Field and their byte forms
 
-// One program instruction (the checksum of the .bin record is not part of it).
-struct Instruction {
-  std::uint8_t op = 0;
-  std::uint8_t type = 0;
-  std::uint8_t motor = 0;
-  std::int32_t value = 0;
-  friend bool operator==(const Instruction&, const Instruction&) = default;
-};
+namespace tmcl {
 
 enum class Op : std::uint8_t {
 #define TMCL_OP(code, id, mn, meaning, ...) id = code,
@@ -26,9 +19,6 @@ enum class Op : std::uint8_t {
 #undef TMCL_OP
 #undef TMCL_CTL
 };
-
-// Which instruction field an operand fills.
-enum class Field : std::uint8_t { Type, Motor, Value };
 
 // What an operand means; drives profile checks, listings and documentation.
 enum class Role : std::uint8_t {
@@ -87,10 +77,5 @@ bool is_keyword(std::string_view name);
 std::optional<std::string_view> keyword_name(KwSet set, std::uint8_t value);
 std::string_view kwset_name(KwSet set);
 std::string_view role_name(Role role);
-
-// 8-bit sum of the seven instruction bytes (the .bin record checksum).
-std::uint8_t record_checksum(const Instruction& ins);
-// Encodes ins as 7 bytes: op, type, motor, value MSB first.
-std::array<std::uint8_t, 7> encode7(const Instruction& ins);
 
 }  // namespace tmcl
