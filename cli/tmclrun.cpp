@@ -73,6 +73,7 @@ options:
   --debug-commands FILE  debug PROGRAM with the commands in FILE, then quit (gdb -batch -x)
   --symbols FILE         with --debug: the labels of a .bin (tmclasm -f symbols)
   --checkpoint-memory MIB  with --debug: memory for reverse execution (default 64)
+  --dap                  the debugger over the Debug Adapter Protocol on stdin/stdout
   -I DIR                 search DIR for #include files
   -D NAME=VALUE          define an assembler constant
   --help                 show this help

@@ -157,6 +157,9 @@ bool Dap::launch(const Value& req, std::string& error) {
   s.profile = profile;
   s.core_name = core_name;
   s.instr_time = setup_.instr_time;
+  s.limits = setup_.limits;
+  s.inputs = setup_.inputs;
+  s.eeprom = setup_.eeprom;
   if (a.contains("instructionTime")) {
     auto d = parse_duration(a["instructionTime"].as_string());
     if (!d) return error = "bad instructionTime '" + a["instructionTime"].as_string() + "' (e.g. 20us)", false;

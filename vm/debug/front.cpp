@@ -46,8 +46,9 @@ int main(const FrontEnd& fe, const Profile& profile, std::unique_ptr<MotionCore>
     ds.target = std::string(profile.name);
     ds.instr_time = instr_time;
     ds.asm_options = asm_options;
-    (void)limits;
-    (void)eeprom;
+    ds.limits = limits;
+    ds.inputs = std::move(inputs);
+    if (eeprom) ds.eeprom = *eeprom;
     return run_dap(ds, stdin, stdout);
   }
   if (program.empty() || program == "-") {

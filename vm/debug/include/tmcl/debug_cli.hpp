@@ -34,6 +34,9 @@ struct DapSetup {
   std::string target = "generic";
   SimTime instr_time = 20;
   AsmOptions asm_options;
+  Limits limits;                     // --max-time, --max-steps
+  std::vector<InputEvent> inputs;    // --scenario
+  std::optional<EepromImage> eeprom; // --eeprom (read at power-up)
 };
 int run_dap(const DapSetup& setup, std::FILE* in, std::FILE* out);
 
