@@ -21,7 +21,7 @@
 #include "tmcl/host/client.hpp"
 #include "tmcl/host/port.hpp"
 #include "tmcl/host/transfer.hpp"
-#include "tmcl/image.hpp"
+#include "tmcl/codec.hpp"
 
 namespace {
 
@@ -70,10 +70,10 @@ int main() {
   const int trips = 1 + static_cast<int>(program.size()) + 1 + static_cast<int>(program.size());
   double best_transfer = 1e9, best_bare = 1e9;
   std::vector<std::array<std::uint8_t, 9>> frames;
-  frames.push_back(tmcl::datagram(1, tmcl::Instruction{132, 0, 0, 0}));
-  for (const auto& ins : program) frames.push_back(tmcl::datagram(1, ins));
-  frames.push_back(tmcl::datagram(1, tmcl::Instruction{133, 0, 0, 0}));
-  for (int a = 0; a < static_cast<int>(program.size()); ++a) frames.push_back(tmcl::datagram(1, tmcl::Instruction{134, 0, 0, a}));
+  frames.push_back(tmcl::encode_request(1, tmcl::Instruction{132, 0, 0, 0}));
+  for (const auto& ins : program) frames.push_back(tmcl::encode_request(1, ins));
+  frames.push_back(tmcl::encode_request(1, tmcl::Instruction{133, 0, 0, 0}));
+  for (int a = 0; a < static_cast<int>(program.size()); ++a) frames.push_back(tmcl::encode_request(1, tmcl::Instruction{134, 0, 0, a}));
   if (static_cast<int>(frames.size()) != trips) return 1;
   for (int round = 0; round < 9; ++round) {
     auto t0 = Clock::now();

@@ -1,12 +1,12 @@
 // Request and reply matching for the host side of the TMCL protocol (client.hpp). Frames are
-// built with the project's codec (tmcl/image.hpp: datagram, sum8); replies are taken apart here.
+// encoded and decoded with the project's one codec (tmcl/codec.hpp).
 #include "tmcl/host/client.hpp"
 
 #include <cctype>
 #include <cstdio>
 
 #include "tmcl/asm/disasm.hpp"
-#include "tmcl/image.hpp"
+#include "tmcl/codec.hpp"
 
 namespace tmcl::host {
 namespace {
@@ -14,13 +14,7 @@ namespace {
 constexpr std::size_t kFrame = 9;
 constexpr auto kQuietGap = std::chrono::milliseconds(20);  // a lone bad window is a corrupted reply after this
 
-// TODO(codec): vm/isa's codec.hpp (announced) will hold the value decoder; use it when it lands.
-std::int32_t value_at(const std::uint8_t* p) {
-  return static_cast<std::int32_t>(static_cast<std::uint32_t>(p[0]) << 24 | static_cast<std::uint32_t>(p[1]) << 16 |
-                                   static_cast<std::uint32_t>(p[2]) << 8 | static_cast<std::uint32_t>(p[3]));
-}
-
-bool checksum_ok(const std::uint8_t* p) { return sum8(p, 8) == p[8]; }
+bool checksum_ok(const std::uint8_t* p) { return frame_checksum_ok(p); }
 
 bool known_status(std::uint8_t s) { return (s >= 1 && s <= 6) || s == kStatusOk || s == kStatusLoaded || s == kStatusPositionReached; }
 
@@ -55,7 +49,7 @@ std::string status_text(std::uint8_t status) {
 }
 
 std::string Client::describe(const Instruction& ins) const {
-  const auto d = datagram(opt_.module, ins);
+  const Frame d = encode_request(opt_.module, ins);
   const OpInfo* info = op_info(ins.op);
   std::string text = info && info->control ? std::to_string(ins.op) + " (" + std::string(info->meaning) + ") type " +
                                                  std::to_string(ins.type) + ", value " + std::to_string(ins.value)
@@ -70,7 +64,7 @@ std::vector<Reply> Client::take_events() {
 }
 
 bool Client::send(const Instruction& ins, std::string& error) {
-  const auto d = datagram(opt_.module, ins);
+  const Frame d = encode_request(opt_.module, ins);
   if (opt_.on_frame) opt_.on_frame(true, d.data(), d.size());
   return port_.write_all(d.data(), d.size(), Clock::now() + std::chrono::milliseconds(opt_.timeout_ms), error);
 }
@@ -100,18 +94,20 @@ Client::Scan Client::scan(const Instruction& ins, Reply& found) {
       const bool from_module = p[1] == opt_.module;
       const bool ordinary = from_module && known_status(p[2]);
       if (ordinary && p[2] == kStatusPositionReached && p[3] == static_cast<std::uint8_t>(Op::PositionReachedEvent)) {
-        Reply ev{p[2], p[3], value_at(p + 4), {}, {}, {}};
+        const tmcl::Reply r = decode_reply(p);
+        Reply ev{r.status, r.op, r.value, {}, {}, {}};
         std::copy(p, p + kFrame, ev.bytes.begin());
         events_.push_back(ev);
         ++stats_.events;
       } else if (ordinary && p[3] == ins.op) {
-        found = Reply{p[2], p[3], value_at(p + 4), {}, {}, {}};
+        const tmcl::Reply r = decode_reply(p);
+        found = Reply{r.status, r.op, r.value, {}, {}, {}};
         std::copy(p, p + kFrame, found.bytes.begin());
         result = Scan::Found;
       } else if (special_134(ins) && !ordinary) {
         // The stored instruction in place of module address, status and command. A frame that
         // reads as an ordinary reply to another command is a stale one, not memory contents.
-        found = Reply{kStatusOk, ins.op, 0, {}, Instruction{p[1], p[2], p[3], value_at(p + 4)}, {}};
+        found = Reply{kStatusOk, ins.op, 0, {}, decode7(p + 1), {}};
         std::copy(p, p + kFrame, found.bytes.begin());
         result = Scan::Found;
       } else {
