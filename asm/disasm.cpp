@@ -15,6 +15,7 @@
 #include <set>
 
 #include "tmcl/image.hpp"
+#include "tmcl/program_image.hpp"
 
 namespace tmcl {
 namespace {
@@ -324,62 +325,53 @@ DisasmResult disassemble(const std::string& name, const std::string& bytes, cons
       r.source = disassemble_object(obj, header);
       return r;
     }
-    case ImageKind::Datagrams: {
-      if (bytes.size() % 9 != 0) {
-        r.messages.push_back({true, "size " + std::to_string(bytes.size()) +
-                                        " bytes is not a multiple of 9 (datagrams are 9-byte requests); " +
-                                        std::to_string(bytes.size() % 9) + " trailing bytes"});
-        return r;
-      }
-      std::vector<Instruction> program;
-      std::vector<std::string> notes;
-      std::set<int> addresses;
-      for (std::size_t off = 0; off < bytes.size(); off += 9) {
-        const std::uint8_t* p = data + off;
-        const Instruction ins = decode7(p + 1);
-        addresses.insert(p[0]);
-        std::uint8_t want = sum8(p, 8);
-        std::string note;
-        if (want != p[8]) {
-          char msg[160];
-          std::snprintf(msg, sizeof msg,
-                        "datagram %zu (address %zu): checksum byte is 0x%02X, expected 0x%02X; reassembly writes 0x%02X",
-                        off / 9, off / 9, p[8], want, want);
-          warn(msg);
-          std::snprintf(msg, sizeof msg, "checksum was 0x%02X in the input, reassembly writes 0x%02X", p[8], want);
-          note = msg;
-        }
-        notes.push_back(note);
-        program.push_back(ins);
-      }
-      int module = addresses.empty() ? 1 : *addresses.begin();
-      if (addresses.size() > 1)
-        warn("the datagrams are addressed to " + std::to_string(addresses.size()) +
-             " different modules; reassembly addresses all of them to module " + std::to_string(module));
-      std::vector<std::string> header = {
-          "tmclasm disassembly of " + shown + " (datagrams for module " + std::to_string(module) + ", " +
-              std::to_string(program.size()) + " instructions)",
-          "Reassemble with: tmclasm -f datagrams --address " + std::to_string(module) +
-              " FILE.tmc  (gives the identical bytes)"};
-      r.source = disassemble_program(program, options.names, header, notes);
-      return r;
-    }
+    case ImageKind::Datagrams:
     case ImageKind::Bin:
     case ImageKind::Auto: break;
   }
-  ImageReadResult image = read_bin(std::vector<std::uint8_t>(bytes.begin(), bytes.end()));
+  // The one image reader of every tool (program_image.hpp). Without --from the name says which
+  // format to expect and the contents decide when every checksum of that format is wrong.
+  const std::vector<std::uint8_t> raw(bytes.begin(), bytes.end());
+  const ImageFormat named = kind == ImageKind::Datagrams ? ImageFormat::Datagrams : ImageFormat::Bin;
+  const ImageReadResult image = options.kind == ImageKind::Auto         ? read_image(raw, named)
+                                : named == ImageFormat::Datagrams ? read_datagrams(raw)
+                                                                  : read_bin(raw);
+  const bool dgm = image.format_datagrams;
   std::vector<std::string> notes(image.program.size());
   for (const auto& issue : image.issues) {
     if (issue.error) {
       r.messages.push_back({true, issue.message});
       continue;
     }
-    std::size_t rec = issue.offset / 8;
-    const std::uint8_t* p = data + rec * 8;
+    if (issue.instruction < 0) {
+      warn(issue.message);
+      continue;
+    }
+    const std::size_t len = dgm ? 8 : 7;  // the bytes the checksum sums; the checksum follows
+    const std::uint8_t* p = data + (issue.offset - len);
     char msg[96];
-    std::snprintf(msg, sizeof msg, "checksum was 0x%02X in the input, reassembly writes 0x%02X", p[7], sum8(p, 7));
-    notes[rec] = msg;
+    std::snprintf(msg, sizeof msg, "checksum was 0x%02X in the input, reassembly writes 0x%02X", p[len], sum8(p, len));
+    notes[static_cast<std::size_t>(issue.instruction)] = msg;
     warn(issue.message + "; reassembly writes the correct checksum");
+  }
+  // Opcode 0 in a datagram file is the end marker, not an instruction (docs/errata.md E40).
+  for (std::size_t n : image.end_markers)
+    warn("datagram " + std::to_string(n) +
+         " is an opcode-0 end marker, not an instruction: the source leaves it out and reassembly does not write it");
+  if (!r.ok()) return r;
+  if (dgm) {
+    std::set<int> addresses(image.addresses.begin(), image.addresses.end());
+    int module = addresses.empty() ? 1 : *addresses.begin();
+    if (addresses.size() > 1)
+      warn("the datagrams are addressed to " + std::to_string(addresses.size()) +
+           " different modules; reassembly addresses all of them to module " + std::to_string(module));
+    std::vector<std::string> header = {
+        "tmclasm disassembly of " + shown + " (datagrams for module " + std::to_string(module) + ", " +
+            std::to_string(image.program.size()) + " instructions)",
+        "Reassemble with: tmclasm -f datagrams --address " + std::to_string(module) +
+            " FILE.tmc  (gives the identical bytes)"};
+    r.source = disassemble_program(image.program, options.names, header, notes);
+    return r;
   }
   if (!r.ok()) return r;
   std::vector<std::string> header = {

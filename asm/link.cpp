@@ -7,6 +7,7 @@
 #include <set>
 
 #include "internal.hpp"
+#include "tmcl/program_image.hpp"
 
 namespace tmcl::detail {
 namespace {
@@ -89,6 +90,14 @@ void read_inputs(const std::vector<std::string>& files, const AsmOptions& option
     std::string error;
     switch (sniff_file(text)) {
       case FileKind::Source:
+        // Binary bytes given as source: one error saying what they look like, not hundreds of
+        // "unexpected character" (program_image.hpp).
+        if (const std::string what = describe_binary(text); !what.empty()) {
+          const std::string arg = file == "-" ? "FILE" : file;
+          out.diags.error(SourceLoc{}, "'" + shown + "' is not TMCL source: it looks like " + what +
+                                           "; to disassemble it: tmclasm -d " + arg + "; to run it: tmclrun " + arg);
+          continue;
+        }
         slot.units.emplace_back();
         parse_unit(file, options, reader, out.sources, out.diags, slot.units.back(), &text);
         break;

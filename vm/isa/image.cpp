@@ -43,7 +43,7 @@ ImageReadResult read_bin(const std::vector<std::uint8_t>& bytes) {
       char msg[128];
       std::snprintf(msg, sizeof msg, "record %zu (address %zu): checksum byte is 0x%02X, expected 0x%02X", off / 8,
                     off / 8, p[7], want);
-      r.issues.push_back({off + 7, false, msg});
+      r.issues.push_back({off + 7, false, msg, static_cast<std::ptrdiff_t>(off / 8)});
     }
     r.program.push_back(ins);
   }

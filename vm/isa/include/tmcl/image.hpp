@@ -3,6 +3,7 @@
 #pragma once
 
 #include <array>
+#include <cstddef>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -17,11 +18,15 @@ struct ImageIssue {
   std::size_t offset;
   bool error;  // false: warning (a bad record checksum)
   std::string message;
+  std::ptrdiff_t instruction = -1;  // the program address a bad checksum belongs to (-1: none)
 };
 
 struct ImageReadResult {
   std::vector<Instruction> program;
   std::vector<ImageIssue> issues;
+  bool format_datagrams = false;         // read as datagrams (program_image.hpp), else as .bin
+  std::vector<std::uint8_t> addresses;   // datagrams: the module address of each instruction
+  std::vector<std::size_t> end_markers;  // datagrams: numbers of the opcode-0 end markers left out
   bool ok() const;
 };
 

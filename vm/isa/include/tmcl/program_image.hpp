@@ -1,5 +1,13 @@
-// Reading a program image for the VM: a TMCL-IDE .bin (8 bytes per instruction) or a datagram
-// file as tmclasm -f datagrams writes it (one 9-byte request per instruction).
+// The one reader of program images for every tool (tmclasm -d, tmclrun, tmclctl, the debugger):
+// a TMCL-IDE .bin (8-byte records) or a datagram file as tmclasm -f datagrams writes it (one
+// 9-byte request per instruction). The name says which format is expected; the contents decide
+// when every checksum of that format is wrong (docs/tmclrun.md, "Program images").
+//
+// The rule for opcode 0 (docs/errata.md E40): a datagram file is a
+// download stream, read as a module in download mode stores it into empty memory: an opcode-0
+// request is the end marker TMCL-IDE and go-tmcl send, it stores nothing (errata S7), and every
+// other request is the next instruction. A .bin is program memory word for word: an opcode-0
+// record is an instruction word like any other (it faults when executed).
 #pragma once
 
 #include <cstdint>
@@ -10,13 +18,30 @@
 
 namespace tmcl {
 
-// Reads 9-byte requests (address, op, type, motor, value MSB first, checksum). A size that is not
-// a multiple of 9 is an error; a bad checksum a warning; an opcode-0 end marker ends the program.
+enum class ImageFormat : std::uint8_t { Bin, Datagrams };
+
+// Reads 9-byte requests. A size that is not a multiple of 9 is an error; a bad checksum a
+// warning; opcode-0 end markers are left out of the program (ImageReadResult::end_markers).
 ImageReadResult read_datagrams(const std::vector<std::uint8_t>& bytes);
 
-// Picks the reader by file name (.bin / .dgm, any case) and renders its issues as
+// Reads an image expected in `expected` format (from its name or an option). When every record
+// checksum of that format is wrong, the contents decide: an image whose every checksum of the
+// other format is right is read as that format, with a warning saying so; otherwise it is
+// refused with an error saying what it is not and what to try.
+ImageReadResult read_image(const std::vector<std::uint8_t>& bytes, ImageFormat expected);
+
+// The format a file name asks for: .dgm (any case) datagrams, anything else .bin.
+ImageFormat image_format_of(const std::string& name);
+
+// Reads through read_image with the format of the name and renders its issues as
 // "FILE: error: ..." / "FILE: warning: ..." lines into `messages`. False on any error.
 bool read_program_image(const std::string& name, const std::vector<std::uint8_t>& bytes, std::vector<Instruction>& program,
                         std::string& messages);
+
+// What binary bytes given as source look like, for one error instead of hundreds: "a TMCL-IDE
+// .bin image (12 records, every checksum right)", "a datagram file (...)", "binary data (a NUL
+// byte at offset 3)", a control byte, or 8 and more bytes of invalid UTF-8 outside comments.
+// Empty when `text` may be source (a few stray non-ASCII bytes get the lexer's own errors).
+std::string describe_binary(const std::string& text);
 
 }  // namespace tmcl
