@@ -47,7 +47,9 @@ options:
   --eeprom FILE          load the EEPROM from FILE at start, save it there at exit
   --eeprom-seal FILE     after editing an EEPROM file by hand: check it, write a new checksum
   --trace                print a line per instruction, interrupt, wait and motion event
-                         (to standard error when --json is given)
+                         (to standard error when --json is given); with --serve, a line per
+                         request and reply, decoded, to standard error or --log FILE
+  --log FILE             with --serve --trace: write the request log to FILE
   --json                 print the final state as one JSON object instead of the summary;
                          when there is no run (bad option or input), the errors as one object
   --error-limit N        show at most N errors of the source or scenario (default 20, 0 = all)
@@ -192,6 +194,7 @@ struct Options {
   std::string eeprom_seal;
   bool trace = false, json = false;
   std::string csv, plot;
+  std::string log;  // --serve --trace: the request log (empty: standard error)
   std::string serve;
   tmcl::ServeOptions serve_opts;
   std::vector<std::string> modules;  // --module ADDR[/TARGET][:FILE], in order
@@ -329,6 +332,8 @@ int parse_args(int argc, char** argv, Options& o) {
       if (!value(o.csv)) return usage_error("--csv needs a file");
     } else if (a == "--plot") {
       if (!value(o.plot)) return usage_error("--plot needs a file");
+    } else if (a == "--log") {
+      if (!value(o.log)) return usage_error("--log needs a file");
     } else if (a == "--sample") {
       if (int r = duration("--sample", o.sample); r >= 0) return r;
       if (o.sample <= 0) return usage_error("--sample needs a duration greater than 0");
@@ -360,10 +365,11 @@ int parse_args(int argc, char** argv, Options& o) {
       for (const auto& arg : args)
         if (arg == opt || arg.rfind(std::string(opt) + "=", 0) == 0)
           return usage_error(std::string(opt) + " goes with --serve");
-  } else if (o.trace || o.json || !o.csv.empty() || !o.plot.empty() || o.limits.until != tmcl::kNever ||
+  } else if (o.json || !o.csv.empty() || !o.plot.empty() || o.limits.until != tmcl::kNever ||
              o.limits.max_steps != UINT64_MAX) {
-    return usage_error("--serve runs until stopped: --trace, --json, --csv, --plot, --max-time and --max-steps do not go with it");
+    return usage_error("--serve runs until stopped: --json, --csv, --plot, --max-time and --max-steps do not go with it");
   }
+  if (!o.log.empty() && (o.serve.empty() || !o.trace)) return usage_error("--log FILE goes with --serve --trace");
   if (!o.modules.empty()) {  // the first --module is the primary module: its program and address
     if (have_program) return usage_error("with --module, give each module's program there, not as PROGRAM");
     BusSpec first;
@@ -555,7 +561,7 @@ int run(int argc, char** argv) {
   tmcl::Vm vm(*profile, recording ? static_cast<tmcl::MotionCore&>(recording_core) : *core);
   vm.instr_time = o.instr_time;
   tmcl::TextTrace trace(o.json ? stderr : stdout, &sources);
-  if (o.trace) vm.trace = &trace;
+  if (o.trace && o.serve.empty()) vm.trace = &trace;  // serving, --trace logs the requests instead
   tmcl::RecordingTrace recording_trace(vm.trace, recorder);
   if (recording) vm.trace = &recording_trace;
   vm.load(program);
@@ -565,10 +571,25 @@ int run(int argc, char** argv) {
   if (!o.serve.empty()) {
     // The virtual module runs until SIGINT/SIGTERM (or --max-wall-time) and saves the EEPROM.
     o.serve_opts.eeprom_path = o.eeprom;
+    // --trace: every request and its reply, decoded, as it is answered (flushed: a user watches
+    // the traffic live, and a killed server loses nothing).
+    std::FILE* log = stderr;
+    if (o.trace && !o.log.empty()) {
+      log = std::fopen(o.log.c_str(), "w");
+      if (!log) return input_error("", "cannot open log file '" + o.log + "': " + std::strerror(errno), kExitIo);
+    }
+    if (o.trace)
+      o.serve_opts.on_exchange = [log](const tmcl::TmclModule::Exchange& e) {
+        std::fputs(tmcl::exchange_text(e.at, e.module, e.request, e.status, e.value, e.sent).c_str(), log);
+        std::fflush(log);
+      };
     std::vector<std::unique_ptr<tmcl::MotionCore>> bus_cores;
     std::vector<std::unique_ptr<tmcl::Vm>> bus_vms;
     if (int r = build_bus(o, bus_cores, bus_vms); r >= 0) return r;
-    return tmcl::serve(vm, o.serve_opts);
+    int served = tmcl::serve(vm, o.serve_opts);
+    if (log != stderr && std::fclose(log) != 0)
+      return input_error("", "cannot write log file '" + o.log + "': " + std::strerror(errno), kExitIo);
+    return served;
   }
   vm.start(0);
   tmcl::RunResult result = vm.run(o.limits);

@@ -191,20 +191,51 @@ std::string state_json(Vm& vm, const RunResult& result) {
   return json::write_lines(s) + "\n";
 }
 
+std::string status_text(int status) {
+  switch (status) {
+    case 1: return "wrong checksum";
+    case 2: return "invalid command";
+    case 3: return "wrong type";
+    case 4: return "invalid value";
+    case 5: return "EEPROM locked";
+    case 6: return "command not available";
+    case 100: return "ok";
+    case 101: return "loaded into program memory";
+    case 128: return "position reached";
+    default: return "status " + std::to_string(status);
+  }
+}
+
+std::string exchange_text(SimTime at, int module, const Instruction& request, int status, std::int32_t value, bool sent) {
+  // A control command (128..138, 255) has no source form: its number, name and fields.
+  const OpInfo* info = op_info(request.op);
+  std::string what = info && info->control
+                         ? std::to_string(request.op) + " " + std::string(info->id) + ", type " + std::to_string(request.type) +
+                               ", motor " + std::to_string(request.motor) + ", value " + std::to_string(request.value)
+                         : instruction_text(request);
+  return format_time(at) + " module " + std::to_string(module) + ": " + what + " -> " +
+         std::to_string(status) + " " + status_text(status) + ", value " + std::to_string(value) +
+         (sent ? "" : " (reply suppressed)") + "\n";
+}
+
 std::string error_json(std::string_view kind, int exit_status, const std::vector<JsonDiagnostic>& diags,
                        long long more) {
-  std::string s = "{\"error\":" + json_string(kind) + ",\n \"exit\":" + std::to_string(exit_status) +
-                  ",\n \"message\":" + json_string(diags.empty() ? std::string_view() : diags.front().message) +
-                  ",\n \"diagnostics\":[";
-  for (std::size_t i = 0; i < diags.size(); ++i) {
-    const auto& d = diags[i];
-    s += i ? ",\n  " : "\n  ";
-    s += "{\"file\":" + json_string(d.file) + ",\"line\":" + std::to_string(d.line) +
-         ",\"column\":" + std::to_string(d.column) + ",\"severity\":" + json_string(d.severity) +
-         ",\"name\":" + (d.name.empty() ? std::string("null") : json_string(d.name)) +
-         ",\"message\":" + json_string(d.message) + "}";
+  json::Value s = json::Value::object();
+  s.set("error", kind);
+  s.set("exit", exit_status);
+  s.set("message", diags.empty() ? std::string_view() : std::string_view(diags.front().message));
+  json::Value& list = s.set("diagnostics", json::Value::array());
+  for (const auto& d : diags) {
+    json::Value& o = list.push(json::Value::object());
+    o.set("file", d.file);
+    o.set("line", d.line);
+    o.set("column", d.column);
+    o.set("severity", d.severity);
+    o.set("name", d.name.empty() ? json::Value(nullptr) : json::Value(d.name));
+    o.set("message", d.message);
   }
-  return s + "],\n \"more\":" + std::to_string(more) + "}\n";
+  s.set("more", more);
+  return json::write_lines(s) + "\n";
 }
 
 std::string state_summary(Vm& vm, const RunResult& result, const SourceMap* sources) {

@@ -45,11 +45,19 @@ std::string state_json(Vm& vm, const RunResult& result);
 // The default exit summary.
 std::string state_summary(Vm& vm, const RunResult& result, const SourceMap* sources);
 
+// tmclrun --serve --trace: one line per answered request, e.g.
+//   1.250000s module 1: MVP ABS, 0, 51200 -> 100 ok, value 51200
+// (the request as source text, the status as a number and in words; "(reply suppressed)" when
+// global 255 kept the reply back).
+std::string exchange_text(SimTime at, int module, const Instruction& request, int status, std::int32_t value, bool sent);
+// The reply status in words: 100 "ok", 4 "invalid value", ...; "status N" when unknown.
+std::string status_text(int status);
+
 // --json when there is no run to report (a bad option, assembly errors, an unreadable program,
-// scenario or EEPROM file): one object, so a script always has JSON to parse:
-//   {"error":"input","exit":65,"message":"<the first diagnostic's message>",
-//    "diagnostics":[{"file":"p.tmc","line":3,"column":5,"severity":"error","name":null,"message":"..."}],
-//    "more":0}
+// scenario or EEPROM file): one object (tmcl::json, one key per line), so a script always has
+// JSON to parse: {"error":"input","exit":65,"message":"<the first diagnostic's message>",
+//   "diagnostics":[{"file":"p.tmc","line":3,"column":5,"severity":"error","name":null,"message":"..."}],
+//   "more":0}
 // `kind` is usage, input or io; `more` counts diagnostics left out by --error-limit; a missing
 // place is file "" and line/column 0; `name` is a warning's -W name, null for unnamed ones.
 struct JsonDiagnostic {

@@ -79,6 +79,17 @@ class TmclModule {
 
   // Program faults and other notes for the operator (nullptr: dropped).
   std::function<void(const std::string&)> on_message;
+  // One answered request (tmclrun --serve --trace): when, the addresses, the request, the
+  // reply's status and value, and whether the reply was sent (global 255 suppresses most).
+  struct Exchange {
+    SimTime at;
+    std::uint8_t module, host;
+    Instruction request;
+    std::uint8_t status;
+    std::int32_t value;
+    bool sent;
+  };
+  std::function<void(const Exchange&)> on_exchange;  // nullptr: nothing is reported
 
   // Counters, for tests and the shutdown note.
   struct Counters {
@@ -104,6 +115,7 @@ class TmclModule {
   void reply_raw(const std::array<std::uint8_t, 9>& bytes, std::uint8_t op);
   void check_events();
   void note(const std::string& text);
+  void exchange(std::uint8_t status, std::int32_t value, bool sent);
 
   Vm& vm_;
   ProtocolOptions options_;
@@ -129,6 +141,8 @@ class TmclModule {
   bool power_cycled_ = false;
   bool fault_reported_ = false;
   Counters counters_;
+  std::array<std::uint8_t, 9> request_{};  // the frame being answered, for on_exchange
+  bool request_pending_ = false;           // its reply has not been reported yet
 };
 
 // ---- the I/O loop ----
@@ -164,6 +178,7 @@ struct ServeOptions {
   bool quiet = false;                // no announce line, no notes (errors still go to `log`)
   std::vector<BusModule> bus;        // more modules on the line, each answering its own address
   FaultPlan faults;                  // faults injected into the replies (faults.hpp)
+  std::function<void(const TmclModule::Exchange&)> on_exchange;  // every module's answers (--trace)
 };
 
 // Serves until SIGINT/SIGTERM, stop_fd, max_wall_ms, or end of input (stdio). The caller has
