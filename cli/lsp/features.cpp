@@ -1,0 +1,357 @@
+// The language server's requests about a place in a document: hover (instruction syntax and
+// meaning from the instruction table, parameter facts from the target's profile, constant values,
+// label addresses, include targets), definition, references, completion, document symbols and
+// formatting. Tokens come from the assembler's lexer (tokenize), facts from its last assembly.
+#include <algorithm>
+
+#include "tmcl/lsp/server.hpp"
+
+namespace tmcl::lsp {
+
+namespace {
+
+using Kind = SourceToken::Kind;
+constexpr int kInvalidParams = -32602;
+constexpr int kRequestFailed = -32803;
+
+std::string lower(std::string_view s) {
+  std::string out(s);
+  for (auto& c : out)
+    if (c >= 'A' && c <= 'Z') c = static_cast<char>(c - 'A' + 'a');
+  return out;
+}
+
+std::string access_text(std::uint8_t a) {
+  std::string s;
+  if (a & kRead) s += 'R';
+  if (a & kWrite) s += 'W';
+  if (a & kEeprom) s += 'E';
+  if (a & kAutoStore) s += 'A';
+  return s.empty() ? "-" : s;
+}
+
+std::string param_text(const ParamInfo& p) {
+  return std::to_string(p.number) + ": " + std::string(p.name) + ", " + std::to_string(p.min) + "…" +
+         std::to_string(p.max) + ", " + access_text(p.access) + ", default " + std::to_string(p.default_value);
+}
+
+std::string operand_name(const OperandSpec& o) {
+  if (o.role == Role::Keyword) return std::string(kwset_name(o.keywords));
+  return std::string(role_name(o.role));
+}
+
+std::string syntax_of(const OpInfo& op) {
+  std::string s(op.mnemonic);
+  for (std::size_t i = 0; i < op.operands.size(); ++i) s += (i ? ", <" : " <") + operand_name(op.operands[i]) + ">";
+  return s;
+}
+
+// The statement a token is in: its mnemonic (nullptr when the line holds no instruction) and which
+// operand (0-based, -1 for the mnemonic itself) the token belongs to.
+struct Context {
+  const OpInfo* op = nullptr;
+  int operand = -1;
+  std::vector<const SourceToken*> operands_first;  // first token of each operand
+};
+
+Context context_at(const std::vector<SourceToken>& toks, std::size_t index) {
+  Context c;
+  std::size_t b = index;
+  while (b > 0 && toks[b - 1].kind != Kind::Newline) --b;
+  std::size_t i = b;
+  // Skip labels.
+  while (i + 1 < toks.size() && toks[i].kind == Kind::Name && toks[i + 1].kind == Kind::Punct && toks[i + 1].text == ":") i += 2;
+  while (i < toks.size() && toks[i].kind == Kind::Comment) ++i;
+  if (i >= toks.size() || toks[i].kind != Kind::Name) return c;
+  c.op = op_by_mnemonic(toks[i].text);
+  if (!c.op) return c;
+  if (index <= i) return c;
+  int operand = 0;
+  bool fresh = true;
+  for (std::size_t k = i + 1; k < toks.size() && toks[k].kind != Kind::Newline; ++k) {
+    if (toks[k].kind == Kind::Comment) continue;
+    if (toks[k].kind == Kind::Punct && toks[k].text == ",") {
+      ++operand;
+      fresh = true;
+      continue;
+    }
+    if (fresh) {
+      c.operands_first.resize(static_cast<std::size_t>(operand) + 1, nullptr);
+      c.operands_first[static_cast<std::size_t>(operand)] = &toks[k];
+      fresh = false;
+    }
+    if (k == index) {
+      c.operand = operand;
+      return c;
+    }
+  }
+  c.operand = operand;
+  return c;
+}
+
+json::Value markdown(std::string text) {
+  json::Value h = json::Value::object();
+  json::Value& c = h.set("contents", json::Value::object());
+  c.set("kind", "markdown");
+  c.set("value", std::move(text));
+  return h;
+}
+
+}  // namespace
+
+const Symbol* Server::symbol(const Document& doc, std::string_view name) const {
+  if (!doc.result) return nullptr;
+  for (const Symbol& s : doc.result->symbols)
+    if (s.name == name) return &s;
+  return nullptr;
+}
+
+bool Server::position(const Document& doc, const Value& params, std::size_t& offset, Reply& err) const {
+  const Value& pos = params["position"];
+  if (!pos["line"].is_int() || !pos["character"].is_int() || pos["line"].as_int() < 0 || pos["character"].as_int() < 0) {
+    err = {Value(), kInvalidParams, "missing or negative params.position.line/character"};
+    return false;
+  }
+  auto line = static_cast<std::size_t>(pos["line"].as_int());
+  if (line >= doc.line_starts.size()) {
+    err = {Value(), kInvalidParams,
+           "position line " + std::to_string(line) + " is outside the document (" + std::to_string(doc.line_starts.size()) + " lines)"};
+    return false;
+  }
+  offset = offset_of(doc.text, doc.line_starts, line, static_cast<std::size_t>(pos["character"].as_int()));
+  return true;
+}
+
+// The token under (or just before) the cursor.
+const SourceToken* Server::token_at(const Document& doc, std::size_t offset) const {
+  auto it = std::upper_bound(doc.tokens.begin(), doc.tokens.end(), offset,
+                             [](std::size_t o, const SourceToken& t) { return o < t.offset; });
+  if (it == doc.tokens.begin()) return nullptr;
+  const SourceToken& t = *(it - 1);
+  if (t.kind == Kind::Newline || offset > t.offset + t.text.size()) return nullptr;
+  return &t;
+}
+
+Server::Value Server::range_of(const Document& doc, std::size_t offset, std::size_t len) const {
+  auto line_of = [&](std::size_t o) {
+    return static_cast<std::size_t>(std::upper_bound(doc.line_starts.begin(), doc.line_starts.end(), o) - doc.line_starts.begin()) - 1;
+  };
+  auto pos = [&](std::size_t o) {
+    std::size_t l = line_of(o);
+    Value p = Value::object();
+    p.set("line", static_cast<long long>(l));
+    p.set("character", static_cast<long long>(utf16_column(std::string_view(doc.text).substr(doc.line_starts[l]), o - doc.line_starts[l])));
+    return p;
+  };
+  Value r = Value::object();
+  r.set("start", pos(offset));
+  r.set("end", pos(offset + len));
+  return r;
+}
+
+Server::Reply Server::hover(const Value& params) {
+  Reply err;
+  Document* doc = find_document(params, err);
+  std::size_t offset;
+  if (!doc || !position(*doc, params, offset, err)) return err;
+  const SourceToken* t = token_at(*doc, offset);
+  Reply r;
+  if (!t) return r;
+  std::size_t index = static_cast<std::size_t>(t - doc->tokens.data());
+  Context c = context_at(doc->tokens, index);
+  const Profile& prof = profile();
+  std::string text;
+  if (t->kind == Kind::Name && c.op && c.operand < 0) {
+    text = "```tmcl\n" + syntax_of(*c.op) + "\n```\n" + std::string(c.op->meaning) + " (opcode " + std::to_string(c.op->code) + ")";
+  } else if (t->kind == Kind::Directive && lower(t->text) == "#include" && index + 1 < doc->tokens.size()) {
+    t = &doc->tokens[index + 1];
+  }
+  if (t->kind == Kind::IncludeName && doc->result) {
+    int line = t->line;
+    for (const SourceFile& f : doc->result->sources.files)
+      if (f.includer == 0 && f.include_line == line) text = "includes `" + f.path + "`";
+    if (text.empty()) text = "include file not found";
+  }
+  // A parameter number (or a constant standing for one) in an operand that names a parameter.
+  std::optional<std::int64_t> value;
+  const Symbol* sym = nullptr;
+  if (t->kind == Kind::Number) {
+    // The literal's value (decimal, 0x, $, 0b, %); the lexer has checked its digits.
+    std::string_view s = t->text;
+    int base = 10;
+    if (s.size() > 2 && s[0] == '0' && (s[1] == 'x' || s[1] == 'X')) base = 16, s.remove_prefix(2);
+    else if (s.size() > 2 && s[0] == '0' && (s[1] == 'b' || s[1] == 'B')) base = 2, s.remove_prefix(2);
+    else if (!s.empty() && s[0] == '$') base = 16, s.remove_prefix(1);
+    else if (!s.empty() && s[0] == '%') base = 2, s.remove_prefix(1);
+    std::uint64_t v = 0;
+    for (char ch : s) v = v * static_cast<unsigned>(base) + static_cast<unsigned>(ch >= 'a' ? ch - 'a' + 10 : ch >= 'A' ? ch - 'A' + 10 : ch - '0');
+    value = static_cast<std::int64_t>(v);
+  } else if (t->kind == Kind::Name && !(c.op && c.operand < 0)) {
+    sym = symbol(*doc, t->text);
+    if (sym) {
+      value = sym->value;
+      text = sym->kind == SymbolKind::Label ? "label `" + sym->name + "`: address " + std::to_string(sym->value)
+                                            : "constant `" + sym->name + "` = " + std::to_string(sym->value);
+    } else if (c.op && c.operand >= 0 && static_cast<std::size_t>(c.operand) < c.op->operands.size() &&
+               c.op->operands[static_cast<std::size_t>(c.operand)].role == Role::Keyword) {
+      auto kv = keyword_value(c.op->operands[static_cast<std::size_t>(c.operand)].keywords, t->text);
+      if (kv) text = "keyword `" + std::string(t->text) + "` = " + std::to_string(*kv);
+    }
+  }
+  if (value && c.op && c.operand >= 0 && static_cast<std::size_t>(c.operand) < c.op->operands.size()) {
+    Role role = c.op->operands[static_cast<std::size_t>(c.operand)].role;
+    const ParamInfo* p = nullptr;
+    if (role == Role::AxisParam) {
+      p = prof.axis_param(static_cast<int>(*value));
+      if (!p) text += (text.empty() ? "" : "\n\n") + std::string("axis parameter ") + std::to_string(*value) + ": not a parameter of " + std::string(prof.name);
+    } else if (role == Role::GlobalParam) {
+      int bank = 0;
+      for (std::size_t k = 0; k < c.op->operands.size() && k < c.operands_first.size(); ++k)
+        if (c.op->operands[k].role == Role::Bank && c.operands_first[k] && c.operands_first[k]->kind == Kind::Number)
+          bank = std::atoi(std::string(c.operands_first[k]->text).c_str());
+      p = prof.global_param(bank, static_cast<int>(*value));
+      if (!p) text += (text.empty() ? "" : "\n\n") + std::string("global parameter ") + std::to_string(*value) + " of bank " + std::to_string(bank) + ": not in " + std::string(prof.name);
+    }
+    if (p) text += (text.empty() ? "" : "\n\n") + param_text(*p) + " (" + std::string(prof.name) + ")";
+  }
+  if (text.empty()) return r;
+  r.result = markdown(text);
+  r.result.set("range", range_of(*doc, t->offset, t->text.size()));
+  return r;
+}
+
+Server::Reply Server::definition(const Value& params) {
+  Reply err;
+  Document* doc = find_document(params, err);
+  std::size_t offset;
+  if (!doc || !position(*doc, params, offset, err)) return err;
+  Reply r;
+  const SourceToken* t = token_at(*doc, offset);
+  if (!t || t->kind != Kind::Name) return r;
+  const Symbol* s = symbol(*doc, t->text);
+  if (!s || s->defined_at.file < 0) return r;
+  r.result = location_of(s->defined_at, *doc->result);
+  return r;
+}
+
+Server::Reply Server::references(const Value& params) {
+  Reply err;
+  Document* doc = find_document(params, err);
+  std::size_t offset;
+  if (!doc || !position(*doc, params, offset, err)) return err;
+  Reply r;
+  const SourceToken* t = token_at(*doc, offset);
+  if (!t || t->kind != Kind::Name) return r;
+  std::string name(t->text);
+  bool with_decl = params["context"]["includeDeclaration"].as_bool(true);
+  const Symbol* s = symbol(*doc, name);
+  r.result = Value::array();
+  // Every file of the unit: a name used in an include is the same symbol.
+  const AsmResult& res = *doc->result;
+  for (std::size_t f = 0; f < res.sources.files.size(); ++f) {
+    const SourceFile& file = res.sources.files[f];
+    auto toks = tokenize(file.text);
+    for (std::size_t k = 0; k < toks.size(); ++k) {
+      if (toks[k].kind != Kind::Name || toks[k].text != name) continue;
+      bool is_decl = s && static_cast<int>(f) == s->defined_at.file && toks[k].line == s->defined_at.line && toks[k].col == s->defined_at.col;
+      if (is_decl && !with_decl) continue;
+      r.result.push(location_of(SourceLoc{static_cast<int>(f), toks[k].line, toks[k].col, static_cast<int>(toks[k].text.size())}, res));
+    }
+  }
+  return r;
+}
+
+Server::Reply Server::completion(const Value& params) {
+  Reply err;
+  Document* doc = find_document(params, err);
+  std::size_t offset;
+  if (!doc || !position(*doc, params, offset, err)) return err;
+  Reply r;
+  r.result = Value::array();
+  auto item = [&](std::string label, int kind, std::string detail) {
+    Value& i = r.result.push(Value::object());
+    i.set("label", std::move(label));
+    i.set("kind", kind);
+    if (!detail.empty()) i.set("detail", std::move(detail));
+  };
+  // The token before the cursor decides: the first word of a line is a mnemonic; after it, the
+  // operand's role decides what fits.
+  auto it = std::lower_bound(doc->tokens.begin(), doc->tokens.end(), offset,
+                             [](const SourceToken& t, std::size_t o) { return t.offset + t.text.size() < o; });
+  bool in_token = it != doc->tokens.end() && it->offset < offset && it->kind != Kind::Newline;
+  // Cursor after the last token of a line (or in blank space): the context is that of a new token.
+  Context c;
+  if (!doc->tokens.empty()) {
+    std::size_t line_begin = doc->line_starts[static_cast<std::size_t>(std::upper_bound(doc->line_starts.begin(), doc->line_starts.end(), offset) - doc->line_starts.begin()) - 1];
+    std::vector<SourceToken> line;
+    for (const SourceToken& t : doc->tokens)
+      if (t.offset >= line_begin && t.offset < offset && t.kind != Kind::Newline) line.push_back(t);
+    if (!in_token) line.push_back(SourceToken{Kind::Name, std::string_view(), offset, 0, 0});
+    line.push_back(SourceToken{Kind::Newline, std::string_view(), offset, 0, 0});
+    c = context_at(line, line.size() - 2);
+    if (!line.empty() && line.front().kind == Kind::Directive && lower(line.front().text) == "#include") {
+      for (const auto& [name, text] : bundled_includes()) item(name, 17, "bundled include file");
+      return r;
+    }
+  }
+  const Profile& prof = profile();
+  if (!c.op || c.operand < 0) {
+    for (const OpInfo& op : all_ops())
+      if (!op.mnemonic.empty() && !op.control) item(std::string(op.mnemonic), 14, std::string(op.meaning));
+    return r;
+  }
+  const auto& ops = c.op->operands;
+  Role role = static_cast<std::size_t>(c.operand) < ops.size() ? ops[static_cast<std::size_t>(c.operand)].role : Role::Data;
+  if (role == Role::Keyword) {
+    for (const Keyword& k : all_keywords())
+      if (k.set == ops[static_cast<std::size_t>(c.operand)].keywords) item(std::string(k.name), 14, std::to_string(k.value));
+  } else if (role == Role::AxisParam) {
+    for (const ParamInfo& p : prof.axis_params) item(std::to_string(p.number), 12, param_text(p));
+  } else if (role == Role::GlobalParam) {
+    for (const ParamInfo& p : prof.bank0) item(std::to_string(p.number), 12, param_text(p) + " (bank 0)");
+  }
+  if (doc->result)
+    for (const Symbol& s : doc->result->symbols) {
+      if (role == Role::Address && s.kind != SymbolKind::Label) continue;
+      item(s.name, s.kind == SymbolKind::Label ? 18 : 21,
+           (s.kind == SymbolKind::Label ? "label, address " : "constant = ") + std::to_string(s.value));
+    }
+  return r;
+}
+
+Server::Reply Server::document_symbols(const Value& params) {
+  Reply err;
+  Document* doc = find_document(params, err);
+  if (!doc) return err;
+  Reply r;
+  r.result = Value::array();
+  if (!doc->result) return r;
+  for (const Symbol& s : doc->result->symbols) {
+    if (s.defined_at.file != 0) continue;  // this file's own symbols
+    Value& o = r.result.push(Value::object());
+    o.set("name", s.name);
+    o.set("kind", s.kind == SymbolKind::Label ? 12 : 14);  // Function, Constant
+    o.set("detail", (s.kind == SymbolKind::Label ? "address " : "= ") + std::to_string(s.value));
+    Value loc = location_of(s.defined_at, *doc->result);
+    o.set("range", loc["range"]);
+    o.set("selectionRange", loc["range"]);
+  }
+  return r;
+}
+
+Server::Reply Server::formatting(const Value& params) {
+  Reply err;
+  Document* doc = find_document(params, err);
+  if (!doc) return err;
+  FormatResult f = format_source(doc->text);
+  if (!f.ok) return {Value(), kRequestFailed, "cannot format: " + f.error};
+  Reply r;
+  r.result = Value::array();
+  if (f.text == doc->text) return r;
+  Value& edit = r.result.push(Value::object());
+  edit.set("range", range_of(*doc, 0, doc->text.size()));
+  edit.set("newText", f.text);
+  return r;
+}
+
+}  // namespace tmcl::lsp

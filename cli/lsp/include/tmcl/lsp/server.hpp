@@ -1,0 +1,118 @@
+// The TMCL language server (tmcl-lsp, docs/lsp.md): JSON-RPC 2.0 over Content-Length framed
+// messages, the LSP lifecycle, open documents with full and incremental sync, and the features
+// (diagnostics, hover, definition, references, completion, document symbols, formatting), all
+// computed by the assembler library on the editor's text. The Server is transport-free: it takes
+// one message body and returns the bodies to send, so tests drive it directly.
+#pragma once
+
+#include <cstdio>
+#include <map>
+#include <memory>
+#include <optional>
+#include <set>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "tmcl/asm/assembler.hpp"
+#include "tmcl/asm/format.hpp"
+#include "tmcl/json.hpp"
+
+namespace tmcl::lsp {
+
+// ---- framing --------------------------------------------------------------------------------
+// "Content-Length: N\r\n\r\n" + body.
+std::string frame(std::string_view body);
+
+// Reads framed messages from a file descriptor. A malformed header is reported (error set) and
+// skipped up to the next blank line, so the server can answer it and go on.
+class Reader {
+ public:
+  explicit Reader(int fd) : fd_(fd) {}
+  enum class Status { Message, BadHeader, End };
+  Status next(std::string& body, std::string& error);
+
+ private:
+  bool fill();
+  int fd_;
+  std::string buf_;
+  bool eof_ = false;
+};
+
+// ---- the server -------------------------------------------------------------------------------
+struct Document {
+  std::string uri;
+  std::string path;
+  std::string text;
+  std::int64_t version = 0;
+  std::vector<std::size_t> line_starts;  // byte offset of each line
+  std::vector<SourceToken> tokens;       // of text (tokenize)
+  std::shared_ptr<AsmResult> result;     // the last assembly of this document as a root file
+  std::set<std::string> reads;           // paths that assembly read (for re-checking includers)
+};
+
+struct Settings {
+  std::string target = "generic";         // -t
+  std::vector<std::string> include_dirs;  // -I
+};
+
+class Server {
+ public:
+  Server();
+  // Handles one message body; returns the message bodies to send, in order.
+  std::vector<std::string> handle(std::string_view body);
+  bool exited() const { return exited_; }
+  int exit_code() const { return shutdown_ ? 0 : 1; }
+  const Document* document(const std::string& uri) const;
+
+ private:
+  using Value = json::Value;
+  struct Reply {  // a result, or an error (code != 0)
+    Value result;
+    int code = 0;
+    std::string message;
+  };
+
+  Reply dispatch(const std::string& method, const Value& params, bool is_request);
+  Reply initialize(const Value& params);
+  void open(const Value& params);
+  Reply change(const Value& params);
+  void check(Document& doc);
+  void check_includers(const std::string& path);
+  Value diagnostics_of(const Document& doc) const;
+
+  // Features (features.cpp).
+  Reply hover(const Value& params);
+  Reply definition(const Value& params);
+  Reply references(const Value& params);
+  Reply completion(const Value& params);
+  Reply document_symbols(const Value& params);
+  Reply formatting(const Value& params);
+
+  // Finding the document and the token a request is about; errors as replies.
+  Document* find_document(const Value& params, Reply& err);
+  bool position(const Document& doc, const Value& params, std::size_t& offset, Reply& err) const;
+  const SourceToken* token_at(const Document& doc, std::size_t offset) const;
+  Value range_of(const Document& doc, std::size_t offset, std::size_t len) const;
+  Value location_of(const SourceLoc& loc, const AsmResult& r) const;
+  const Profile& profile() const;
+  const Symbol* symbol(const Document& doc, std::string_view name) const;
+
+  std::map<std::string, Document> docs_;
+  std::vector<std::string> out_;  // notifications produced while handling a message
+  Settings settings_;
+  bool initialized_ = false;
+  bool shutdown_ = false;
+  bool exited_ = false;
+};
+
+// file:///a%20b/c.tmc <-> /a b/c.tmc
+std::string uri_to_path(std::string_view uri);
+std::string path_to_uri(std::string_view path);
+
+// Byte offset of (line, UTF-16 character) in text with these line starts, clamped to the line;
+// and the UTF-16 character of a byte offset within its line.
+std::size_t offset_of(std::string_view text, const std::vector<std::size_t>& starts, std::size_t line, std::size_t character);
+std::size_t utf16_column(std::string_view line, std::size_t bytes);
+
+}  // namespace tmcl::lsp

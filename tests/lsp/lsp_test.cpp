@@ -1,0 +1,218 @@
+// Protocol tests of the language server (cli/lsp/): a scripted client sends every request the
+// server offers and every kind of bad input, and checks the exact replies. The Reader is tested
+// on a pipe with good, bad and truncated frames.
+#define TMCL_TEST_MAIN
+#include <unistd.h>
+
+#include <cstdio>
+
+#include "check.hpp"
+#include "tmcl/json.hpp"
+#include "tmcl/lsp/server.hpp"
+
+using tmcl::json::Value;
+
+namespace {
+
+struct Client {
+  tmcl::lsp::Server server;
+  int next_id = 1;
+  std::vector<Value> notifications;
+  Value last;  // the last response (replies are read through references into it)
+
+  // Sends a request; returns its response (notifications sent meanwhile are kept).
+  const Value& request(const std::string& method, const std::string& params) {
+    int id = next_id++;
+    std::string body = R"({"jsonrpc":"2.0","id":)" + std::to_string(id) + R"(,"method":")" + method + R"(","params":)" + params + "}";
+    return send(body, id);
+  }
+  void notify(const std::string& method, const std::string& params) {
+    send(R"({"jsonrpc":"2.0","method":")" + method + R"(","params":)" + params + "}", -1);
+  }
+  const Value& send(const std::string& body, int id) {
+    Value& response = last;
+    response = Value();
+    for (const std::string& out : server.handle(body)) {
+      Value v;
+      tmcl::json::Error e;
+      if (!tmcl::json::parse(out, v, e)) tmcl_test::fail(__FILE__, __LINE__, "server sent bad JSON: " + out);
+      if (v.contains("method")) notifications.push_back(v);
+      else if (v["id"].as_int(-2) == id || id == 0) response = v;
+    }
+    return response;
+  }
+  void open(const std::string& uri, const std::string& text) {
+    notify("textDocument/didOpen", R"({"textDocument":{"uri":")" + uri + R"(","languageId":"tmcl","version":1,"text":)" +
+                                       tmcl::json::quote(text) + "}}");
+  }
+  Value last_diagnostics(const std::string& uri) {
+    for (auto it = notifications.rbegin(); it != notifications.rend(); ++it)
+      if ((*it)["params"]["uri"].as_string() == uri) return (*it)["params"]["diagnostics"];
+    return Value();
+  }
+};
+
+std::string pos(const std::string& uri, int line, int ch) {
+  return R"({"textDocument":{"uri":")" + uri + R"("},"position":{"line":)" + std::to_string(line) + R"(,"character":)" +
+         std::to_string(ch) + "}}";
+}
+
+const char* kUri = "file:///work/t.tmc";
+const char* kProgram =
+    "Speed = 1000\n"
+    "Loop:\n"
+    "  SAP 4, 0, Speed\n"
+    "  MVP ABS, 0, 100\n"
+    "  JA Lop\n";
+
+void start(Client& c, const std::string& options = R"({"target":"usb-2-sd"})") {
+  Value r = c.request("initialize", R"({"processId":null,"capabilities":{},"initializationOptions":)" + options + "}");
+  CHECK(r["result"]["capabilities"]["hoverProvider"].as_bool());
+  c.notify("initialized", "{}");
+}
+
+}  // namespace
+
+TEST(lifecycle) {
+  Client c;
+  Value early = c.request("textDocument/hover", pos(kUri, 0, 0));
+  CHECK_EQ(early["error"]["code"].as_int(), -32002);
+  start(c);
+  CHECK_EQ(tmcl::json::write(c.request("initialize", "{}")["error"]["code"]), "-32600");
+  CHECK_EQ(tmcl::json::write(c.request("initialize", "{}")["error"]["code"]), "-32600");
+  Value s = c.request("shutdown", "null");
+  CHECK(s.contains("result") && s["result"].is_null());
+  CHECK_EQ(c.request("textDocument/hover", pos(kUri, 0, 0))["error"]["code"].as_int(), -32600);
+  CHECK(!c.server.exited());
+  c.notify("exit", "null");
+  CHECK(c.server.exited());
+  CHECK_EQ(c.server.exit_code(), 0);
+  Client d;
+  d.notify("exit", "null");
+  CHECK_EQ(d.server.exit_code(), 1);  // exit without shutdown
+}
+
+TEST(diagnostics_on_open_and_incremental_change) {
+  Client c;
+  start(c);
+  c.open(kUri, kProgram);
+  Value d = c.last_diagnostics(kUri);
+  CHECK_EQ(d.size(), 1u);
+  CHECK_EQ(d.at(0)["message"].as_string(), "use of undefined symbol 'Lop'");
+  CHECK_EQ(tmcl::json::write(d.at(0)["range"]), R"({"start":{"line":4,"character":5},"end":{"line":4,"character":8}})");
+  CHECK_EQ(d.at(0)["severity"].as_int(), 1);
+  // Insert the missing "o": an incremental change.
+  c.notify("textDocument/didChange", R"({"textDocument":{"uri":"file:///work/t.tmc","version":2},"contentChanges":[)"
+                                     R"({"range":{"start":{"line":4,"character":6},"end":{"line":4,"character":6}},"text":"o"}]})");
+  CHECK_EQ(c.last_diagnostics(kUri).size(), 0u);
+  CHECK_EQ(c.server.document(kUri)->text.substr(c.server.document(kUri)->text.size() - 8), "JA Loop\n");
+  CHECK_EQ(c.notifications.back()["params"]["version"].as_int(), 2);
+  // A full replacement, then a warning with its name as the code.
+  c.notify("textDocument/didChange", R"({"textDocument":{"uri":"file:///work/t.tmc","version":3},"contentChanges":[)"
+                                     R"({"text":"  SAP 4, 0, 99999999\n"}]})");
+  Value w = c.last_diagnostics(kUri);
+  CHECK_EQ(w.size(), 1u);
+  CHECK(w.at(0)["severity"].as_int() <= 2);
+  c.notify("textDocument/didClose", R"({"textDocument":{"uri":"file:///work/t.tmc"}})");
+  CHECK_EQ(c.last_diagnostics(kUri).size(), 0u);
+  CHECK(c.server.document(kUri) == nullptr);
+}
+
+TEST(hover) {
+  Client c;
+  start(c);
+  c.open(kUri, kProgram);
+  CHECK_EQ(c.request("textDocument/hover", pos(kUri, 2, 6))["result"]["contents"]["value"].as_string(),
+           "4: Maximum positioning speed, 0…16777215, RW, default 51200 (usb-2-sd)");
+  CHECK_EQ(c.request("textDocument/hover", pos(kUri, 2, 3))["result"]["contents"]["value"].as_string(),
+           "```tmcl\nSAP <axis parameter>, <motor>, <value>\n```\nSet axis parameter (opcode 5)");
+  CHECK_EQ(c.request("textDocument/hover", pos(kUri, 2, 12))["result"]["contents"]["value"].as_string(),
+           "constant `Speed` = 1000");
+  CHECK(c.request("textDocument/hover", pos(kUri, 3, 0))["result"].is_null());  // blank before MVP
+}
+
+TEST(definition_references_symbols_completion_formatting) {
+  Client c;
+  start(c);
+  c.open(kUri, std::string(kProgram) + "  JA Loop\n");
+  Value def = c.request("textDocument/definition", pos(kUri, 5, 6))["result"];
+  CHECK_EQ(tmcl::json::write(def), R"({"uri":"file:///work/t.tmc","range":{"start":{"line":1,"character":0},"end":{"line":1,"character":4}}})");
+  Value refs = c.request("textDocument/references",
+                         R"({"textDocument":{"uri":"file:///work/t.tmc"},"position":{"line":1,"character":1},"context":{"includeDeclaration":false}})")["result"];
+  CHECK_EQ(refs.size(), 1u);
+  CHECK_EQ(refs.at(0)["range"]["start"]["line"].as_int(), 5);
+  Value syms = c.request("textDocument/documentSymbol", R"({"textDocument":{"uri":"file:///work/t.tmc"}})")["result"];
+  CHECK_EQ(syms.size(), 2u);
+  Value comp = c.request("textDocument/completion", pos(kUri, 3, 6))["result"];
+  CHECK_EQ(comp.at(0)["label"].as_string(), "ABS");
+  Value mn = c.request("textDocument/completion", pos(kUri, 3, 2))["result"];
+  CHECK(mn.size() > 40);
+  Value params = c.request("textDocument/completion", pos(kUri, 2, 6))["result"];
+  CHECK_EQ(params.at(0)["label"].as_string(), "0");
+  c.open("file:///work/u.tmc", "loop: sap 4,0,1\nja loop\n");
+  Value f = c.request("textDocument/formatting", R"({"textDocument":{"uri":"file:///work/u.tmc"},"options":{"tabSize":2,"insertSpaces":true}})")["result"];
+  CHECK_EQ(f.size(), 1u);
+  CHECK_EQ(f.at(0)["newText"].as_string(), "loop:\n  SAP 4, 0, 1\n  JA loop\n");
+  c.open("file:///work/bad.tmc", "sap 4, 0, 1@\n");
+  Value bad = c.request("textDocument/formatting", R"({"textDocument":{"uri":"file:///work/bad.tmc"},"options":{}})");
+  CHECK_EQ(bad["error"]["code"].as_int(), -32803);
+}
+
+TEST(bad_input_gets_error_responses) {
+  Client c;
+  start(c);
+  c.open(kUri, kProgram);
+  Value r = c.send("{bad json", 0);
+  CHECK_EQ(r["error"]["code"].as_int(), -32700);
+  CHECK(r["id"].is_null());
+  CHECK_EQ(c.send(R"([1,2])", 0)["error"]["code"].as_int(), -32600);
+  CHECK_EQ(c.send(R"({"jsonrpc":"2.0","id":{"x":1},"method":"shutdown"})", 0)["error"]["code"].as_int(), -32600);
+  CHECK_EQ(c.request("no/such", "{}")["error"]["code"].as_int(), -32601);
+  CHECK_EQ(c.request("textDocument/hover", pos("file:///nowhere.tmc", 0, 0))["error"]["message"].as_string(),
+           "unknown document 'file:///nowhere.tmc' (not opened with didOpen)");
+  CHECK_EQ(c.request("textDocument/hover", pos(kUri, 99, 0))["error"]["message"].as_string(),
+           "position line 99 is outside the document (6 lines)");
+  CHECK_EQ(c.request("textDocument/hover", R"({"textDocument":{"uri":"file:///work/t.tmc"}})")["error"]["code"].as_int(), -32602);
+  CHECK(c.request("textDocument/hover", pos(kUri, 2, 500)).contains("result"));  // a column past the end clamps
+  c.notify("$/cancelRequest", R"({"id":1})");  // unknown notifications are ignored
+  CHECK(!c.server.exited());
+}
+
+TEST(includers_are_rechecked) {
+  Client c;
+  start(c);
+  c.open("file:///work/lib.inc", "Far = 100\n");
+  c.open("file:///work/main.tmc", "#include lib.inc\n  MVP ABS, 0, Far\n");
+  CHECK_EQ(c.last_diagnostics("file:///work/main.tmc").size(), 0u);
+  c.notify("textDocument/didChange", R"({"textDocument":{"uri":"file:///work/lib.inc","version":2},"contentChanges":[{"text":"Near = 1\n"}]})");
+  Value d = c.last_diagnostics("file:///work/main.tmc");
+  CHECK_EQ(d.size(), 1u);
+  CHECK_EQ(d.at(0)["message"].as_string(), "use of undefined symbol 'Far'");
+}
+
+TEST(framing_on_a_pipe) {
+  int fds[2];
+  CHECK(pipe(fds) == 0);
+  std::string input = tmcl::lsp::frame("{}") + "Content-Length: x\r\n\r\n" + "Content-Type: a\r\ncontent-length: 2\r\n\r\n[]" +
+                      "Content-Length: 10\r\n\r\n{";
+  CHECK(write(fds[1], input.data(), input.size()) == static_cast<ssize_t>(input.size()));
+  close(fds[1]);
+  tmcl::lsp::Reader reader(fds[0]);
+  std::string body, error;
+  CHECK(reader.next(body, error) == tmcl::lsp::Reader::Status::Message);
+  CHECK_EQ(body, "{}");
+  CHECK(reader.next(body, error) == tmcl::lsp::Reader::Status::BadHeader);
+  CHECK_EQ(error, "bad Content-Length 'x' (expected a byte count up to 256 MiB)");
+  CHECK(reader.next(body, error) == tmcl::lsp::Reader::Status::Message);
+  CHECK_EQ(body, "[]");
+  CHECK(reader.next(body, error) == tmcl::lsp::Reader::Status::End);
+  CHECK_EQ(error, "input ended inside a message body");
+  close(fds[0]);
+}
+
+TEST(positions_count_utf16) {
+  CHECK_EQ(tmcl::lsp::utf16_column("// \xC3\xA9x", 5), 4u);
+  CHECK_EQ(tmcl::lsp::utf16_column("// \xF0\x9F\x98\x80x", 7), 5u);
+  CHECK_EQ(tmcl::lsp::uri_to_path("file:///a%20b/c.tmc"), "/a b/c.tmc");
+  CHECK_EQ(tmcl::lsp::path_to_uri("/a b/c.tmc"), "file:///a%20b/c.tmc");
+}
