@@ -294,7 +294,6 @@ struct Session {
       std::fprintf(stderr, "tmclctl: error: %s\n", r.error.c_str());
       return exit_for(r.fail);
     }
-    print_events();
     if (need_ok && r.reply.status != host::kStatusOk) {
       std::fprintf(stderr, "tmclctl: error: module %d answered %d (%s) to %s\n", o.client.module, r.reply.status,
                    host::status_text(r.reply.status).c_str(), client.describe(ins).c_str());
@@ -303,6 +302,7 @@ struct Session {
     return kExitOk;
   }
 
+  // 138's second replies that arrived meanwhile, after the output of the request that met them.
   void print_events() {
     for (const auto& e : client.take_events())
       std::printf("event: position reached (motor mask 0x%" PRIX32 ")\n", static_cast<std::uint32_t>(e.value));
@@ -321,6 +321,7 @@ struct Session {
     } else {
       std::printf("%d %s, value %" PRId32 "\n", r.reply.status, host::status_text(r.reply.status).c_str(), r.reply.value);
     }
+    print_events();
     return r.reply.status == host::kStatusOk || r.reply.status == host::kStatusLoaded ? kExitOk : kExitStatus;
   }
 

@@ -139,6 +139,10 @@ TEST(run_stop_step_reset_status) {
   CHECK(has(s.out, "accumulator:      1\n"));
   CHECK_EQ(ctl({p, "run", "1"}).status, 0);
   CHECK(has(ctl({p, "status"}).out, "mode:             running"));
+  Output auto_start = ctl({"-t", "usb-2-sd", p, "download", "--autostart", src});
+  CHECK_EQ(auto_start.status, 0);
+  CHECK(has(auto_start.out, "autostart on (global parameter 77 = 1, stored)"));
+  CHECK_EQ(ctl({"-t", "usb-2-sd", p, "get", "gp", "77"}).out, "1\n");
   Output bad = ctl({p, "run", "9"});  // outside the program: status 4
   CHECK_EQ(bad.status, 2);
   CHECK(has(bad.err, "answered 4 (invalid value)"));
@@ -359,6 +363,21 @@ TEST(console_session) {
   CHECK(has(o.out, "GAP 4, 0\n100 success, value 99\n"));
   CHECK(has(o.out, "   1  SAP 4, 0, 99\n   2  GAP 4, 0\n   3  GAP 4, 0\n"));
   CHECK(has(o.err, "<command line>:1:"));
+}
+
+TEST(position_reached_events_are_routed) {
+  // 138's second reply comes unasked; with the ideal core it follows the MVP's reply at once.
+  Server server(kRun, {"--serve", "pty", "-t", "usb-2-sd", "--motion", "ideal"});
+  const std::string in = write_temp("events.txt", ".raw 138, 0, 0, 1\nMVP ABS, 0, 100\nGAP 1, 0\nMVP ABS, 0, 50\nGAP 1, 0\n");
+  Output o = hosttest::run({"/bin/sh", "-c", kCtl + " -t usb-2-sd " + server.port() + " console < " + in});
+  CHECK_EQ(o.status, 0);
+  CHECK_EQ(o.out,
+           "100 success, value 1\n"
+           "100 success, value 0\n"
+           "event: position reached (motor mask 0x1)\n"
+           "100 success, value 100\n"
+           "100 success, value 0\n"  // not announced: no event, and no reply out of step
+           "100 success, value 50\n");
 }
 
 }  // namespace
