@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <bit>
 
+#include "tmcl/params.hpp"
 #include "tmcl/vm.hpp"
 #include "vm_ops.hpp"
 
@@ -114,10 +115,10 @@ void Vm::power_on(const EepromImage* image) {
     else
       axis[static_cast<std::size_t>(motor)][static_cast<std::size_t>(param)] = value;
   }
-  if (bank0[85] == 0)
+  if (bank0[kGpDoNotRestoreUserVars] == 0)
     for (const auto& [n, value] : image->vars)
       if (n >= 0 && n < 256) vars[static_cast<std::size_t>(n)] = value;
-  if (bank0[84] != 0)
+  if (bank0[kGpCoordinatesInEeprom] != 0)
     for (const auto& [key, value] : image->coords) {
       auto [motor, n] = key;
       if (motor_ok(motor) && n > 0 && n < profile->coords)

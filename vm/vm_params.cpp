@@ -1,6 +1,7 @@
 // Parameter, coordinate, I/O and motion-command access with the module profile's rules. Each
 // function returns a direct-mode status; standalone mode ignores a command whose status is not
 // 100 (E3). Motion parameters the core owns are forwarded to it, everything else lives in the VM.
+#include "tmcl/params.hpp"
 #include "tmcl/vm.hpp"
 
 namespace tmcl {
@@ -22,7 +23,10 @@ std::uint8_t from_core(ParamWrite w) {
 const ParamInfo* rules(const Profile& profile, const ParamInfo* p) { return profile.any_parameter ? nullptr : p; }
 
 // Global parameters the VM computes itself, whatever the profile's table says about storage.
-bool computed_global(int param) { return param == 128 || param == 129 || param == 130 || param == 132 || param == 133; }
+bool computed_global(int param) {
+  return param == kGpApplicationStatus || param == kGpDownloadMode || param == kGpProgramCounter || param == kGpTickTimer ||
+         param == kGpRandomNumber;
+}
 
 // Whether bank-0 global parameter `param` has an EEPROM copy that STGP and RSGP may store or
 // restore: a known parameter marked EEPROM or auto-stored (any, on a generic profile), never a
@@ -124,12 +128,13 @@ std::uint8_t Vm::set_global(int bank, int param, std::int32_t value) {
     next_check_ = 0;
     return kStatusOk;
   }
-  if (param == 128 || param == 129 || param == 130) return kStatusWrongType;  // read-only status
-  if (param == 132) {
+  if (param == kGpApplicationStatus || param == kGpDownloadMode || param == kGpProgramCounter)
+    return kStatusWrongType;  // read-only status
+  if (param == kGpTickTimer) {
     tick_offset_ms = static_cast<std::int64_t>(static_cast<std::uint32_t>(value)) - now / kUsPerMs;
     return kStatusOk;
   }
-  if (param == 133) {
+  if (param == kGpRandomNumber) {
     random_state = static_cast<std::uint32_t>(value);
     return kStatusOk;
   }
@@ -157,11 +162,11 @@ std::uint8_t Vm::get_global(int bank, int param, std::int32_t& value) {
     return kStatusOk;
   }
   switch (param) {
-    case 128: value = static_cast<std::int32_t>(status); break;
-    case 129: value = 0; break;  // download mode: never, for a running program
-    case 130: value = pc; break;
-    case 132: value = tick_ms(); break;
-    case 133:
+    case kGpApplicationStatus: value = static_cast<std::int32_t>(status); break;
+    case kGpDownloadMode: value = 0; break;  // download mode: never, for a running program
+    case kGpProgramCounter: value = pc; break;
+    case kGpTickTimer: value = tick_ms(); break;
+    case kGpRandomNumber:
       // E17: xorshift32, 31-bit results; the seed is what SGP 133 wrote (0 becomes 1).
       if (random_state == 0) random_state = 1;
       random_state ^= random_state << 13;
@@ -218,7 +223,7 @@ std::uint8_t Vm::set_coord(int motor, int n, std::int32_t value) {
   }
   if (!motor_ok(motor)) return kStatusInvalidValue;
   coords[static_cast<std::size_t>(motor)][static_cast<std::size_t>(n)] = value;
-  if (bank0[84] != 0 && n != 0) {  // global 84: coordinates are kept in the EEPROM too
+  if (bank0[kGpCoordinatesInEeprom] != 0 && n != 0) {  // coordinates are kept in the EEPROM too
     eeprom.coords[{motor, n}] = value;
     eeprom_dirty = true;
   }
@@ -290,7 +295,7 @@ std::uint8_t Vm::move(int type, int motor, std::int32_t value) {
 
 std::uint8_t Vm::rotate(int motor, std::int64_t velocity) {
   if (!motor_ok(motor)) return kStatusInvalidValue;
-  const ParamInfo* p = rules(*profile, profile->axis_param(2));
+  const ParamInfo* p = rules(*profile, profile->axis_param(kApTargetSpeed));
   if (p ? !in_range(*p, velocity) : (velocity < INT32_MIN || velocity > INT32_MAX)) return kStatusInvalidValue;
   sync_motion();
   motion->rotate(motor, static_cast<std::int32_t>(velocity));

@@ -11,6 +11,7 @@
 
 #include "ramp_motor.hpp"
 #include "tmcl/motion.hpp"
+#include "tmcl/params.hpp"
 
 namespace tmcl {
 namespace {
@@ -20,6 +21,8 @@ using ramp::EventKind;
 using ramp::RampMotor;
 using ramp::wrap32;
 
+// The module's speed limit when the profile does not give one (generic): the TMC2300's 32767 pps.
+// A profile that lists parameter 4 sets the limit with its range (the profile is the only source).
 constexpr std::int32_t kMaxSpeed = 32767;
 constexpr int kOwned[] = {0, 1, 2, 3, 4, 5, 6, 7, 8, 140, 141, 180};
 
@@ -49,7 +52,11 @@ class LinearCore final : public ramp::RampCore<Motor> {
   std::string_view name() const override { return "linear"; }
   std::unique_ptr<MotionCore> clone() const override { return std::make_unique<LinearCore>(*this); }
 
-  void reset(const Profile& profile, int motors) override { reset_motors(profile, motors, kOwned, fallback_default); }
+  void reset(const Profile& profile, int motors) override {
+    const ParamInfo* speed = profile.any_parameter ? nullptr : profile.axis_param(kApMaxPositioningSpeed);
+    vmax_ = speed ? static_cast<std::int32_t>(std::clamp<std::int64_t>(speed->max, 0, INT32_MAX)) : kMaxSpeed;
+    reset_motors(profile, motors, kOwned, fallback_default);
+  }
 
   void advance(SimTime to, std::vector<MotionEvent>& out) override {
     collect(to, out, [](Motor& m, EventKind k) {
@@ -69,7 +76,7 @@ class LinearCore final : public ramp::RampCore<Motor> {
         return ParamWrite::Ok;
       case 2: rotate(motor, value); return ParamWrite::Ok;
       case 3: case 8: case 180: return ParamWrite::ReadOnly;
-      case 4: if (value < 0 || value > kMaxSpeed) return ParamWrite::OutOfRange; break;
+      case 4: if (value < 0 || value > vmax_) return ParamWrite::OutOfRange; break;
       case 5: if (value < 0) return ParamWrite::OutOfRange; break;
       case 6: case 7: if (value < 0 || value > 31) return ParamWrite::OutOfRange; break;
       case 140: if (value < 0 || value > 8) return ParamWrite::OutOfRange; break;
@@ -110,7 +117,7 @@ class LinearCore final : public ramp::RampCore<Motor> {
   }
   void rotate(int motor, std::int32_t velocity) override {
     Motor& m = at(motor);
-    m.vt = std::clamp(velocity, -kMaxSpeed, kMaxSpeed);
+    m.vt = std::clamp(velocity, -vmax_, vmax_);
     m.goal = Goal::Velocity;
     replan(m);
   }
@@ -131,11 +138,12 @@ class LinearCore final : public ramp::RampCore<Motor> {
   void encoder_slip(int, std::int32_t) override {}
 
  private:
+  std::int32_t vmax_ = kMaxSpeed;  // pps, from the profile's range of parameter 4 (reset)
 
   void replan(Motor& m) {
     if (m.goal == Goal::Idle) return;
     ramp::Limits lim;
-    lim.vmax = std::min(m.p[4], kMaxSpeed);
+    lim.vmax = std::min(m.p[4], vmax_);
     lim.amax = lim.astart = lim.dmax = lim.dfinal = m.p[5];
     Builder b = m.rm.restart(now_);
     if (m.goal == Goal::Position)

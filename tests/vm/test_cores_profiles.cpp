@@ -1,0 +1,38 @@
+// The motion cores against every module profile: the profile is the only source of a
+// parameter's range, default and access, so a core that owns a parameter must start at the
+// profile's default and accept the profile's whole range. For every core and every profile
+// (generic, which accepts every number, aside): each owned parameter the profile lists powers
+// up at the profile's default (writable ones; the core computes the read-only ones), and the
+// profile's minimum and maximum are accepted.
+#include <string>
+
+#include "check.hpp"
+#include "tmcl/motion.hpp"
+#include "tmcl/profile.hpp"
+
+TEST(motion_cores_agree_with_every_profile) {
+  int checked = 0;
+  for (const tmcl::Profile* p : tmcl::all_profiles()) {
+    if (p->any_parameter) continue;
+    for (const auto& name : tmcl::motion_core_names()) {
+      for (const auto& info : p->axis_params) {
+        auto core = tmcl::make_motion_core(name);
+        core->reset(*p, p->motors);
+        if (!core->owns(info.number)) continue;
+        const std::string what = name + " on " + std::string(p->name) + ", axis parameter " + std::to_string(info.number);
+        ++checked;
+        if (!(info.access & tmcl::kWrite)) continue;  // read-only: the core computes it
+        if (core->get_param(0, info.number) != info.default_value)
+          CHECK_EQ(what + ": default " + std::to_string(core->get_param(0, info.number)),
+                   what + ": default " + std::to_string(info.default_value));
+        for (std::int64_t v : {info.min, info.max}) {
+          if (v < INT32_MIN || v > INT32_MAX) continue;
+          auto r = core->set_param(0, info.number, static_cast<std::int32_t>(v));
+          if (r != tmcl::ParamWrite::Ok)
+            CHECK_EQ(what + ": " + std::to_string(v) + " refused", what + ": " + std::to_string(v) + " accepted");
+        }
+      }
+    }
+  }
+  CHECK(checked > 20);
+}

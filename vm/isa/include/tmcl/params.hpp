@@ -1,0 +1,44 @@
+// Names for the axis and global parameter numbers the code itself needs (the manuals' numbers
+// and names, USB-2-SD section 6 and TMC2300-MOTOR-EVAL section 5), so that no file writes a bare
+// 4 or 84. Only the names live here: a parameter's range, default and access come from the
+// module's profile (profile.hpp) and nowhere else.
+#pragma once
+
+#include <cstdint>
+
+namespace tmcl {
+
+// Axis parameters (SAP, GAP, AAP, STAP, RSAP).
+enum AxisParam : std::uint8_t {
+  kApTargetPosition = 0,
+  kApActualPosition = 1,
+  kApTargetSpeed = 2,
+  kApActualSpeed = 3,
+  kApMaxPositioningSpeed = 4,
+  kApMaxAcceleration = 5,
+  kApRunCurrent = 6,
+  kApStandbyCurrent = 7,
+  kApPositionReached = 8,
+  kApRelativePositioningOption = 127,
+  kApMicrostepResolution = 140,
+  kApEncoderPosition = 209,
+  kApMaxEncoderDeviation = 212,
+  kApUnitMode = 255,
+};
+
+// Global parameters of bank 0 (SGP, GGP, AGP, STGP, RSGP).
+enum GlobalParam : std::uint8_t {
+  kGpSerialAddress = 66,
+  kGpSerialHostAddress = 76,
+  kGpAutoStart = 77,
+  kGpCoordinatesInEeprom = 84,
+  kGpDoNotRestoreUserVars = 85,
+  kGpApplicationStatus = 128,
+  kGpDownloadMode = 129,
+  kGpProgramCounter = 130,
+  kGpTickTimer = 132,
+  kGpRandomNumber = 133,
+  kGpSuppressReply = 255,
+};
+
+}  // namespace tmcl
