@@ -61,7 +61,7 @@ commands:
 options:
   -a N                   module address (default 1)
   --host-address N       host address replies are sent to (default 2)
-  -t, --target NAME      module profile for names, ranges and memory (default usb-2-sd)
+  -t, --target NAME      module profile for names, ranges and memory (default generic)
   --baud N               serial baud rate, 9600 to 1000000 (default 9600; raw 8N1)
   --timeout DURATION     wait this long for each reply (default 1s)
   --retries N            resend a request this often when no reply comes (default 2)
@@ -95,10 +95,11 @@ volatile std::sig_atomic_t g_stop = 0;
 extern "C" void on_sigint(int) { g_stop = 1; }
 
 struct Options {
+  std::vector<std::string> argv;  // as given, for the resume hint
   std::string port, command;
   std::vector<std::string> args;
   host::ClientOptions client;
-  std::string target = "usb-2-sd";
+  std::string target = "generic";  // one default for every tool (errata E39)
   long baud = 9600;
   bool raw = false, quiet = false;
   std::vector<std::string> include_dirs;
@@ -129,6 +130,7 @@ bool parse_long(const std::string& s, long lo, long hi, long& out) {
 
 int parse_args(int argc, char** argv, Options& o) {
   std::vector<std::string> args(argv + 1, argv + argc);
+  o.argv = args;
   std::vector<std::string> words;
   for (std::size_t i = 0; i < args.size(); ++i) {
     std::string a = args[i];
@@ -413,6 +415,26 @@ struct Session {
     return -1;
   }
 
+  // The command line as given, with --from N after "download" (an earlier --from dropped).
+  std::string resume_command(int from) const {
+    std::string line = "tmclctl";
+    bool inserted = false;
+    for (std::size_t i = 0; i < o.argv.size(); ++i) {
+      if (o.argv[i] == "--from") {
+        ++i;
+        continue;
+      }
+      const std::string& a = o.argv[i];
+      const bool plain = a.find_first_of(" '\"\\$`*?;&|<>()") == std::string::npos && !a.empty();
+      line += " " + (plain ? a : "'" + a + "'");
+      if (a == "download" && !inserted) {
+        line += " --from " + std::to_string(from);
+        inserted = true;
+      }
+    }
+    return line;
+  }
+
   int cmd_download() {
     std::vector<Instruction> program;
     if (int rc = load_program(program); rc >= 0) return rc;
@@ -430,11 +452,8 @@ struct Session {
       client.request(Instruction{static_cast<std::uint8_t>(Op::ExitDownloadMode), 0, 0, 0});
       std::fprintf(stderr,
                    "tmclctl: interrupted after %d of %d instructions; the module holds a partial program.\n"
-                   "tmclctl: resume with: tmclctl %s download --from %d",
-                   tr.done, total, o.port.c_str(), tr.done);
-      if (o.client.module != 1) std::fprintf(stderr, " -a %d", o.client.module);
-      for (const auto& a : o.args) std::fprintf(stderr, " %s", a.c_str());
-      std::fputc('\n', stderr);
+                   "tmclctl: resume with: %s\n",
+                   tr.done, total, resume_command(tr.done).c_str());
       return kExitInterrupted;
     }
     if (tr.outcome != host::Outcome::Ok) {

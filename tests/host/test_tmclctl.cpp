@@ -336,6 +336,7 @@ TEST(ctrl_c_during_download_stops_cleanly) {
                            [](pid_t pid) { ::kill(pid, SIGINT); });
   CHECK_EQ(d.status, 130);
   CHECK(has(d.err, "interrupted after "));
+  CHECK(has(d.err, "resume with: tmclctl -t usb-2-sd " + server.port() + " download --from "));
   const auto at = d.err.find("download --from ");
   CHECK(at != std::string::npos);
   if (at == std::string::npos) return;
