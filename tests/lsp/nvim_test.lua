@@ -1,0 +1,41 @@
+-- Drives Neovim's built-in LSP client (0.7 or newer) against tmcl-lsp, headless: open a file
+-- with a mistake, wait for its diagnostic, hover on a parameter number, fix the mistake with an
+-- incremental edit and see the diagnostics clear, jump to a label's definition, format the file.
+-- Run by nvim_test.sh; TMCL_LSP and TMC_FILE come from the environment.
+local ok, err = pcall(function()
+  local file = os.getenv('TMC_FILE')
+  local id = vim.lsp.start_client({
+    cmd = { os.getenv('TMCL_LSP'), '--stdio' },
+    root_dir = vim.fn.fnamemodify(file, ':h'),
+    init_options = { target = 'usb-2-sd' },
+  })
+  assert(id, 'tmcl-lsp did not start')
+  vim.cmd('edit ' .. file)
+  vim.bo.filetype = 'tmcl' -- Neovim 0.7 does not know .tmc; the language id is the filetype
+  vim.lsp.buf_attach_client(0, id)
+  assert(vim.wait(10000, function() return #vim.diagnostic.get(0) > 0 end, 50), 'no diagnostics arrived')
+  local d = vim.diagnostic.get(0)[1]
+  assert(d.message == "use of undefined symbol 'Lop'" and d.lnum == 4 and d.col == 5,
+    'diagnostic: ' .. vim.inspect(d))
+  local uri = vim.uri_from_bufnr(0)
+  local r = vim.lsp.buf_request_sync(0, 'textDocument/hover', { textDocument = { uri = uri }, position = { line = 2, character = 4 } }, 5000)
+  local hover = r[id].result.contents.value
+  assert(hover == '4: Maximum positioning speed, 0…16777215, RW, default 51200 (usb-2-sd)', 'hover: ' .. hover)
+  vim.api.nvim_buf_set_text(0, 4, 6, 4, 6, { 'o' }) -- JA Lop -> JA Loop
+  assert(vim.wait(10000, function() return #vim.diagnostic.get(0) == 0 end, 50),
+    'diagnostics not cleared: ' .. vim.inspect(vim.diagnostic.get(0)))
+  r = vim.lsp.buf_request_sync(0, 'textDocument/definition', { textDocument = { uri = uri }, position = { line = 4, character = 6 } }, 5000)
+  assert(r[id].result.range.start.line == 1, 'definition: ' .. vim.inspect(r[id].result))
+  r = vim.lsp.buf_request_sync(0, 'textDocument/formatting', { textDocument = { uri = uri }, options = { tabSize = 2, insertSpaces = true } }, 5000)
+  vim.lsp.util.apply_text_edits(r[id].result, 0, 'utf-16')
+  local lines = vim.api.nvim_buf_get_lines(0, 0, -1, false)
+  assert(table.concat(lines, '\n') == 'Speed = 1000\nLoop:\n  SAP 4, 0, Speed\n  MVP ABS, 0, 100\n  JA Loop',
+    'formatted: ' .. vim.inspect(lines))
+end)
+if ok then
+  io.stdout:write('neovim: diagnostics, hover, incremental change, definition and formatting all passed\n')
+  vim.cmd('qall!')
+else
+  io.stderr:write('FAIL: ' .. tostring(err) .. '\n')
+  vim.cmd('cquit 1')
+end
