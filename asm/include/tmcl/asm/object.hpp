@@ -91,7 +91,8 @@ bool read_object(const std::uint8_t* data, std::size_t size, ObjectFile& out, st
 std::vector<std::uint8_t> write_library(const Library& lib);
 bool read_library(const std::uint8_t* data, std::size_t size, Library& out, std::string& error);
 
-// A readable view of every field (tmclasm --dump-object), stable for golden tests.
+// A readable view of every field (tmclasm --dump-object), stable for golden tests; in
+// object_dump.cpp, above the disassembler it uses (declared here for the tools that read objects).
 std::string dump_object(const ObjectFile& obj);
 std::string dump_library(const Library& lib);
 
