@@ -248,8 +248,9 @@ TEST(scan_bus_of_three) {
 }
 
 // One request under each fault kind: recovered with retries, reported without.
-void fault_case(const std::string& spec, const std::vector<std::string>& ctl_opts, int want_status, const std::string& want_err) {
-  Server server(kRun, {"--serve", "pty", "-t", "usb-2-sd", "--faults", spec});
+void fault_case(const std::string& spec, const std::vector<std::string>& ctl_opts, int want_status, const std::string& want_err,
+                const std::string& transport = "pty") {
+  Server server(kRun, {"--serve", transport, "-t", "usb-2-sd", "--faults", spec});
   std::vector<std::string> args = ctl_opts;
   args.insert(args.end(), {server.port(), "get", "ap", "4", "0"});
   Output o = ctl(args, 10000);
@@ -273,6 +274,27 @@ TEST(faults_recovered_or_reported) {
   fault_case("stale", {"--retries", "0"}, 0, "");
   fault_case("drop@cmd=GAP", {"--timeout", "50ms", "--retries", "1"}, 69, "(2 attempts)");
   fault_case("drop@cmd=6#1", {"--timeout", "50ms", "--retries", "1"}, 0, "");
+  // The same over TCP, where a frame split across writes is two segments.
+  const std::string tcp = "tcp:127.0.0.1:0";
+  fault_case("drop@1", {"--timeout", "100ms"}, 0, "", tcp);
+  fault_case("corrupt@1", {"--timeout", "300ms", "--retries", "0"}, 69, "only a corrupted reply", tcp);
+  fault_case("split=30ms", {"--retries", "0"}, 0, "", tcp);
+  fault_case("stale,delay=20ms", {"--retries", "0"}, 0, "", tcp);
+  fault_case("silence=250ms@1", {"--timeout", "100ms", "--retries", "5"}, 0, "", tcp);
+}
+
+TEST(scan_over_several_baud_rates) {
+  Server server(kRun, {"--serve", "pty", "-t", "usb-2-sd"});  // a pty takes any rate
+  Output s = ctl({server.port(), "scan", "--range", "1-2", "--bauds", "9600,115200"});
+  CHECK_EQ(s.status, 0);
+  CHECK_EQ(s.out,
+           "at 9600 baud:\n"
+           "address   1: firmware 0015V114 (0x000F010E), USB-2-SD (firmware 1.14)\n"
+           "at 115200 baud:\n"
+           "address   1: firmware 0015V114 (0x000F010E), USB-2-SD (firmware 1.14)\n"
+           "2 modules found\n");
+  Server tcp(kRun, {"--serve", "tcp:127.0.0.1:0"});
+  CHECK_EQ(ctl({tcp.port(), "scan", "--bauds", "9600"}).status, 64);
 }
 
 TEST(download_verify_under_seeded_faults) {
