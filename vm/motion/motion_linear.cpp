@@ -52,10 +52,12 @@ class LinearCore final : public ramp::RampCore<Motor> {
   std::string_view name() const override { return "linear"; }
   std::unique_ptr<MotionCore> clone() const override { return std::make_unique<LinearCore>(*this); }
 
+  LinearCore() : RampCore(kOwned, fallback_default) {}
+
   void reset(const Profile& profile, int motors) override {
     const ParamInfo* speed = profile.any_parameter ? nullptr : profile.axis_param(kApMaxPositioningSpeed);
     vmax_ = speed ? static_cast<std::int32_t>(std::clamp<std::int64_t>(speed->max, 0, INT32_MAX)) : kMaxSpeed;
-    reset_motors(profile, motors, kOwned, fallback_default);
+    RampCore::reset(profile, motors);
   }
 
   void advance(SimTime to, std::vector<MotionEvent>& out) override {
@@ -64,7 +66,6 @@ class LinearCore final : public ramp::RampCore<Motor> {
     });
   }
 
-  bool owns(int param) const override { return std::find(std::begin(kOwned), std::end(kOwned), param) != std::end(kOwned); }
 
   ParamWrite set_param(int motor, int param, std::int32_t value) override {
     Motor& m = at(motor);

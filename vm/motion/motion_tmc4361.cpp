@@ -62,7 +62,7 @@ class Tmc4361Core final : public ramp::RampCore<Motor> {
   std::string_view name() const override { return "tmc4361"; }
   std::unique_ptr<MotionCore> clone() const override { return std::make_unique<Tmc4361Core>(*this); }
 
-  void reset(const Profile& profile, int motors) override { reset_motors(profile, motors, kOwned, fallback_default); }
+  Tmc4361Core() : RampCore(kOwned, fallback_default) {}
 
   void advance(SimTime to, std::vector<MotionEvent>& out) override {
     collect(to, out, [](Motor& m, EventKind k) {
@@ -70,8 +70,6 @@ class Tmc4361Core final : public ramp::RampCore<Motor> {
       if (k != EventKind::VelocityReached) m.goal = Goal::Idle, m.trip_t = ramp::kInf;
     });
   }
-
-  bool owns(int param) const override { return std::find(std::begin(kOwned), std::end(kOwned), param) != std::end(kOwned); }
 
   ParamWrite set_param(int motor, int param, std::int32_t value) override {
     Motor& m = at(motor);

@@ -5,9 +5,9 @@
 #pragma once
 
 #include <algorithm>
-
 #include <cmath>
 #include <cstdint>
+#include <span>
 
 #include "ramp.hpp"
 #include "tmcl/motion.hpp"
@@ -71,6 +71,23 @@ struct RampMotor {
 template <class M>
 class RampCore : public MotionCore {
  public:
+  // `owned`: the axis parameters the core owns (a static table); `fallback`: their power-on
+  // values where the profile does not list them (a core used with another module's profile).
+  RampCore(std::span<const int> owned, std::int32_t (*fallback)(int)) : owned_(owned), fallback_(fallback) {}
+
+  // Power-on: every owned parameter at the profile's default, else at fallback(number).
+  void reset(const Profile& profile, int motors) override {
+    motors_.assign(static_cast<std::size_t>(motors), M{});
+    for (auto& m : motors_)
+      for (int n : owned_) {
+        const ParamInfo* info = profile.axis_param(n);
+        m.p[static_cast<std::size_t>(n)] = info ? info->default_value : fallback_(n);
+      }
+    now_ = 0;
+    pending_.clear();
+  }
+  bool owns(int param) const override { return std::find(owned_.begin(), owned_.end(), param) != owned_.end(); }
+
   SimTime next_event() const override {
     SimTime t = kNever;
     for (const auto& m : motors_) t = std::min(t, m.rm.next_event());
@@ -93,19 +110,6 @@ class RampCore : public MotionCore {
   }
 
  protected:
-  // Power-on: every owned parameter at the profile's default, else at fallback(number).
-  template <std::size_t N, class Fallback>
-  void reset_motors(const Profile& profile, int motors, const int (&owned)[N], Fallback fallback) {
-    motors_.assign(static_cast<std::size_t>(motors), M{});
-    for (auto& m : motors_)
-      for (int n : owned) {
-        const ParamInfo* info = profile.axis_param(n);
-        m.p[static_cast<std::size_t>(n)] = info ? info->default_value : fallback(n);
-      }
-    now_ = 0;
-    pending_.clear();
-  }
-
   // Advances to `to` and appends the events on the way; on_event(motor, kind) runs after each.
   template <class OnEvent>
   void collect(SimTime to, std::vector<MotionEvent>& out, OnEvent on_event) {
@@ -152,6 +156,8 @@ class RampCore : public MotionCore {
     return MotionEventKind::Stopped;
   }
 
+  std::span<const int> owned_;
+  std::int32_t (*fallback_)(int);
   std::vector<M> motors_;
   SimTime now_ = 0;
   std::vector<MotionEvent> pending_;  // caused by a command, reported by the next advance
