@@ -151,17 +151,6 @@ const char* severity_word(Severity s) {
   return "?";
 }
 
-// Shows the line with non-printable bytes replaced, so the caret stays under the right column.
-std::string printable(std::string_view line) {
-  std::string out(line);
-  for (auto& c : out) {
-    auto u = static_cast<unsigned char>(c);
-    if (c == '\t') continue;
-    if (u < 0x20 || u >= 0x7f) c = '?';
-  }
-  return out;
-}
-
 void render_one(std::string& out, const Diagnostic& d, const SourceSet& sources, bool with_chain) {
   const SourceFile* f = (d.loc.file >= 0 && static_cast<std::size_t>(d.loc.file) < sources.files.size())
                             ? &sources.files[static_cast<std::size_t>(d.loc.file)]
@@ -187,18 +176,8 @@ void render_one(std::string& out, const Diagnostic& d, const SourceSet& sources,
   out += "\n";
   if (f && d.loc.line > 0 && d.loc.col > 0) {
     std::string_view line = f->line(d.loc.line);
-    if (!line.empty() || d.loc.col <= 1) {
-      out += " " + printable(line) + "\n ";
-      int col = std::max(1, d.loc.col);
-      for (int i = 1; i < col; ++i) {
-        bool tab = static_cast<std::size_t>(i - 1) < line.size() && line[static_cast<std::size_t>(i - 1)] == '\t';
-        out += tab ? '\t' : ' ';
-      }
-      out += '^';
-      int room = static_cast<int>(line.size()) - col;
-      for (int i = 1; i < std::min(d.loc.len, room + 1); ++i) out += '~';
-      out += "\n";
-    }
+    // The same line-and-caret form as every other file reader's (diag_text.hpp).
+    if (!line.empty() || d.loc.col <= 1) out += caret_lines(line, d.loc.col, d.loc.len);
   }
 }
 
