@@ -411,7 +411,7 @@ LibraryResult make_library(const std::vector<std::string>& files, const AsmOptio
         AsmOptions o = options;
         o.relocatable = true;
         AsmResult r = assemble({file}, o, preloaded);
-        out.messages += r.diags.render(r.sources);
+        out.messages += r.diags.render(r.sources, options.error_limit);
         out.errors += r.diags.error_count();
         out.warnings += r.diags.warning_count();
         if (!r.ok() || !r.object) continue;
