@@ -25,21 +25,21 @@ std::bitset<256> every_opcode() {
 }  // namespace
 
 const Profile kGeneric{
-    "generic",
-    "generic (any TMCL module)",
-    every_opcode(),
-    true,
-    kUsb2SdAxisParams,
-    kUsb2SdBank0,
-    kUsb2SdBank3,
-    256,  // user variables
-    56,   // EEPROM-backed user variables
-    21,   // coordinates 0..20 per motor
-    kUsb2SdVectors,
-    0,    // program memory: unlimited
-    6,    // Motor0..Motor5 of TMCLParam.tmc
-    "tmc4361",
-    "0000V100",
+    .name = "generic",
+    .title = "generic (any TMCL module)",
+    .commands = every_opcode(),
+    .any_parameter = true,
+    .axis_params = kUsb2SdAxisParams,
+    .bank0 = kUsb2SdBank0,
+    .bank3 = kUsb2SdBank3,
+    .user_vars = 256,  // user variables
+    .eeprom_user_vars = 56,  // EEPROM-backed user variables
+    .coords = 21,  // coordinates 0..20 per motor
+    .vectors = kUsb2SdVectors,
+    .program_memory = 0,  // program memory: unlimited
+    .motors = 6,  // Motor0..Motor5 of TMCLParam.tmc
+    .default_motion = "tmc4361",
+    .firmware = "0000V100",
 };
 
 }  // namespace tmcl::profiles

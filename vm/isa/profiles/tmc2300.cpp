@@ -73,25 +73,25 @@ std::bitset<256> opcodes(std::initializer_list<int> codes) {
 }  // namespace
 
 const Profile kTmc2300Eval{
-    "tmc2300-eval",
-    "TMC2300-MOTOR-EVAL (firmware 1.00)",
+    .name = "tmc2300-eval",
+    .title = "TMC2300-MOTOR-EVAL (firmware 1.00)",
     // Table 5, UF0..UF7 (section 3.6.25), SIO 14 and GIO 15 (the first example program uses
     // SIO, the AAP example GIO) and the control commands of table 10 (no 138).
-    opcodes({1,  2,  3,  4,  5,  6,  7,  8,  9,  10, 11, 12, 14, 15, 19, 20, 21, 22, 23, 24, 27,
-             28, 33, 34, 35, 36, 64, 65, 66, 67, 68, 69, 70, 71, 128, 129, 130, 131, 132, 133,
-             134, 135, 136, 137, 255}),
-    false,
-    kAxis,
-    kBank0,
-    {},    // no bank 3: the module has no interrupts
-    256,   // user variables (section 5.2 text)
-    8,     // table 14 marks only 0..7 E
-    0,     // no SCO/GCO/CCO/ACO, so MVP COORD has nothing to move to
-    {},    // no interrupt vectors
-    2048,  // the manual gives no size; 2048 words as in current TMCL firmware
-    1,
-    "linear",
-    "2300V100",
+    .commands = opcodes({1,  2,  3,  4,  5,  6,  7,  8,  9,  10, 11, 12, 14, 15, 19, 20, 21, 22, 23, 24, 27,
+                         28, 33, 34, 35, 36, 64, 65, 66, 67, 68, 69, 70, 71, 128, 129, 130, 131, 132, 133,
+                         134, 135, 136, 137, 255}),
+    .any_parameter = false,
+    .axis_params = kAxis,
+    .bank0 = kBank0,
+    .bank3 = {},  // no bank 3: the module has no interrupts
+    .user_vars = 256,  // user variables (section 5.2 text)
+    .eeprom_user_vars = 8,  // table 14 marks only 0..7 E
+    .coords = 0,  // no SCO/GCO/CCO/ACO, so MVP COORD has nothing to move to
+    .vectors = {},  // no interrupt vectors
+    .program_memory = 2048,  // the manual gives no size; 2048 words as in current TMCL firmware
+    .motors = 1,
+    .default_motion = "linear",
+    .firmware = "2300V100",
 };
 
 }  // namespace tmcl::profiles

@@ -120,27 +120,27 @@ constinit const std::span<const ParamInfo> kUsb2SdBank3{kBank3};
 constinit const std::span<const InterruptVector> kUsb2SdVectors{kVectors};
 
 const Profile kUsb2Sd{
-    "usb-2-sd",
-    "USB-2-SD (firmware 1.14)",
+    .name = "usb-2-sd",
+    .title = "USB-2-SD (firmware 1.14)",
     // Table 5 and section 3.6 (CALL 80, UF0..UF7), SIO 14 and GIO 15 (used by the interrupt
     // example of section 3.5.5.4, where SIO is misprinted "SID"), control commands of table 13
     // and 138 (section 3.6.47).
-    opcodes({1,  2,  3,  4,  5,  6,  9,  10, 11, 12, 14, 15, 19, 20, 21, 22, 23, 24, 25, 26, 27,
-             28, 30, 31, 32, 33, 34, 35, 36, 37, 38, 39, 40, 41, 42, 43, 44, 45, 46, 48, 49, 50,
-             51, 55, 56, 57, 64, 65, 66, 67, 68, 69, 70, 71, 80, 128, 129, 130, 131, 132, 133,
-             134, 135, 136, 137, 138, 255}),
-    false,
-    kAxis,
-    kBank0,
-    kBank3,
-    256,  // user variables (section 5.3)
-    56,   // the first 56 can be stored in EEPROM
-    21,   // coordinates 0..20 per motor; 0 is RAM only
-    kVectors,
-    577,  // "program memory for up to 577 TMCL commands" (section 1)
-    1,
-    "tmc4361",
-    "0015V114",
+    .commands = opcodes({1,  2,  3,  4,  5,  6,  9,  10, 11, 12, 14, 15, 19, 20, 21, 22, 23, 24, 25, 26, 27,
+                         28, 30, 31, 32, 33, 34, 35, 36, 37, 38, 39, 40, 41, 42, 43, 44, 45, 46, 48, 49, 50,
+                         51, 55, 56, 57, 64, 65, 66, 67, 68, 69, 70, 71, 80, 128, 129, 130, 131, 132, 133,
+                         134, 135, 136, 137, 138, 255}),
+    .any_parameter = false,
+    .axis_params = kAxis,
+    .bank0 = kBank0,
+    .bank3 = kBank3,
+    .user_vars = 256,  // user variables (section 5.3)
+    .eeprom_user_vars = 56,  // the first 56 can be stored in EEPROM
+    .coords = 21,  // coordinates 0..20 per motor; 0 is RAM only
+    .vectors = kVectors,
+    .program_memory = 577,  // "program memory for up to 577 TMCL commands" (section 1)
+    .motors = 1,
+    .default_motion = "tmc4361",
+    .firmware = "0015V114",
 };
 
 }  // namespace tmcl::profiles
