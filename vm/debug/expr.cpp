@@ -90,7 +90,19 @@ class Parser {
     }
   }
 
+  // Nesting deeper than this is refused, not a stack overflow.
+  static constexpr int kMaxDepth = 100;
+
   int unary() {
+    if (++depth_ > kMaxDepth) {
+      fail("expression nested too deeply (more than " + std::to_string(kMaxDepth) + " levels)");
+      pos_ = s_.size();
+      return -1;
+    }
+    struct Leave {
+      int& d;
+      ~Leave() { --d; }
+    } leave{depth_};
     for (const char* op : {"-", "~", "!"})
       if (eat(op)) return node({Expr::Node::Unary, op_code(op), unary(), -1});
     if (eat("+")) return unary();
@@ -209,6 +221,7 @@ class Parser {
   const ProgramInfo& info_;
   Expr& e_;
   std::size_t pos_ = 0;
+  int depth_ = 0;
   std::string err_;
 };
 

@@ -143,7 +143,8 @@ Stop Engine::reverse_scan(int kind) {
       if (kind == 2) {
         // Breakpoints: an enabled one at pc whose condition holds, before the instruction.
         for (auto& b : breaks_) {
-          if (!b.enabled || b.address != vm_->pc || rec.steps == end) continue;
+          // A logpoint never stops, going forwards or backwards.
+          if (!b.enabled || !b.log_message.empty() || b.address != vm_->pc || rec.steps == end) continue;
           std::int64_t v = 1;
           std::string err;
           if (b.cond.root >= 0 && !eval_expr(b.cond, *vm_, v, err)) v = 1;
