@@ -166,6 +166,8 @@ TEST(round_trip) {
     CHECK_EQ(tmcl::json::write(back), once);
     CHECK(ok(tmcl::json::write_pretty(v)) == v);
   }
+  CHECK_EQ(tmcl::json::write(ok("-0.0e5")), "-0.0");  // found by fuzz_json: "-0" read back as 0
+  CHECK_EQ(tmcl::json::write(ok("-0")), "0");
   CHECK(ok("1") == ok("1.0"));
   CHECK(!(ok("[1]") == ok("[2]")));
   CHECK(!(ok(R"({"a":1,"b":2})") == ok(R"({"b":2,"a":1})")));  // key order is part of the value

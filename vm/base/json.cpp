@@ -385,6 +385,10 @@ void write_number(std::string& out, const Value& v) {
     out += "null";  // JSON has no infinities or NaN
     return;
   }
+  if (d == 0 && std::signbit(d)) {
+    out += "-0.0";  // "-0" would read back as the integer 0
+    return;
+  }
   char buf[64];
   auto r = std::to_chars(buf, buf + sizeof buf, d);
   out.append(buf, r.ptr);
