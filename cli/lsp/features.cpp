@@ -354,4 +354,53 @@ Server::Reply Server::formatting(const Value& params) {
   return r;
 }
 
+// Rename of a label or constant: every use in the file and the files it includes, as one
+// WorkspaceEdit. The new name must be a valid name that is not a mnemonic or keyword.
+Server::Reply Server::rename(const Value& params) {
+  Reply err;
+  Document* doc = find_document(params, err);
+  std::size_t offset;
+  if (!doc || !position(*doc, params, offset, err)) return err;
+  const SourceToken* t = token_at(*doc, offset);
+  if (!t || t->kind != Kind::Name || !symbol(*doc, t->text))
+    return {Value(), kInvalidParams, "no label or constant at this position to rename"};
+  std::string to = params["newName"].as_string();
+  if (!is_valid_name(to) || op_by_mnemonic(to) || is_keyword(to))
+    return {Value(), kInvalidParams, "'" + to + "' is not a valid label or constant name"};
+  if (symbol(*doc, to)) return {Value(), kInvalidParams, "'" + to + "' is already defined"};
+  Value refs_params = params;
+  refs_params.set("context", Value::object()).set("includeDeclaration", true);
+  Reply refs = references(refs_params);
+  Reply r;
+  r.result = Value::object();
+  Value& changes = r.result.set("changes", Value::object());
+  for (const Value& loc : refs.result.items()) {
+    Value* list = changes.find(loc["uri"].as_string());
+    if (!list) list = &changes.set(loc["uri"].as_string(), Value::array());
+    Value& edit = list->push(Value::object());
+    edit.set("range", loc["range"]);
+    edit.set("newText", to);
+  }
+  return r;
+}
+
+// Workspace symbols: the labels and constants of every open document whose name contains the
+// query (case-insensitive).
+Server::Reply Server::workspace_symbols(const Value& params) {
+  Reply r;
+  r.result = Value::array();
+  std::string q = lower(params["query"].as_string());
+  for (const auto& [uri, doc] : docs_) {
+    if (!doc.result) continue;
+    for (const Symbol& s : doc.result->symbols) {
+      if (s.defined_at.file != 0 || lower(s.name).find(q) == std::string::npos) continue;
+      Value& o = r.result.push(Value::object());
+      o.set("name", s.name);
+      o.set("kind", s.kind == SymbolKind::Label ? 12 : 14);
+      o.set("location", location_of(s.defined_at, *doc.result));
+    }
+  }
+  return r;
+}
+
 }  // namespace tmcl::lsp

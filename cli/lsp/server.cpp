@@ -315,6 +315,8 @@ Server::Reply Server::dispatch(const std::string& method, const Value& params, b
   if (method == "textDocument/completion") return completion(params);
   if (method == "textDocument/documentSymbol") return document_symbols(params);
   if (method == "textDocument/formatting") return formatting(params);
+  if (method == "textDocument/rename") return rename(params);
+  if (method == "workspace/symbol") return workspace_symbols(params);
   if (!is_request) return r;  // unknown notifications ($/cancelRequest, ...) are ignored
   return {Value(), kMethodNotFound, "unknown method '" + method + "'"};
 }
@@ -341,6 +343,8 @@ Server::Reply Server::initialize(const Value& params) {
   caps.set("referencesProvider", true);
   caps.set("documentSymbolProvider", true);
   caps.set("documentFormattingProvider", true);
+  caps.set("renameProvider", true);
+  caps.set("workspaceSymbolProvider", true);
   Value& comp = caps.set("completionProvider", Value::object());
   comp.set("triggerCharacters", Value::array()).push(" ");
   comp["triggerCharacters"];

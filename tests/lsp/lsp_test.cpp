@@ -178,6 +178,25 @@ TEST(bad_input_gets_error_responses) {
   CHECK(!c.server.exited());
 }
 
+TEST(rename_and_workspace_symbols) {
+  Client c;
+  start(c);
+  c.open("file:///work/lib2.inc", "Far = 100\n");
+  c.open("file:///work/main2.tmc", "#include lib2.inc\nHome:\n  MVP ABS, 0, Far\n  JA Home\n");
+  Value edit = c.request("textDocument/rename", R"({"textDocument":{"uri":"file:///work/main2.tmc"},"position":{"line":2,"character":14},"newName":"Distance"})")["result"];
+  CHECK_EQ(tmcl::json::write(edit),
+           R"({"changes":{"file:///work/main2.tmc":[{"range":{"start":{"line":2,"character":14},"end":{"line":2,"character":17}},"newText":"Distance"}],)"
+           R"("file:///work/lib2.inc":[{"range":{"start":{"line":0,"character":0},"end":{"line":0,"character":3}},"newText":"Distance"}]}})");
+  CHECK_EQ(c.request("textDocument/rename", R"({"textDocument":{"uri":"file:///work/main2.tmc"},"position":{"line":1,"character":1},"newName":"MVP"})")["error"]["message"].as_string(),
+           "'MVP' is not a valid label or constant name");
+  CHECK_EQ(c.request("textDocument/rename", R"({"textDocument":{"uri":"file:///work/main2.tmc"},"position":{"line":1,"character":1},"newName":"Far"})")["error"]["message"].as_string(),
+           "'Far' is already defined");
+  CHECK_EQ(c.request("textDocument/rename", R"({"textDocument":{"uri":"file:///work/main2.tmc"},"position":{"line":2,"character":3},"newName":"X"})")["error"]["code"].as_int(), -32602);
+  Value ws = c.request("workspace/symbol", R"({"query":"hom"})")["result"];
+  CHECK_EQ(ws.size(), 1u);
+  CHECK_EQ(ws.at(0)["name"].as_string(), "Home");
+}
+
 TEST(includers_are_rechecked) {
   Client c;
   start(c);

@@ -88,6 +88,8 @@ class Server {
   Reply completion(const Value& params);
   Reply document_symbols(const Value& params);
   Reply formatting(const Value& params);
+  Reply rename(const Value& params);
+  Reply workspace_symbols(const Value& params);
 
   // Finding the document and the token a request is about; errors as replies.
   Document* find_document(const Value& params, Reply& err);
