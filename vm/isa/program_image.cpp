@@ -67,7 +67,8 @@ ImageReadResult read_image(const std::vector<std::uint8_t>& bytes, ImageFormat e
   const bool dgm = expected == ImageFormat::Datagrams;
   const ChecksumCount mine = count_checksums(bytes.data(), bytes.size(), dgm ? 9 : 8);
   const bool mine_fits = bytes.size() % (dgm ? 9 : 8) == 0;
-  if (mine_fits && !mine.all_wrong()) return dgm ? read_datagrams(bytes) : read_bin(bytes);
+  // One wrong checksum in a one-record image is damage, not another format: a warning as always.
+  if (mine_fits && !(mine.all_wrong() && mine.records >= 2)) return dgm ? read_datagrams(bytes) : read_bin(bytes);
   // Every checksum of the expected format is wrong, or the size does not fit it: the contents decide.
   const ChecksumCount other = count_checksums(bytes.data(), bytes.size(), dgm ? 8 : 9);
   const char* mine_name = dgm ? "a datagram file" : "a TMCL-IDE .bin";

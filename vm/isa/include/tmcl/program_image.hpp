@@ -25,7 +25,7 @@ enum class ImageFormat : std::uint8_t { Bin, Datagrams };
 ImageReadResult read_datagrams(const std::vector<std::uint8_t>& bytes);
 
 // Reads an image expected in `expected` format (from its name or an option). When every record
-// checksum of that format is wrong, the contents decide: an image whose every checksum of the
+// checksum of that format is wrong (two records or more), the contents decide: an image whose every checksum of the
 // other format is right is read as that format, with a warning saying so; otherwise it is
 // refused with an error saying what it is not and what to try.
 ImageReadResult read_image(const std::vector<std::uint8_t>& bytes, ImageFormat expected);
