@@ -403,4 +403,43 @@ Server::Reply Server::workspace_symbols(const Value& params) {
   return r;
 }
 
+// Signature help: the instruction's syntax from the table, its operands as parameters, and the
+// operand the cursor is in as the active one.
+Server::Reply Server::signature_help(const Value& params) {
+  Reply err;
+  Document* doc = find_document(params, err);
+  std::size_t offset;
+  if (!doc || !position(*doc, params, offset, err)) return err;
+  Reply r;
+  std::size_t line_begin = doc->line_starts[static_cast<std::size_t>(
+      std::upper_bound(doc->line_starts.begin(), doc->line_starts.end(), offset) - doc->line_starts.begin()) - 1];
+  std::vector<SourceToken> line;
+  for (const SourceToken& t : doc->tokens)
+    if (t.offset >= line_begin && t.offset < offset && t.kind != Kind::Newline) line.push_back(t);
+  line.push_back(SourceToken{Kind::Name, std::string_view(), offset, 0, 0});
+  line.push_back(SourceToken{Kind::Newline, std::string_view(), offset, 0, 0});
+  Context c = context_at(line, line.size() - 2);
+  if (!c.op || c.operand < 0 || c.op->operands.empty()) return r;
+  std::string label(c.op->mnemonic);
+  Value sig = Value::object();
+  Value ps = Value::array();
+  for (std::size_t i = 0; i < c.op->operands.size(); ++i) {
+    label += i ? ", " : " ";
+    std::string name = "<" + operand_name(c.op->operands[i]) + ">";
+    Value& p = ps.push(Value::object());
+    Value& range = p.set("label", Value::array());
+    range.push(static_cast<long long>(label.size()));
+    label += name;
+    range.push(static_cast<long long>(label.size()));
+  }
+  sig.set("label", label);
+  sig.set("documentation", std::string(c.op->meaning));
+  sig.set("parameters", std::move(ps));
+  r.result = Value::object();
+  r.result.set("signatures", Value::array()).push(std::move(sig));
+  r.result.set("activeSignature", 0);
+  r.result.set("activeParameter", std::min<int>(c.operand, static_cast<int>(c.op->operands.size()) - 1));
+  return r;
+}
+
 }  // namespace tmcl::lsp

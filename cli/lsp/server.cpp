@@ -317,6 +317,7 @@ Server::Reply Server::dispatch(const std::string& method, const Value& params, b
   if (method == "textDocument/formatting") return formatting(params);
   if (method == "textDocument/rename") return rename(params);
   if (method == "workspace/symbol") return workspace_symbols(params);
+  if (method == "textDocument/signatureHelp") return signature_help(params);
   if (!is_request) return r;  // unknown notifications ($/cancelRequest, ...) are ignored
   return {Value(), kMethodNotFound, "unknown method '" + method + "'"};
 }
@@ -345,6 +346,7 @@ Server::Reply Server::initialize(const Value& params) {
   caps.set("documentFormattingProvider", true);
   caps.set("renameProvider", true);
   caps.set("workspaceSymbolProvider", true);
+  caps.set("signatureHelpProvider", Value::object()).set("triggerCharacters", Value::array()).push(",");
   Value& comp = caps.set("completionProvider", Value::object());
   comp.set("triggerCharacters", Value::array()).push(" ");
   comp["triggerCharacters"];

@@ -197,6 +197,17 @@ TEST(rename_and_workspace_symbols) {
   CHECK_EQ(ws.at(0)["name"].as_string(), "Home");
 }
 
+TEST(signature_help) {
+  Client c;
+  start(c);
+  c.open(kUri, kProgram);
+  Value sh = c.request("textDocument/signatureHelp", pos(kUri, 3, 11))["result"];  // "  MVP ABS, |0, 100"
+  CHECK_EQ(sh["signatures"].at(0)["label"].as_string(), "MVP <move type>, <motor>, <position>");
+  CHECK_EQ(sh["activeParameter"].as_int(), 1);
+  CHECK_EQ(tmcl::json::write(sh["signatures"].at(0)["parameters"].at(1)["label"]), "[17,24]");
+  CHECK(c.request("textDocument/signatureHelp", pos(kUri, 1, 2))["result"].is_null());  // a label line
+}
+
 TEST(includers_are_rechecked) {
   Client c;
   start(c);
