@@ -36,3 +36,21 @@ TEST(motion_cores_agree_with_every_profile) {
   }
   CHECK(checked > 20);
 }
+
+// A parameter another module's profile does not list starts at the default of the profile of
+// the module the core models (tmc4361: usb-2-sd, linear: tmc2300-eval): no core keeps its own.
+TEST(motion_cores_take_missing_defaults_from_their_home_profile) {
+  const tmcl::Profile* usb = tmcl::find_profile("usb-2-sd");
+  const tmcl::Profile* tmc = tmcl::find_profile("tmc2300-eval");
+  CHECK(usb && tmc);
+  if (!usb || !tmc) return;
+  auto ramp = tmcl::make_motion_core("tmc4361");
+  ramp->reset(*tmc, 1);
+  CHECK(!tmc->axis_param(22));
+  CHECK_EQ(ramp->get_param(0, 22), usb->axis_param(22)->default_value);  // bow 1
+  CHECK_EQ(ramp->get_param(0, 202), usb->axis_param(202)->default_value);  // full steps
+  auto linear = tmcl::make_motion_core("linear");
+  linear->reset(*usb, 1);
+  CHECK(!usb->axis_param(6));
+  CHECK_EQ(linear->get_param(0, 6), tmc->axis_param(6)->default_value);  // run current
+}

@@ -35,24 +35,12 @@ struct Motor {
   std::int32_t vt = 0;
 };
 
-std::int32_t fallback_default(int p) {
-  switch (p) {
-    case 4: case 5: return 10000;
-    case 6: return 16;
-    case 7: return 8;
-    case 8: return 1;
-    case 140: return 8;
-    case 141: return 1;
-    default: return 0;
-  }
-}
-
 class LinearCore final : public ramp::RampCore<Motor> {
  public:
   std::string_view name() const override { return "linear"; }
   std::unique_ptr<MotionCore> clone() const override { return std::make_unique<LinearCore>(*this); }
 
-  LinearCore() : RampCore(kOwned, fallback_default) {}
+  LinearCore() : RampCore(kOwned, "tmc2300-eval") {}  // the TMC2300-MOTOR-EVAL's ramp
 
   void reset(const Profile& profile, int motors) override {
     const ParamInfo* speed = profile.any_parameter ? nullptr : profile.axis_param(kApMaxPositioningSpeed);

@@ -26,21 +26,6 @@ using ramp::wrap32;
 constexpr int kOwned[] = {0,  1,  2,  3,  4,  5,  8,  14, 15, 16,  17,  18,  19,  20,  21,  22,  23,  24,
                           25, 26, 27, 28, 29, 35, 127, 131, 132, 140, 202, 207, 209, 210, 212, 251, 255};
 
-// Power-on values when the profile does not list a parameter (another module's profile).
-std::int32_t fallback_default(int p) {
-  switch (p) {
-    case 4: case 5: return 51200;
-    case 8: return 1;
-    case 22: case 23: case 24: case 25: return 512000;
-    case 35: return 1;
-    case 140: return 8;
-    case 202: return 200;
-    case 210: return 51200;
-    case 255: return 1;
-    default: return 0;
-  }
-}
-
 enum class Goal : std::uint8_t { Idle, Position, Velocity, Halt };
 enum class Halt : std::uint8_t { Switch, VirtualStop, Deviation };
 
@@ -62,7 +47,7 @@ class Tmc4361Core final : public ramp::RampCore<Motor> {
   std::string_view name() const override { return "tmc4361"; }
   std::unique_ptr<MotionCore> clone() const override { return std::make_unique<Tmc4361Core>(*this); }
 
-  Tmc4361Core() : RampCore(kOwned, fallback_default) {}
+  Tmc4361Core() : RampCore(kOwned, "usb-2-sd") {}  // the TMC4361 drives the USB-2-SD
 
   void advance(SimTime to, std::vector<MotionEvent>& out) override {
     collect(to, out, [](Motor& m, EventKind k) {

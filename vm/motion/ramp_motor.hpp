@@ -8,9 +8,11 @@
 #include <cmath>
 #include <cstdint>
 #include <span>
+#include <string_view>
 
 #include "ramp.hpp"
 #include "tmcl/motion.hpp"
+#include "tmcl/profile.hpp"
 
 namespace tmcl::ramp {
 
@@ -71,17 +73,20 @@ struct RampMotor {
 template <class M>
 class RampCore : public MotionCore {
  public:
-  // `owned`: the axis parameters the core owns (a static table); `fallback`: their power-on
-  // values where the profile does not list them (a core used with another module's profile).
-  RampCore(std::span<const int> owned, std::int32_t (*fallback)(int)) : owned_(owned), fallback_(fallback) {}
+  // `owned`: the axis parameters the core owns (a static table); `home`: the profile of the
+  // module the core models, whose defaults stand in where another module's profile does not
+  // list an owned parameter. Profiles stay the only source of defaults.
+  RampCore(std::span<const int> owned, std::string_view home) : owned_(owned), home_(home) {}
 
-  // Power-on: every owned parameter at the profile's default, else at fallback(number).
+  // Power-on: every owned parameter at the profile's default, else the home profile's, else 0.
   void reset(const Profile& profile, int motors) override {
+    const Profile* home = find_profile(home_);
     motors_.assign(static_cast<std::size_t>(motors), M{});
     for (auto& m : motors_)
       for (int n : owned_) {
         const ParamInfo* info = profile.axis_param(n);
-        m.p[static_cast<std::size_t>(n)] = info ? info->default_value : fallback_(n);
+        if (!info && home) info = home->axis_param(n);
+        m.p[static_cast<std::size_t>(n)] = info ? info->default_value : 0;
       }
     now_ = 0;
     pending_.clear();
@@ -157,7 +162,7 @@ class RampCore : public MotionCore {
   }
 
   std::span<const int> owned_;
-  std::int32_t (*fallback_)(int);
+  std::string_view home_;
   std::vector<M> motors_;
   SimTime now_ = 0;
   std::vector<MotionEvent> pending_;  // caused by a command, reported by the next advance
