@@ -442,4 +442,43 @@ Server::Reply Server::signature_help(const Value& params) {
   return r;
 }
 
+// Folding: each label's block (up to the line before the next label, without trailing blank
+// lines) and every comment spanning several lines.
+Server::Reply Server::folding_ranges(const Value& params) {
+  Reply err;
+  Document* doc = find_document(params, err);
+  if (!doc) return err;
+  Reply r;
+  r.result = Value::array();
+  auto add = [&](int first, int last, const char* kind) {
+    if (last <= first) return;
+    Value& f = r.result.push(Value::object());
+    f.set("startLine", first);
+    f.set("endLine", last);
+    if (kind) f.set("kind", kind);
+  };
+  std::vector<int> labels;
+  const auto& toks = doc->tokens;
+  for (std::size_t i = 0; i < toks.size(); ++i) {
+    if (toks[i].kind == Kind::Comment) {
+      int lines = static_cast<int>(std::count(toks[i].text.begin(), toks[i].text.end(), '\n'));
+      add(toks[i].line - 1, toks[i].line - 1 + lines, "comment");
+    }
+    bool line_start = i == 0 || toks[i - 1].kind == Kind::Newline;
+    if (line_start && toks[i].kind == Kind::Name && i + 1 < toks.size() && toks[i + 1].kind == Kind::Punct && toks[i + 1].text == ":")
+      labels.push_back(toks[i].line - 1);
+  }
+  auto blank = [&](int line) {
+    std::size_t b = doc->line_starts[static_cast<std::size_t>(line)];
+    std::size_t e = static_cast<std::size_t>(line) + 1 < doc->line_starts.size() ? doc->line_starts[static_cast<std::size_t>(line) + 1] : doc->text.size();
+    return doc->text.find_first_not_of(" \t\r\n", b) >= e;
+  };
+  for (std::size_t k = 0; k < labels.size(); ++k) {
+    int last = k + 1 < labels.size() ? labels[k + 1] - 1 : static_cast<int>(doc->line_starts.size()) - 1;
+    while (last > labels[k] && blank(last)) --last;
+    add(labels[k], last, nullptr);
+  }
+  return r;
+}
+
 }  // namespace tmcl::lsp

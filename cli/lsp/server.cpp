@@ -318,6 +318,7 @@ Server::Reply Server::dispatch(const std::string& method, const Value& params, b
   if (method == "textDocument/rename") return rename(params);
   if (method == "workspace/symbol") return workspace_symbols(params);
   if (method == "textDocument/signatureHelp") return signature_help(params);
+  if (method == "textDocument/foldingRange") return folding_ranges(params);
   if (!is_request) return r;  // unknown notifications ($/cancelRequest, ...) are ignored
   return {Value(), kMethodNotFound, "unknown method '" + method + "'"};
 }
@@ -346,6 +347,7 @@ Server::Reply Server::initialize(const Value& params) {
   caps.set("documentFormattingProvider", true);
   caps.set("renameProvider", true);
   caps.set("workspaceSymbolProvider", true);
+  caps.set("foldingRangeProvider", true);
   caps.set("signatureHelpProvider", Value::object()).set("triggerCharacters", Value::array()).push(",");
   Value& comp = caps.set("completionProvider", Value::object());
   comp.set("triggerCharacters", Value::array()).push(" ");

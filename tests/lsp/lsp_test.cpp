@@ -208,6 +208,14 @@ TEST(signature_help) {
   CHECK(c.request("textDocument/signatureHelp", pos(kUri, 1, 2))["result"].is_null());  // a label line
 }
 
+TEST(folding_ranges) {
+  Client c;
+  start(c);
+  c.open("file:///work/f.tmc", "/* a\n   b */\nStart:\n  SAP 4, 0, 1\n  STOP\n\nSub:\n  RSUB\n");
+  Value f = c.request("textDocument/foldingRange", R"({"textDocument":{"uri":"file:///work/f.tmc"}})")["result"];
+  CHECK_EQ(tmcl::json::write(f), R"([{"startLine":0,"endLine":1,"kind":"comment"},{"startLine":2,"endLine":4},{"startLine":6,"endLine":7}])");
+}
+
 TEST(includers_are_rechecked) {
   Client c;
   start(c);

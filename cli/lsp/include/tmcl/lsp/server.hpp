@@ -91,6 +91,7 @@ class Server {
   Reply rename(const Value& params);
   Reply workspace_symbols(const Value& params);
   Reply signature_help(const Value& params);
+  Reply folding_ranges(const Value& params);
 
   // Finding the document and the token a request is about; errors as replies.
   Document* find_document(const Value& params, Reply& err);
