@@ -16,6 +16,7 @@
 
 #include "tmcl/codec.hpp"
 #include "tmcl/image.hpp"
+#include "tmcl/params.hpp"
 #include "tmcl/server.hpp"
 
 namespace tmcl {
@@ -35,26 +36,26 @@ TmclModule::TmclModule(Vm& vm, ProtocolOptions options) : vm_(vm), options_(opti
 
 void TmclModule::apply_address_overrides() {
   if (options_.module_address) {
-    if (vm_.profile->global_param(0, 66))
-      vm_.bank0[66] = *options_.module_address;
+    if (vm_.profile->global_param(0, kGpSerialAddress))
+      vm_.bank0[kGpSerialAddress] = *options_.module_address;
     else
       fallback_module_ = *options_.module_address;
   }
   if (options_.host_address) {
-    if (vm_.profile->global_param(0, 76))
-      vm_.bank0[76] = *options_.host_address;
+    if (vm_.profile->global_param(0, kGpSerialHostAddress))
+      vm_.bank0[kGpSerialHostAddress] = *options_.host_address;
     else
       fallback_host_ = *options_.host_address;
   }
 }
 
 std::uint8_t TmclModule::module_address() const {
-  if (vm_.profile->global_param(0, 66)) return static_cast<std::uint8_t>(vm_.bank0[66]);
+  if (vm_.profile->global_param(0, kGpSerialAddress)) return static_cast<std::uint8_t>(vm_.bank0[kGpSerialAddress]);
   return fallback_module_;
 }
 
 std::uint8_t TmclModule::host_address() const {
-  if (vm_.profile->global_param(0, 76)) return static_cast<std::uint8_t>(vm_.bank0[76]);
+  if (vm_.profile->global_param(0, kGpSerialHostAddress)) return static_cast<std::uint8_t>(vm_.bank0[kGpSerialHostAddress]);
   return fallback_host_;
 }
 
@@ -148,7 +149,7 @@ bool TmclModule::suppressed(std::uint8_t op) const {
   if (op == static_cast<std::uint8_t>(Op::GAP) || op == static_cast<std::uint8_t>(Op::GGP) ||
       op == static_cast<std::uint8_t>(Op::GIO))
     return false;
-  return vm_.profile->global_param(0, 255) != nullptr && vm_.bank0[255] != 0;
+  return vm_.profile->global_param(0, kGpSuppressReply) != nullptr && vm_.bank0[kGpSuppressReply] != 0;
 }
 
 void TmclModule::reply(std::uint8_t status, std::uint8_t op, std::int32_t value) {
@@ -329,7 +330,7 @@ void TmclModule::power_cycle(bool clear_eeprom) {
   every_mvp_mask_ = next_mvp_mask_ = waiting_mask_ = 0;
   fault_reported_ = false;
   power_cycled_ = true;
-  if (vm_.profile->global_param(0, 77) && vm_.bank0[77] != 0 && vm_.program_size > 0) vm_.start(0);
+  if (vm_.profile->global_param(0, kGpAutoStart) && vm_.bank0[kGpAutoStart] != 0 && vm_.program_size > 0) vm_.start(0);
 }
 
 }  // namespace tmcl
