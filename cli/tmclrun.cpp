@@ -549,6 +549,7 @@ int run(int argc, char** argv) {
   }
 
   // --debug, --dap: the debugger runs the program (vm/debug, docs/debugger.md).
+  if (o.debug.enabled && !o.serve.empty()) return usage_error("--debug and --dap do not go with --serve yet (docs/debugger.md)");
   if (o.debug.enabled)
     return tmcl::debug::main(o.debug, *profile, std::move(core), o.program, o.asm_opts, o.instr_time, o.limits, std::move(inputs),
                              o.eeprom.empty() ? nullptr : &image);
