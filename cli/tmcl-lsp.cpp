@@ -10,6 +10,7 @@
 #include <string>
 
 #include "tmcl/lsp/server.hpp"
+#include "tmcl/version.hpp"
 
 namespace {
 
@@ -48,7 +49,7 @@ int main(int argc, char** argv) {
       return 0;
     }
     if (a == "--version") {
-      std::printf("tmcl-lsp %s\n", TMCL_LSP_VERSION);
+      std::puts(tmcl::version_line("tmcl-lsp").c_str());
       return 0;
     }
     if (a == "--stdio") continue;
