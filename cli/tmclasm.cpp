@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "tmcl/analysis.hpp"
 #include "tmcl/asm/assembler.hpp"
 #include "tmcl/asm/disasm.hpp"
 #include "tmcl/asm/format.hpp"
@@ -46,6 +47,7 @@ options:
                      datagrams      one 9-byte TMCL request per instruction (.dgm)
                      listing        addresses, bytes, source lines (.lst)
                      symbols        labels and constants, tab-separated (.sym)
+                     dot            the control-flow graph for Graphviz (.dot; docs/analysis.md)
                      lib            a library of the inputs (needs -o)
   -c                 assemble each source into a relocatable object (FILE.o)
   --map FILE         also write a link map: input address ranges, every symbol's address
@@ -64,6 +66,11 @@ options:
   -Werror            treat warnings as errors
   -Werror=NAME       treat the warning NAME as an error
   -Wno-NAME          do not report the warning NAME (names: docs/analysis.md, tmclasm.md)
+  --stack-usage      write the call-stack report (per subroutine and handler: its maximum
+                     depth and deepest chain) instead of the program (.su)
+  --analyze          FILE is a .bin or datagrams image: disassemble it and check its control
+                     flow (positions are lines of tmclasm -d FILE; --symbols names labels)
+  --no-analysis      do not analyse the control flow after linking (docs/analysis.md)
   --no-append-stop   do not append STOP when the program does not end in one
   --error-limit N    show at most N errors (default 20, 0 = all), then how many more there were
   --help             show this help
@@ -102,7 +109,80 @@ bool write_output(const std::string& path, const std::vector<std::uint8_t>& byte
 
 std::vector<std::uint8_t> bytes_of(const std::string& s) { return {s.begin(), s.end()}; }
 
-enum class Mode { Link, Compile, Library, Disassemble, Dump, Fmt };
+enum class Mode { Link, Compile, Library, Disassemble, Dump, Fmt, Analyze };
+
+// What the control-flow analysis adds to a link: nothing but warnings, the dot graph or the
+// stack report (which then replace the program as the output).
+enum class Extra { None, Dot, StackUsage };
+
+// Runs the analysis on a linked program, adding its warnings to result.diags; returns the text
+// of the extra output.
+std::string analyze_program(tmcl::AsmResult& result, Extra extra, bool targets_checked) {
+  tmcl::AnalysisInput in;
+  in.program = result.program;
+  in.lines = result.lines;
+  in.sources = &result.sources;
+  in.symbols = result.symbols;
+  in.profile = result.profile;
+  in.appended_stop = result.appended_stop;
+  in.targets_checked = targets_checked;
+  tmcl::AnalysisOptions o;
+  o.graph = extra == Extra::Dot;
+  tmcl::Analysis a = tmcl::analyze(in, result.diags, o);
+  if (extra == Extra::Dot) return tmcl::cfg_dot(a, in);
+  if (extra == Extra::StackUsage) return tmcl::stack_usage_report(a, in);
+  return {};
+}
+
+// --analyze: an image is disassembled (with --symbols' names) and the source assembled again
+// (the same instructions, tmclasm -d guarantees it) so that every warning has a line to show.
+int analyze_image(const std::string& file, tmcl::AsmOptions opts, const tmcl::DisasmOptions& dopts,
+                  const std::string& symbols_file, Extra extra, const std::string& output) {
+  tmcl::DiskReader disk;
+  std::string bytes;
+  if (!disk.read(file, bytes)) {
+    std::fprintf(stderr, "tmclasm: error: cannot read '%s': %s\n", file.c_str(), disk.last_error().c_str());
+    return kExitInput;
+  }
+  tmcl::LabelNames names;
+  tmcl::DisasmOptions o = dopts;
+  if (!symbols_file.empty()) {
+    std::string text, error;
+    if (!disk.read(symbols_file, text)) {
+      std::fprintf(stderr, "tmclasm: error: cannot read '%s': %s\n", symbols_file.c_str(), disk.last_error().c_str());
+      return kExitInput;
+    }
+    if (!tmcl::parse_symbols(text, names, error)) {
+      std::fprintf(stderr, "%s: error: not a symbols file: %s\n", symbols_file.c_str(), error.c_str());
+      return kExitInput;
+    }
+    o.names = &names;
+  }
+  std::string shown = file == "-" ? "<stdin>" : file;
+  tmcl::DisasmResult d = tmcl::disassemble(file, bytes, o);
+  int derrors = 0;
+  for (const auto& m : d.messages) {
+    std::fprintf(stderr, "%s: %s: %s\n", shown.c_str(), m.error ? "error" : "warning", m.text.c_str());
+    derrors += m.error ? 1 : 0;
+  }
+  if (derrors > 0) {
+    print_failure(derrors, 0);
+    return kExitInput;
+  }
+  tmcl::MemoryReader mem;
+  mem.files[shown] = d.source;
+  opts.append_stop = false;  // the image as it is
+  opts.symbols = true;
+  tmcl::AsmResult result = tmcl::assemble({shown}, opts, mem);
+  std::string text = result.ok() ? analyze_program(result, extra, true) : std::string();
+  std::fputs(result.diags.render(result.sources).c_str(), stderr);
+  if (!result.ok()) {
+    print_failure(result.diags.error_count(), result.diags.warning_count());
+    return kExitInput;
+  }
+  if (extra == Extra::None) return 0;
+  return write_output(output, bytes_of(text)) ? 0 : kExitOutput;
+}
 
 // -d: one image or object in, source out.
 int disassemble(const std::string& file, const std::string& output, const tmcl::DisasmOptions& options,
@@ -215,6 +295,8 @@ int run(int argc, char** argv) {
   std::string output, map_file, symbols_file;
   bool have_output = false, have_format = false;
   tmcl::OutputFormat format = tmcl::OutputFormat::Bin;
+  Extra extra = Extra::None;
+  bool analysis = true;
   Mode mode = Mode::Link;
   bool make_lib = false;
   bool fmt_in_place = false, fmt_check = false;
@@ -258,8 +340,10 @@ int run(int argc, char** argv) {
       else if (v == "datagrams") format = tmcl::OutputFormat::Datagrams;
       else if (v == "listing") format = tmcl::OutputFormat::Listing;
       else if (v == "symbols") format = tmcl::OutputFormat::Symbols;
+      else if (v == "dot") extra = Extra::Dot;
       else if (v == "lib") make_lib = true;
-      else return usage_error("unknown format '" + v + "' (bin, datagrams, listing, symbols, lib)");
+      else return usage_error("unknown format '" + v + "' (bin, datagrams, listing, symbols, dot, lib)");
+      if (v != "dot" && extra == Extra::Dot) extra = Extra::None;
     } else if (a == "-c") {
       if (!set_mode(Mode::Compile, "-c")) return usage_error("-c cannot be combined with -d or --dump-object");
     } else if (a == "-d" || a == "--disassemble") {
@@ -272,6 +356,12 @@ int run(int argc, char** argv) {
       fmt_check = true;
     } else if (a == "--dump-object") {
       if (!set_mode(Mode::Dump, "--dump-object")) return usage_error("--dump-object cannot be combined with -c or -d");
+    } else if (a == "--stack-usage") {
+      extra = Extra::StackUsage;
+    } else if (a == "--no-analysis") {
+      analysis = false;
+    } else if (a == "--analyze") {
+      if (!set_mode(Mode::Analyze, "--analyze")) return usage_error("--analyze cannot be combined with -c, -d or --dump-object");
     } else if (a == "--map") {
       if (!value(a, v)) return usage_error("--map needs a file name");
       map_file = v;
@@ -334,9 +424,15 @@ int run(int argc, char** argv) {
   }
   if (make_lib && mode != Mode::Link) return usage_error("-f lib cannot be combined with -c, -d or --dump-object");
   if (!map_file.empty() && (mode != Mode::Link || make_lib)) return usage_error("--map needs a link (not -c, -d, -f lib)");
-  if ((!symbols_file.empty() || dopts.kind != tmcl::ImageKind::Auto) && mode != Mode::Disassemble)
-    return usage_error("--symbols and --from need -d");
-
+  if ((!symbols_file.empty() || dopts.kind != tmcl::ImageKind::Auto) && mode != Mode::Disassemble && mode != Mode::Analyze)
+    return usage_error("--symbols and --from need -d or --analyze");
+  if (extra != Extra::None && (mode == Mode::Compile || make_lib || !analysis))
+    return usage_error("-f dot and --stack-usage need a linked program and the analysis (not -c, -f lib, --no-analysis)");
+  if (mode == Mode::Analyze) {
+    if (files.size() != 1) return usage_error("--analyze takes one image file");
+    std::string out = have_output ? output : "-";
+    return analyze_image(files[0], opts, dopts, symbols_file, extra, out);
+  }
   if (mode == Mode::Disassemble || mode == Mode::Dump) {
     if (files.size() != 1)
       return usage_error(std::string(mode == Mode::Dump ? "--dump-object" : "-d") + " takes one input file");
@@ -384,8 +480,11 @@ int run(int argc, char** argv) {
     return 0;
   }
 
-  opts.symbols = format == tmcl::OutputFormat::Symbols || !map_file.empty();  // otherwise never printed
+  // Label names: for the symbols format, the map, and the analysis' messages and pictures.
+  opts.symbols = format == tmcl::OutputFormat::Symbols || !map_file.empty() || analysis;
   tmcl::AsmResult result = tmcl::assemble(files, opts, reader);
+  std::string extra_text;
+  if (analysis && result.ok()) extra_text = analyze_program(result, extra, true);
   std::string text = result.diags.render(result.sources, opts.error_limit);
   std::fputs(text.c_str(), stderr);
   if (!result.ok()) {
@@ -398,9 +497,14 @@ int run(int argc, char** argv) {
       output = "-";
     } else {
       static const char* ext[] = {".bin", ".dgm", ".lst", ".sym"};
-      output = std::filesystem::path(files[0]).replace_extension(ext[static_cast<int>(format)]).string();
+      output = std::filesystem::path(files[0])
+                   .replace_extension(extra == Extra::Dot          ? ".dot"
+                                      : extra == Extra::StackUsage ? ".su"
+                                                                   : ext[static_cast<int>(format)])
+                   .string();
     }
   }
+  if (extra != Extra::None) return write_output(output, bytes_of(extra_text)) ? 0 : kExitOutput;
   const tmcl::Profile& profile = result.profile ? *result.profile : tmcl::generic_profile();
   auto bytes = tmcl::format_output(format, result, profile, static_cast<std::uint8_t>(address));
   if (!map_file.empty() && !write_output(map_file, bytes_of(tmcl::format_map(result)))) return kExitOutput;

@@ -10,6 +10,7 @@ set(LAYERS
   "vm|vm|vm,motion,isa,base"
   "module|vm/module|module,vm,motion,isa,base"
   "asm|asm|asm,isa,base"
+  "analysis|asm/analysis|analysis,asm,isa,base"
   "debug|vm/debug|debug,vm,asm,motion,isa,base"
   "lsp|cli/lsp|lsp,analysis,asm,isa,base"
   "report|cli/report|report,vm,motion,isa,base"
