@@ -78,6 +78,8 @@ options:
   --dap                  the debugger over the Debug Adapter Protocol on stdin/stdout
   -I DIR                 search DIR for #include files
   -D NAME=VALUE          define an assembler constant
+  -Werror, -Werror=NAME  assembler warnings (all, or the one named) are errors
+  -Wno-NAME              do not report the assembler warning NAME
   --help                 show this help
   --version              show the version
 DURATION: a number with us, ms, s, min or h (50us, 0.25ms, 1.5s, 2min, 1h); 0 needs no unit.
@@ -351,6 +353,9 @@ int parse_args(int argc, char** argv, Options& o) {
       o.asm_opts.defines.emplace_back(v.substr(0, eq), v.substr(eq + 1));
     } else if (int r = tmcl::debug::parse_option(a, has_inline, value, o.debug); r != 0) {
       if (r < 0) return usage_error(o.debug.error);
+    } else if (a.rfind("-W", 0) == 0 && a.size() > 2) {
+      std::string error;
+      if (!o.asm_opts.warnings.parse(a, error)) return usage_error(error.empty() ? "unknown option '" + a + "'" : error);
     } else if (a != "-" && a.size() > 1 && a[0] == '-') {
       return usage_error("unknown option '" + args[i] + "'");
     } else {
