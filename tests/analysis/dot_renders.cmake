@@ -1,0 +1,15 @@
+# Renders tmclasm's -f dot output with Graphviz and checks an SVG comes out (tests/analysis).
+# Run as: cmake -DTMCLASM=... -DDOT=... -DSRC=prog.tmc -DOUT=dir -P dot_renders.cmake
+if(NOT DOT OR NOT EXISTS "${DOT}")
+  message(STATUS "SKIPPED: Graphviz 'dot' is not installed; the picture is pinned by tests/golden/analysis/stack-usage.golden")
+  return()
+endif()
+execute_process(COMMAND ${TMCLASM} -f dot -o ${OUT}/cfg.dot ${SRC} RESULT_VARIABLE rc)
+if(NOT rc EQUAL 0)
+  message(FATAL_ERROR "tmclasm -f dot failed: ${rc}")
+endif()
+execute_process(COMMAND ${DOT} -Tsvg ${OUT}/cfg.dot OUTPUT_VARIABLE svg ERROR_VARIABLE err RESULT_VARIABLE rc)
+if(NOT rc EQUAL 0 OR NOT svg MATCHES "<svg")
+  message(FATAL_ERROR "dot -Tsvg did not render the graph (${rc}): ${err}")
+endif()
+message(STATUS "dot rendered the graph")
