@@ -174,6 +174,9 @@ int analyze_image(const std::string& file, tmcl::AsmOptions opts, const tmcl::Di
   opts.append_stop = false;  // the image as it is
   opts.symbols = true;
   tmcl::AsmResult result = tmcl::assemble({shown}, opts, mem);
+  // A final STOP is most likely the one tmclasm and TMCL-IDE append: not reported unreachable.
+  if (!result.program.empty() && result.program.back().op == static_cast<std::uint8_t>(tmcl::Op::STOP))
+    result.appended_stop = true;
   std::string text = result.ok() ? analyze_program(result, extra, true) : std::string();
   std::fputs(result.diags.render(result.sources).c_str(), stderr);
   if (!result.ok()) {
