@@ -351,11 +351,11 @@ int parse_args(int argc, char** argv, Options& o) {
       auto eq = v.find('=');
       if (eq == std::string::npos || eq == 0) return usage_error("bad -D '" + v + "' (expected NAME=VALUE)");
       o.asm_opts.defines.emplace_back(v.substr(0, eq), v.substr(eq + 1));
-    } else if (int r = tmcl::debug::parse_option(a, has_inline, value, o.debug); r != 0) {
-      if (r < 0) return usage_error(o.debug.error);
     } else if (a.rfind("-W", 0) == 0 && a.size() > 2) {
       std::string error;
       if (!o.asm_opts.warnings.parse(a, error)) return usage_error(error.empty() ? "unknown option '" + a + "'" : error);
+    } else if (int r = tmcl::debug::parse_option(a, has_inline, value, o.debug); r != 0) {
+      if (r < 0) return usage_error(o.debug.error);
     } else if (a != "-" && a.size() > 1 && a[0] == '-') {
       return usage_error("unknown option '" + args[i] + "'");
     } else {
@@ -375,6 +375,11 @@ int parse_args(int argc, char** argv, Options& o) {
     return usage_error("--serve runs until stopped: --json, --csv, --plot, --max-time and --max-steps do not go with it");
   }
   if (!o.log.empty() && (o.serve.empty() || !o.trace)) return usage_error("--log FILE goes with --serve --trace");
+  if (!o.eeprom_seal.empty()) {
+    if (have_program || !o.serve.empty() || !o.eeprom.empty())
+      return usage_error("--eeprom-seal FILE goes alone (it seals FILE and runs nothing)");
+    return -1;
+  }
   if (!o.modules.empty()) {  // the first --module is the primary module: its program and address
     if (have_program) return usage_error("with --module, give each module's program there, not as PROGRAM");
     BusSpec first;
@@ -382,11 +387,6 @@ int parse_args(int argc, char** argv, Options& o) {
     if (!first.target.empty()) o.target = first.target;
     o.program = first.file;
     o.serve_opts.protocol.module_address = first.address;
-  }
-  if (!o.eeprom_seal.empty()) {
-    if (have_program || !o.serve.empty() || !o.eeprom.empty())
-      return usage_error("--eeprom-seal FILE goes alone (it seals FILE and runs nothing)");
-    return -1;
   }
   if (!have_program && o.serve.empty() && !o.debug.dap) return usage_error("no PROGRAM given");
   return -1;
@@ -643,6 +643,7 @@ int run(int argc, char** argv) {
     std::fputs(tmcl::state_summary(vm, result, &sources).c_str(), stdout);
   return status;
 }
+
 
 int main(int argc, char** argv) {
   // --json is known before any other option is read, so even a bad option is reported as JSON.
