@@ -224,15 +224,6 @@ int parse_args(int argc, char** argv, Options& o) {
 
 // ---- output helpers ----
 
-std::string hex(const std::uint8_t* p, std::size_t n) {
-  std::string s;
-  char b[4];
-  for (std::size_t i = 0; i < n; ++i) {
-    std::snprintf(b, sizeof b, i ? " %02X" : "%02X", p[i]);
-    s += b;
-  }
-  return s;
-}
 
 int exit_for(host::Fail f) {
   switch (f) {
@@ -756,7 +747,7 @@ int main(int argc, char** argv) {
   }
   if (o.raw)
     o.client.on_frame = [](bool out, const std::uint8_t* p, std::size_t n) {
-      std::printf("%s %s\n", out ? ">" : "<", hex(p, n).c_str());
+      std::printf("%s %s\n", out ? ">" : "<", host::hex(p, n).c_str());
     };
   if (o.command == "scan") return cmd_scan(o, port);
   Session s{o, *port, host::Client(*port, o.client)};

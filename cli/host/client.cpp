@@ -18,6 +18,12 @@ bool checksum_ok(const std::uint8_t* p) { return frame_checksum_ok(p); }
 
 bool known_status(std::uint8_t s) { return (s >= 1 && s <= 6) || s == kStatusOk || s == kStatusLoaded || s == kStatusPositionReached; }
 
+
+bool special_134(const Instruction& ins) { return ins.op == static_cast<std::uint8_t>(Op::ReadProgramMemory) && ins.type == 0; }
+bool special_136(const Instruction& ins) { return ins.op == static_cast<std::uint8_t>(Op::GetFirmwareVersion) && ins.type == 0; }
+
+}  // namespace
+
 std::string hex(const std::uint8_t* p, std::size_t n) {
   std::string s;
   char b[4];
@@ -27,11 +33,6 @@ std::string hex(const std::uint8_t* p, std::size_t n) {
   }
   return s;
 }
-
-bool special_134(const Instruction& ins) { return ins.op == static_cast<std::uint8_t>(Op::ReadProgramMemory) && ins.type == 0; }
-bool special_136(const Instruction& ins) { return ins.op == static_cast<std::uint8_t>(Op::GetFirmwareVersion) && ins.type == 0; }
-
-}  // namespace
 
 std::string status_text(std::uint8_t status) {
   switch (status) {

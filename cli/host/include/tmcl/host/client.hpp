@@ -32,6 +32,8 @@ inline constexpr std::uint8_t kStatusOk = 100, kStatusLoaded = 101, kStatusPosit
 
 // "success", "wrong checksum", "invalid value", ... ("status 42" for an unknown code).
 std::string status_text(std::uint8_t status);
+// Bytes as upper-case hex pairs separated by spaces ("01 04 00 ..."), for messages and --raw.
+std::string hex(const std::uint8_t* p, std::size_t n);
 
 struct Reply {
   std::uint8_t status = 0;
