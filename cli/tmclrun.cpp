@@ -52,6 +52,8 @@ options:
   --log FILE             with --serve --trace: write the request log to FILE
   --json                 print the final state as one JSON object instead of the summary;
                          when there is no run (bad option or input), the errors as one object
+  --strict               a run-time warning (full call stack, RSUB or RETI with nothing to
+                         return to, a handler left without RETI) is a runtime fault (70)
   --error-limit N        show at most N errors of the source or scenario (default 20, 0 = all)
   --serve SPEC           act as a virtual module: tcp:HOST:PORT (loopback unless told
                          otherwise; [::1]:PORT for IPv6), pty, or stdio (docs/virtual-module.md).
@@ -195,6 +197,7 @@ struct Options {
   std::string scenario, eeprom, program;
   std::string eeprom_seal;
   bool trace = false, json = false;
+  bool strict = false;  // a run-time warning (docs/tmclrun.md) is a runtime fault
   std::string csv, plot;
   std::string log;  // --serve --trace: the request log (empty: standard error)
   std::string serve;
@@ -343,6 +346,8 @@ int parse_args(int argc, char** argv, Options& o) {
       o.trace = true;
     } else if (a == "--json" && !has_inline) {
       o.json = true;
+    } else if (a == "--strict" && !has_inline) {
+      o.strict = true;
     } else if (a == "-I") {
       if (!value(v)) return usage_error("-I needs a directory");
       o.asm_opts.include_dirs.push_back(v);
@@ -566,6 +571,7 @@ int run(int argc, char** argv) {
   tmcl::RecordingCore recording_core(*core, recorder);
   tmcl::Vm vm(*profile, recording ? static_cast<tmcl::MotionCore&>(recording_core) : *core);
   vm.instr_time = o.instr_time;
+  vm.strict = o.strict;
   tmcl::TextTrace trace(o.json ? stderr : stdout, &sources);
   if (o.trace && o.serve.empty()) vm.trace = &trace;  // serving, --trace logs the requests instead
   tmcl::RecordingTrace recording_trace(vm.trace, recorder);

@@ -96,6 +96,8 @@ void Vm::power_on(const EepromImage* image) {
   halt_pc = -1;
   fault_set_ = false;
   fault_message_.clear();
+  warnings.clear();
+  warnings_total = 0;
   input_next = 0;
   next_check_ = 0;
 
@@ -189,6 +191,29 @@ void Vm::fault(std::string message) {
   halt_pc = pc;
   status = AppStatus::Stopped;
   next_check_ = 0;
+}
+
+std::string_view warning_kind_name(RuntimeWarning::Kind k) {
+  switch (k) {
+    case RuntimeWarning::CallStackFull: return "call-stack-full";
+    case RuntimeWarning::ReturnWithoutCall: return "return-without-call";
+    case RuntimeWarning::RetiOutsideHandler: return "reti-outside-handler";
+    case RuntimeWarning::HandlerWithoutReti: return "handler-without-reti";
+  }
+  return "unknown";
+}
+
+// Called by the instruction at `pc` (standalone mode only); without --strict it is then ignored
+// (or, for STOP in a handler, executed) as the manuals say.
+bool Vm::warn(RuntimeWarning::Kind kind, std::string message) {
+  if (strict) {
+    fault(message + ", at " + where(pc) + " (--strict)");
+    return true;
+  }
+  last_warning = RuntimeWarning{now - instr_time, pc, kind, std::move(message)};
+  if (warnings.size() < kMaxWarnings) warnings.push_back(last_warning);
+  ++warnings_total;
+  return false;
 }
 
 bool Vm::jump_ok(std::int32_t target) {

@@ -146,11 +146,13 @@ RunResult Vm::Loop::run_traced(Vm& vm, const Limits& lim) {
     const std::int32_t at = vm.pc;
     const SimTime t0 = vm.now;
     const bool was_in_handler = vm.in_handler;
+    const std::uint64_t warned = vm.warnings_total;
     vm.now += vm.instr_time;
     ++vm.steps;
     execute(vm, at);
     if (vm.trap_hit) continue;
     vm.trace->instruction(vm, t0, at, vm.program[static_cast<std::size_t>(at)]);
+    if (vm.warnings_total != warned) vm.trace->warning(vm, vm.last_warning);
     if (was_in_handler && !vm.in_handler) vm.trace->interrupt_leave(vm, vm.pc);  // RETI (or RST)
   }
 }

@@ -20,6 +20,8 @@ struct Internal {
   static bool jump_ok(Vm& vm, std::int32_t target) { return vm.jump_ok(target); }
   static bool vector_ok(const Vm& vm, int n) { return vm.vector_ok(n); }
   static void fault(Vm& vm, std::string message) { vm.fault(std::move(message)); }
+  // A run-time warning; true when --strict made it a fault (then pc stays on the instruction).
+  static bool warn(Vm& vm, RuntimeWarning::Kind k, std::string message) { return vm.warn(k, std::move(message)); }
 };
 
 using R = DirectReply;
@@ -321,7 +323,14 @@ template <bool D> R op_JC(Vm& vm, const Instruction& i) {
 }
 template <bool D> R call(Vm& vm, const Instruction& i) {
   if (!Internal::jump_ok(vm, i.value)) return ok();
-  if (vm.sp >= Vm::kStackDepth) return done<D>(vm, kStatusOk);  // E5: the 9th CSUB is ignored
+  if (vm.sp >= Vm::kStackDepth) {  // E5: the 9th CSUB is ignored
+    if constexpr (!D)
+      if (Internal::warn(vm, RuntimeWarning::CallStackFull,
+                         std::string(op_info(i.op)->mnemonic) + " to " + std::to_string(i.value) +
+                             " with the call stack full (8 return addresses)"))
+        return ok();
+    return done<D>(vm, kStatusOk);
+  }
   vm.stack[static_cast<std::size_t>(vm.sp++)] = vm.pc + 1;
   vm.pc = i.value;
   return ok();
@@ -339,7 +348,15 @@ template <bool D> R op_RSUB(Vm& vm, const Instruction& i) {
   TMCL_FLOW_IN_DIRECT(i);
   // E6: an empty stack, or (inside a handler) no frame pushed by the handler: ignored.
   int floor = vm.in_handler ? vm.saved.stack_depth : 0;
-  if (vm.sp <= floor) return done<D>(vm, kStatusOk);
+  if (vm.sp <= floor) {
+    if constexpr (!D)
+      if (Internal::warn(vm, RuntimeWarning::ReturnWithoutCall,
+                         vm.in_handler ? "RSUB in the handler of interrupt " + std::to_string(vm.saved.vector) +
+                                             ", which made no call to return from (a handler ends with RETI)"
+                                       : std::string("RSUB with an empty call stack: nothing to return to")))
+        return ok();
+    return done<D>(vm, kStatusOk);
+  }
   vm.pc = vm.stack[static_cast<std::size_t>(--vm.sp)];
   return ok();
 }
@@ -353,6 +370,10 @@ template <bool D> R op_DJNZ(Vm& vm, const Instruction& i) {
 }
 template <bool D> R op_STOP(Vm& vm, const Instruction& i) {
   TMCL_FLOW_IN_DIRECT(i);
+  if (vm.in_handler &&
+      Internal::warn(vm, RuntimeWarning::HandlerWithoutReti,
+                     "STOP inside the handler of interrupt " + std::to_string(vm.saved.vector) + ": the handler is left without RETI"))
+    return ok();
   vm.status = AppStatus::Stopped;
   vm.halt_pc = vm.pc;
   Internal::recheck(vm);
@@ -414,7 +435,12 @@ template <bool D> R op_VECT(Vm& vm, const Instruction& i) {
 }
 template <bool D> R op_RETI(Vm& vm, const Instruction& i) {
   TMCL_FLOW_IN_DIRECT(i);
-  if (!vm.in_handler) return done<D>(vm, kStatusOk);  // E13: RETI outside a handler is ignored
+  if (!vm.in_handler) {  // E13: RETI outside a handler is ignored
+    if constexpr (!D)
+      if (Internal::warn(vm, RuntimeWarning::RetiOutsideHandler, "RETI while no interrupt is being served"))
+        return ok();
+    return done<D>(vm, kStatusOk);
+  }
   vm.pc = vm.saved.pc;
   vm.acc = vm.saved.acc;
   vm.x = vm.saved.x;

@@ -99,6 +99,13 @@ void TextTrace::input_event(const Vm& vm, const std::string& what) {
   std::fprintf(out_, "%s  input: %s\n", format_time(vm.now).c_str(), what.c_str());
 }
 
+// Same form as a wait line: the instant, then the address (and source line) it happened at.
+void TextTrace::warning(const Vm& vm, const RuntimeWarning& w) {
+  (void)vm;
+  std::fprintf(out_, "%s  warning at %" PRId32 " %s: %s\n", format_time(w.at).c_str(), w.pc, where(w.pc).c_str(),
+               w.message.c_str());
+}
+
 // ---------------------------------------------------------------- JSON
 
 namespace {
@@ -188,6 +195,18 @@ std::string state_json(Vm& vm, const RunResult& result) {
   interrupts.set("enabled", std::move(enabled));
   interrupts.set("vectors", std::move(vectors));
   interrupts.set("in_handler", vm.in_handler);
+  // Only when there are any, so that a clean run's JSON has no key more.
+  if (vm.warnings_total != 0) {
+    json::Value& list = s.set("warnings", json::Value::array());
+    for (const auto& w : vm.warnings) {
+      json::Value& o = list.push(json::Value::object());
+      o.set("time_us", static_cast<long long>(w.at));
+      o.set("pc", static_cast<long long>(w.pc));
+      o.set("kind", warning_kind_name(w.kind));
+      o.set("message", w.message);
+    }
+    s.set("warnings_omitted", static_cast<long long>(vm.warnings_total - vm.warnings.size()));
+  }
   return json::write_lines(s) + "\n";
 }
 
@@ -247,6 +266,9 @@ std::string state_summary(Vm& vm, const RunResult& result, const SourceMap* sour
     vm.sync_motion();
     s += "motor " + std::to_string(m) + ": position " + std::to_string(vm.motion->position(m)) + "\n";
   }
+  for (const auto& w : vm.warnings) s += "warning: " + format_time(w.at) + " at " + vm.where(w.pc) + ": " + w.message + "\n";
+  if (vm.warnings_total > vm.warnings.size())
+    s += "warning: " + std::to_string(vm.warnings_total - vm.warnings.size()) + " more run-time warnings not shown\n";
   return s;
 }
 

@@ -102,6 +102,22 @@ struct DirectReply {
 inline constexpr std::uint8_t kStatusOk = 100, kStatusInvalidCommand = 2, kStatusWrongType = 3,
                               kStatusInvalidValue = 4, kStatusNotAvailable = 6;
 
+// A mistake the manuals let pass silently (the instruction is ignored), noticed as it happens:
+// tmclrun prints these in its summary, trace and JSON; with Vm::strict each is a fault instead.
+struct RuntimeWarning {
+  enum Kind : std::uint8_t {
+    CallStackFull,       // CSUB/CALL with 8 return addresses on the stack (E5)
+    ReturnWithoutCall,   // RSUB with nothing to return to (E6)
+    RetiOutsideHandler,  // RETI while no interrupt is being served (E13)
+    HandlerWithoutReti,  // a handler that ends otherwise than with RETI (STOP)
+  };
+  SimTime at = 0;        // the instruction's start
+  std::int32_t pc = 0;   // its address
+  Kind kind = CallStackFull;
+  std::string message;   // without the place: "CSUB to 12 ignored: ..."
+};
+std::string_view warning_kind_name(RuntimeWarning::Kind k);  // "call-stack-full", ...
+
 // Observer for --trace; every callback gets the instant. Null by default (no cost).
 class TraceSink {
  public:
@@ -113,6 +129,8 @@ class TraceSink {
   virtual void motion_event(const Vm& vm, const MotionEvent& ev) = 0;
   virtual void wait_end(const Vm& vm, std::int32_t pc, bool timeout) = 0;
   virtual void input_event(const Vm& vm, const std::string& what) = 0;
+  // Called right after instruction() when that instruction recorded a run-time warning.
+  virtual void warning(const Vm& vm, const RuntimeWarning& w) { (void)vm, (void)w; }
 };
 
 // One external input change at an instant (from a scenario, or pushed by a server).
@@ -187,6 +205,13 @@ struct Vm {
   std::int64_t tick_offset_ms = 0;  // global 132 = now/1000 + tick_offset_ms
   std::uint32_t random_state = 1;   // global 133
   std::int32_t halt_pc = -1;        // address of the STOP or faulting instruction
+
+  // ---- run-time warnings (cleared by power_on); recorded only on the rare paths ----
+  static constexpr std::size_t kMaxWarnings = 100;
+  bool strict = false;                    // tmclrun --strict: a warning is a runtime fault
+  std::vector<RuntimeWarning> warnings;   // the first kMaxWarnings
+  std::uint64_t warnings_total = 0;       // including those past the cap
+  RuntimeWarning last_warning;            // the latest, for the trace even past the cap
 
   // ---- external inputs queued by time ----
   std::vector<InputEvent> inputs_queue;  // sorted by time; consumed from input_next
@@ -285,6 +310,7 @@ struct Vm {
   std::vector<MotionEvent> event_buf_;
 
   void fault(std::string message);
+  bool warn(RuntimeWarning::Kind kind, std::string message);  // true: strict made it a fault
   void handle_motion_event(const MotionEvent& ev);
   void apply_input(const InputEvent& ev);
   void raise(int vector);          // latch an interrupt if it is enabled and has a vector

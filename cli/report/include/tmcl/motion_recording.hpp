@@ -62,6 +62,9 @@ class RecordingTrace final : public TraceSink {
   void input_event(const Vm& vm, const std::string& what) override {
     if (inner_) inner_->input_event(vm, what);
   }
+  void warning(const Vm& vm, const RuntimeWarning& w) override {
+    if (inner_) inner_->warning(vm, w);
+  }
 
  private:
   TraceSink* inner_;

@@ -29,6 +29,7 @@ class TextTrace final : public TraceSink {
   void motion_event(const Vm& vm, const MotionEvent& ev) override;
   void wait_end(const Vm& vm, std::int32_t pc, bool timeout) override;
   void input_event(const Vm& vm, const std::string& what) override;
+  void warning(const Vm& vm, const RuntimeWarning& w) override;
 
  private:
   std::string where(std::int32_t pc) const;
