@@ -69,8 +69,13 @@ set(gen_args "")
 if(GENERATOR)
   set(gen_args -G "${GENERATOR}")
 endif()
+# Libraries from a sanitizer build call the sanitizer runtime: their consumer links it too.
+set(flag_args "")
+if(SANITIZE)
+  set(flag_args "-DCMAKE_CXX_FLAGS=${SANITIZE}" "-DCMAKE_EXE_LINKER_FLAGS=${SANITIZE}")
+endif()
 execute_process(COMMAND ${CMAKE_COMMAND} -S "${ROOT}/examples/consumer" -B "${WORK}/consumer" ${gen_args}
-  "-DCMAKE_PREFIX_PATH=${prefix}" -DCMAKE_BUILD_TYPE=Release
+  "-DCMAKE_PREFIX_PATH=${prefix}" -DCMAKE_BUILD_TYPE=Release ${flag_args}
   RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
 if(NOT rc EQUAL 0)
   message(FATAL_ERROR "configuring examples/consumer against ${prefix} failed (${rc}):\n${out}\n${err}")

@@ -39,6 +39,18 @@ std::string show(const T& v) {
   return os.str();
 }
 
+// Compares inside the full expression that made its operands, so an operand that refers into a
+// temporary (`CHECK_EQ(parse(x).name(), "a")`) is still alive when it is compared and shown.
+struct Compared {
+  bool equal;
+  std::string left, right;
+};
+template <typename A, typename B>
+Compared compare_eq(const A& a, const B& b) {
+  if (a == b) return {true, {}, {}};
+  return {false, show(a), show(b)};
+}
+
 inline void fail(const char* file, int line, const std::string& what) {
   ++failures();
   std::fprintf(stderr, "%s:%d: check failed: %s\n", file, line, what.c_str());
@@ -58,14 +70,13 @@ inline void fail(const char* file, int line, const std::string& what) {
     if (!(cond)) ::tmcl_test::fail(__FILE__, __LINE__, #cond);       \
   } while (0)
 
-#define CHECK_EQ(a, b)                                                                          \
-  do {                                                                                          \
-    const auto& tmcl_a_ = (a);                                                                  \
-    const auto& tmcl_b_ = (b);                                                                  \
-    if (!(tmcl_a_ == tmcl_b_))                                                                  \
-      ::tmcl_test::fail(__FILE__, __LINE__,                                                     \
-                        std::string(#a " == " #b "\n    left:  ") + ::tmcl_test::show(tmcl_a_) + \
-                            "\n    right: " + ::tmcl_test::show(tmcl_b_));                      \
+#define CHECK_EQ(a, b)                                                                     \
+  do {                                                                                     \
+    const ::tmcl_test::Compared tmcl_c_ = ::tmcl_test::compare_eq((a), (b));               \
+    if (!tmcl_c_.equal)                                                                    \
+      ::tmcl_test::fail(__FILE__, __LINE__,                                                \
+                        std::string(#a " == " #b "\n    left:  ") + tmcl_c_.left +          \
+                            "\n    right: " + tmcl_c_.right);                               \
   } while (0)
 
 #ifdef TMCL_TEST_MAIN
