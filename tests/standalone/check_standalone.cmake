@@ -1,7 +1,7 @@
 # The tree stands alone: nothing in its build, tests, benchmarks or CI reads outside it.
 # Run as: cmake -DROOT=<source dir> [-DWORK=<scratch dir>] [-DGENERATOR=<generator>] -P check_standalone.cmake
 #
-# 1. Greps the CMake files, scripts and sources for paths that leave the tree: `../shared`,
+# 1. Greps the CMake files, scripts and sources for paths that leave the tree: the parent's `shared` folder,
 #    `${PROJECT_SOURCE_DIR}/..`, `${CMAKE_SOURCE_DIR}/..` and the absolute `/work/shared`.
 # 2. Copies the tree (without build*/ and .git) into a fresh folder under WORK that has nothing
 #    beside it, configures it, checks that the generated build names no file of the original
