@@ -30,16 +30,13 @@
 #include <string>
 #include <vector>
 
+#include "text_file.hpp"
+
 namespace fs = std::filesystem;
 
 namespace {
 
-std::string slurp(const fs::path& p) {
-  std::ifstream f(p, std::ios::binary);
-  std::ostringstream s;
-  s << f.rdbuf();
-  return s.str();
-}
+using tmcl_test::read_text;
 
 bool is_text(const std::string& s) {
   for (unsigned char c : s)
@@ -119,8 +116,8 @@ Run run(const std::vector<std::string>& argv, const fs::path& dir, const std::st
   int st = 0;
   ::waitpid(pid, &st, 0);
   r.status = WIFEXITED(st) ? WEXITSTATUS(st) : 128 + WTERMSIG(st);
-  r.out = slurp(o);
-  r.err = slurp(e);
+  r.out = read_text(o);
+  r.err = read_text(e);
   fs::remove(o);
   fs::remove(e);
   return r;
@@ -167,7 +164,7 @@ struct Runner {
 
   // Runs one case and compares (or rewrites) its record; false when it has no RUN line.
   bool run_case(const fs::path& c) {
-    std::string text = slurp(c);
+    std::string text = read_text(c);
     std::istringstream lines(text);
     std::string line, record, rest;
     fs::path folder = fs::absolute(c.parent_path()), cwd = folder;
@@ -210,7 +207,7 @@ struct Runner {
       std::string output;
       bool has_output = fs::exists(tmpout);
       if (has_output) {
-        output = slurp(tmpout);
+        output = read_text(tmpout);
         fs::remove(tmpout);
       }
       for (std::string* s : {&r.out, &r.err, &output}) {  // temporary paths are not the tools' text
@@ -230,14 +227,14 @@ struct Runner {
       return true;
     }
     if (update) {
-      if (!fs::exists(golden) || slurp(golden) != record) {
+      if (!fs::exists(golden) || read_text(golden) != record) {
         std::ofstream(golden, std::ios::binary) << record;
         ++updated;
       }
       ++passed;
       return true;
     }
-    std::string want = fs::exists(golden) ? slurp(golden) : "";
+    std::string want = fs::exists(golden) ? read_text(golden) : "";
     if (want == record) {
       ++passed;
       return true;

@@ -10,19 +10,15 @@
 #include <sstream>
 
 #include "check.hpp"
+#include "text_file.hpp"
 #include "internal.hpp"
 #include "same_result.hpp"
 
 namespace {
 
-namespace fs = std::filesystem;
+using tmcl_test::read_text;
 
-std::string read_text(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  std::ostringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
+namespace fs = std::filesystem;
 
 std::vector<fs::path> repository_sources() {
   std::vector<fs::path> out;

@@ -9,20 +9,16 @@
 #include <sstream>
 
 #include "check.hpp"
+#include "text_file.hpp"
 #include "tmcl/asm/assembler.hpp"
 #include "tmcl/asm/format.hpp"
 #include "tmcl/asm/output.hpp"
 
 namespace {
 
-namespace fs = std::filesystem;
+using tmcl_test::read_text;
 
-std::string read_text(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  std::ostringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
+namespace fs = std::filesystem;
 
 // Reads from disk, except that one path is served formatted.
 class FormattedReader final : public tmcl::FileReader {
