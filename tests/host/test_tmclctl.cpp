@@ -5,15 +5,11 @@
 // three modules, every fault kind of --faults recovered or reported, Ctrl-C during a download,
 // a silent module, exclusive ports and atomic output files.
 #define TMCL_TEST_MAIN
-#include <sys/stat.h>
-
 #include <algorithm>
 #include <cstdio>
-#include <fstream>
-#include <sstream>
 
 #include "check.hpp"
-#include "process.hpp"
+#include "tmclctl_test.hpp"
 #include "tmcl/asm/assembler.hpp"
 #include "tmcl/faults.hpp"
 #include "tmcl/host/port.hpp"
@@ -24,46 +20,7 @@ using hosttest::Server;
 
 namespace {
 
-const std::string kCtl = TMCL_TMCLCTL;
-const std::string kRun = TMCL_TMCLRUN;
-
-std::string temp_dir() {
-  static std::string dir = [] {
-    char t[] = "/tmp/tmclctl-test-XXXXXX";
-    return std::string(::mkdtemp(t));
-  }();
-  return dir;
-}
-
-std::string write_temp(const std::string& name, const std::string& text) {
-  const std::string path = temp_dir() + "/" + name;
-  std::ofstream(path, std::ios::binary) << text;
-  return path;
-}
-
-std::string slurp(const std::string& path) {
-  std::ifstream f(path, std::ios::binary);
-  std::ostringstream s;
-  s << f.rdbuf();
-  return s.str();
-}
-
-bool exists(const std::string& path) {
-  struct stat st{};
-  return ::stat(path.c_str(), &st) == 0;
-}
-
-bool has(const std::string& text, const std::string& part) { return text.find(part) != std::string::npos; }
-
-Output ctl(const std::vector<std::string>& args, int timeout_ms = 30000) {
-  std::vector<std::string> argv{kCtl};
-  argv.insert(argv.end(), args.begin(), args.end());
-  return hosttest::run(argv, timeout_ms);
-}
-
-void show(const Output& o) {
-  if (o.status != 0) std::fprintf(stderr, "  status %d\n  stdout: %s\n  stderr: %s\n", o.status, o.out.c_str(), o.err.c_str());
-}
+using namespace hosttest;
 
 // 577 instructions: the whole program memory of the USB-2-SD, every one different.
 std::string full_memory_source() {
