@@ -35,9 +35,10 @@ inline std::vector<char*> c_args(std::vector<std::string>& args) {
   return v;
 }
 
-// Runs argv; `during(pid)` is called once after `during_ms` (to send a signal, say).
+// Runs argv; from `during_ms` on, `during(pid)` is called every 20 ms or so until it returns true
+// (to send a signal once something has happened, say).
 inline Output run(std::vector<std::string> argv, int timeout_ms = 30000, int during_ms = -1,
-                  const std::function<void(pid_t)>& during = {}) {
+                  const std::function<bool(pid_t)>& during = {}) {
   int out[2], err[2];
   if (::pipe(out) != 0 || ::pipe(err) != 0) return {};
   const pid_t pid = ::fork();
@@ -61,10 +62,7 @@ inline Output run(std::vector<std::string> argv, int timeout_ms = 30000, int dur
   pollfd fds[2] = {{out[0], POLLIN, 0}, {err[0], POLLIN, 0}};
   while (open_fds > 0) {
     const auto elapsed = std::chrono::duration_cast<std::chrono::milliseconds>(Clock::now() - start).count();
-    if (!fired && elapsed >= during_ms) {
-      during(pid);
-      fired = true;
-    }
+    if (!fired && elapsed >= during_ms) fired = during(pid);
     if (elapsed > timeout_ms) {
       ::kill(pid, SIGKILL);
       o.err += "\n[test: killed after " + std::to_string(timeout_ms) + " ms]";

@@ -1,5 +1,5 @@
 // What the tmclctl tests share: the two tools' paths, a scratch folder, files in and out, and
-// running tmclctl with pipes for its output (process.hpp).
+// running tmclctl with pipes for its output (process.hpp) and a generous reply timeout.
 #pragma once
 
 #include <sys/stat.h>
@@ -45,8 +45,14 @@ inline bool exists(const std::string& path) {
 
 inline bool has(const std::string& text, const std::string& part) { return text.find(part) != std::string::npos; }
 
+// Runs tmclctl with `args`. Without a --timeout among them it gets --timeout 5s: where a reply
+// is to come, a loaded machine (load average 15 on 2 cores) must not turn a slow one into a
+// failure. Tests of silence pass their own short timeout.
 inline Output ctl(const std::vector<std::string>& args, int timeout_ms = 30000) {
   std::vector<std::string> argv{kCtl};
+  bool timeout = false;
+  for (const auto& a : args) timeout = timeout || a == "--timeout";
+  if (!timeout) argv.insert(argv.end(), {"--timeout", "5s"});
   argv.insert(argv.end(), args.begin(), args.end());
   return hosttest::run(argv, timeout_ms);
 }
