@@ -520,8 +520,8 @@ int run(int argc, char** argv) {
 int main(int argc, char** argv) {
   int status = run(argc, argv);
   // Every write is checked, standard output included (--help, --version, -o -).
-  if (std::fflush(stdout) != 0 || std::ferror(stdout)) {
-    std::fprintf(stderr, "tmclasm: error: cannot write standard output: %s\n", std::strerror(errno));
+  if (std::string err; !tmcl::flush_stdout(err)) {
+    std::fprintf(stderr, "tmclasm: error: %s\n", err.c_str());
     return kExitOutput;
   }
   return status;

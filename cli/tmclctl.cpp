@@ -3,7 +3,7 @@
 // status, monitor, an interactive console and a bus scan. A thin tool: the protocol, transfers
 // and parameter names live in cli/host/ (tmcl_host); see docs/tmclctl.md for every command.
 // Exit status: 0 ok, 1 verify mismatch, 2 error status from the module, 64 usage, 65 bad input,
-// 69 no reply, 74 port or output file error, 130 interrupted.
+// 69 no reply, 74 port, output file or standard output error, 130 interrupted.
 #include <signal.h>
 #include <unistd.h>
 
@@ -14,6 +14,7 @@
 #include <cstdlib>
 #include <iostream>
 #include <memory>
+#include <sstream>
 #include <string>
 #include <thread>
 #include <vector>
@@ -27,6 +28,7 @@
 #include "tmcl/host/port.hpp"
 #include "tmcl/host/transfer.hpp"
 #include "tmcl/image.hpp"
+#include "tmcl/plot.hpp"
 #include "tmcl/program_image.hpp"
 #include "tmcl/version.hpp"
 
@@ -75,6 +77,7 @@ options:
   upload:   -o FILE      the .bin to write (atomically)
   monitor:  --every DURATION (default 100ms)  --for DURATION (default: until Ctrl-C)
             --csv FILE   write the rows to FILE instead of standard output
+            --plot FILE  also draw the polled values against time as an SVG (one panel each)
   scan:     --range A-B  addresses to try (default 1-255)
             --bauds LIST baud rates to try, comma-separated (serial ports only)
   --help, --version
@@ -87,8 +90,8 @@ examples:
   tmclctl /dev/pts/5 scan --range 1-8
 
 exit status: 0 ok, 1 verify mismatch, 2 the module answered with an error status, 64 usage error,
-             65 bad input file, 69 no reply from the module, 74 port error or output file not
-             written, 130 interrupted (Ctrl-C)
+             65 bad input file, 69 no reply from the module, 74 port error, output file or
+             standard output not written, 130 interrupted (Ctrl-C)
 )";
 
 volatile std::sig_atomic_t g_stop = 0;
@@ -105,8 +108,9 @@ struct Options {
   std::vector<std::string> include_dirs;
   bool verify = true, run = false, autostart = false;
   int from = 0;
-  std::string output, csv;
+  std::string output, csv, plot;
   tmcl::SimTime every = 100 * tmcl::kUsPerMs, for_time = 0;
+  std::string every_text = "100ms";  // as given, for the plot's title
   int range_lo = 1, range_hi = 255;
   std::vector<long> bauds;
   bool timeout_given = false;
@@ -164,6 +168,7 @@ int parse_args(int argc, char** argv, Options& o) {
         o.timeout_given = true;
       } else {
         (a == "--every" ? o.every : o.for_time) = *d;
+        if (a == "--every") o.every_text = v;
       }
     } else if (a == "--retries") {
       if (!value(v) || !parse_long(v, 0, 100, n)) return usage_error("--retries needs a number from 0 to 100");
@@ -188,6 +193,8 @@ int parse_args(int argc, char** argv, Options& o) {
       if (!value(o.output)) return usage_error("-o needs a file");
     } else if (a == "--csv") {
       if (!value(o.csv)) return usage_error("--csv needs a file");
+    } else if (a == "--plot") {
+      if (!value(o.plot)) return usage_error("--plot needs a file");
     } else if (a == "--range") {
       long lo = 0, hi = 0;
       const auto dash = value(v) ? v.find('-') : std::string::npos;
@@ -224,6 +231,24 @@ int parse_args(int argc, char** argv, Options& o) {
 
 // ---- output helpers ----
 
+// Every write to standard output is checked: false, after saying so, when one failed (a full
+// disk, a closed pipe).
+bool stdout_written() {
+  static bool reported = false;
+  std::string err;
+  if (tmcl::flush_stdout(err)) return true;
+  if (!reported) std::fprintf(stderr, "tmclctl: error: %s\n", err.c_str());
+  reported = true;
+  return false;
+}
+
+// An output file, written atomically: complete or not at all. False after saying why.
+bool write_output(const std::string& path, const std::string& text) {
+  std::string err;
+  if (tmcl::write_file_atomic(path, std::vector<std::uint8_t>(text.begin(), text.end()), err)) return true;
+  std::fprintf(stderr, "tmclctl: error: %s\n", err.c_str());
+  return false;
+}
 
 int exit_for(host::Fail f) {
   switch (f) {
@@ -500,11 +525,8 @@ struct Session {
                    tr.outcome == host::Outcome::Cancelled ? "; nothing written" : "");
       return exit_for(tr.outcome);
     }
-    std::string err;
-    if (!tmcl::write_file_atomic(o.output, tmcl::write_bin(program), err)) {
-      std::fprintf(stderr, "tmclctl: error: %s\n", err.c_str());
-      return kExitPort;
-    }
+    const std::vector<std::uint8_t> bin = tmcl::write_bin(program);
+    if (!write_output(o.output, std::string(bin.begin(), bin.end()))) return kExitPort;
     if (!o.quiet) std::printf("read %zu instructions into %s\n", program.size(), o.output.c_str());
     return kExitOk;
   }
@@ -563,19 +585,24 @@ struct Session {
     if (params.empty()) return usage_error("monitor needs at least one parameter (e.g. ap:1, gp:128, 'actual position')");
     const bool table = o.csv.empty() && ::isatty(1);
     std::string csv = "time_s";
+    std::vector<std::string> names, short_names;  // "Maximum positioning speed [0]", "ap:4:0"
     for (const auto& p : params) {
       std::string label = p.info ? std::string(p.info->name) : p.label();
       for (char& c : label)
         if (c == ',') c = ';';
-      csv += "," + label + (p.kind == host::ParamRef::Axis ? " [" + std::to_string(p.index) + "]" : "");
+      names.push_back(label + (p.kind == host::ParamRef::Axis ? " [" + std::to_string(p.index) + "]" : ""));
+      csv += "," + names.back();
+      const char* kind = p.kind == host::ParamRef::Axis ? "ap:" : p.kind == host::ParamRef::Global ? "gp:" : "io:";
+      short_names.push_back(kind + std::to_string(p.number) + ":" + std::to_string(p.index));
     }
     csv += "\n";
+    // --plot: the rows as time series, one panel per parameter (cli/report's plot).
+    tmcl::Plot plot;
+    for (std::size_t i = 0; i < params.size(); ++i)
+      plot.panels.push_back({names[i], "", std::string(tmcl::plot_colour(i)), short_names[i], false, {{}}});
     if (table) {
       std::printf("%10s", "time (s)");
-      for (const auto& p : params) {
-        const char* kind = p.kind == host::ParamRef::Axis ? "ap:" : p.kind == host::ParamRef::Global ? "gp:" : "io:";
-        std::printf(" %14s", (kind + std::to_string(p.number) + ":" + std::to_string(p.index)).c_str());
-      }
+      for (const auto& name : short_names) std::printf(" %14s", name.c_str());
       std::printf("\n");
     } else if (o.csv.empty()) {
       std::fputs(csv.c_str(), stdout);
@@ -592,10 +619,12 @@ struct Session {
       std::snprintf(line, sizeof line, "%.3f", std::chrono::duration<double>(every * row).count());
       std::string text = line;
       if (table) std::printf("%10s", line);
+      std::vector<std::int32_t> values;
       for (const auto& ins : reads) {
         host::Result r;
         rc = ask(ins, r);
         if (rc != kExitOk) break;
+        values.push_back(r.reply.value);
         text += "," + std::to_string(r.reply.value);
         if (table) std::printf(" %14" PRId32, r.reply.value);
       }
@@ -605,20 +634,27 @@ struct Session {
       }
       if (rc != kExitOk) break;
       csv += text + "\n";
-      if (table) {
+      plot.times.push_back(o.every * row);
+      for (std::size_t i = 0; i < values.size(); ++i) plot.panels[i].lines[0].push_back(values[i]);
+      if (table)
         std::printf("\n");
-        std::fflush(stdout);
-      } else if (o.csv.empty()) {
+      else if (o.csv.empty())
         std::printf("%s\n", text.c_str());
-        std::fflush(stdout);
+      if ((table || o.csv.empty()) && !stdout_written()) {
+        rc = kExitPort;  // a full disk or a closed pipe ends it
+        break;
       }
     }
-    if (!o.csv.empty()) {
-      std::string err;
-      if (!tmcl::write_file_atomic(o.csv, std::vector<std::uint8_t>(csv.begin(), csv.end()), err)) {
-        std::fprintf(stderr, "tmclctl: error: %s\n", err.c_str());
-        return kExitPort;
-      }
+    // What was polled is kept even when polling ended with an error.
+    if (!o.csv.empty() && !write_output(o.csv, csv)) rc = kExitPort;
+    if (!o.plot.empty()) {
+      tmcl::PlotOptions opt;
+      opt.title = "tmclctl monitor: module " + std::to_string(o.client.module) + " on " + o.port + ", every " + o.every_text;
+      const int panels = static_cast<int>(params.size());
+      opt.height = std::max(opt.height, 104 + 62 + panels * 170 + (panels - 1) * 26);  // >= 170 px a panel
+      std::ostringstream svg;
+      tmcl::write_svg(svg, plot, opt);
+      if (!write_output(o.plot, svg.str())) rc = kExitPort;
     }
     return rc;
   }
@@ -719,9 +755,7 @@ int cmd_scan(Options& o, std::unique_ptr<host::Port>& port) {
   return found > 0 ? kExitOk : kExitNoReply;
 }
 
-}  // namespace
-
-int main(int argc, char** argv) {
+int run(int argc, char** argv) {
   Options o;
   if (int r = parse_args(argc, argv, o); r >= 0) return r;
 
@@ -738,6 +772,7 @@ int main(int argc, char** argv) {
   bool known = false;
   for (const char* c : kCommands) known = known || o.command == c;
   if (!known) return usage_error("unknown command '" + o.command + "'");
+  if ((!o.csv.empty() || !o.plot.empty()) && o.command != "monitor") return usage_error("--csv and --plot go with monitor");
 
   std::string err;
   std::unique_ptr<host::Port> port = host::Port::open(o.port, o.baud, o.client.timeout_ms, err);
@@ -765,4 +800,11 @@ int main(int argc, char** argv) {
   if (c == "status") return s.cmd_status();
   if (c == "monitor") return s.cmd_monitor();
   return s.cmd_console();
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  const int status = run(argc, argv);
+  return stdout_written() ? status : kExitPort;
 }

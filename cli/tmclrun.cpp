@@ -660,8 +660,8 @@ int main(int argc, char** argv) {
     std::fputs(tmcl::error_json(g_failure.kind, status, g_failure.diags, g_failure.more).c_str(), stdout);
   // Every write is checked, standard output included: a full disk or a closed pipe is exit 74,
   // never a silent success.
-  if (std::fflush(stdout) != 0 || std::ferror(stdout)) {
-    std::fprintf(stderr, "tmclrun: error: cannot write standard output: %s\n", std::strerror(errno));
+  if (std::string err; !tmcl::flush_stdout(err)) {
+    std::fprintf(stderr, "tmclrun: error: %s\n", err.c_str());
     return kExitIo;
   }
   return status;

@@ -1,16 +1,19 @@
 // Process helpers for the tmclctl tests: start `tmclrun --serve` as a separate process and read
 // the line it announces (a pty path or "listening on HOST:PORT"), and run tmclctl capturing its
-// exit status, standard output and standard error. Every wait has a deadline: a hung tool fails
-// the test (it is killed) instead of hanging the suite.
+// exit status, standard output and standard error (through pipes, or with both on a pty as in a
+// terminal). Every wait has a deadline: a hung tool fails the test (it is killed) instead of
+// hanging the suite.
 #pragma once
 
 #include <fcntl.h>
 #include <poll.h>
 #include <signal.h>
+#include <termios.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
 #include <chrono>
+#include <cstdlib>
 #include <cstdio>
 #include <functional>
 #include <string>
@@ -32,9 +35,10 @@ inline std::vector<char*> c_args(std::vector<std::string>& args) {
   return v;
 }
 
-// Runs argv; `during(pid)` is called once after `during_ms` (to send a signal, say).
+// Runs argv; from `during_ms` on, `during(pid)` is called every 20 ms or so until it returns true
+// (to send a signal once something has happened, say).
 inline Output run(std::vector<std::string> argv, int timeout_ms = 30000, int during_ms = -1,
-                  const std::function<void(pid_t)>& during = {}) {
+                  const std::function<bool(pid_t)>& during = {}) {
   int out[2], err[2];
   if (::pipe(out) != 0 || ::pipe(err) != 0) return {};
   const pid_t pid = ::fork();
@@ -58,10 +62,7 @@ inline Output run(std::vector<std::string> argv, int timeout_ms = 30000, int dur
   pollfd fds[2] = {{out[0], POLLIN, 0}, {err[0], POLLIN, 0}};
   while (open_fds > 0) {
     const auto elapsed = std::chrono::duration_cast<std::chrono::milliseconds>(Clock::now() - start).count();
-    if (!fired && elapsed >= during_ms) {
-      during(pid);
-      fired = true;
-    }
+    if (!fired && elapsed >= during_ms) fired = during(pid);
     if (elapsed > timeout_ms) {
       ::kill(pid, SIGKILL);
       o.err += "\n[test: killed after " + std::to_string(timeout_ms) + " ms]";
@@ -83,6 +84,56 @@ inline Output run(std::vector<std::string> argv, int timeout_ms = 30000, int dur
   }
   for (auto& p : fds)
     if (p.fd >= 0) ::close(p.fd);
+  int st = 0;
+  ::waitpid(pid, &st, 0);
+  o.status = WIFEXITED(st) ? WEXITSTATUS(st) : 128 + WTERMSIG(st);
+  return o;
+}
+
+// Runs argv with standard output and standard error on one pty (raw, so the text arrives as
+// written), as in a terminal; standard input is /dev/null. Output::out holds what the pty
+// showed, Output::err is empty.
+inline Output run_on_pty(std::vector<std::string> argv, int timeout_ms = 30000) {
+  Output o;
+  const int master = ::posix_openpt(O_RDWR | O_NOCTTY);
+  if (master < 0 || ::grantpt(master) != 0 || ::unlockpt(master) != 0) return o;
+  const int slave = ::open(::ptsname(master), O_RDWR | O_NOCTTY);
+  if (slave < 0) {
+    ::close(master);
+    return o;
+  }
+  termios t{};
+  ::tcgetattr(slave, &t);
+  ::cfmakeraw(&t);
+  ::tcsetattr(slave, TCSANOW, &t);
+  const pid_t pid = ::fork();
+  if (pid == 0) {
+    ::dup2(slave, 1);
+    ::dup2(slave, 2);
+    const int null = ::open("/dev/null", O_RDONLY);
+    ::dup2(null, 0);
+    ::close(master);
+    ::close(slave);
+    auto args = c_args(argv);
+    ::execv(args[0], args.data());
+    ::_exit(127);
+  }
+  ::close(slave);
+  const auto deadline = Clock::now() + std::chrono::milliseconds(timeout_ms);
+  for (;;) {
+    if (Clock::now() > deadline) {
+      ::kill(pid, SIGKILL);
+      o.out += "\n[test: killed after " + std::to_string(timeout_ms) + " ms]";
+      break;
+    }
+    pollfd p{master, POLLIN, 0};
+    if (::poll(&p, 1, 20) <= 0) continue;
+    char buf[4096];
+    const ssize_t n = ::read(master, buf, sizeof buf);
+    if (n <= 0) break;  // EIO: the last holder of the pty's other side has gone
+    o.out.append(buf, static_cast<std::size_t>(n));
+  }
+  ::close(master);
   int st = 0;
   ::waitpid(pid, &st, 0);
   o.status = WIFEXITED(st) ? WEXITSTATUS(st) : 128 + WTERMSIG(st);

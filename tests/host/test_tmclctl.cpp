@@ -5,15 +5,11 @@
 // three modules, every fault kind of --faults recovered or reported, Ctrl-C during a download,
 // a silent module, exclusive ports and atomic output files.
 #define TMCL_TEST_MAIN
-#include <sys/stat.h>
-
 #include <algorithm>
 #include <cstdio>
-#include <fstream>
-#include <sstream>
 
 #include "check.hpp"
-#include "process.hpp"
+#include "tmclctl_test.hpp"
 #include "tmcl/asm/assembler.hpp"
 #include "tmcl/faults.hpp"
 #include "tmcl/host/port.hpp"
@@ -24,46 +20,7 @@ using hosttest::Server;
 
 namespace {
 
-const std::string kCtl = TMCL_TMCLCTL;
-const std::string kRun = TMCL_TMCLRUN;
-
-std::string temp_dir() {
-  static std::string dir = [] {
-    char t[] = "/tmp/tmclctl-test-XXXXXX";
-    return std::string(::mkdtemp(t));
-  }();
-  return dir;
-}
-
-std::string write_temp(const std::string& name, const std::string& text) {
-  const std::string path = temp_dir() + "/" + name;
-  std::ofstream(path, std::ios::binary) << text;
-  return path;
-}
-
-std::string slurp(const std::string& path) {
-  std::ifstream f(path, std::ios::binary);
-  std::ostringstream s;
-  s << f.rdbuf();
-  return s.str();
-}
-
-bool exists(const std::string& path) {
-  struct stat st{};
-  return ::stat(path.c_str(), &st) == 0;
-}
-
-bool has(const std::string& text, const std::string& part) { return text.find(part) != std::string::npos; }
-
-Output ctl(const std::vector<std::string>& args, int timeout_ms = 30000) {
-  std::vector<std::string> argv{kCtl};
-  argv.insert(argv.end(), args.begin(), args.end());
-  return hosttest::run(argv, timeout_ms);
-}
-
-void show(const Output& o) {
-  if (o.status != 0) std::fprintf(stderr, "  status %d\n  stdout: %s\n  stderr: %s\n", o.status, o.out.c_str(), o.err.c_str());
-}
+using namespace hosttest;
 
 // 577 instructions: the whole program memory of the USB-2-SD, every one different.
 std::string full_memory_source() {
@@ -230,7 +187,9 @@ TEST(port_errors) {
 TEST(scan_bus_of_three) {
   const std::string a = write_temp("a.tmc", "SAP 4, 0, 111\nSTOP\n");
   Server server(kRun, {"--serve", "pty", "-t", "usb-2-sd", "--module", "1:" + a, "--module", "3", "--module", "7/tmc2300-eval"});
-  Output s = ctl({server.port(), "scan", "--range", "1-8"});
+  // A module that is there must answer within the scan's timeout: 1 s instead of the default
+  // 50 ms, so that a loaded machine cannot hide one (the absent ones cost 5 s in all).
+  Output s = ctl({"--timeout", "1s", server.port(), "scan", "--range", "1-8"});
   show(s);
   CHECK_EQ(s.status, 0);
   CHECK_EQ(s.out,
@@ -242,7 +201,7 @@ TEST(scan_bus_of_three) {
   CHECK_EQ(ctl({"-a", "3", server.port(), "set", "ap", "4", "0", "777"}).status, 0);
   CHECK_EQ(ctl({"-a", "3", server.port(), "get", "ap", "4", "0"}).out, "777\n");
   CHECK_EQ(ctl({"-a", "1", server.port(), "get", "ap", "4", "0"}).out != "777\n", true);
-  Output none = ctl({server.port(), "scan", "--range", "10-12"});
+  Output none = ctl({"--timeout", "50ms", server.port(), "scan", "--range", "10-12"});  // nobody there: no wait can help
   CHECK_EQ(none.status, 69);
   CHECK(has(none.out, "0 modules found"));
 }
@@ -260,32 +219,38 @@ void fault_case(const std::string& spec, const std::vector<std::string>& ctl_opt
   if (want_status == 0) CHECK(!o.out.empty());
 }
 
+// Timeouts, so that the cases hold on a loaded machine (a process may wait hundreds of ms for a
+// core): where a reply is to come, the timeout or the window of retries is seconds, far beyond
+// any scheduling delay. Where a silent module is what is tested, the reply never comes, so a short
+// timeout cannot be beaten by a slow scheduler and the expected text does not depend on timing.
 TEST(faults_recovered_or_reported) {
-  fault_case("drop@1", {"--timeout", "100ms"}, 0, "");
+  fault_case("drop@1", {"--timeout", "1s"}, 0, "");  // waits the timeout once, then the retry is answered
   fault_case("drop@1", {"--timeout", "100ms", "--retries", "0"}, 69, "no reply within 100 ms to GAP 4, 0");
-  fault_case("corrupt@1", {"--timeout", "300ms"}, 0, "");
-  fault_case("corrupt@1", {"--timeout", "300ms", "--retries", "0"}, 69, "only a corrupted reply (wrong checksum) to GAP 4, 0");
-  fault_case("delay=50ms", {"--timeout", "300ms", "--retries", "0"}, 0, "");
-  fault_case("delay=300ms@1", {"--timeout", "100ms", "--retries", "2"}, 0, "");
-  fault_case("split", {"--retries", "0"}, 0, "");
-  fault_case("split=30ms", {"--retries", "0"}, 0, "");
-  fault_case("silence=250ms@1", {"--timeout", "100ms", "--retries", "5"}, 0, "");
-  fault_case("silence=250ms@1", {"--timeout", "100ms", "--retries", "0"}, 69, "no reply");
-  fault_case("stale", {"--retries", "0"}, 0, "");
+  fault_case("corrupt@1", {"--timeout", "10s"}, 0, "");  // a corrupted reply ends the wait at once
+  fault_case("corrupt@1", {"--timeout", "10s", "--retries", "0"}, 69, "only a corrupted reply (wrong checksum) to GAP 4, 0");
+  fault_case("delay=50ms", {"--timeout", "10s", "--retries", "0"}, 0, "");
+  // Late beyond the timeout: retried until the late reply (or the one behind it) is read; 20
+  // attempts of 100 ms leave seconds for the 300 ms.
+  fault_case("delay=300ms@1", {"--timeout", "100ms", "--retries", "20"}, 0, "");
+  fault_case("split", {"--timeout", "10s", "--retries", "0"}, 0, "");
+  fault_case("split=30ms", {"--timeout", "10s", "--retries", "0"}, 0, "");
+  fault_case("silence=250ms@1", {"--timeout", "200ms", "--retries", "20"}, 0, "");
+  fault_case("silence=250ms@1", {"--timeout", "100ms", "--retries", "0"}, 69, "no reply within 100 ms");
+  fault_case("stale", {"--timeout", "10s", "--retries", "0"}, 0, "");
   fault_case("drop@cmd=GAP", {"--timeout", "50ms", "--retries", "1"}, 69, "(2 attempts)");
-  fault_case("drop@cmd=6#1", {"--timeout", "50ms", "--retries", "1"}, 0, "");
+  fault_case("drop@cmd=6#1", {"--timeout", "1s", "--retries", "1"}, 0, "");
   // The same over TCP, where a frame split across writes is two segments.
   const std::string tcp = "tcp:127.0.0.1:0";
-  fault_case("drop@1", {"--timeout", "100ms"}, 0, "", tcp);
-  fault_case("corrupt@1", {"--timeout", "300ms", "--retries", "0"}, 69, "only a corrupted reply", tcp);
-  fault_case("split=30ms", {"--retries", "0"}, 0, "", tcp);
-  fault_case("stale,delay=20ms", {"--retries", "0"}, 0, "", tcp);
-  fault_case("silence=250ms@1", {"--timeout", "100ms", "--retries", "5"}, 0, "", tcp);
+  fault_case("drop@1", {"--timeout", "1s"}, 0, "", tcp);
+  fault_case("corrupt@1", {"--timeout", "10s", "--retries", "0"}, 69, "only a corrupted reply", tcp);
+  fault_case("split=30ms", {"--timeout", "10s", "--retries", "0"}, 0, "", tcp);
+  fault_case("stale,delay=20ms", {"--timeout", "10s", "--retries", "0"}, 0, "", tcp);
+  fault_case("silence=250ms@1", {"--timeout", "200ms", "--retries", "20"}, 0, "", tcp);
 }
 
 TEST(scan_over_several_baud_rates) {
   Server server(kRun, {"--serve", "pty", "-t", "usb-2-sd"});  // a pty takes any rate
-  Output s = ctl({server.port(), "scan", "--range", "1-2", "--bauds", "9600,115200"});
+  Output s = ctl({"--timeout", "1s", server.port(), "scan", "--range", "1-2", "--bauds", "9600,115200"});
   CHECK_EQ(s.status, 0);
   CHECK_EQ(s.out,
            "at 9600 baud:\n"
@@ -304,12 +269,14 @@ TEST(download_verify_under_seeded_faults) {
   for (int i = 0; i < 99; ++i) src += "SAP 4, 0, " + std::to_string(i) + "\n";
   const std::string path = write_temp("faulty.tmc", src + "STOP\n");
   Server server(kRun, {"--serve", "pty", "-t", "usb-2-sd", "--faults", "stale,corrupt@p=0.1,drop@p=0.05,split@every=7,seed=7"});
-  Output d = ctl({"-t", "usb-2-sd", "--timeout", "100ms", "--retries", "5", server.port(), "download", path}, 60000);
+  // Each dropped reply costs one timeout; 8 attempts of 250 ms give a request 2 s to get through
+  // on a loaded machine.
+  Output d = ctl({"-t", "usb-2-sd", "--timeout", "250ms", "--retries", "8", server.port(), "download", path}, 90000);
   show(d);
   CHECK_EQ(d.status, 0);
   CHECK(has(d.out, "verified 100 instructions"));
   const std::string up = temp_dir() + "/faulty.bin";
-  CHECK_EQ(ctl({"-t", "usb-2-sd", "--timeout", "100ms", "--retries", "5", server.port(), "upload", "-o", up}, 60000).status, 0);
+  CHECK_EQ(ctl({"-t", "usb-2-sd", "--timeout", "250ms", "--retries", "8", server.port(), "upload", "-o", up}, 90000).status, 0);
   const auto want = assembled_bin(path);
   CHECK(slurp(up) == std::string(want.begin(), want.end()));
 }
@@ -351,11 +318,18 @@ TEST(fault_injector_is_deterministic_per_seed) {
 }
 
 TEST(ctrl_c_during_download_stops_cleanly) {
-  // Every reply 2 ms late: 577 stores take over a second, so SIGINT lands in the middle.
-  Server server(kRun, {"--serve", "pty", "-t", "usb-2-sd", "--faults", "delay=2ms"});
+  // Every reply 3 ms late: 577 stores take nearly two seconds. SIGINT goes once the server's log
+  // shows 30 requests answered (not after a fixed time, which a loaded machine may spend before
+  // the download even starts), so it lands in the middle with over a second to spare.
+  const std::string log = temp_dir() + "/ctrl-c.log";
+  Server server(kRun, {"--serve", "pty", "-t", "usb-2-sd", "--faults", "delay=3ms", "--trace", "--log", log});
   const std::string src = write_temp("full2.tmc", full_memory_source());
-  Output d = hosttest::run({kCtl, "-t", "usb-2-sd", server.port(), "download", src}, 30000, 300,
-                           [](pid_t pid) { ::kill(pid, SIGINT); });
+  Output d = hosttest::run({kCtl, "-t", "usb-2-sd", server.port(), "download", src}, 60000, 0, [&](pid_t pid) {
+    const std::string text = slurp(log);
+    if (std::count(text.begin(), text.end(), '\n') < 30) return false;
+    ::kill(pid, SIGINT);
+    return true;
+  });
   CHECK_EQ(d.status, 130);
   CHECK(has(d.err, "interrupted after "));
   CHECK(has(d.err, "resume with: tmclctl -t usb-2-sd " + server.port() + " download --from "));
@@ -369,7 +343,7 @@ TEST(ctrl_c_during_download_stops_cleanly) {
   CHECK_EQ(s.status, 0);
   CHECK(!has(s.out, "download\n"));
   // Resume where it stopped: the whole program verifies.
-  Output r = ctl({"-t", "usb-2-sd", server.port(), "download", "--from", std::to_string(from), src}, 30000);
+  Output r = ctl({"-t", "usb-2-sd", server.port(), "download", "--from", std::to_string(from), src}, 60000);
   show(r);
   CHECK_EQ(r.status, 0);
   CHECK(has(r.out, "verified 577 instructions"));

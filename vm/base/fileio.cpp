@@ -65,6 +65,12 @@ static bool write_all(int fd, const std::vector<std::uint8_t>& data) {
   return true;
 }
 
+bool flush_stdout(std::string& error) {
+  if (std::fflush(stdout) == 0 && !std::ferror(stdout)) return true;
+  error = std::string("cannot write standard output: ") + std::strerror(errno);
+  return false;
+}
+
 bool write_file_atomic(const std::string& path, const std::vector<std::uint8_t>& data, std::string& error,
                        bool durable) {
   if (path == "-") {

@@ -14,25 +14,14 @@
 #pragma once
 
 #include <cstdint>
-#include <optional>
 #include <ostream>
 #include <string>
 #include <vector>
 
 #include "tmcl/motion.hpp"
+#include "tmcl/plot.hpp"
 
 namespace tmcl {
-
-enum class Mark : std::uint8_t { MoveIssued, TargetReached, Interrupt, StopSwitch, Other };
-std::string_view mark_name(Mark m);
-
-struct RecordedMark {
-  SimTime at;
-  int motor;  // -1: not about one motor (e.g. a timer interrupt)
-  Mark kind;
-  std::string label;
-  std::optional<std::int64_t> position;
-};
 
 class MotionRecorder {
  public:
@@ -66,12 +55,7 @@ class MotionRecorder {
 // event rows an empty velocity and acceleration. Stable text (fixed decimals) for golden files.
 void write_csv(std::ostream& out, const MotionRecorder& rec);
 
-struct PlotOptions {
-  std::string title = "Motion";
-  int width = 1100;
-  int height = 780;
-};
-// A self-contained SVG: three stacked panels (position, velocity, acceleration) over a shared
+// The SVG of plot.hpp: three stacked panels (position, velocity, acceleration) over a shared
 // time axis, one colour per quantity, one dash pattern per motor, event markers and a legend.
 void write_svg(std::ostream& out, const MotionRecorder& rec, const PlotOptions& options = {});
 

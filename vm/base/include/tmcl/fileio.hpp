@@ -24,6 +24,11 @@ bool read_file(const std::string& path, std::vector<std::uint8_t>& out, std::str
 bool write_file_atomic(const std::string& path, const std::vector<std::uint8_t>& data, std::string& error,
                        bool durable = false);
 
+// Flushes standard output; false with `error` set ("cannot write standard output: No space left
+// on device") when it or any earlier write to it failed. The tools call it before they exit, so
+// that a full disk or a closed pipe is exit status 74, never a silent success.
+bool flush_stdout(std::string& error);
+
 // Asks the kernel to back the buffer [data, data + bytes) with huge pages where it can (Linux
 // transparent huge pages; elsewhere nothing). Call it on a freshly reserved buffer before it is
 // first written: a program of a million lines touches tens of megabytes once, and faulting them

@@ -1,0 +1,59 @@
+// A self-contained SVG plot of sampled time series: stacked panels over one shared time axis,
+// each panel one quantity (its own scale, unit and colour) with one line per source (a motor),
+// and event markers. tmclrun --plot draws a motion recording with it (motion_plot.hpp), tmclctl
+// monitor --plot the parameters it polled; neither writes SVG itself.
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <ostream>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "tmcl/sim_time.hpp"
+
+namespace tmcl {
+
+enum class Mark : std::uint8_t { MoveIssued, TargetReached, Interrupt, StopSwitch, Other };
+std::string_view mark_name(Mark m);
+
+struct RecordedMark {
+  SimTime at;
+  int motor;  // -1: not about one motor (e.g. a timer interrupt)
+  Mark kind;
+  std::string label;
+  std::optional<std::int64_t> position;
+};
+
+struct PlotPanel {
+  std::string title;       // "position": legend and axis title
+  std::string unit;        // "µsteps", shown as "position [µsteps]"; empty: no unit shown
+  std::string colour;      // "#1f5fbf"
+  std::string axis_title;  // the rotated title beside the panel, when shorter than the legend's
+  bool keep_zero = false;  // the value axis always includes 0 (velocity, acceleration)
+  // lines[k][i]: line k at times[i]. Line k > 0 is dashed; with more than one line the legend
+  // names them by Plot::line_names.
+  std::vector<std::vector<double>> lines;
+};
+
+struct Plot {
+  std::vector<SimTime> times;  // microseconds from the start, ascending
+  std::vector<PlotPanel> panels;
+  std::vector<std::string> line_names;  // "motor 0", "motor 1", ...
+  std::vector<RecordedMark> marks;
+};
+
+struct PlotOptions {
+  std::string title = "Motion";
+  int width = 1100;
+  int height = 780;
+};
+
+// Panel colours for plots of any number of quantities: the motion plot's three, then more that
+// stay apart on white (cycling after eight).
+std::string_view plot_colour(std::size_t index);
+
+void write_svg(std::ostream& out, const Plot& plot, const PlotOptions& options = {});
+
+}  // namespace tmcl

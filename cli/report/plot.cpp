@@ -1,0 +1,318 @@
+// The SVG writer of plot.hpp, by hand: stacked panels with "nice" ticks (1/2/5 x 10^k), series
+// decimated to at most a few points per pixel column (keeping each column's minimum and maximum,
+// so peaks survive), event markers as faint vertical lines with a glyph on top and a hover title.
+// Its output is pinned byte for byte by tmclrun's plot goldens (tests/golden/run/plot-*).
+#include "tmcl/plot.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+
+#include "plot_text.hpp"
+
+namespace tmcl {
+
+std::string_view mark_name(Mark m) {
+  switch (m) {
+    case Mark::MoveIssued: return "move issued";
+    case Mark::TargetReached: return "target reached";
+    case Mark::Interrupt: return "interrupt";
+    case Mark::StopSwitch: return "stop switch";
+    case Mark::Other: return "event";
+  }
+  return "event";
+}
+
+std::string_view plot_colour(std::size_t index) {
+  static constexpr std::string_view kColours[] = {"#1f5fbf", "#1e9a4a", "#d0342c", "#7b3fb5",
+                                                  "#e07b00", "#0a8a8a", "#8c564b", "#c2185b"};
+  return kColours[index % std::size(kColours)];
+}
+
+namespace report {
+
+std::string fixed(double v, int decimals) {
+  char buf[64];
+  std::snprintf(buf, sizeof buf, "%.*f", decimals, v);
+  std::string s = buf;
+  if (s[0] == '-' && s.find_first_not_of("-0.") == std::string::npos) s.erase(0, 1);  // no "-0.000"
+  return s;
+}
+
+std::string seconds(SimTime t) {
+  char buf[48];
+  std::snprintf(buf, sizeof buf, "%s%lld.%06lld", t < 0 ? "-" : "", static_cast<long long>(std::llabs(t) / 1000000),
+                static_cast<long long>(std::llabs(t) % 1000000));
+  return buf;
+}
+
+}  // namespace report
+
+namespace {
+
+using report::fixed;
+using report::seconds;
+
+std::string xml(std::string_view s) {
+  std::string r;
+  for (char c : s) {
+    switch (c) {
+      case '&': r += "&amp;"; break;
+      case '<': r += "&lt;"; break;
+      case '>': r += "&gt;"; break;
+      case '"': r += "&quot;"; break;
+      default: r += c;
+    }
+  }
+  return r;
+}
+
+
+struct Ticks {
+  double lo, hi, step;
+};
+
+// Axis range covering [lo, hi] with about `n` ticks at 1, 2 or 5 x 10^k.
+Ticks nice_ticks(double lo, double hi, int n) {
+  if (!(hi > lo)) {
+    double pad = std::max(1.0, std::fabs(lo) * 0.1);
+    lo -= pad;
+    hi += pad;
+  }
+  double raw = (hi - lo) / n;
+  double mag = std::pow(10.0, std::floor(std::log10(raw)));
+  double step = mag;
+  for (double f : {1.0, 2.0, 2.5, 5.0, 10.0})
+    if (f * mag >= raw) {
+      step = f * mag;
+      break;
+    }
+  return {std::floor(lo / step + 1e-9) * step, std::ceil(hi / step - 1e-9) * step, step};
+}
+
+// A tick label: plain up to 10^4, then k / M / G with at most 3 significant decimals.
+std::string tick_label(double v, double step) {
+  if (std::fabs(v) < step * 1e-6) return "0";
+  double a = std::fabs(v);
+  const char* suffix = "";
+  double div = 1;
+  if (a >= 1e9) suffix = "G", div = 1e9;
+  else if (a >= 1e6) suffix = "M", div = 1e6;
+  else if (a >= 1e4) suffix = "k", div = 1e3;
+  // As many decimals as the step needs to be exact (2.5 s steps read 2.5, 5, 7.5, not 2, 5, 8).
+  double s = step / div;
+  int decimals = 0;
+  while (decimals < 6 && std::fabs(s * std::pow(10.0, decimals) - std::round(s * std::pow(10.0, decimals))) > 1e-6)
+    ++decimals;
+  std::string t = fixed(v / div, decimals);
+  return t + suffix;
+}
+
+struct Series {
+  std::vector<double> t, y;
+};
+
+// Keeps first, min, max and last of every pixel column (in time order).
+Series decimate(const std::vector<double>& t, const std::vector<double>& y, double t0, double t1, int columns) {
+  Series out;
+  const std::size_t n = std::min(t.size(), y.size());  // a short line ends early
+  if (n == 0) return out;
+  double span = t1 > t0 ? t1 - t0 : 1;
+  std::size_t i = 0;
+  while (i < n) {
+    auto col = static_cast<long>((t[i] - t0) / span * columns);
+    std::size_t j = i, imin = i, imax = i;
+    while (j < n && static_cast<long>((t[j] - t0) / span * columns) == col) {
+      if (y[j] < y[imin]) imin = j;
+      if (y[j] > y[imax]) imax = j;
+      ++j;
+    }
+    std::array<std::size_t, 4> pick{i, std::min(imin, imax), std::max(imin, imax), j - 1};
+    std::size_t last = static_cast<std::size_t>(-1);
+    for (std::size_t p : pick)
+      if (p != last) {
+        out.t.push_back(t[p]);
+        out.y.push_back(y[p]);
+        last = p;
+      }
+    i = j;
+  }
+  return out;
+}
+
+struct MarkStyle {
+  const char* colour;
+  const char* glyph;  // SVG path around (0,0), about 10 px
+};
+
+MarkStyle mark_style(Mark m) {
+  switch (m) {
+    case Mark::MoveIssued: return {"#555555", "M-5,-6 L5,-6 L0,3 Z"};          // triangle down
+    case Mark::TargetReached: return {"#7b3fb5", "M0,-6 L5,-1 L0,4 L-5,-1 Z"};  // diamond
+    case Mark::Interrupt: return {"#e07b00", "M-4,-5 L4,-5 L4,3 L-4,3 Z"};      // square
+    case Mark::StopSwitch: return {"#b00020", "M-5,3 L5,3 L0,-6 Z"};             // triangle up
+    case Mark::Other: return {"#0a8a8a", "M-4.5,-1 a4.5,4.5 0 1,0 9,0 a4.5,4.5 0 1,0 -9,0"};  // circle
+  }
+  return {"#000000", ""};
+}
+
+}  // namespace
+
+
+void write_svg(std::ostream& out, const Plot& plot, const PlotOptions& opt) {
+  const int W = opt.width, H = opt.height;
+  const int left = 96, right = 28, top = 104, bottom = 62, gap = 26;
+  const int plot_w = W - left - right;
+  const int panels = std::max(1, static_cast<int>(plot.panels.size()));
+  const int panel_h = (H - top - bottom - (panels - 1) * gap) / panels;
+  const auto& times = plot.times;
+
+  double t_end = times.empty() ? 0 : static_cast<double>(times.back()) * 1e-6;
+  for (const auto& m : plot.marks) t_end = std::max(t_end, static_cast<double>(m.at) * 1e-6);
+  Ticks tx = nice_ticks(0, t_end > 0 ? t_end : 1, 10);
+  tx.lo = 0;
+  if (t_end > 0) tx.hi = t_end;  // the axis ends with the data; ticks stay on the nice grid
+  auto X = [&](double t) { return left + (t - tx.lo) / (tx.hi - tx.lo) * plot_w; };
+  auto label = [](const PlotPanel& p) { return p.unit.empty() ? p.title : p.title + " [" + p.unit + "]"; };
+
+  const char* dashes[] = {"", "7,4", "2,3", "10,3,2,3"};
+  std::size_t lines = 0;
+  for (const auto& p : plot.panels) lines = std::max(lines, p.lines.size());
+
+  out << "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" << W << "\" height=\"" << H << "\" viewBox=\"0 0 " << W
+      << ' ' << H << "\" font-family=\"Helvetica, Arial, sans-serif\">\n";
+  out << "<rect width=\"100%\" height=\"100%\" fill=\"#ffffff\"/>\n";
+  out << "<text x=\"" << left << "\" y=\"30\" font-size=\"19\" font-weight=\"bold\" fill=\"#222\">" << xml(opt.title)
+      << "</text>\n";
+
+  // legend: quantities, lines (when more than one), marker kinds present
+  {
+    double lx = left;
+    const double ly = 58;
+    for (const auto& p : plot.panels) {
+      const std::string text = label(p);
+      out << "<line x1=\"" << lx << "\" y1=\"" << ly - 4 << "\" x2=\"" << lx + 22 << "\" y2=\"" << ly - 4
+          << "\" stroke=\"" << p.colour << "\" stroke-width=\"2.5\"/>";
+      out << "<text x=\"" << lx + 28 << "\" y=\"" << ly << "\" font-size=\"13\" fill=\"#333\">" << xml(text) << "</text>\n";
+      lx += 28 + 6.8 * static_cast<double>(text.size()) + 14;
+    }
+    if (lines > 1)
+      for (std::size_t m = 0; m < lines && m < 4; ++m) {
+        out << "<line x1=\"" << lx << "\" y1=\"" << ly - 4 << "\" x2=\"" << lx + 22 << "\" y2=\"" << ly - 4
+            << "\" stroke=\"#444\" stroke-width=\"2\" stroke-dasharray=\"" << dashes[m] << "\"/>";
+        out << "<text x=\"" << lx + 28 << "\" y=\"" << ly << "\" font-size=\"13\" fill=\"#333\">"
+            << xml(m < plot.line_names.size() ? plot.line_names[m] : "line " + std::to_string(m)) << "</text>\n";
+        lx += 90;
+      }
+    bool present[5] = {};
+    for (const auto& m : plot.marks) present[static_cast<int>(m.kind)] = true;
+    for (int k = 0; k < 5; ++k) {
+      if (!present[k]) continue;
+      MarkStyle st = mark_style(static_cast<Mark>(k));
+      out << "<path transform=\"translate(" << lx + 6 << ',' << ly - 4 << ")\" d=\"" << st.glyph << "\" fill=\""
+          << st.colour << "\"/>";
+      out << "<text x=\"" << lx + 16 << "\" y=\"" << ly << "\" font-size=\"13\" fill=\"#333\">"
+          << mark_name(static_cast<Mark>(k)) << "</text>\n";
+      lx += 16 + 6.8 * static_cast<double>(mark_name(static_cast<Mark>(k)).size()) + 14;
+    }
+  }
+
+  std::vector<double> tsec(times.size());
+  for (std::size_t i = 0; i < times.size(); ++i) tsec[i] = static_cast<double>(times[i]) * 1e-6;
+
+  for (std::size_t p = 0; p < plot.panels.size(); ++p) {
+    const PlotPanel& panel = plot.panels[p];
+    const int y0 = top + static_cast<int>(p) * (panel_h + gap);
+    // data range over all lines
+    double lo = 0, hi = 0;
+    bool any = false;
+    for (const auto& ys : panel.lines)
+      for (std::size_t i = 0; i < ys.size() && i < times.size(); ++i) {
+        lo = any ? std::min(lo, ys[i]) : ys[i];
+        hi = any ? std::max(hi, ys[i]) : ys[i];
+        any = true;
+      }
+    if (panel.keep_zero) {
+      lo = std::min(lo, 0.0);
+      hi = std::max(hi, 0.0);
+    }
+    Ticks ty = nice_ticks(lo, hi, 5);
+    auto Y = [&](double v) { return y0 + panel_h - (v - ty.lo) / (ty.hi - ty.lo) * panel_h; };
+
+    out << "<g>\n<rect x=\"" << left << "\" y=\"" << y0 << "\" width=\"" << plot_w << "\" height=\"" << panel_h
+        << "\" fill=\"#fafbfc\" stroke=\"#c8ccd0\"/>\n";
+    for (double v = ty.lo; v <= ty.hi + ty.step * 1e-6; v += ty.step) {
+      double y = Y(v);
+      bool zero = std::fabs(v) < ty.step * 1e-6;
+      out << "<line x1=\"" << left << "\" y1=\"" << y << "\" x2=\"" << left + plot_w << "\" y2=\"" << y << "\" stroke=\""
+          << (zero ? "#9aa0a6" : "#e3e6e9") << "\" stroke-width=\"1\"/>";
+      out << "<text x=\"" << left - 8 << "\" y=\"" << y + 4 << "\" font-size=\"12\" fill=\"#444\" text-anchor=\"end\">"
+          << tick_label(v, ty.step) << "</text>\n";
+    }
+    for (double t = tx.lo; t <= tx.hi + tx.step * 1e-6; t += tx.step) {
+      double x = X(t);
+      out << "<line x1=\"" << x << "\" y1=\"" << y0 << "\" x2=\"" << x << "\" y2=\"" << y0 + panel_h
+          << "\" stroke=\"#e3e6e9\" stroke-width=\"1\"/>\n";
+    }
+    // axis title, rotated, in the quantity's colour
+    out << "<text transform=\"translate(" << 22 << ',' << y0 + panel_h / 2 << ") rotate(-90)\" font-size=\"14\" "
+        << "font-weight=\"bold\" text-anchor=\"middle\" fill=\"" << panel.colour << "\">"
+        << xml(panel.axis_title.empty() ? label(panel) : panel.axis_title) << "</text>\n";
+    // event lines
+    for (const auto& m : plot.marks) {
+      double x = X(static_cast<double>(m.at) * 1e-6);
+      out << "<line x1=\"" << x << "\" y1=\"" << y0 << "\" x2=\"" << x << "\" y2=\"" << y0 + panel_h << "\" stroke=\""
+          << mark_style(m.kind).colour << "\" stroke-opacity=\"0.45\" stroke-dasharray=\"3,3\"/>\n";
+    }
+    // series
+    for (std::size_t m = 0; m < panel.lines.size(); ++m) {
+      Series s = decimate(tsec, panel.lines[m], tx.lo, tx.hi, plot_w);
+      if (s.t.empty()) continue;
+      out << "<polyline fill=\"none\" stroke=\"" << panel.colour << "\" stroke-width=\"2\" stroke-linejoin=\"round\"";
+      if (m > 0) out << " stroke-dasharray=\"" << dashes[m % 4] << "\"";
+      out << " points=\"";
+      char buf[64];
+      for (std::size_t i = 0; i < s.t.size(); ++i) {
+        std::snprintf(buf, sizeof buf, "%.1f,%.1f ", X(s.t[i]), Y(s.y[i]));
+        out << buf;
+      }
+      out << "\"/>\n";
+    }
+    out << "</g>\n";
+  }
+
+  // markers on top of the first panel, with hover titles; markers closer than 9 px stack upward
+  std::vector<std::pair<double, int>> placed;  // x and level of markers drawn so far
+  for (const auto& m : plot.marks) {
+    MarkStyle st = mark_style(m.kind);
+    double x = X(static_cast<double>(m.at) * 1e-6);
+    int level = 0;
+    for (bool clash = true; clash && level < 2;) {
+      clash = false;
+      for (const auto& [px, pl] : placed)
+        if (pl == level && std::fabs(px - x) < 9) clash = true;
+      if (clash) ++level;
+    }
+    placed.emplace_back(x, level);
+    out << "<path transform=\"translate(" << x << ',' << top - 8 - 13 * level << ")\" d=\"" << st.glyph << "\" fill=\"" << st.colour
+        << "\"><title>" << seconds(m.at) << " s: " << xml(mark_name(m.kind))
+        << (m.label.empty() ? "" : ": " + xml(m.label)) << (m.motor >= 0 ? " (motor " + std::to_string(m.motor) + ")" : "")
+        << "</title></path>\n";
+  }
+
+  // time axis
+  const int yb = top + panels * panel_h + (panels - 1) * gap;
+  for (double t = tx.lo; t <= tx.hi + tx.step * 1e-6; t += tx.step) {
+    double x = X(t);
+    out << "<line x1=\"" << x << "\" y1=\"" << yb << "\" x2=\"" << x << "\" y2=\"" << yb + 5 << "\" stroke=\"#666\"/>";
+    out << "<text x=\"" << x << "\" y=\"" << yb + 20 << "\" font-size=\"12\" fill=\"#444\" text-anchor=\"middle\">"
+        << tick_label(t, tx.step) << "</text>\n";
+  }
+  out << "<text x=\"" << left + plot_w / 2 << "\" y=\"" << H - 14
+      << "\" font-size=\"14\" font-weight=\"bold\" text-anchor=\"middle\" fill=\"#333\">time [s]</text>\n";
+  out << "</svg>\n";
+}
+
+}  // namespace tmcl
