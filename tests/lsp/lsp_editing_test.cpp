@@ -321,3 +321,32 @@ TEST(project_file_is_watched_and_read_again) {
   d.notify("initialized", "{}");
   CHECK(d.notifications.empty());
 }
+
+TEST(malformed_params_get_answers) {
+  Client c;
+  start(c);
+  c.open(kUri, "Loop:\n  SAP 4, 0, 1\n  JA Loop\n");
+  const char* methods[] = {"textDocument/semanticTokens/full", "textDocument/semanticTokens/range", "textDocument/inlayHint",
+                           "textDocument/prepareRename"};
+  const std::string bad[] = {
+      "null", "[]", R"({"textDocument":5})", R"({"textDocument":{"uri":"file:///work/e.tmc"},"position":{"line":-1,"character":0}})",
+      R"({"textDocument":{"uri":"file:///work/e.tmc"},"position":{"line":"1","character":0}})",
+      R"({"textDocument":{"uri":"file:///work/e.tmc"},"range":{"start":{"line":0,"character":0},"end":{"line":2147483648,"character":0}}})",
+      R"({"textDocument":{"uri":"file:///work/e.tmc"},"range":{"start":{"line":0},"end":{"line":1,"character":0}}})",
+      R"({"textDocument":{"uri":"file:///work/e.tmc"},"range":[0,1]})",
+  };
+  for (const char* m : methods)
+    for (const std::string& p : bad) {
+      Value r = c.request(m, p);
+      bool full = std::string(m) == "textDocument/semanticTokens/full";
+      // Only the full tokens need nothing but the document; everything else is InvalidParams.
+      if (full && p.find("file:///work/e.tmc") != std::string::npos) CHECK(r["result"]["data"].size() > 0u);
+      else CHECK_EQ(r["error"]["code"].as_int(), -32602);
+    }
+  // The server still answers.
+  CHECK(c.request("textDocument/semanticTokens/full", doc(kUri))["result"]["data"].size() > 0u);
+  Value w = c.request("workspace/didChangeWatchedFiles", R"({"changes":5})");  // a notification sent as a request
+  CHECK(w.contains("result"));
+  c.notify("workspace/didChangeWatchedFiles", R"({"changes":[{"uri":5},{"type":1}]})");
+  CHECK(!c.server.exited());
+}
