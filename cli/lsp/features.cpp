@@ -306,7 +306,7 @@ Server::Reply Server::rename(const Value& params) {
   std::string to = params["newName"].as_string();
   if (!is_valid_name(to) || op_by_mnemonic(to) || is_keyword(to))
     return {Value(), kInvalidParams, "'" + to + "' is not a valid label or constant name"};
-  if (symbol(*doc, to)) return {Value(), kInvalidParams, "'" + to + "' is already defined"};
+  if (symbol(*doc, to) && !same_name(to, t->text)) return {Value(), kInvalidParams, "'" + to + "' is already defined"};  // "loop" -> "Loop" respells
   Value refs_params = params;
   refs_params.set("context", Value::object()).set("includeDeclaration", true);
   Reply refs = references(refs_params);

@@ -206,6 +206,9 @@ TEST(prepare_rename) {
   // Names are case-insensitive: renaming 'loop' renames 'Loop' too.
   Value edit = c.request("textDocument/rename", R"({"textDocument":{"uri":"file:///work/e.tmc"},"position":{"line":3,"character":6},"newName":"Again"})")["result"];
   CHECK_EQ(edit["changes"]["file:///work/e.tmc"].size(), 2u);
+  // Changing only the case respells the name everywhere; it is not "already defined".
+  edit = c.request("textDocument/rename", R"({"textDocument":{"uri":"file:///work/e.tmc"},"position":{"line":3,"character":6},"newName":"LOOP"})")["result"];
+  CHECK_EQ(edit["changes"]["file:///work/e.tmc"].size(), 2u);
   // Hover on that label shows the label, not the instruction after it.
   CHECK_EQ(hover_text(c, kUri, 1, 1), "label `Loop`: address 0");
 }
