@@ -46,6 +46,11 @@ std::string folder_of(const std::string& path) {
 // Reads the project file into `s`; false with `error` ("FILE:LINE:COL: error: ...") when it is bad.
 // Unknown keys are not an error (a newer version may know them) but get a warning.
 bool read_project_file(const std::string& path, Settings& s, std::string& error, std::vector<std::string>& warnings) {
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(path, ec)) {  // a FIFO would block the server in open()
+    error = path + ": error: not a regular file";
+    return false;
+  }
   DiskReader disk;
   std::string text;
   if (!disk.read(path, text)) {

@@ -4,6 +4,7 @@
 // and positions or ranges outside the document.
 #define TMCL_TEST_MAIN
 #include <stdlib.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <filesystem>
@@ -286,6 +287,14 @@ TEST(bad_project_file_is_reported_and_ignored) {
   dir.write(".tmcl-lsp.json", "[1]");
   e.request("initialize", R"({"processId":null,"capabilities":{},"rootUri":")" + dir.uri() + R"("})");
   CHECK_EQ(messages(e, 1).size(), 1u);
+  // A named pipe would block a reader until someone writes: it is refused, not opened.
+  std::filesystem::remove(dir.path + "/.tmcl-lsp.json");
+  CHECK(mkfifo((dir.path + "/.tmcl-lsp.json").c_str(), 0600) == 0);
+  Client g;
+  g.request("initialize", R"({"processId":null,"capabilities":{},"rootUri":")" + dir.uri() + R"("})");
+  errors = messages(g, 1);
+  CHECK_EQ(errors.empty() ? "" : errors[0], dir.path + "/.tmcl-lsp.json: error: not a regular file (the file is ignored: target generic, no include folders)");
+  std::filesystem::remove(dir.path + "/.tmcl-lsp.json");
   dir.write(".tmcl-lsp.json", R"({"target": "usb-2-sd", "colour": "red"})");
   Client f;
   f.request("initialize", R"({"processId":null,"capabilities":{},"rootUri":")" + dir.uri() + R"("})");
