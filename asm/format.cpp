@@ -148,7 +148,7 @@ std::vector<SourceToken> tokenize(std::string_view text, Diagnostics* diags) {
   std::vector<SourceToken> out;
   auto add = [&](const detail::Token& t, Kind k) {
     std::size_t off = static_cast<std::size_t>(t.text.data() - file.text.data());
-    out.push_back(SourceToken{k, text.substr(off, t.text.size()), off, t.line, t.col});
+    out.push_back(SourceToken{k, text.substr(off, t.text.size()), off, t.line, t.col, t.number});
   };
   std::size_t c = 0;
   for (;;) {

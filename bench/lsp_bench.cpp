@@ -1,6 +1,7 @@
 // Language server speed (issue 16): a scripted client opens a 10,000-line program, then times
 // (1) a one-character didChange until its publishDiagnostics is produced, (2) hover on a
-// parameter number, (3) completion of an operand. Best of several runs, in milliseconds.
+// parameter number, (3) completion of an operand, (4) the semantic tokens of the whole file
+// (the JSON reply written). Best of several runs, in milliseconds.
 // Prints "figure<TAB>goal<TAB>measured" rows for bench/run_all.sh.
 #include <chrono>
 #include <cstdio>
@@ -30,7 +31,7 @@ int main() {
                 tmcl::json::quote(text) + "}}}");
   int lines = 0;
   for (char c : text) lines += c == '\n';
-  double best_change = 1e9, best_hover = 1e9, best_completion = 1e9;
+  double best_change = 1e9, best_hover = 1e9, best_completion = 1e9, best_tokens = 1e9;
   int version = 1;
   for (int run = 0; run < 20; ++run) {
     // Alternately insert and delete one character in an MVP operand on line 5000.
@@ -48,9 +49,14 @@ int main() {
     t0 = std::chrono::steady_clock::now();
     out = server.handle(R"({"jsonrpc":"2.0","id":3,"method":"textDocument/completion","params":{"textDocument":{"uri":"file:///bench.tmc"},"position":{"line":8999,"character":6}}})");
     best_completion = std::min(best_completion, ms_since(t0));
+    t0 = std::chrono::steady_clock::now();
+    out = server.handle(R"({"jsonrpc":"2.0","id":4,"method":"textDocument/semanticTokens/full","params":{"textDocument":{"uri":"file:///bench.tmc"}}})");
+    best_tokens = std::min(best_tokens, ms_since(t0));
+    if (out.empty() || out[0].size() < 100000) std::printf("semantic tokens wrong: %.200s\n", out.empty() ? "" : out[0].c_str());
   }
   std::printf("lsp: diagnostics after a 1-character edit, %d-line file (ms)\t<= 20\t%.2f\n", lines, best_change);
   std::printf("lsp: hover on a parameter number, %d-line file (ms)\t<= 5\t%.3f\n", lines, best_hover);
   std::printf("lsp: completion of an operand, %d-line file (ms)\t<= 5\t%.3f\n", lines, best_completion);
+  std::printf("lsp: semantic tokens of the whole %d-line file (ms)\t<= 20\t%.2f\n", lines, best_tokens);
   return 0;
 }

@@ -16,7 +16,8 @@ namespace {
 
 const char* kUsage = R"(usage: tmcl-lsp [--stdio]
 The TMCL language server: speaks the Language Server Protocol on standard input and output.
-Editors start it themselves (docs/editors.md); settings come from initializationOptions
+Editors start it themselves (docs/editors.md); settings come from .tmcl-lsp.json in the
+workspace root and from initializationOptions, which win
 ({"target": "usb-2-sd", "includeDirs": ["lib"]}, docs/lsp.md).
 
 options:

@@ -4,6 +4,7 @@
 // formatting. Tokens come from the assembler's lexer (tokenize), facts from its last assembly.
 #include <algorithm>
 
+#include "context.hpp"
 #include "tmcl/lsp/server.hpp"
 
 namespace tmcl::lsp {
@@ -13,13 +14,6 @@ namespace {
 using Kind = SourceToken::Kind;
 constexpr int kInvalidParams = -32602;
 constexpr int kRequestFailed = -32803;
-
-std::string lower(std::string_view s) {
-  std::string out(s);
-  for (auto& c : out)
-    if (c >= 'A' && c <= 'Z') c = static_cast<char>(c - 'A' + 'a');
-  return out;
-}
 
 std::string access_text(std::uint8_t a) {
   std::string s;
@@ -46,49 +40,6 @@ std::string syntax_of(const OpInfo& op) {
   return s;
 }
 
-// The statement a token is in: its mnemonic (nullptr when the line holds no instruction) and which
-// operand (0-based, -1 for the mnemonic itself) the token belongs to.
-struct Context {
-  const OpInfo* op = nullptr;
-  int operand = -1;
-  std::vector<const SourceToken*> operands_first;  // first token of each operand
-};
-
-Context context_at(const std::vector<SourceToken>& toks, std::size_t index) {
-  Context c;
-  std::size_t b = index;
-  while (b > 0 && toks[b - 1].kind != Kind::Newline) --b;
-  std::size_t i = b;
-  // Skip labels.
-  while (i + 1 < toks.size() && toks[i].kind == Kind::Name && toks[i + 1].kind == Kind::Punct && toks[i + 1].text == ":") i += 2;
-  while (i < toks.size() && toks[i].kind == Kind::Comment) ++i;
-  if (i >= toks.size() || toks[i].kind != Kind::Name) return c;
-  c.op = op_by_mnemonic(toks[i].text);
-  if (!c.op) return c;
-  if (index <= i) return c;
-  int operand = 0;
-  bool fresh = true;
-  for (std::size_t k = i + 1; k < toks.size() && toks[k].kind != Kind::Newline; ++k) {
-    if (toks[k].kind == Kind::Comment) continue;
-    if (toks[k].kind == Kind::Punct && toks[k].text == ",") {
-      ++operand;
-      fresh = true;
-      continue;
-    }
-    if (fresh) {
-      c.operands_first.resize(static_cast<std::size_t>(operand) + 1, nullptr);
-      c.operands_first[static_cast<std::size_t>(operand)] = &toks[k];
-      fresh = false;
-    }
-    if (k == index) {
-      c.operand = operand;
-      return c;
-    }
-  }
-  c.operand = operand;
-  return c;
-}
-
 json::Value markdown(std::string text) {
   json::Value h = json::Value::object();
   json::Value& c = h.set("contents", json::Value::object());
@@ -102,7 +53,7 @@ json::Value markdown(std::string text) {
 const Symbol* Server::symbol(const Document& doc, std::string_view name) const {
   if (!doc.result) return nullptr;
   for (const Symbol& s : doc.result->symbols)
-    if (s.name == name) return &s;
+    if (same_name(s.name, name)) return &s;
   return nullptr;
 }
 
@@ -161,7 +112,7 @@ Server::Reply Server::hover(const Value& params) {
   Context c = context_at(doc->tokens, index);
   const Profile& prof = profile();
   std::string text;
-  if (t->kind == Kind::Name && c.op && c.operand < 0) {
+  if (c.mnemonic == t) {
     text = "```tmcl\n" + syntax_of(*c.op) + "\n```\n" + std::string(c.op->meaning) + " (opcode " + std::to_string(c.op->code) + ")";
   } else if (t->kind == Kind::Directive && lower(t->text) == "#include" && index + 1 < doc->tokens.size()) {
     t = &doc->tokens[index + 1];
@@ -176,17 +127,8 @@ Server::Reply Server::hover(const Value& params) {
   std::optional<std::int64_t> value;
   const Symbol* sym = nullptr;
   if (t->kind == Kind::Number) {
-    // The literal's value (decimal, 0x, $, 0b, %); the lexer has checked its digits.
-    std::string_view s = t->text;
-    int base = 10;
-    if (s.size() > 2 && s[0] == '0' && (s[1] == 'x' || s[1] == 'X')) base = 16, s.remove_prefix(2);
-    else if (s.size() > 2 && s[0] == '0' && (s[1] == 'b' || s[1] == 'B')) base = 2, s.remove_prefix(2);
-    else if (!s.empty() && s[0] == '$') base = 16, s.remove_prefix(1);
-    else if (!s.empty() && s[0] == '%') base = 2, s.remove_prefix(1);
-    std::uint64_t v = 0;
-    for (char ch : s) v = v * static_cast<unsigned>(base) + static_cast<unsigned>(ch >= 'a' ? ch - 'a' + 10 : ch >= 'A' ? ch - 'A' + 10 : ch - '0');
-    value = static_cast<std::int64_t>(v);
-  } else if (t->kind == Kind::Name && !(c.op && c.operand < 0)) {
+    value = t->number;  // as the lexer read it, in any base
+  } else if (t->kind == Kind::Name && c.mnemonic != t) {
     sym = symbol(*doc, t->text);
     if (sym) {
       value = sym->value;
@@ -205,10 +147,7 @@ Server::Reply Server::hover(const Value& params) {
       p = prof.axis_param(static_cast<int>(*value));
       if (!p) text += (text.empty() ? "" : "\n\n") + std::string("axis parameter ") + std::to_string(*value) + ": not a parameter of " + std::string(prof.name);
     } else if (role == Role::GlobalParam) {
-      int bank = 0;
-      for (std::size_t k = 0; k < c.op->operands.size() && k < c.operands_first.size(); ++k)
-        if (c.op->operands[k].role == Role::Bank && c.operands_first[k] && c.operands_first[k]->kind == Kind::Number)
-          bank = std::atoi(std::string(c.operands_first[k]->text).c_str());
+      int bank = bank_of(c);
       p = prof.global_param(bank, static_cast<int>(*value));
       if (!p) text += (text.empty() ? "" : "\n\n") + std::string("global parameter ") + std::to_string(*value) + " of bank " + std::to_string(bank) + ": not in " + std::string(prof.name);
     }
@@ -252,7 +191,7 @@ Server::Reply Server::references(const Value& params) {
     const SourceFile& file = res.sources.files[f];
     auto toks = tokenize(file.text);
     for (std::size_t k = 0; k < toks.size(); ++k) {
-      if (toks[k].kind != Kind::Name || toks[k].text != name) continue;
+      if (toks[k].kind != Kind::Name || !same_name(toks[k].text, name)) continue;
       bool is_decl = s && static_cast<int>(f) == s->defined_at.file && toks[k].line == s->defined_at.line && toks[k].col == s->defined_at.col;
       if (is_decl && !with_decl) continue;
       r.result.push(location_of(SourceLoc{static_cast<int>(f), toks[k].line, toks[k].col, static_cast<int>(toks[k].text.size())}, res));
@@ -290,7 +229,7 @@ Server::Reply Server::completion(const Value& params) {
     line.push_back(SourceToken{Kind::Newline, std::string_view(), offset, 0, 0});
     c = context_at(line, line.size() - 2);
     if (!line.empty() && line.front().kind == Kind::Directive && lower(line.front().text) == "#include") {
-      for (const auto& [name, text] : bundled_includes()) item(name, 17, "bundled include file");
+      complete_include(*doc, r.result);
       return r;
     }
   }
@@ -367,7 +306,7 @@ Server::Reply Server::rename(const Value& params) {
   std::string to = params["newName"].as_string();
   if (!is_valid_name(to) || op_by_mnemonic(to) || is_keyword(to))
     return {Value(), kInvalidParams, "'" + to + "' is not a valid label or constant name"};
-  if (symbol(*doc, to)) return {Value(), kInvalidParams, "'" + to + "' is already defined"};
+  if (symbol(*doc, to) && !same_name(to, t->text)) return {Value(), kInvalidParams, "'" + to + "' is already defined"};  // "loop" -> "Loop" respells
   Value refs_params = params;
   refs_params.set("context", Value::object()).set("includeDeclaration", true);
   Reply refs = references(refs_params);

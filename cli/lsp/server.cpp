@@ -275,7 +275,10 @@ Server::Reply Server::dispatch(const std::string& method, const Value& params, b
     if (initialized_) return {Value(), kInvalidRequest, "initialize was already received"};
     return initialize(params);
   }
-  if (method == "initialized") return r;
+  if (method == "initialized") {
+    watch_settings_file();
+    return r;
+  }
   if (method == "shutdown") {
     shutdown_ = true;
     return r;
@@ -319,21 +322,22 @@ Server::Reply Server::dispatch(const std::string& method, const Value& params, b
   if (method == "workspace/symbol") return workspace_symbols(params);
   if (method == "textDocument/signatureHelp") return signature_help(params);
   if (method == "textDocument/foldingRange") return folding_ranges(params);
+  if (method == "textDocument/semanticTokens/full") return semantic_tokens(params, false);
+  if (method == "textDocument/semanticTokens/range") return semantic_tokens(params, true);
+  if (method == "textDocument/inlayHint") return inlay_hints(params);
+  if (method == "textDocument/prepareRename") return prepare_rename(params);
+  if (method == "workspace/didChangeWatchedFiles") {
+    watched_files_changed(params);
+    return r;
+  }
   if (!is_request) return r;  // unknown notifications ($/cancelRequest, ...) are ignored
   return {Value(), kMethodNotFound, "unknown method '" + method + "'"};
 }
 
 Server::Reply Server::initialize(const Value& params) {
   initialized_ = true;
-  const Value& o = params["initializationOptions"];
-  if (o["target"].is_string()) {
-    if (!find_profile(o["target"].as_string()))
-      return {Value(), kInvalidParams, "unknown target '" + o["target"].as_string() + "' (usb-2-sd, tmc2300-eval, generic)"};
-    settings_.target = o["target"].as_string();
-  }
-  for (const Value& dir : o["includeDirs"].items())
-    if (dir.is_string()) settings_.include_dirs.push_back(dir.as_string());
-  Reply r;
+  Reply r = configure(params);  // settings.cpp
+  if (r.code) return r;
   Value caps = Value::object();
   Value& sync = caps.set("textDocumentSync", Value::object());
   sync.set("openClose", true);
@@ -345,7 +349,12 @@ Server::Reply Server::initialize(const Value& params) {
   caps.set("referencesProvider", true);
   caps.set("documentSymbolProvider", true);
   caps.set("documentFormattingProvider", true);
-  caps.set("renameProvider", true);
+  caps.set("renameProvider", Value::object()).set("prepareProvider", true);
+  Value& tokens = caps.set("semanticTokensProvider", Value::object());
+  tokens.set("legend", semantic_token_legend());
+  tokens.set("full", true);
+  tokens.set("range", true);
+  caps.set("inlayHintProvider", true);
   caps.set("workspaceSymbolProvider", true);
   caps.set("foldingRangeProvider", true);
   caps.set("signatureHelpProvider", Value::object()).set("triggerCharacters", Value::array()).push(",");

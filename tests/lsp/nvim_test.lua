@@ -1,6 +1,7 @@
 -- Drives Neovim's built-in LSP client (0.7 or newer) against tmcl-lsp, headless: open a file
 -- with a mistake, wait for its diagnostic, hover on a parameter number, fix the mistake with an
--- incremental edit and see the diagnostics clear, jump to a label's definition, format the file.
+-- incremental edit and see the diagnostics clear, jump to a label's definition, ask for semantic
+-- tokens and inlay hints, format the file.
 -- Run by nvim_test.sh; TMCL_LSP and TMC_FILE come from the environment.
 local ok, err = pcall(function()
   local file = os.getenv('TMC_FILE')
@@ -26,6 +27,16 @@ local ok, err = pcall(function()
     'diagnostics not cleared: ' .. vim.inspect(vim.diagnostic.get(0)))
   r = vim.lsp.buf_request_sync(0, 'textDocument/definition', { textDocument = { uri = uri }, position = { line = 4, character = 6 } }, 5000)
   assert(r[id].result.range.start.line == 1, 'definition: ' .. vim.inspect(r[id].result))
+  -- Neovim 0.7 neither shows semantic tokens (0.9) nor inlay hints (0.10), but its client sends
+  -- the requests: check what an editor that shows them would get.
+  r = vim.lsp.buf_request_sync(0, 'textDocument/semanticTokens/full', { textDocument = { uri = uri } }, 5000)
+  local data = r[id].result.data
+  assert(table.concat({ unpack(data, 1, 10) }, ',') == '0,0,5,3,3,0,8,4,4,0', 'semantic tokens: ' .. vim.inspect(data))
+  r = vim.lsp.buf_request_sync(0, 'textDocument/inlayHint', { textDocument = { uri = uri },
+    range = { start = { line = 0, character = 0 }, ['end'] = { line = 5, character = 0 } } }, 5000)
+  local hint = r[id].result[1]
+  assert(#r[id].result == 1 and hint.label == ': Maximum positioning speed' and hint.position.line == 2 and hint.position.character == 5,
+    'inlay hints: ' .. vim.inspect(r[id].result))
   r = vim.lsp.buf_request_sync(0, 'textDocument/formatting', { textDocument = { uri = uri }, options = { tabSize = 2, insertSpaces = true } }, 5000)
   vim.lsp.util.apply_text_edits(r[id].result, 0, 'utf-16')
   local lines = vim.api.nvim_buf_get_lines(0, 0, -1, false)
@@ -33,7 +44,7 @@ local ok, err = pcall(function()
     'formatted: ' .. vim.inspect(lines))
 end)
 if ok then
-  io.stdout:write('neovim: diagnostics, hover, incremental change, definition and formatting all passed\n')
+  io.stdout:write('neovim: diagnostics, hover, incremental change, definition, semantic tokens, inlay hints and formatting all passed\n')
   vim.cmd('qall!')
 else
   io.stderr:write('FAIL: ' .. tostring(err) .. '\n')

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <cstddef>
+#include <cstdint>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -19,6 +20,7 @@ struct SourceToken {
   std::size_t offset;     // byte offset of text in it
   int line;               // 1-based
   int col;                // 1-based byte column
+  std::int64_t number = 0;  // a Number's value as the lexer read it (any base); 0 otherwise
 };
 
 // Every token of `text` in source order, comments included, each line ended by a Newline token.

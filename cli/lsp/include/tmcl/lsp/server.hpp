@@ -1,6 +1,7 @@
 // The TMCL language server (tmcl-lsp, docs/lsp.md): JSON-RPC 2.0 over Content-Length framed
 // messages, the LSP lifecycle, open documents with full and incremental sync, and the features
-// (diagnostics, hover, definition, references, completion, document symbols, formatting), all
+// (diagnostics, hover, definition, references, completion, document symbols, formatting,
+// semantic tokens, inlay hints, rename, a project settings file), all
 // computed by the assembler library on the editor's text. The Server is transport-free: it takes
 // one message body and returns the bodies to send, so tests drive it directly.
 #pragma once
@@ -92,6 +93,17 @@ class Server {
   Reply workspace_symbols(const Value& params);
   Reply signature_help(const Value& params);
   Reply folding_ranges(const Value& params);
+  Reply semantic_tokens(const Value& params, bool in_range);  // tokens.cpp
+  Reply inlay_hints(const Value& params);                     // hints.cpp
+  Reply prepare_rename(const Value& params);                  // hints.cpp
+
+  // Settings (settings.cpp): the project file .tmcl-lsp.json in the workspace root, overridden by
+  // initializationOptions; read at initialize and when the client says the file changed.
+  Reply configure(const Value& initialize_params);
+  Reply load_settings();
+  void watched_files_changed(const Value& params);
+  void watch_settings_file();  // asks the client to report changes (dynamic registration)
+  void complete_include(const Document& doc, Value& items) const;
 
   // Finding the document and the token a request is about; errors as replies.
   Document* find_document(const Value& params, Reply& err);
@@ -99,16 +111,23 @@ class Server {
   const SourceToken* token_at(const Document& doc, std::size_t offset) const;
   Value range_of(const Document& doc, std::size_t offset, std::size_t len) const;
   Value location_of(const SourceLoc& loc, const AsmResult& r) const;
+  bool range_param(const Document& doc, const Value& params, std::size_t& begin, std::size_t& end, Reply& err) const;
   const Profile& profile() const;
   const Symbol* symbol(const Document& doc, std::string_view name) const;
 
   std::map<std::string, Document> docs_;
   std::vector<std::string> out_;  // notifications produced while handling a message
   Settings settings_;
+  Value init_options_;         // initializationOptions as received
+  std::string settings_file_;  // the project file's path ("" without a workspace root)
+  bool can_watch_ = false;     // the client registers file watchers dynamically
   bool initialized_ = false;
   bool shutdown_ = false;
   bool exited_ = false;
 };
+
+// The legend of the semantic tokens (token types and modifiers), as the capabilities declare it.
+json::Value semantic_token_legend();
 
 // file:///a%20b/c.tmc <-> /a b/c.tmc
 std::string uri_to_path(std::string_view uri);

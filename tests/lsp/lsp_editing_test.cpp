@@ -1,0 +1,364 @@
+// Protocol tests of the language server's editing aids (issue 16, part 1): semantic tokens (full
+// and range), inlay hints, prepareRename, the project settings file .tmcl-lsp.json and include
+// completion from the include folders. Each request also gets its bad inputs: an unknown document
+// and positions or ranges outside the document.
+#define TMCL_TEST_MAIN
+#include <stdlib.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <filesystem>
+#include <fstream>
+
+#include "lsp_client.hpp"
+
+using tmcl::json::Value;
+using namespace tmcl_lsp_test;
+
+namespace {
+
+const char* kUri = "file:///work/e.tmc";
+
+// The semantic tokens of a response, decoded from relative to absolute positions:
+// "line:char:length:type:modifiers" each, space-separated.
+std::string decode(const Value& result) {
+  const Value& d = result["data"];
+  std::string out;
+  long long line = 0, ch = 0;
+  for (std::size_t i = 0; i + 4 < d.size(); i += 5) {
+    line += d.at(i).as_int();
+    ch = d.at(i).as_int() ? d.at(i + 1).as_int() : ch + d.at(i + 1).as_int();
+    out += (out.empty() ? "" : " ") + std::to_string(line) + ":" + std::to_string(ch) + ":" + std::to_string(d.at(i + 2).as_int()) + ":" +
+           std::to_string(d.at(i + 3).as_int()) + ":" + std::to_string(d.at(i + 4).as_int());
+  }
+  return out;
+}
+
+std::string doc(const std::string& uri) { return R"({"textDocument":{"uri":")" + uri + R"("}})"; }
+
+std::string range(const std::string& uri, int l0, int c0, int l1, int c1) {
+  return R"({"textDocument":{"uri":")" + uri + R"("},"range":{"start":{"line":)" + std::to_string(l0) + R"(,"character":)" +
+         std::to_string(c0) + R"(},"end":{"line":)" + std::to_string(l1) + R"(,"character":)" + std::to_string(c1) + "}}}";
+}
+
+// A scratch folder for the settings tests, removed at the end.
+struct TempDir {
+  std::string path;
+  TempDir() {
+    char name[] = "/tmp/tmcl-lsp-test-XXXXXX";
+    path = mkdtemp(name) ? name : "";
+    CHECK(!path.empty());
+  }
+  ~TempDir() {
+    std::error_code ec;
+    std::filesystem::remove_all(path, ec);
+  }
+  void write(const std::string& name, const std::string& text) const {
+    std::filesystem::create_directories(std::filesystem::path(path + "/" + name).parent_path());
+    std::ofstream(path + "/" + name) << text;
+  }
+  std::string uri(const std::string& name = "") const { return "file://" + path + (name.empty() ? "" : "/" + name); }
+};
+
+std::string hover_text(Client& c, const std::string& uri, int line, int ch) {
+  return c.request("textDocument/hover", pos(uri, line, ch))["result"]["contents"]["value"].as_string();
+}
+
+std::vector<std::string> messages(const Client& c, int type) {
+  std::vector<std::string> out;
+  for (const Value& n : c.notifications)
+    if (n["method"].as_string() == "window/showMessage" && n["params"]["type"].as_int() == type) out.push_back(n["params"]["message"].as_string());
+  return out;
+}
+
+}  // namespace
+
+TEST(capabilities_declare_tokens_hints_and_prepare_rename) {
+  Client c;
+  Value r = c.request("initialize", R"({"processId":null,"capabilities":{}})");
+  const Value& caps = r["result"]["capabilities"];
+  CHECK_EQ(tmcl::json::write(caps["semanticTokensProvider"]),
+           R"({"legend":{"tokenTypes":["keyword","enumMember","function","variable","number","comment","macro","string"],)"
+           R"("tokenModifiers":["declaration","readonly"]},"full":true,"range":true})");
+  CHECK(caps["inlayHintProvider"].as_bool());
+  CHECK(caps["renameProvider"]["prepareProvider"].as_bool());
+}
+
+TEST(semantic_tokens_full) {
+  Client c;
+  start(c);
+  c.open(kUri,
+         "#include TMCLParam.tmc\n"   // 0
+         "Speed = 1000 // fast\n"     // 1
+         "Loop:\n"                    // 2
+         "  SAP 4, 0, Speed\n"        // 3
+         "  MVP ABS, 0, 100\n"        // 4
+         "  JA loop\n"                // 5: names are case-insensitive
+         "/* two\n"                   // 6
+         "   lines */ STOP // \xC3\xA9!\n"  // 7: é is one UTF-16 unit
+         "Stop = 3\n"                 // 8: a constant named like a mnemonic
+         "  WAIT TICKS, 0, Stop\n"    // 9
+         "  JA Nowhere\n");           // 10: undefined, no token
+  Value r = c.request("textDocument/semanticTokens/full", doc(kUri))["result"];
+  CHECK_EQ(decode(r),
+           "0:0:8:6:0 0:9:13:7:0 "
+           "1:0:5:3:3 1:8:4:4:0 1:13:7:5:0 "
+           "2:0:4:2:1 "
+           "3:2:3:0:0 3:6:1:4:0 3:9:1:4:0 3:12:5:3:2 "
+           "4:2:3:0:0 4:6:3:1:0 4:11:1:4:0 4:14:3:4:0 "
+           "5:2:2:0:0 5:5:4:2:0 "
+           "6:0:6:5:0 7:0:11:5:0 7:12:4:0:0 7:17:5:5:0 "
+           "8:0:4:3:3 8:7:1:4:0 "
+           "9:2:4:0:0 9:7:5:1:0 9:14:1:4:0 9:17:4:3:2 "
+           "10:2:2:0:0");
+  // The encoding itself: the first tokens as the protocol sends them (relative positions).
+  CHECK_EQ(tmcl::json::write(r["data"]).substr(0, 31), "[0,0,8,6,0,0,9,13,7,0,1,0,5,3,3");
+}
+
+TEST(semantic_tokens_range_and_bad_input) {
+  Client c;
+  start(c);
+  c.open(kUri, "Loop:\n  SAP 4, 0, 1\n  MVP ABS, 0, 100\n  JA Loop\n");
+  Value r = c.request("textDocument/semanticTokens/range", range(kUri, 1, 0, 2, 8))["result"];
+  CHECK_EQ(decode(r), "1:2:3:0:0 1:6:1:4:0 1:9:1:4:0 1:12:1:4:0 2:2:3:0:0 2:6:3:1:0");
+  CHECK_EQ(tmcl::json::write(r["data"]).substr(0, 12), "[1,2,3,0,0,0");  // relative to the document start
+  Value unknown = c.request("textDocument/semanticTokens/full", doc("file:///nowhere.tmc"));
+  CHECK_EQ(unknown["error"]["code"].as_int(), -32602);
+  CHECK_EQ(unknown["error"]["message"].as_string(), "unknown document 'file:///nowhere.tmc' (not opened with didOpen)");
+  Value outside = c.request("textDocument/semanticTokens/range", range(kUri, 0, 0, 99, 0));
+  CHECK_EQ(outside["error"]["code"].as_int(), -32602);
+  CHECK_EQ(outside["error"]["message"].as_string(), "position line 99 is outside the document (5 lines)");
+  CHECK_EQ(c.request("textDocument/semanticTokens/range", doc(kUri))["error"]["message"].as_string(), "missing params.range");
+  CHECK_EQ(c.request("textDocument/semanticTokens/range", range(kUri, 2, 0, 1, 0))["error"]["message"].as_string(),
+           "params.range ends before it starts");
+}
+
+TEST(inlay_hints_name_bare_parameter_numbers) {
+  Client c;
+  start(c);
+  c.open(kUri,
+         "Speed = 4\n"                    // 0
+         "  SAP 4, 0, 1000\n"             // 1
+         "  GAP 4 /* x */ , 0\n"          // 2: a comment after the number is still bare
+         "  SAP 4+1, 0, 5\n"              // 3: an expression: no hint
+         "  SAP Speed, 0, 5\n"            // 4: a name says it already
+         "  SGP 77, 0, 1\n"               // 5: bank 0
+         "  SGP 0, 3, 10\n"               // 6: bank 3, read from the later operand
+         "  EI 1\n"                       // 7: an interrupt vector
+         "  SAP 999, 0, 1\n"              // 8: not a parameter of the target
+         "  MVP ABS, 0, 4\n");            // 9: a position, not a parameter
+  Value r = c.request("textDocument/inlayHint", range(kUri, 0, 0, 10, 0))["result"];
+  std::string got;
+  for (const Value& h : r.items())
+    got += std::to_string(h["position"]["line"].as_int()) + ":" + std::to_string(h["position"]["character"].as_int()) + " " +
+           h["label"].as_string() + " (" + std::to_string(h["kind"].as_int()) + ")\n";
+  CHECK_EQ(got,
+           "1:7 : Maximum positioning speed (2)\n"
+           "2:7 : Maximum positioning speed (2)\n"
+           "5:8 : Auto start mode (2)\n"
+           "6:7 : Timer 0 period (ms) (2)\n"
+           "7:6 : TI_TIMER1 (2)\n");
+  // Only the range asked for.
+  CHECK_EQ(c.request("textDocument/inlayHint", range(kUri, 5, 0, 6, 0))["result"].size(), 1u);
+  CHECK_EQ(c.request("textDocument/inlayHint", range("file:///nowhere.tmc", 0, 0, 1, 0))["error"]["code"].as_int(), -32602);
+  CHECK_EQ(c.request("textDocument/inlayHint", range(kUri, 0, 0, 50, 0))["error"]["message"].as_string(),
+           "position line 50 is outside the document (11 lines)");
+}
+
+TEST(inlay_hints_follow_the_target) {
+  Client c;
+  start(c, R"({"target":"tmc2300-eval"})");
+  c.open(kUri, "  SAP 4, 0, 1000\n");
+  Value r = c.request("textDocument/inlayHint", range(kUri, 0, 0, 1, 0))["result"];
+  CHECK_EQ(r.size(), 1u);
+  const tmcl::ParamInfo* p = tmcl::find_profile("tmc2300-eval")->axis_param(4);
+  CHECK(p != nullptr);
+  CHECK_EQ(r.at(0)["label"].as_string(), ": " + std::string(p ? p->name : ""));
+}
+
+TEST(prepare_rename) {
+  Client c;
+  start(c);
+  c.open(kUri,
+         "Speed = 1000\n"                 // 0
+         "Loop: SAP 4, 0, Speed // c\n"   // 1
+         "  MVP ABS, 0, 100\n"            // 2
+         "  JA loop\n"                    // 3
+         "  JA Nowhere\n");               // 4
+  auto prepare = [&](int line, int ch) { return c.request("textDocument/prepareRename", pos(kUri, line, ch)); };
+  CHECK_EQ(tmcl::json::write(prepare(1, 18)["result"]),
+           R"({"range":{"start":{"line":1,"character":16},"end":{"line":1,"character":21}},"placeholder":"Speed"})");
+  CHECK_EQ(tmcl::json::write(prepare(3, 6)["result"]),
+           R"({"range":{"start":{"line":3,"character":5},"end":{"line":3,"character":9}},"placeholder":"loop"})");
+  CHECK_EQ(prepare(1, 1)["result"]["placeholder"].as_string(), "Loop");  // a label before a mnemonic
+  auto refused = [&](int line, int ch) {
+    Value e = prepare(line, ch);
+    CHECK_EQ(e["error"]["code"].as_int(), -32803);
+    return e["error"]["message"].as_string();
+  };
+  CHECK_EQ(refused(1, 7), "'SAP' is an instruction mnemonic: only labels and constants can be renamed");
+  CHECK_EQ(refused(1, 10), "'4' is a number: only labels and constants can be renamed");
+  CHECK_EQ(refused(1, 25), "this is a comment: only labels and constants can be renamed");
+  CHECK_EQ(refused(2, 7), "'ABS' is a keyword of MVP: only labels and constants can be renamed");
+  CHECK_EQ(refused(4, 7), "'Nowhere' is not a defined label or constant: only labels and constants can be renamed");
+  CHECK_EQ(refused(2, 0), "nothing to rename here: only labels and constants can be renamed");
+  CHECK_EQ(c.request("textDocument/prepareRename", pos("file:///nowhere.tmc", 0, 0))["error"]["code"].as_int(), -32602);
+  CHECK_EQ(prepare(40, 0)["error"]["message"].as_string(), "position line 40 is outside the document (6 lines)");
+  // Names are case-insensitive: renaming 'loop' renames 'Loop' too.
+  Value edit = c.request("textDocument/rename", R"({"textDocument":{"uri":"file:///work/e.tmc"},"position":{"line":3,"character":6},"newName":"Again"})")["result"];
+  CHECK_EQ(edit["changes"]["file:///work/e.tmc"].size(), 2u);
+  // Changing only the case respells the name everywhere; it is not "already defined".
+  edit = c.request("textDocument/rename", R"({"textDocument":{"uri":"file:///work/e.tmc"},"position":{"line":3,"character":6},"newName":"LOOP"})")["result"];
+  CHECK_EQ(edit["changes"]["file:///work/e.tmc"].size(), 2u);
+  // Hover on that label shows the label, not the instruction after it.
+  CHECK_EQ(hover_text(c, kUri, 1, 1), "label `Loop`: address 0");
+}
+
+TEST(hover_reads_the_bank_after_the_parameter) {
+  Client c;
+  start(c);
+  c.open(kUri, "  SGP 0, 3, 10\n");
+  CHECK_EQ(hover_text(c, kUri, 0, 6).substr(0, 22), "0: Timer 0 period (ms)");
+}
+
+TEST(project_file_sets_target_and_include_folders) {
+  TempDir dir;
+  dir.write(".tmcl-lsp.json", R"({"target": "usb-2-sd", "includeDirs": ["lib"]})");
+  dir.write("lib/mylib.inc", "Far = 5\n");
+  dir.write("other.inc", "Near = 1\n");
+  dir.write("notes.txt", "not an include file\n");
+  Client c;
+  Value r = c.request("initialize", R"({"processId":null,"capabilities":{},"rootUri":")" + dir.uri() + R"("})");
+  CHECK(r.contains("result"));
+  c.notify("initialized", "{}");
+  std::string main = dir.uri("main.tmc");
+  c.open(main, "#include mylib.inc\n  SAP 4, 0, Far\n");
+  CHECK_EQ(c.last_diagnostics(main).size(), 0u);  // found in lib/, relative to the file
+  CHECK_EQ(hover_text(c, main, 1, 6), "4: Maximum positioning speed, 0…16777215, RW, default 51200 (usb-2-sd)");
+  // Include completion: beside the document, then the include folders, then the bundled files.
+  std::string other = dir.uri("new.tmc");
+  c.open(other, "#include \n");
+  Value items = c.request("textDocument/completion", pos(other, 0, 9))["result"];
+  CHECK(items.size() >= 4u);
+  CHECK_EQ(items.at(0)["label"].as_string(), "other.inc");
+  CHECK_EQ(items.at(0)["detail"].as_string(), dir.path + "/other.inc");
+  CHECK_EQ(items.at(1)["label"].as_string(), "mylib.inc");
+  CHECK_EQ(items.at(1)["detail"].as_string(), dir.path + "/lib/mylib.inc");
+  CHECK_EQ(items.at(2)["detail"].as_string(), "bundled include file");
+  for (const Value& i : items.items()) CHECK(i["label"].as_string() != "notes.txt");
+  CHECK(messages(c, 1).empty());
+}
+
+TEST(initialization_options_override_the_project_file) {
+  TempDir dir;
+  dir.write(".tmcl-lsp.json", R"({"target": "usb-2-sd", "includeDirs": ["lib"]})");
+  Client c;
+  c.request("initialize", R"({"processId":null,"capabilities":{},"rootUri":null,"workspaceFolders":[{"uri":")" + dir.uri() +
+                              R"(","name":"w"}],"initializationOptions":{"target":"generic","includeDirs":[]}})");
+  dir.write("lib/mylib.inc", "Far = 5\n");
+  std::string main = dir.uri("main.tmc");
+  c.open(main, "#include mylib.inc\n  SAP 4, 0, 1\n");
+  CHECK_EQ(c.last_diagnostics(main).size(), 1u);  // lib/ is not searched
+  CHECK(hover_text(c, main, 1, 6).find("(generic)") != std::string::npos);
+}
+
+TEST(bad_project_file_is_reported_and_ignored) {
+  TempDir dir;
+  dir.write(".tmcl-lsp.json", "{\"target\": \"usb-2-sd\",\n \"includeDirs\": [\"lib\",]}\n");
+  Client c;
+  c.request("initialize", R"({"processId":null,"capabilities":{},"rootUri":")" + dir.uri() + R"("})");
+  std::vector<std::string> errors = messages(c, 1);
+  CHECK_EQ(errors.size(), 1u);
+  CHECK_EQ(errors.empty() ? "" : errors[0], dir.path + "/.tmcl-lsp.json:2:24: error: expected a value, found ']'" +
+                                                " (the file is ignored: target generic, no include folders)");
+  std::string main = dir.uri("main.tmc");
+  c.open(main, "  SAP 4, 0, 1\n");
+  CHECK(hover_text(c, main, 0, 6).find("(generic)") != std::string::npos);
+  // An unknown target and an unknown key.
+  Client d;
+  dir.write(".tmcl-lsp.json", R"({"target": "usb-3-sd", "colour": "red"})");
+  d.request("initialize", R"({"processId":null,"capabilities":{},"rootPath":")" + dir.path + R"("})");
+  errors = messages(d, 1);
+  CHECK_EQ(errors.size(), 1u);
+  CHECK_EQ(errors.empty() ? "" : errors[0], dir.path + "/.tmcl-lsp.json: error: \"target\" must be one of generic, usb-2-sd, tmc2300-eval, not \"usb-3-sd\"" +
+                                                " (the file is ignored: target generic, no include folders)");
+  // Not an object.
+  Client e;
+  dir.write(".tmcl-lsp.json", "[1]");
+  e.request("initialize", R"({"processId":null,"capabilities":{},"rootUri":")" + dir.uri() + R"("})");
+  CHECK_EQ(messages(e, 1).size(), 1u);
+  // A named pipe would block a reader until someone writes: it is refused, not opened.
+  std::filesystem::remove(dir.path + "/.tmcl-lsp.json");
+  CHECK(mkfifo((dir.path + "/.tmcl-lsp.json").c_str(), 0600) == 0);
+  Client g;
+  g.request("initialize", R"({"processId":null,"capabilities":{},"rootUri":")" + dir.uri() + R"("})");
+  errors = messages(g, 1);
+  CHECK_EQ(errors.empty() ? "" : errors[0], dir.path + "/.tmcl-lsp.json: error: not a regular file (the file is ignored: target generic, no include folders)");
+  std::filesystem::remove(dir.path + "/.tmcl-lsp.json");
+  dir.write(".tmcl-lsp.json", R"({"target": "usb-2-sd", "colour": "red"})");
+  Client f;
+  f.request("initialize", R"({"processId":null,"capabilities":{},"rootUri":")" + dir.uri() + R"("})");
+  CHECK_EQ(messages(f, 1).size(), 0u);
+  std::vector<std::string> warnings = messages(f, 2);
+  CHECK_EQ(warnings.size(), 1u);
+  CHECK_EQ(warnings.empty() ? "" : warnings[0], dir.path + "/.tmcl-lsp.json: warning: unknown setting \"colour\" (known: target, includeDirs)");
+}
+
+TEST(project_file_is_watched_and_read_again) {
+  TempDir dir;
+  Client c;
+  c.request("initialize", R"({"processId":null,"rootUri":")" + dir.uri() +
+                              R"(","capabilities":{"workspace":{"didChangeWatchedFiles":{"dynamicRegistration":true}}}})");
+  c.notify("initialized", "{}");
+  CHECK(!c.notifications.empty());
+  if (c.notifications.empty()) return;
+  const Value& reg = c.notifications.back();
+  CHECK_EQ(reg["method"].as_string(), "client/registerCapability");
+  CHECK_EQ(tmcl::json::write(reg["params"]),
+           R"({"registrations":[{"id":"tmcl-lsp-settings","method":"workspace/didChangeWatchedFiles",)"
+           R"("registerOptions":{"watchers":[{"globPattern":"**/.tmcl-lsp.json"}]}}]})");
+  CHECK(c.send(R"({"jsonrpc":"2.0","id":"tmcl-lsp-watch","result":null})", 0).is_null());  // the client's answer is ignored
+  std::string main = dir.uri("main.tmc");
+  c.open(main, "  SAP 4, 0, 99999999\n");
+  CHECK_EQ(c.last_diagnostics(main).size(), 0u);  // generic: no range checks
+  dir.write(".tmcl-lsp.json", R"({"target": "usb-2-sd"})");
+  c.notify("workspace/didChangeWatchedFiles", R"({"changes":[{"uri":")" + dir.uri(".tmcl-lsp.json") + R"(","type":1}]})");
+  CHECK_EQ(c.last_diagnostics(main).size(), 1u);  // re-checked for usb-2-sd
+  std::filesystem::remove(dir.path + "/.tmcl-lsp.json");
+  c.notify("workspace/didChangeWatchedFiles", R"({"changes":[{"uri":")" + dir.uri(".tmcl-lsp.json") + R"(","type":3}]})");
+  CHECK_EQ(c.last_diagnostics(main).size(), 0u);  // back to the defaults
+  // A client without dynamic registration is not asked.
+  Client d;
+  d.request("initialize", R"({"processId":null,"rootUri":")" + dir.uri() + R"(","capabilities":{}})");
+  d.notify("initialized", "{}");
+  CHECK(d.notifications.empty());
+}
+
+TEST(malformed_params_get_answers) {
+  Client c;
+  start(c);
+  c.open(kUri, "Loop:\n  SAP 4, 0, 1\n  JA Loop\n");
+  const char* methods[] = {"textDocument/semanticTokens/full", "textDocument/semanticTokens/range", "textDocument/inlayHint",
+                           "textDocument/prepareRename"};
+  const std::string bad[] = {
+      "null", "[]", R"({"textDocument":5})", R"({"textDocument":{"uri":"file:///work/e.tmc"},"position":{"line":-1,"character":0}})",
+      R"({"textDocument":{"uri":"file:///work/e.tmc"},"position":{"line":"1","character":0}})",
+      R"({"textDocument":{"uri":"file:///work/e.tmc"},"range":{"start":{"line":0,"character":0},"end":{"line":2147483648,"character":0}}})",
+      R"({"textDocument":{"uri":"file:///work/e.tmc"},"range":{"start":{"line":0},"end":{"line":1,"character":0}}})",
+      R"({"textDocument":{"uri":"file:///work/e.tmc"},"range":[0,1]})",
+  };
+  for (const char* m : methods)
+    for (const std::string& p : bad) {
+      Value r = c.request(m, p);
+      bool full = std::string(m) == "textDocument/semanticTokens/full";
+      // Only the full tokens need nothing but the document; everything else is InvalidParams.
+      if (full && p.find("file:///work/e.tmc") != std::string::npos) CHECK(r["result"]["data"].size() > 0u);
+      else CHECK_EQ(r["error"]["code"].as_int(), -32602);
+    }
+  // The server still answers.
+  CHECK(c.request("textDocument/semanticTokens/full", doc(kUri))["result"]["data"].size() > 0u);
+  Value w = c.request("workspace/didChangeWatchedFiles", R"({"changes":5})");  // a notification sent as a request
+  CHECK(w.contains("result"));
+  c.notify("workspace/didChangeWatchedFiles", R"({"changes":[{"uri":5},{"type":1}]})");
+  CHECK(!c.server.exited());
+}
