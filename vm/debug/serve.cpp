@@ -99,6 +99,8 @@ class Served {
   void command(const std::string& line) {
     // The module's time first catches up with the wall clock (the loop slept until this line).
     if (!loop_->poll_once(0, -1)) quit_ = true;
+    // Time passed while the program was held: re-execution from before could not reproduce it.
+    if (e_.vm().now != held_at_) e_.external_change();
     execute([&] {
       if (!cli_.line(line)) quit_ = true;
     });
@@ -111,6 +113,7 @@ class Served {
     stopping_ = false;
     f();
     executing_ = false;
+    held_at_ = e_.vm().now;
   }
 
   // TmclModule::run_program: the instant the wall clock has reached. While the debugger holds
@@ -191,6 +194,7 @@ class Served {
   bool stopping_ = false;    // the running program is to stop (host, Ctrl-C, shutdown)
   bool quit_ = false;
   SimTime reached_ = 0;      // the instant the wall clock has reached, in the module's time
+  SimTime held_at_ = 0;      // the instant the program was last held at
   std::string resume_;       // non-empty: continue the program (the host started it), saying this
 };
 
