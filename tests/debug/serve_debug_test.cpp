@@ -1,7 +1,8 @@
 // Debugging while serving: tmclrun --serve tcp:127.0.0.1:0 --debug prog.tmc as a separate
 // process, debugger commands on a pipe, and the test as the module's host over TCP. While the
 // program is held at a breakpoint the module answers GGP/SAP/MVP/GAP and its motor moves; a
-// host's SGP is seen by the program when it continues; a host's 128 shows as a stop in the
+// host's SGP is seen by the program, a host's 130 steps it over the breakpoint and shows in the
+// debugger, and the debugger's continue goes on from there; a host's 128 shows as a stop in the
 // debugger, 129 continues it, SIGINT (Ctrl-C) pauses the program and the server stays. Every
 // wait is for an event with a generous deadline (a loaded machine), never a sleep.
 #define TMCL_TEST_MAIN
@@ -24,7 +25,7 @@ constexpr int kDeadlineMs = 60000;
 const std::uint8_t kGgp = static_cast<std::uint8_t>(Op::GGP), kSgp = static_cast<std::uint8_t>(Op::SGP),
                    kSap = static_cast<std::uint8_t>(Op::SAP), kGap = static_cast<std::uint8_t>(Op::GAP),
                    kMvp = static_cast<std::uint8_t>(Op::MVP), kStop = static_cast<std::uint8_t>(Op::StopApplication),
-                   kRun = static_cast<std::uint8_t>(Op::RunApplication);
+                   kRun = static_cast<std::uint8_t>(Op::RunApplication), kStep = static_cast<std::uint8_t>(Op::StepApplication);
 
 struct Debuggee {
   pid_t pid = -1;
@@ -138,13 +139,15 @@ TEST(the_host_is_served_while_the_program_is_held_and_control_commands_show_in_t
   while ((pos = ask(host, kGap, 1, 0, 0)) && *pos == 0 && Clock::now() < end) ::poll(nullptr, 0, 10);
   CHECK(pos && *pos > 0);  // time and motion go on while the program is held
   CHECK(ask(host, kGgp, 1, 2, 0) == std::optional<std::int32_t>(0));  // the program has not run
-  CHECK(ask(host, kSgp, 1, 2, 41).has_value());  // the host writes v[1]
+  CHECK(ask(host, kSgp, 1, 2, 41).has_value());  // the host writes v[1] ...
+  CHECK(ask(host, kStep, 0, 0, 0).has_value());  // ... and steps the program over the breakpoint
+  CHECK(d.wait_for("[the host stepped the program (command 130)]\nloop+1 (address 2)"));
 
   d.say("print v[1]\ncontinue\n");
   CHECK(d.wait_for("$1 = 41"));
   CHECK(d.wait_for("Breakpoint 1, loop (address 1)", 2));
   d.say("print v[1]\n");
-  CHECK(d.wait_for("$2 = 42"));  // the program went on from the host's value
+  CHECK(d.wait_for("$2 = 42"));  // the program went on from the host's value and step
 
   // A host's stop while the program runs is a stop in the debugger.
   d.say("delete\ncontinue\n");
