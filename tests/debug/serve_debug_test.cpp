@@ -91,19 +91,6 @@ bool spawn(Debuggee& d, const std::string& program) {
   return d.pid > 0;
 }
 
-Link connect_to(int port) {
-  int fd = ::socket(AF_INET, SOCK_STREAM | SOCK_CLOEXEC, 0);
-  sockaddr_in a{};
-  a.sin_family = AF_INET;
-  a.sin_port = htons(static_cast<std::uint16_t>(port));
-  a.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
-  if (::connect(fd, reinterpret_cast<sockaddr*>(&a), sizeof a) != 0) {
-    ::close(fd);
-    return Link();
-  }
-  return Link(fd, true);
-}
-
 std::optional<std::int32_t> ask(Link& l, std::uint8_t op, std::uint8_t type, std::uint8_t motor, std::int32_t value) {
   auto r = l.request(op, type, motor, value, 1, kDeadlineMs);
   if (!r || (*r)[2] != 100) return std::nullopt;
@@ -129,7 +116,7 @@ TEST(the_host_is_served_while_the_program_is_held_and_control_commands_show_in_t
   CHECK(d.wait_for("Breakpoint 1, loop (address 1)"));
 
   // Held at the breakpoint: the module answers, the motor moves, the program does not run.
-  Link host = connect_to(port);
+  Link host = connect_loopback(port);
   CHECK(host.ok());
   CHECK(ask(host, kGgp, 1, 2, 0) == std::optional<std::int32_t>(0));
   CHECK(ask(host, kSap, 4, 0, 2000).has_value());    // maximum speed
