@@ -3,8 +3,9 @@
 // program is held at a breakpoint the module answers GGP/SAP/MVP/GAP and its motor moves; a
 // host's SGP is seen by the program, a host's 130 steps it over the breakpoint and shows in the
 // debugger, and the debugger's continue goes on from there; a host's 128 shows as a stop in the
-// debugger, 129 continues it, SIGINT (Ctrl-C) pauses the program and the server stays. Every
-// wait is for an event with a generous deadline (a loaded machine), never a sleep.
+// debugger, 129 continues it, SIGINT (Ctrl-C) pauses the program and the server stays. Also
+// tmclrun --dap over a pipe: pause stops a running endless loop. Every wait is for an event with
+// a generous deadline (a loaded machine), never a sleep.
 #define TMCL_TEST_MAIN
 #include "check.hpp"
 
@@ -12,6 +13,7 @@
 #include <sys/wait.h>
 
 #include <fstream>
+#include <vector>
 
 #include "client.hpp"
 
@@ -72,7 +74,9 @@ struct Debuggee {
   }
 };
 
-bool spawn(Debuggee& d, const std::string& program) {
+bool spawn(Debuggee& d, std::vector<const char*> args) {
+  args.insert(args.begin(), "tmclrun");
+  args.push_back(nullptr);
   int to[2], from[2];
   if (::pipe(to) != 0 || ::pipe(from) != 0) return false;
   d.pid = ::fork();
@@ -81,7 +85,7 @@ bool spawn(Debuggee& d, const std::string& program) {
     ::dup2(from[1], 1);
     ::close(to[1]);
     ::close(from[0]);
-    ::execl(TMCL_TMCLRUN, "tmclrun", "--serve", "tcp:127.0.0.1:0", "--debug", program.c_str(), static_cast<char*>(nullptr));
+    ::execv(TMCL_TMCLRUN, const_cast<char* const*>(args.data()));
     ::_exit(127);
   }
   ::close(to[0]);
@@ -105,7 +109,7 @@ TEST(the_host_is_served_while_the_program_is_held_and_control_commands_show_in_t
   std::ofstream(prog) << "        SGP 1, 2, 0\nloop:   GGP 1, 2\n        CALC ADD, 1\n        AGP 1, 2\n"
                          "        WAIT TICKS, 0, 1\n        JA loop\n";
   Debuggee d;
-  CHECK(spawn(d, prog));
+  CHECK(spawn(d, {"--serve", "tcp:127.0.0.1:0", "--debug", prog.c_str()}));
   CHECK(d.wait_for("listening on 127.0.0.1:"));
   std::size_t at = d.text.find("listening on 127.0.0.1:");
   CHECK(at != std::string::npos);
@@ -169,4 +173,38 @@ TEST(serve_with_debug_refuses_stdio_and_dap) {
     ::waitpid(pid, &st, 0);
     CHECK(WIFEXITED(st) && WEXITSTATUS(st) == 64);
   }
+}
+
+// DAP pause over a real pipe, with the program running when the request arrives (the adapter
+// polls its standard input between slices): stopped with reason pause, the stack is valid, and
+// the program runs on after continue until a second pause.
+TEST(dap_pause_over_a_pipe_stops_a_running_endless_loop) {
+  const std::string prog = "dap_pipe_prog.tmc";
+  std::ofstream(prog) << "        SGP 1, 2, 0\nloop:   GGP 1, 2\n        CALC ADD, 1\n        AGP 1, 2\n        JA loop\n";
+  Debuggee d;
+  CHECK(spawn(d, {"--dap"}));
+  int seq = 0;
+  auto request = [&](const std::string& body) {
+    std::string text = "{\"seq\":" + std::to_string(++seq) + ",\"type\":\"request\"," + body + "}";
+    d.say("Content-Length: " + std::to_string(text.size()) + "\r\n\r\n" + text);
+  };
+  request(R"("command":"initialize","arguments":{})");
+  request(R"("command":"launch","arguments":{"program":")" + prog + R"("})");
+  request(R"("command":"configurationDone")");
+  CHECK(d.wait_for(R"("command":"configurationDone")"));
+  request(R"("command":"threads")");  // answered while the program runs
+  CHECK(d.wait_for(R"("command":"threads")"));
+  CHECK(d.text.find(R"("event":"stopped")") == std::string::npos);
+  request(R"("command":"pause","arguments":{"threadId":1})");
+  CHECK(d.wait_for(R"("reason":"pause")"));
+  request(R"("command":"stackTrace","arguments":{"threadId":1})");
+  CHECK(d.wait_for(R"("command":"stackTrace","body":{"stackFrames":[{"id":0)"));
+  request(R"("command":"continue","arguments":{"threadId":1})");
+  CHECK(d.wait_for(R"("command":"continue")"));
+  request(R"("command":"pause","arguments":{"threadId":1})");
+  CHECK(d.wait_for(R"("reason":"pause")", 2));
+  request(R"("command":"disconnect")");
+  CHECK_EQ(d.finish(), 0);
+  CHECK(d.text.find(R"("command":"disconnect")") != std::string::npos);
+  std::remove(prog.c_str());
 }
