@@ -94,7 +94,13 @@ class Served {
       command(line);
       prompt();
     }
+    if (pending_.size() > kMaxLine) {  // no newline in sight: not a command line
+      pending_.clear();
+      cli_.note("error: a command line longer than " + std::to_string(kMaxLine) + " bytes was dropped");
+      prompt();
+    }
   }
+  static constexpr std::size_t kMaxLine = 64 << 10;
 
   void command(const std::string& line) {
     // The module's time first catches up with the wall clock (the loop slept until this line).
