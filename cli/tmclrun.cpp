@@ -559,10 +559,14 @@ int run(int argc, char** argv) {
   }
 
   // --debug, --dap: the debugger runs the program (vm/debug, docs/debugger.md).
-  if (o.debug.enabled && !o.serve.empty()) return usage_error("--debug and --dap do not go with --serve yet (docs/debugger.md)");
+  if (o.debug.enabled && !o.serve.empty()) {  // debugging while serving: tcp or pty, one module
+    if (o.debug.dap || o.serve_opts.transport == tmcl::Transport::Stdio || !o.modules.empty() || o.trace)
+      return usage_error("--serve with --debug takes tcp:HOST:PORT or pty, one module, no --dap and no --trace");
+    o.serve_opts.eeprom_path = o.eeprom;
+  }
   if (o.debug.enabled)
     return tmcl::debug::main(o.debug, *profile, std::move(core), o.program, o.asm_opts, o.instr_time, o.limits, std::move(inputs),
-                             o.eeprom.empty() ? nullptr : &image);
+                             o.eeprom.empty() ? nullptr : &image, o.serve.empty() ? nullptr : &o.serve_opts);
 
   // ---- run ----
   // --csv/--plot: the VM drives a recording decorator around the real core.

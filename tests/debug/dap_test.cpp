@@ -198,3 +198,67 @@ TEST(a_program_run_to_stop_ends_with_exited_and_terminated) {
   CHECK_EQ(s.events("terminated").size(), std::size_t{1});
   std::remove(path.c_str());
 }
+
+// pause of a running program: the adapter runs the program in slices and reads requests between
+// them, so an endless loop without a breakpoint is paused (stopped, reason "pause") and runs on
+// after continue; threads is answered while it runs, anything needing it stopped is refused,
+// and disconnect ends the adapter with the program still running. Where the pause lands depends
+// on the slice, so the test checks the events and that the program went on, not an address.
+TEST(pause_stops_an_endless_loop_and_continue_runs_it_on) {
+  std::string path = "dap_test_endless.tmc";
+  std::ofstream(path) << "        SGP 1, 2, 0\nloop:   GGP 1, 2\n        CALC ADD, 1\n        AGP 1, 2\n        JA loop\n";
+  Session s = run({R"("command":"initialize","arguments":{})", R"("command":"launch","arguments":{"program":")" + path + R"("})",
+                   R"("command":"configurationDone")", R"("command":"threads")", R"("command":"pause","arguments":{"threadId":1})",
+                   R"("command":"stackTrace","arguments":{"threadId":1})", R"("command":"evaluate","arguments":{"expression":"v[1]"})",
+                   R"("command":"continue","arguments":{"threadId":1})", R"("command":"evaluate","arguments":{"expression":"v[1]"})",
+                   R"("command":"pause","arguments":{"threadId":1})", R"("command":"evaluate","arguments":{"expression":"v[1]"})",
+                   R"("command":"continue","arguments":{"threadId":1})", R"("command":"disconnect")"});
+  auto stops = s.events("stopped");
+  CHECK_EQ(stops.size(), std::size_t{2});
+  for (const Value* st : stops) CHECK_EQ((*st)["body"]["reason"].as_string(), std::string("pause"));
+  // threads was answered while the program ran: before the first stop.
+  std::size_t threads_at = 0, first_stop_at = 0;
+  for (std::size_t i = 0; i < s.messages.size(); ++i) {
+    const Value& m = s.messages[i];
+    if (m["type"].as_string() == "response" && m["command"].as_string() == "threads") threads_at = i;
+    if (!first_stop_at && m["type"].as_string() == "event" && m["event"].as_string() == "stopped") first_stop_at = i;
+  }
+  CHECK(threads_at > 0 && threads_at < first_stop_at);
+  const Value* trace = s.response("stackTrace");
+  CHECK(trace && (*trace)["success"].as_bool());
+  if (trace) {
+    const Value& top = (*trace)["body"]["stackFrames"].at(0);
+    CHECK(top["line"].as_int() >= 2 && top["line"].as_int() <= 5);  // somewhere in the loop
+    CHECK_EQ(top["source"]["path"].as_string(), path);
+  }
+  const Value* first = s.response("evaluate", 0);
+  const Value* running = s.response("evaluate", 1);
+  const Value* second = s.response("evaluate", 2);
+  CHECK(first && second && running);
+  if (first && second && running) {
+    CHECK((*first)["success"].as_bool() && (*second)["success"].as_bool());
+    CHECK(!(*running)["success"].as_bool());  // asked while running
+    CHECK((*running)["message"].as_string().find("running") != std::string::npos);
+    // The program ran on after continue: the counter grew.
+    CHECK(std::stoll((*second)["body"]["result"].as_string()) > std::stoll((*first)["body"]["result"].as_string()));
+    CHECK(std::stoll((*first)["body"]["result"].as_string()) > 0);
+  }
+  const Value* disc = s.response("disconnect");
+  CHECK(disc && (*disc)["success"].as_bool());
+  CHECK(s.events("exited").empty());  // disconnected while it ran: no exit to report
+  std::remove(path.c_str());
+}
+
+TEST(terminate_while_running_ends_the_program) {
+  std::string path = "dap_test_endless2.tmc";
+  std::ofstream(path) << "loop:   JA loop\n";
+  Session s = run({R"("command":"initialize","arguments":{})", R"("command":"launch","arguments":{"program":")" + path + R"("})",
+                   R"("command":"configurationDone")", R"("command":"terminate")", R"("command":"disconnect")"});
+  const Value* term = s.response("terminate");
+  CHECK(term && (*term)["success"].as_bool());
+  CHECK_EQ(s.events("terminated").size(), std::size_t{1});
+  CHECK(s.events("stopped").empty());
+  const Value* disc = s.response("disconnect");
+  CHECK(disc && (*disc)["success"].as_bool());
+  std::remove(path.c_str());
+}

@@ -74,8 +74,9 @@ tick:   GGP 3, 2
 struct Fixture {
   const Profile* profile = find_profile("usb-2-sd");
   std::unique_ptr<Engine> engine;
-  explicit Fixture(std::uint64_t interval = 64, std::size_t budget = std::size_t{64} << 20) {
+  explicit Fixture(std::uint64_t interval = 64, std::size_t budget = std::size_t{64} << 20, std::uint64_t slice = 1 << 16) {
     Setup s;
+    s.slice_steps = slice;
     s.profile = profile;
     s.core_name = std::string(profile->default_motion);
     s.checkpoint_interval = interval;
@@ -254,4 +255,58 @@ TEST(variable_watchpoint_sees_a_change_that_is_undone_at_once_and_indexed_writes
     CHECK_EQ(seen[2], 18);
     CHECK_EQ(seen[3], 32);
   }
+}
+
+// Engine::on_slice (DAP pause, debugging while serving): a run cut into slices, each bounded in
+// time by what on_slice returns, ends in the state one run gives; pause_for() from on_slice stops
+// with its text; a breakpoint set meanwhile does not cancel finish's temporary stop.
+TEST(a_run_in_slices_gives_the_state_one_run_gives) {
+  Fixture plain, sliced(64, std::size_t{64} << 20, 16);
+  Stop a = plain.engine->start(false);
+  int calls = 0;
+  sliced.engine->on_slice = [&] {
+    ++calls;
+    return sliced.vm().now + 137;  // as a server pacing by the wall clock would
+  };
+  Stop b = sliced.engine->start(false);
+  CHECK(a.kind == StopKind::Exited && b.kind == StopKind::Exited);
+  CHECK_EQ(state(sliced.vm()), state(plain.vm()));
+  CHECK(calls > 10);
+}
+
+TEST(pause_for_from_on_slice_stops_with_its_text) {
+  Fixture f(64, std::size_t{64} << 20, 16);
+  int calls = 0;
+  f.engine->on_slice = [&] {
+    if (++calls == 3) f.engine->pause_for("Program stopped: the host stopped the program (command 128).");
+    return kNever;
+  };
+  Stop st = f.engine->start(true);
+  CHECK(st.kind == StopKind::Entry);
+  st = f.engine->step(f.engine->setup().slice_steps * 10);  // long enough for three slices
+  CHECK(st.kind == StopKind::Pause);
+  CHECK_EQ(calls, 3);
+  CHECK_EQ(st.message, std::string("Program stopped: the host stopped the program (command 128)."));
+}
+
+TEST(a_breakpoint_set_during_finish_keeps_its_temporary_stop) {
+  Fixture f(64, std::size_t{64} << 20, 1);  // on_slice after every instruction
+  std::int32_t sub = 0, stop_at = 0;
+  std::string err;
+  CHECK(f.engine->resolve("sub", sub, err));
+  CHECK(f.engine->resolve("sub", stop_at, err));
+  f.engine->add_breakpoint(sub, "sub", false);
+  Stop s = f.engine->start(false);
+  CHECK(s.kind == StopKind::Breakpoint);
+  const std::int32_t back = f.vm().stack[0];  // the instruction after the CSUB
+  bool added = false;
+  f.engine->on_slice = [&] {
+    if (!added) f.engine->add_breakpoint(stop_at - 1, "*", false);  // the STOP: never reached from here
+    added = true;
+    return kNever;
+  };
+  s = f.engine->finish();
+  CHECK(added);
+  CHECK(s.kind == StopKind::Step);
+  CHECK_EQ(f.vm().pc, back);
 }

@@ -11,7 +11,7 @@ set(LAYERS
   "module|vm/module|module,vm,motion,isa,base"
   "asm|asm|asm,isa,base"
   "analysis|asm/analysis|analysis,asm,isa,base"
-  "debug|vm/debug|debug,vm,asm,motion,isa,base"
+  "debug|vm/debug|debug,module,vm,asm,motion,isa,base"
   "lsp|cli/lsp|lsp,analysis,asm,isa,base"
   "report|cli/report|report,vm,motion,isa,base"
   "host|cli/host|host,asm,isa,base"

@@ -168,6 +168,20 @@ struct Link {
   }
 };
 
+// A TCP connection to 127.0.0.1:PORT (a server in another process); not ok() when refused.
+inline Link connect_loopback(int port) {
+  int fd = ::socket(AF_INET, SOCK_STREAM | SOCK_CLOEXEC, 0);
+  sockaddr_in a{};
+  a.sin_family = AF_INET;
+  a.sin_port = htons(static_cast<std::uint16_t>(port));
+  a.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+  if (::connect(fd, reinterpret_cast<sockaddr*>(&a), sizeof a) != 0) {
+    ::close(fd);
+    return {};
+  }
+  return Link(fd, true);
+}
+
 // ---- an in-process server ----
 
 struct ServerConfig {

@@ -114,19 +114,7 @@ int reap(Child& c) {
   return -1;
 }
 
-Link connect_to(const std::string& announce) {
-  int port = std::stoi(announce.substr(announce.rfind(':') + 1));
-  int fd = ::socket(AF_INET, SOCK_STREAM | SOCK_CLOEXEC, 0);
-  sockaddr_in a{};
-  a.sin_family = AF_INET;
-  a.sin_port = htons(static_cast<std::uint16_t>(port));
-  a.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
-  if (::connect(fd, reinterpret_cast<sockaddr*>(&a), sizeof a) != 0) {
-    ::close(fd);
-    return {};
-  }
-  return Link(fd, true);
-}
+Link connect_to(const std::string& announce) { return connect_loopback(std::stoi(announce.substr(announce.rfind(':') + 1))); }
 
 }  // namespace
 

@@ -65,10 +65,11 @@ class Cli {
   // Returns false on quit.
   bool command(const std::string& line);
   int status() const { return status_; }
+  void report(const Stop& s);
+  void println(const std::string& s) { print(s + "\n"); }
 
  private:
   void print(const std::string& s) { std::fputs(s.c_str(), out_); }
-  void println(const std::string& s) { print(s + "\n"); }
   void error(const std::string& s) { println(s); }
 
   std::string frame_line(std::int32_t address) {
@@ -93,7 +94,6 @@ class Cli {
     println(frame_line(at) + ", time " + format_time(vm.now));
     println(code_line(at));
   }
-  void report(const Stop& s);
   void show_displays();
   bool need_running() {
     if (e_.running()) return true;
@@ -161,7 +161,7 @@ void Cli::report(const Stop& s) {
       break;
     }
     case StopKind::Step: break;
-    case StopKind::Pause: println("\nProgram paused."); break;
+    case StopKind::Pause: println("\n" + (s.message.empty() ? std::string("Program paused.") : s.message)); break;
     case StopKind::Exited:
       println("[program stopped: " + s.message + ", time " + format_time(vm.now) + "]");
       status_ = 0;
@@ -679,8 +679,44 @@ bool Cli::command(const std::string& raw) {
 
 }  // namespace
 
+struct CommandLine::Impl {
+  Cli cli;
+  bool echo, repeat;
+  std::string last;
+  Impl(Engine& e, std::FILE* out, bool echo_lines, bool repeat_empty) : cli(e, out), echo(echo_lines), repeat(repeat_empty) {}
+};
+
+CommandLine::CommandLine(Engine& engine, std::FILE* out, bool echo, bool repeat)
+    : impl_(std::make_unique<Impl>(engine, out, echo, repeat)), out_(out) {}
+CommandLine::~CommandLine() = default;
+
+bool CommandLine::line(std::string text) {
+  if (!text.empty() && text.back() == '\n') text.pop_back();
+  if (!text.empty() && text.back() == '\r') text.pop_back();
+  if (impl_->echo) {
+    std::fprintf(out_, "(tmdb) %s\n", text.c_str());
+    std::fflush(out_);  // seen before a command that runs for long
+  }
+  if (trim(text).empty() && impl_->repeat) text = impl_->last;  // Enter repeats the last command
+  else if (!trim(text).empty()) impl_->last = text;
+  bool more = impl_->cli.command(text);
+  std::fflush(out_);
+  return more;
+}
+
+void CommandLine::report(const Stop& stop) {
+  impl_->cli.report(stop);
+  std::fflush(out_);
+}
+
+void CommandLine::note(const std::string& text) {
+  impl_->cli.println(text);
+  std::fflush(out_);
+}
+
+int CommandLine::status() const { return impl_->cli.status(); }
+
 int run_cli(Engine& engine, const CliOptions& options, std::FILE* in, std::FILE* out) {
-  Cli cli(engine, out);
   std::FILE* src = in;
   bool from_file = !options.commands_file.empty();
   std::vector<std::string> script;
@@ -696,13 +732,13 @@ int run_cli(Engine& engine, const CliOptions& options, std::FILE* in, std::FILE*
     for (std::string l; std::getline(lines, l);) script.push_back(l);
   }
   const bool tty = !from_file && ::isatty(::fileno(src));
+  CommandLine cli(engine, out, !tty, !from_file);
   g_engine = &engine;
   struct sigaction sa {};
   sa.sa_handler = on_sigint;
   sigemptyset(&sa.sa_mask);
   struct sigaction old {};
   sigaction(SIGINT, &sa, &old);
-  std::string last;
   std::size_t next_line = 0;
   for (;;) {
     std::string line;
@@ -718,13 +754,7 @@ int run_cli(Engine& engine, const CliOptions& options, std::FILE* in, std::FILE*
       if (!std::fgets(buf, sizeof buf, src)) break;
       line = buf;
     }
-    if (!line.empty() && line.back() == '\n') line.pop_back();
-    if (!line.empty() && line.back() == '\r') line.pop_back();
-    if (!tty) std::fprintf(out, "(tmdb) %s\n", line.c_str());
-    if (trim(line).empty() && !from_file) line = last;  // Enter repeats the last command
-    else if (!trim(line).empty()) last = line;
-    if (!cli.command(line)) break;
-    std::fflush(out);
+    if (!cli.line(line)) break;
   }
   sigaction(SIGINT, &old, nullptr);
   g_engine = nullptr;

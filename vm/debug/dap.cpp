@@ -1,8 +1,15 @@
 // `tmclrun --dap`: the engine over the Debug Adapter Protocol on standard input and output
 // (Content-Length framed JSON, tmcl::json), so any DAP client (VS Code, nvim-dap, dape, Helix)
-// debugs TMCL source. One thread: a request that runs the program answers when it stops, so
-// `pause` can only find the program stopped. Every request it does not support gets an error
-// response. docs/debugger.md, "Debug Adapter Protocol".
+// debugs TMCL source. One thread: a request that runs the program answers at once and the
+// program then runs in slices (Engine::on_slice), between which the adapter reads the requests
+// that came meanwhile: `pause` stops it at the next instruction, `threads`, `disconnect`,
+// `terminate` and the breakpoint setters are answered while it runs, anything else gets an
+// error response until it stops. Every request it does not support gets an error response.
+// docs/debugger.md, "Debug Adapter Protocol".
+#include <poll.h>
+#include <unistd.h>
+
+#include <cerrno>
 #include <cstring>
 #include <map>
 #include <sstream>
@@ -19,19 +26,14 @@ using json::Value;
 
 class Dap {
  public:
-  Dap(const DapSetup& setup, std::FILE* in, std::FILE* out) : setup_(setup), in_(in), out_(out) {}
+  Dap(const DapSetup& setup, std::FILE* in, std::FILE* out) : setup_(setup), in_fd_(::fileno(in)), out_(out) {}
 
   int serve() {
     for (;;) {
       std::string body;
       if (!read_frame(body)) break;
       Value req;
-      json::Error err;
-      if (!json::parse(body, req, err) || !req.is_object()) {
-        event("output", obj({{"category", "stderr"}, {"output", "tmclrun --dap: bad message: " + err.to_string() + "\n"}}));
-        continue;
-      }
-      if (req["type"].as_string() != "request") continue;
+      if (!parse_request(body, req)) continue;
       if (!handle(req)) break;
     }
     return exit_code_;
@@ -44,23 +46,84 @@ class Dap {
     return v;
   }
 
-  bool read_frame(std::string& body) {
-    long length = -1;
-    char line[1024];
+  // Input is read from the descriptor into our own buffer (no stdio buffering), so that poll()
+  // tells the truth about whether a request is waiting while the program runs.
+  // Reads what is there; with `wait`, blocks until something is. False: nothing was read.
+  bool fill(bool wait) {
+    if (eof_) return false;
+    if (!wait) {
+      pollfd p{in_fd_, POLLIN, 0};
+      if (::poll(&p, 1, 0) <= 0) return false;
+    }
+    char buf[1 << 16];
+    ssize_t n = ::read(in_fd_, buf, sizeof buf);
+    if (n > 0) return inbuf_.append(buf, static_cast<std::size_t>(n)), true;
+    if (n < 0 && errno == EINTR) return true;
+    eof_ = true;  // end of input, or an error reading it: the client is gone
+    return false;
+  }
+  // One whole frame from the buffer: headers up to an empty line (a Content-Length among
+  // them; a header block without one is skipped), then that many bytes.
+  enum class Frame { Whole, Partial, Bad };
+  Frame take_frame(std::string& body) {
     for (;;) {
-      if (!std::fgets(line, sizeof line, in_)) return false;
-      std::string l = line;
-      while (!l.empty() && (l.back() == '\n' || l.back() == '\r')) l.pop_back();
-      if (l.empty()) {
-        if (length >= 0) break;
+      std::size_t end = inbuf_.find("\r\n\r\n"), skip = 4;
+      if (std::size_t lf = inbuf_.find("\n\n"); lf != std::string::npos && (end == std::string::npos || lf < end)) end = lf, skip = 2;
+      if (end == std::string::npos) return Frame::Partial;
+      long length = -1;
+      for (std::size_t at = 0; at < end;) {
+        std::size_t nl = inbuf_.find('\n', at);
+        std::string l = inbuf_.substr(at, std::min(nl, end) - at);
+        if (l.rfind("Content-Length:", 0) == 0) length = std::strtol(l.c_str() + 15, nullptr, 10);
+        if (nl == std::string::npos) break;
+        at = nl + 1;
+      }
+      if (length < 0) {
+        inbuf_.erase(0, end + skip);
         continue;
       }
-      if (l.rfind("Content-Length:", 0) == 0) length = std::strtol(l.c_str() + 15, nullptr, 10);
+      if (length > (64 << 20)) return Frame::Bad;
+      if (inbuf_.size() < end + skip + static_cast<std::size_t>(length)) return Frame::Partial;
+      body = inbuf_.substr(end + skip, static_cast<std::size_t>(length));
+      inbuf_.erase(0, end + skip + static_cast<std::size_t>(length));
+      return Frame::Whole;
     }
-    if (length < 0 || length > (64 << 20)) return false;
-    body.resize(static_cast<std::size_t>(length));
-    return std::fread(body.data(), 1, body.size(), in_) == body.size();
   }
+  bool read_frame(std::string& body) {
+    for (;;) {
+      Frame f = take_frame(body);
+      if (f == Frame::Whole) return true;
+      if (f == Frame::Bad || !fill(true)) return false;
+    }
+  }
+  bool parse_request(const std::string& body, Value& req) {
+    json::Error err;
+    if (!json::parse(body, req, err) || !req.is_object()) {
+      event("output", obj({{"category", "stderr"}, {"output", "tmclrun --dap: bad message: " + err.to_string() + "\n"}}));
+      return false;
+    }
+    return req["type"].as_string() == "request";
+  }
+
+  // Engine::on_slice while the program runs: the requests that came meanwhile.
+  SimTime slice() {
+    while (!ending_) {
+      std::string body;
+      Frame f = take_frame(body);
+      if (f == Frame::Bad) ending_ = disconnect_ = true;
+      if (f != Frame::Whole) {
+        if (ending_ || fill(false)) continue;
+        if (eof_) ending_ = disconnect_ = true;  // the client went away: stop and end
+        break;
+      }
+      Value req;
+      // After a pause, the requests behind it are for the stopped program: they wait.
+      if (parse_request(body, req) && handle_running(req)) break;
+    }
+    if (ending_) engine_->pause();
+    return kNever;
+  }
+  bool handle_running(const Value& req);  // true: the program is to stop
 
   void send(Value msg) {
     msg.set("seq", ++seq_);
@@ -128,13 +191,18 @@ class Dap {
   }
 
   bool launch(const Value& req, std::string& error);
+  bool after_run(const Stop& s);
   void set_breakpoints(const Value& req);
   Value variables(std::int64_t ref);
   bool handle(const Value& req);
 
   DapSetup setup_;
-  std::FILE* in_;
+  int in_fd_;
+  std::string inbuf_;
+  bool eof_ = false;
   std::FILE* out_;
+  bool ending_ = false;      // disconnect or terminate came while the program ran
+  bool disconnect_ = false;  // ... and it was disconnect (or the client went away)
   std::int64_t seq_ = 0;
   int exit_code_ = 0;
   std::unique_ptr<Engine> engine_;
@@ -172,6 +240,7 @@ bool Dap::launch(const Value& req, std::string& error) {
   if (!messages.empty()) event("output", obj({{"category", "stderr"}, {"output", messages}}));
   engine_ = std::make_unique<Engine>(std::move(s), std::move(info), std::move(core));
   engine_->on_output = [this](const std::string& text) { event("output", obj({{"category", "console"}, {"output", text}})); };
+  engine_->on_slice = [this] { return slice(); };
   stop_on_entry_ = a["stopOnEntry"].as_bool();
   return true;
 }
@@ -256,6 +325,42 @@ Value Dap::variables(std::int64_t ref) {
   return out;
 }
 
+bool Dap::handle_running(const Value& req) {
+  const std::string cmd = req["command"].as_string();
+  if (cmd == "pause") {
+    respond(req, true);  // the stopped event (reason "pause") follows when the program stops
+    engine_->pause();
+    return true;
+  }
+  if (cmd == "disconnect" || cmd == "terminate") {
+    respond(req, true);
+    ending_ = true;
+    disconnect_ = cmd == "disconnect";
+    return true;
+  }
+  if (cmd == "threads" || cmd == "setBreakpoints" || cmd == "setFunctionBreakpoints" || cmd == "setInstructionBreakpoints" ||
+      cmd == "setExceptionBreakpoints") {
+    handle(req);  // these read nothing the run changes; new breakpoints count from the next instruction
+    return false;
+  }
+  fail(req, "the program is running: '" + cmd + "' needs it stopped (send pause first)");
+  return false;
+}
+
+// After a request that ran the program: disconnect or terminate may have come meanwhile.
+// Returns false when the adapter ends.
+bool Dap::after_run(const Stop& s) {
+  if (!ending_) {
+    stopped(s);
+    return true;
+  }
+  ending_ = false;
+  if (disconnect_) return false;
+  engine_->kill();
+  event("terminated");
+  return true;
+}
+
 bool Dap::handle(const Value& req) {
   const std::string cmd = req["command"].as_string();
   const Value& a = req["arguments"];
@@ -332,8 +437,7 @@ bool Dap::handle(const Value& req) {
   }
   if (cmd == "configurationDone" || cmd == "restart") {
     respond(req, true);
-    stopped(e.start(stop_on_entry_));
-    return true;
+    return after_run(e.start(stop_on_entry_));
   }
   if (cmd == "threads") {
     Value threads = Value::array();
@@ -379,7 +483,7 @@ bool Dap::handle(const Value& req) {
     if (!eval_expr(x, vm, v, err)) return fail(req, err), true;
     return respond(req, true, obj({{set ? "value" : "result", std::to_string(v)}, {"variablesReference", 0}})), true;
   }
-  if (cmd == "pause") return respond(req, true), true;  // the program is always stopped between requests
+  if (cmd == "pause") return respond(req, true), true;  // stopped already (a running program is paused in slice())
   if (cmd == "continue" || cmd == "next" || cmd == "stepIn" || cmd == "stepOut" || cmd == "stepBack" || cmd == "reverseContinue") {
     if (cmd == "continue") respond(req, true, obj({{"allThreadsContinued", true}}));
     else respond(req, true);
@@ -389,8 +493,7 @@ bool Dap::handle(const Value& req) {
       event("output", obj({{"category", "console"}, {"output", s.message + "\n"}}));
       s = Stop{StopKind::Step, 0, "", 0, 0};
     }
-    stopped(s);
-    return true;
+    return after_run(s);
   }
   if (cmd == "gotoTargets") {
     std::int32_t address = 0;

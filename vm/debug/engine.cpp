@@ -174,6 +174,7 @@ void Engine::set_traps() {
   if (watching() && watch_by_traps(&vars))
     for (std::size_t a = 0; a < want.size(); ++a)
       if (writes_var(vm_->program[a], vars)) want[a] = 1;
+  if (temp_trap_ >= 0 && static_cast<std::size_t>(temp_trap_) < want.size()) want[static_cast<std::size_t>(temp_trap_)] = 1;
   for (std::size_t a = 0; a < want.size(); ++a)
     if (vm_->trapped(static_cast<std::int32_t>(a)) != (want[a] != 0)) vm_->set_trap(static_cast<std::int32_t>(a), want[a] != 0);
 }
@@ -277,10 +278,14 @@ void Engine::refresh_watches() {
 // ---- execution ----
 
 Stop Engine::start(bool stop_at_entry) {
-  vm_->power_on(setup_.eeprom ? &*setup_.eeprom : nullptr);
+  if (setup_.serving)
+    vm_->reset_application();  // the host's parameters, variables and moving motors stay
+  else
+    vm_->power_on(setup_.eeprom ? &*setup_.eeprom : nullptr);
   vm_->start(0);
   running_ = true;
   pause_.store(false);
+  pause_note_.clear();
   checkpoints_.clear();
   next_checkpoint_ = 0;
   for (auto& b : breaks_) b.hits = 0;
@@ -295,7 +300,15 @@ Stop Engine::start(bool stop_at_entry) {
 void Engine::kill() {
   running_ = false;
   checkpoints_.clear();
-  vm_->power_on(setup_.eeprom ? &*setup_.eeprom : nullptr);
+  if (setup_.serving)
+    vm_->stop_application();  // as the host's 128: the module itself stays as it is
+  else
+    vm_->power_on(setup_.eeprom ? &*setup_.eeprom : nullptr);
+}
+
+void Engine::external_change() {
+  if (vm_->status == AppStatus::Running || vm_->status == AppStatus::Step) running_ = true;
+  state_changed();
 }
 
 void Engine::set_pc(std::int32_t address) {
@@ -307,7 +320,14 @@ void Engine::set_pc(std::int32_t address) {
 RunResult Engine::exec(std::uint64_t max_steps, SimTime until) {
   max_steps = std::min(max_steps, setup_.limits.max_steps);
   until = std::min(until, setup_.limits.until);
+  const bool slicing = on_slice && !no_slice_ && !in_slice_;
   for (;;) {
+    if (slicing && (vm_->steps >= next_slice_ || vm_->now >= slice_bound_)) {
+      in_slice_ = true;
+      slice_bound_ = on_slice();
+      in_slice_ = false;
+      next_slice_ = vm_->steps + std::max<std::uint64_t>(setup_.slice_steps, 1);
+    }
     if (pause_.exchange(false)) {
       paused_ = true;
       return RunResult{Halt::StepLimit, "paused"};
@@ -315,8 +335,11 @@ RunResult Engine::exec(std::uint64_t max_steps, SimTime until) {
     if (reversible_ && vm_->steps >= next_checkpoint_) take_checkpoint();
     const std::uint64_t interval = std::max<std::uint64_t>(setup_.checkpoint_interval, 1);
     std::uint64_t mark = (vm_->steps / interval + 1) * interval;
-    RunResult r = vm_->run(Limits{std::min(max_steps, mark), until});
-    if (r.halt == Halt::StepLimit && vm_->steps < max_steps) continue;  // a checkpoint mark
+    if (slicing) mark = std::min(mark, next_slice_);
+    const SimTime bound = slicing ? std::min(until, std::max(slice_bound_, vm_->now)) : until;
+    RunResult r = vm_->run(Limits{std::min(max_steps, mark), bound});
+    if (r.halt == Halt::StepLimit && vm_->steps < max_steps) continue;  // a checkpoint or slice mark
+    if (r.halt == Halt::TimeLimit && vm_->now < until) continue;        // the slice's time bound
     return r;
   }
 }
@@ -441,6 +464,7 @@ bool Engine::watched_step(const Goal& g, Stop& stop, RunResult& r) {
       return exec_over_trap(steps0 + 1, until);
     };
     SimTime lo = t0, hi = vm_->now;
+    no_slice_ = true;  // re-runs from a copy: no host may see (or change) these states
     while (hi - lo > 1) {
       SimTime mid = lo + (hi - lo) / 2;
       redo(mid);
@@ -448,6 +472,7 @@ bool Engine::watched_step(const Goal& g, Stop& stop, RunResult& r) {
       (watch_changed(probe) ? hi : lo) = mid;
     }
     r = redo(hi);
+    no_slice_ = false;
     watch_changed(s);
   }
   stop = s;
@@ -457,9 +482,17 @@ bool Engine::watched_step(const Goal& g, Stop& stop, RunResult& r) {
 Stop Engine::go(const Goal& g) {
   paused_ = false;
   if (!running_) return Stop{StopKind::NotRunning, 0, "the program is not being run", 0, 0};
+  // A host stopped, stepped or reset the program meanwhile (serving): it runs on from pc.
+  if (setup_.serving && vm_->status != AppStatus::Running) vm_->start(vm_->pc);
+  // The first on_slice comes after a slice of instructions, so a run that stops soon reads no
+  // requests meanwhile (a scripted client's next requests wait for the stop); serving paces
+  // time from the first instruction.
+  next_slice_ = vm_->steps + std::max<std::uint64_t>(setup_.slice_steps, 1);
+  if (setup_.serving) slice_bound_ = vm_->now;
   std::int32_t temp = g.temp_addr;
   bool temp_set = false;
   if (temp >= 0 && temp < vm_->program_size && !vm_->trapped(temp)) {
+    temp_trap_ = temp;  // set_traps() keeps it while points change during the run (on_slice)
     vm_->set_trap(temp, true);
     temp_set = true;
   }
@@ -467,7 +500,9 @@ Stop Engine::go(const Goal& g) {
     Engine& e;
     bool on;
     ~Untrap() {
-      if (on) e.set_traps();
+      if (!on) return;
+      e.temp_trap_ = -1;
+      e.set_traps();
     }
   } untrap{*this, temp_set};
   // Watchpoints on user variables trap the instructions that may write them (set_traps), so
@@ -495,7 +530,11 @@ Stop Engine::go(const Goal& g) {
     } else {
       r = exec(g.max_steps, g.until);
     }
-    if (paused_) return Stop{StopKind::Pause, 0, "", 0, 0};
+    if (paused_) {
+      Stop s{StopKind::Pause, 0, std::move(pause_note_), 0, 0};
+      pause_note_.clear();
+      return s;
+    }
     if (r.halt == Halt::Break) continue;  // reported at the top of the loop
     bool user_steps = vm_->steps >= setup_.limits.max_steps, user_time = vm_->now >= setup_.limits.until;
     if (r.halt == Halt::StepLimit && vm_->steps >= g.max_steps && !user_steps) return Stop{StopKind::Step, 0, "", 0, 0};

@@ -40,7 +40,7 @@ int parse_option(const std::string& a, bool has_inline, const std::function<bool
 
 int main(const FrontEnd& fe, const Profile& profile, std::unique_ptr<MotionCore> core, const std::string& program,
          const AsmOptions& asm_options, SimTime instr_time, const Limits& limits, std::vector<InputEvent> inputs,
-         const EepromImage* eeprom) {
+         const EepromImage* eeprom, const ServeOptions* serve) {
   if (fe.dap) {
     DapSetup ds;
     ds.target = std::string(profile.name);
@@ -68,7 +68,15 @@ int main(const FrontEnd& fe, const Profile& profile, std::unique_ptr<MotionCore>
   setup.inputs = std::move(inputs);
   if (eeprom) setup.eeprom = *eeprom;
   setup.checkpoint_bytes = fe.checkpoint_bytes;
+  setup.serving = serve != nullptr;
   Engine engine(std::move(setup), std::move(info), std::move(core));
+  if (serve) {
+    if (!fe.commands_file.empty()) {
+      std::fprintf(stderr, "tmclrun: --debug-commands does not go with --serve: give the commands on standard input\n(see tmclrun --help)\n");
+      return 64;
+    }
+    return serve_debug(engine, *serve, stdin, stdout);
+  }
   CliOptions co;
   co.commands_file = fe.commands_file;
   co.program_name = program;

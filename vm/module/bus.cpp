@@ -17,6 +17,7 @@ Line::Line(Vm& primary, const ServeOptions& options) {
     if (b.vm->profile->global_param(0, 77) && b.vm->bank0[77] != 0 && b.vm->program_size > 0) b.vm->start(0);
   }
   for (auto& m : modules_) m.module->on_exchange = options.on_exchange;  // --serve --trace
+  modules_.front().module->run_program = options.run_program;            // --serve --debug
   if (!options.faults.empty()) faults_.emplace(options.faults, options.time_scale);
   out_.reserve(4096);
 }

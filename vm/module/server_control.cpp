@@ -60,7 +60,12 @@ void TmclModule::control(const Instruction& ins) {
     case Op::StepApplication: {  // 130: exactly one instruction, then the program waits in Step
       commit_download();
       download_ = false;
+      // A debugger's breakpoint at pc (tmclrun --serve --debug) must not swallow the host's step.
+      const std::int32_t at = vm_.pc;
+      const bool trapped = vm_.trapped(at);
+      if (trapped) vm_.set_trap(at, false);
       const RunResult r = vm_.step();
+      if (trapped) vm_.set_trap(at, true);
       if (r.halt == Halt::Fault) note("program fault: " + r.message);
       reply(kStatusOk, op, 0);
       check_events();

@@ -40,10 +40,10 @@ constexpr auto kPtyStall = std::chrono::milliseconds(1000);  // pty: nobody read
 // ---- signals: a self-pipe, so poll() wakes up ----
 std::atomic<int> g_signal_fd{-1};
 
-extern "C" void on_stop_signal(int) {
+extern "C" void on_stop_signal(int sig) {
   int fd = g_signal_fd.load();
   if (fd >= 0) {
-    const char c = 's';
+    const char c = sig == SIGINT ? 'i' : 's';  // a debugger sharing the loop pauses on SIGINT
     [[maybe_unused]] ssize_t n = ::write(fd, &c, 1);
   }
 }
@@ -235,26 +235,78 @@ ReadResult read_into(int fd, Line& module, std::vector<std::uint8_t>& buf) {
 
 }  // namespace
 
-int serve(Vm& vm, const ServeOptions& opt) {
-  std::ostream& log = opt.log ? *opt.log : std::cerr;
-  std::ostream& announce = opt.announce ? *opt.announce : (opt.transport == Transport::Stdio ? std::cerr : std::cout);
-  auto note = [&](const std::string& s) {
-    if (!opt.quiet) log << "tmclrun: " << s << std::endl;
-  };
-
+struct ServeLoop::Impl {
+  Vm& vm;
+  const ServeOptions& opt;
+  std::ostream& log;
+  std::ostream& announce;
   SignalGuard signals;
+  Line module;  // one module, or a bus of them, with faults if asked (bus.hpp)
+  Fd listener, client, pty_master, pty_slave;
+  double scale = 1.0;
+  Clock::time_point wall0, started, last_rx, last_write, spin_until;
+  SimTime sim0 = 0;
+  std::vector<std::uint8_t> buf = std::vector<std::uint8_t>(64 << 10);
+  bool stop = false;
+  bool dropped_note = false;
+  bool extra_ready = false;
+  std::chrono::microseconds spin;
+  int in_fd = -1, out_fd = -1;
+
+  Impl(Vm& v, const ServeOptions& o)
+      : vm(v),
+        opt(o),
+        log(o.log ? *o.log : std::cerr),
+        announce(o.announce ? *o.announce : (o.transport == Transport::Stdio ? std::cerr : std::cout)),
+        module(v, o),
+        spin(o.spin_us) {}
+
+  void note(const std::string& s) {
+    if (!opt.quiet) log << "tmclrun: " << s << std::endl;
+  }
+  SimTime target_at(Clock::time_point t) const {
+    return sim0 + static_cast<SimTime>(std::chrono::duration<double, std::micro>(t - wall0).count() * scale);
+  }
+  void advance_now() {
+    const Clock::time_point t = Clock::now();
+    module.advance(target_at(t));
+    if (module.take_power_cycle()) {  // simulated time restarted at 0
+      wall0 = t;
+      sim0 = vm.now;
+    }
+  }
+  // The descriptor that carries the protocol right now (-1: no client).
+  int data_fd() const {
+    switch (opt.transport) {
+      case Transport::Tcp: return client.fd;
+      case Transport::Pty: return pty_master.fd;
+      case Transport::Stdio: return in_fd;
+    }
+    return -1;
+  }
+  int write_fd() const { return opt.transport == Transport::Stdio ? out_fd : data_fd(); }
+  void close_client(const char* why) {
+    note(std::string("client disconnected") + why);
+    client.reset();
+    module.drop_partial();
+    module.output().clear();
+  }
+  void flush();
+  int open();
+  bool poll_once(int max_wait_ms, int extra_fd);
+  int close();
+};
+
+int ServeLoop::Impl::open() {
   if (opt.handle_signals && !signals.install()) {
     log << "tmclrun: error: cannot install signal handlers: " << std::strerror(errno) << std::endl;
     return 71;
   }
-
-  Line module(vm, opt);  // one module, or a bus of them, with faults if asked (bus.hpp)
-  module.set_on_message(note);
+  module.set_on_message([this](const std::string& s) { note(s); });
   const bool autostart_param = vm.profile->global_param(0, 77) && vm.bank0[77] != 0;
   if ((opt.autostart || autostart_param) && vm.program_size > 0) vm.start(0);
 
   // ---- the transport ----
-  Fd listener, client, pty_master, pty_slave;
   std::string ready;
   std::string error;
   switch (opt.transport) {
@@ -283,219 +335,201 @@ int serve(Vm& vm, const ServeOptions& opt) {
   if (opt.on_ready) opt.on_ready(ready);
 
   // ---- pacing ----
-  const double scale = opt.time_scale > 0 ? opt.time_scale : 1.0;
-  Clock::time_point wall0 = Clock::now();
-  SimTime sim0 = vm.now;
-  auto target_at = [&](Clock::time_point t) {
-    return sim0 + static_cast<SimTime>(std::chrono::duration<double, std::micro>(t - wall0).count() * scale);
-  };
-  const Clock::time_point started = wall0;
-  Clock::time_point last_rx = wall0;
+  scale = opt.time_scale > 0 ? opt.time_scale : 1.0;
+  wall0 = started = last_rx = last_write = spin_until = Clock::now();
+  sim0 = vm.now;
+  in_fd = opt.transport == Transport::Stdio ? opt.in_fd : -1;
+  out_fd = opt.transport == Transport::Stdio ? opt.out_fd : -1;
+  return 0;
+}
 
-  auto advance_now = [&] {
-    const Clock::time_point t = Clock::now();
-    module.advance(target_at(t));
-    if (module.take_power_cycle()) {  // simulated time restarted at 0
-      wall0 = t;
-      sim0 = vm.now;
-    }
-  };
-
-  std::vector<std::uint8_t> buf(64 << 10);
+void ServeLoop::Impl::flush() {
   std::vector<std::uint8_t>& out = module.output();
-  bool stop = false;
-  bool dropped_note = false;
-  Clock::time_point last_write = wall0;  // pty: when output last moved (or was empty)
-  const auto spin = std::chrono::microseconds(opt.spin_us);
-  Clock::time_point spin_until = wall0;
-  const int in_fd = opt.transport == Transport::Stdio ? opt.in_fd : -1;
-  const int out_fd = opt.transport == Transport::Stdio ? opt.out_fd : -1;
-
-  // The descriptor that carries the protocol right now (-1: no client).
-  auto data_fd = [&]() -> int {
-    switch (opt.transport) {
-      case Transport::Tcp: return client.fd;
-      case Transport::Pty: return pty_master.fd;
-      case Transport::Stdio: return in_fd;
-    }
-    return -1;
-  };
-  auto write_fd = [&]() -> int { return opt.transport == Transport::Stdio ? out_fd : data_fd(); };
-
-  auto close_client = [&](const char* why) {
-    note(std::string("client disconnected") + why);
-    client.reset();
-    module.drop_partial();
+  if (out.empty()) {
+    if (opt.transport == Transport::Pty) last_write = Clock::now();
+    return;
+  }
+  const int fd = write_fd();
+  if (fd < 0) {
+    out.clear();  // nobody to tell: replies and events are lost, as on an unplugged line
+    return;
+  }
+  const std::size_t before = out.size();
+  if (!flush_some(fd, out, opt.transport == Transport::Tcp)) {
+    if (opt.transport == Transport::Tcp) close_client("");
+    else if (opt.transport == Transport::Stdio) stop = true;
+    else out.clear();
+  }
+  if (opt.transport != Transport::Pty) return;
+  // A pseudo-terminal has no "disconnected": replies nobody reads for a second are dropped,
+  // as a serial line drops them, so the next client does not receive stale answers.
+  const Clock::time_point t = Clock::now();
+  if (out.empty() || out.size() < before) {
+    last_write = t;
+  } else if (t - last_write > kPtyStall) {
+    if (!dropped_note) note("nobody reads the pseudo-terminal: dropping replies");
+    dropped_note = true;
     out.clear();
-  };
+    last_write = t;
+  }
+}
 
-  auto flush = [&] {
-    if (out.empty()) {
-      if (opt.transport == Transport::Pty) last_write = Clock::now();
-      return;
-    }
-    const int fd = write_fd();
-    if (fd < 0) {
-      out.clear();  // nobody to tell: replies and events are lost, as on an unplugged line
-      return;
-    }
-    const std::size_t before = out.size();
-    if (!flush_some(fd, out, opt.transport == Transport::Tcp)) {
-      if (opt.transport == Transport::Tcp) close_client("");
-      else if (opt.transport == Transport::Stdio) stop = true;
-      else out.clear();
-    }
-    if (opt.transport != Transport::Pty) return;
-    // A pseudo-terminal has no "disconnected": replies nobody reads for a second are dropped,
-    // as a serial line drops them, so the next client does not receive stale answers.
-    const Clock::time_point t = Clock::now();
-    if (out.empty() || out.size() < before) {
-      last_write = t;
-    } else if (t - last_write > kPtyStall) {
-      if (!dropped_note) note("nobody reads the pseudo-terminal: dropping replies");
-      dropped_note = true;
-      out.clear();
-      last_write = t;
-    }
-  };
+bool ServeLoop::Impl::poll_once(int max_wait_ms, int extra_fd) {
+  std::vector<std::uint8_t>& out = module.output();
+  extra_ready = false;
+  if (stop) return false;
+  advance_now();
+  flush();
+  if (stop) return false;
 
-  while (!stop) {
-    advance_now();
-    flush();
-    if (stop) break;
+  const Clock::time_point now = Clock::now();
+  if (opt.max_wall_ms > 0 && now - started >= std::chrono::milliseconds(opt.max_wall_ms)) {
+    note("stopping: time limit of the server reached");
+    return false;
+  }
 
-    const Clock::time_point now = Clock::now();
-    if (opt.max_wall_ms > 0 && now - started >= std::chrono::milliseconds(opt.max_wall_ms)) {
-      note("stopping: time limit of the server reached");
-      break;
+  // Right after a request, look for the next one for a few microseconds before sleeping in
+  // poll(): a host that sends its next request as soon as it has the reply then costs one
+  // wake-up per round trip instead of two (the round-trip benchmark doubles).
+  if (spin_until > now && opt.transport != Transport::Stdio && data_fd() >= 0 && out.size() < kMaxPendingOutput) {
+    ReadResult r = read_into(data_fd(), module, buf);
+    if (r == ReadResult::Data) {
+      last_rx = Clock::now();
+      spin_until = last_rx + spin;
+      return true;
     }
+    if (r == ReadResult::Again) return true;
+    spin_until = now;
+    if (opt.transport == Transport::Tcp) close_client("");
+    return true;
+  }
 
-    // Right after a request, look for the next one for a few microseconds before sleeping in
-    // poll(): a host that sends its next request as soon as it has the reply then costs one
-    // wake-up per round trip instead of two (the round-trip benchmark doubles).
-    if (spin_until > now && opt.transport != Transport::Stdio && data_fd() >= 0 && out.size() < kMaxPendingOutput) {
+  // How long poll may sleep.
+  std::int64_t timeout_ms = 1000;
+  const SimTime wake = module.next_wakeup();
+  if (wake != kNever) {
+    const double ahead_us = static_cast<double>(wake - target_at(now)) / scale;
+    const double ms = ahead_us / 1000.0;
+    timeout_ms = ms <= 1.0 ? 1 : ms >= 1000.0 ? 1000 : static_cast<std::int64_t>(ms) + 1;
+  }
+  if (module.window_pending()) {
+    auto left = std::chrono::duration_cast<std::chrono::milliseconds>(last_rx + std::chrono::milliseconds(opt.resync_gap_ms) - now).count();
+    if (left <= 0) {
+      module.gap_elapsed();
+      return true;
+    }
+    timeout_ms = std::min<std::int64_t>(timeout_ms, left);
+  }
+  if (opt.max_wall_ms > 0) {
+    auto left = std::chrono::duration_cast<std::chrono::milliseconds>(started + std::chrono::milliseconds(opt.max_wall_ms) - now).count();
+    timeout_ms = std::max<std::int64_t>(0, std::min<std::int64_t>(timeout_ms, left + 1));
+  }
+  if (max_wait_ms >= 0) timeout_ms = std::min<std::int64_t>(timeout_ms, max_wait_ms);
+
+  pollfd fds[6];
+  nfds_t nfds = 0;
+  int i_signal = -1, i_stop = -1, i_listen = -1, i_data = -1, i_out = -1, i_extra = -1;
+  if (signals.active) {
+    i_signal = static_cast<int>(nfds);
+    fds[nfds++] = {signals.pipe_fds[0], POLLIN, 0};
+  }
+  if (opt.stop_fd >= 0) {
+    i_stop = static_cast<int>(nfds);
+    fds[nfds++] = {opt.stop_fd, POLLIN, 0};
+  }
+  if (listener.fd >= 0) {
+    i_listen = static_cast<int>(nfds);
+    fds[nfds++] = {listener.fd, POLLIN, 0};
+  }
+  const bool backlog = out.size() >= kMaxPendingOutput;
+  if (data_fd() >= 0) {
+    i_data = static_cast<int>(nfds);
+    short ev = backlog ? 0 : POLLIN;
+    if (!out.empty() && write_fd() == data_fd()) ev |= POLLOUT;
+    fds[nfds++] = {data_fd(), ev, 0};
+  }
+  if (out_fd >= 0 && out_fd != in_fd && !out.empty()) {
+    i_out = static_cast<int>(nfds);
+    fds[nfds++] = {out_fd, POLLOUT, 0};
+  }
+  if (extra_fd >= 0) {
+    i_extra = static_cast<int>(nfds);
+    fds[nfds++] = {extra_fd, POLLIN, 0};
+  }
+
+  int rc = ::poll(fds, nfds, static_cast<int>(timeout_ms));
+  if (rc < 0) {
+    if (errno == EINTR) return true;
+    log << "tmclrun: error: poll: " << std::strerror(errno) << std::endl;
+    return false;
+  }
+  if (rc == 0) return true;
+  if (i_signal >= 0 && (fds[i_signal].revents & POLLIN)) {
+    // SIGINT with on_interrupt (a debugger's Ctrl-C) pauses the program; anything else stops.
+    char c[64];
+    bool terminate = !opt.on_interrupt, interrupt = false;
+    for (ssize_t n; (n = ::read(signals.pipe_fds[0], c, sizeof c)) > 0;)
+      for (ssize_t i = 0; i < n; ++i) (c[i] == 'i' ? interrupt : terminate) = true;
+    if (terminate) {
+      note("stopping on signal");
+      return false;
+    }
+    if (interrupt) opt.on_interrupt();
+  }
+  if (i_stop >= 0 && fds[i_stop].revents) return false;
+  if (i_extra >= 0 && fds[i_extra].revents) extra_ready = true;
+
+  if (i_data >= 0 && fds[i_data].revents) {
+    const short re = fds[i_data].revents;
+    if (re & (POLLIN | POLLHUP | POLLERR)) {
+      advance_now();  // the request sees the module as it is now
       ReadResult r = read_into(data_fd(), module, buf);
       if (r == ReadResult::Data) {
         last_rx = Clock::now();
         spin_until = last_rx + spin;
-        continue;
       }
-      if (r == ReadResult::Again) continue;
-      spin_until = now;
-      if (opt.transport == Transport::Tcp) close_client("");
-      continue;
-    }
-
-    // How long poll may sleep.
-    std::int64_t timeout_ms = 1000;
-    const SimTime wake = module.next_wakeup();
-    if (wake != kNever) {
-      const double ahead_us = static_cast<double>(wake - target_at(now)) / scale;
-      const double ms = ahead_us / 1000.0;
-      timeout_ms = ms <= 1.0 ? 1 : ms >= 1000.0 ? 1000 : static_cast<std::int64_t>(ms) + 1;
-    }
-    if (module.window_pending()) {
-      auto left = std::chrono::duration_cast<std::chrono::milliseconds>(last_rx + std::chrono::milliseconds(opt.resync_gap_ms) - now).count();
-      if (left <= 0) {
-        module.gap_elapsed();
-        continue;
-      }
-      timeout_ms = std::min<std::int64_t>(timeout_ms, left);
-    }
-    if (opt.max_wall_ms > 0) {
-      auto left = std::chrono::duration_cast<std::chrono::milliseconds>(started + std::chrono::milliseconds(opt.max_wall_ms) - now).count();
-      timeout_ms = std::max<std::int64_t>(0, std::min<std::int64_t>(timeout_ms, left + 1));
-    }
-
-    pollfd fds[5];
-    nfds_t nfds = 0;
-    int i_signal = -1, i_stop = -1, i_listen = -1, i_data = -1, i_out = -1;
-    if (signals.active) {
-      i_signal = static_cast<int>(nfds);
-      fds[nfds++] = {signals.pipe_fds[0], POLLIN, 0};
-    }
-    if (opt.stop_fd >= 0) {
-      i_stop = static_cast<int>(nfds);
-      fds[nfds++] = {opt.stop_fd, POLLIN, 0};
-    }
-    if (listener.fd >= 0) {
-      i_listen = static_cast<int>(nfds);
-      fds[nfds++] = {listener.fd, POLLIN, 0};
-    }
-    const bool backlog = out.size() >= kMaxPendingOutput;
-    if (data_fd() >= 0) {
-      i_data = static_cast<int>(nfds);
-      short ev = backlog ? 0 : POLLIN;
-      if (!out.empty() && write_fd() == data_fd()) ev |= POLLOUT;
-      fds[nfds++] = {data_fd(), ev, 0};
-    }
-    if (out_fd >= 0 && out_fd != in_fd && !out.empty()) {
-      i_out = static_cast<int>(nfds);
-      fds[nfds++] = {out_fd, POLLOUT, 0};
-    }
-
-    int rc = ::poll(fds, nfds, static_cast<int>(timeout_ms));
-    if (rc < 0) {
-      if (errno == EINTR) continue;
-      log << "tmclrun: error: poll: " << std::strerror(errno) << std::endl;
-      break;
-    }
-    if (rc == 0) continue;
-    if (i_signal >= 0 && (fds[i_signal].revents & POLLIN)) {
-      note("stopping on signal");
-      break;
-    }
-    if (i_stop >= 0 && fds[i_stop].revents) break;
-
-    if (i_data >= 0 && fds[i_data].revents) {
-      const short re = fds[i_data].revents;
-      if (re & (POLLIN | POLLHUP | POLLERR)) {
-        advance_now();  // the request sees the module as it is now
-        ReadResult r = read_into(data_fd(), module, buf);
-        if (r == ReadResult::Data) {
-          last_rx = Clock::now();
-          spin_until = last_rx + spin;
-        }
-        if (r == ReadResult::Closed) {
-          if (opt.transport == Transport::Tcp) {
-            close_client("");
-          } else if (opt.transport == Transport::Stdio) {
-            flush();
-            break;  // end of input ends the session
-          }
+      if (r == ReadResult::Closed) {
+        if (opt.transport == Transport::Tcp) {
+          close_client("");
+        } else if (opt.transport == Transport::Stdio) {
+          flush();
+          return false;  // end of input ends the session
         }
       }
-      if ((re & POLLOUT) && data_fd() >= 0) flush();
     }
-    if (i_out >= 0 && (fds[i_out].revents & (POLLOUT | POLLERR | POLLHUP))) flush();
+    if ((re & POLLOUT) && data_fd() >= 0) flush();
+  }
+  if (i_out >= 0 && (fds[i_out].revents & (POLLOUT | POLLERR | POLLHUP))) flush();
 
-    if (i_listen >= 0 && (fds[i_listen].revents & POLLIN)) {
-      sockaddr_storage ss{};
-      socklen_t len = sizeof ss;
-      int fd = ::accept4(listener.fd, reinterpret_cast<sockaddr*>(&ss), &len, SOCK_NONBLOCK | SOCK_CLOEXEC);
-      if (fd >= 0) {
-        if (client.fd >= 0) {
-          // The current client may have closed an instant ago: read what it left first.
-          advance_now();
-          if (read_into(client.fd, module, buf) == ReadResult::Closed) close_client("");
-        }
-        if (client.fd >= 0) {
-          linger lg{1, 0};  // close with a reset: the refused client gets ECONNRESET at once
-          ::setsockopt(fd, SOL_SOCKET, SO_LINGER, &lg, sizeof lg);
-          ::close(fd);
-          note("refused a second client from " + address_text(ss) + ": one client at a time");
-        } else {
-          int one = 1;
-          ::setsockopt(fd, IPPROTO_TCP, TCP_NODELAY, &one, sizeof one);
-          client.reset(fd);
-          module.drop_partial();
-          note("client connected from " + address_text(ss));
-        }
+  if (i_listen >= 0 && (fds[i_listen].revents & POLLIN)) {
+    sockaddr_storage ss{};
+    socklen_t len = sizeof ss;
+    int fd = ::accept4(listener.fd, reinterpret_cast<sockaddr*>(&ss), &len, SOCK_NONBLOCK | SOCK_CLOEXEC);
+    if (fd >= 0) {
+      if (client.fd >= 0) {
+        // The current client may have closed an instant ago: read what it left first.
+        advance_now();
+        if (read_into(client.fd, module, buf) == ReadResult::Closed) close_client("");
+      }
+      if (client.fd >= 0) {
+        linger lg{1, 0};  // close with a reset: the refused client gets ECONNRESET at once
+        ::setsockopt(fd, SOL_SOCKET, SO_LINGER, &lg, sizeof lg);
+        ::close(fd);
+        note("refused a second client from " + address_text(ss) + ": one client at a time");
+      } else {
+        int one = 1;
+        ::setsockopt(fd, IPPROTO_TCP, TCP_NODELAY, &one, sizeof one);
+        client.reset(fd);
+        module.drop_partial();
+        note("client connected from " + address_text(ss));
       }
     }
   }
+  return true;
+}
 
-  // ---- shutdown ----
+int ServeLoop::Impl::close() {
+  std::vector<std::uint8_t>& out = module.output();
   if (!out.empty() && write_fd() >= 0) flush_some(write_fd(), out, opt.transport == Transport::Tcp);
   client.reset();
   listener.reset();
@@ -509,6 +543,21 @@ int serve(Vm& vm, const ServeOptions& opt) {
     }
   }
   return 0;
+}
+
+ServeLoop::ServeLoop(Vm& vm, const ServeOptions& options) : impl_(std::make_unique<Impl>(vm, options)) {}
+ServeLoop::~ServeLoop() = default;
+int ServeLoop::open() { return impl_->open(); }
+bool ServeLoop::poll_once(int max_wait_ms, int extra_fd) { return impl_->poll_once(max_wait_ms, extra_fd); }
+bool ServeLoop::extra_ready() const { return impl_->extra_ready; }
+int ServeLoop::close() { return impl_->close(); }
+
+int serve(Vm& vm, const ServeOptions& opt) {
+  ServeLoop loop(vm, opt);
+  if (int rc = loop.open(); rc != 0) return rc;
+  while (loop.poll_once()) {
+  }
+  return loop.close();
 }
 
 bool parse_serve_spec(std::string_view spec, ServeOptions& options, std::string& error) {

@@ -273,6 +273,11 @@ void TmclModule::advance(SimTime until) {
     check_events();
     return;
   }
+  if (run_program) {  // a debugger runs the program (and moves time while it holds it)
+    run_program(until);
+    check_events();
+    return;
+  }
   if (vm_.status == AppStatus::Running || vm_.motion_pending()) {
     const RunResult r = vm_.run(Limits{UINT64_MAX, until});
     if (r.halt == Halt::Fault) {
@@ -288,7 +293,7 @@ void TmclModule::advance(SimTime until) {
 }
 
 SimTime TmclModule::next_wakeup() const {
-  if (vm_.status == AppStatus::Running) {
+  if (vm_.status == AppStatus::Running && !run_program) {  // (a debugger paces its own runs)
     if (!vm_.wait.active) return vm_.now;  // executing instructions: run in slices
     return vm_.next_wakeup();
   }

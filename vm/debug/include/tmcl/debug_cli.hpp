@@ -8,6 +8,7 @@
 
 #include "tmcl/asm/assembler.hpp"
 #include "tmcl/debugger.hpp"
+#include "tmcl/server.hpp"
 
 namespace tmcl::debug {
 
@@ -26,6 +27,33 @@ struct CliOptions {
 // the file, else standard input (echoed with the prompt when it is not a terminal, so a
 // transcript reads like a session). Returns tmclrun's exit status for how the program ended.
 int run_cli(Engine& engine, const CliOptions& options, std::FILE* in, std::FILE* out);
+
+// The command line fed one line at a time, for a front end with its own input loop
+// (tmclrun --serve --debug). Output goes to `out`, flushed after every call.
+class CommandLine {
+ public:
+  // echo: print each line after "(tmdb) " (input that is not a terminal); repeat: an empty
+  // line repeats the last command (gdb's Enter).
+  CommandLine(Engine& engine, std::FILE* out, bool echo, bool repeat);
+  ~CommandLine();
+  CommandLine(const CommandLine&) = delete;
+  CommandLine& operator=(const CommandLine&) = delete;
+  bool line(std::string text);  // false: quit
+  void report(const Stop& stop);  // a stop that no command made (the host stopped the program)
+  void note(const std::string& text);  // a line of its own
+  int status() const;  // tmclrun's exit status for how the program last ended
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+  std::FILE* out_;
+};
+
+// `tmclrun --serve SPEC --debug PROGRAM`: the virtual module serves its host while the command
+// line debugs the program, in one thread (docs/debugger.md, "Debugging while serving"). Commands
+// come from `in` (a pipe or a terminal; not a --debug-commands file). Returns the server's
+// status when it failed (71, 74), else the command line's.
+int serve_debug(Engine& engine, const ServeOptions& options, std::FILE* in, std::FILE* out);
 
 // `tmclrun --dap`: the Debug Adapter Protocol on `in` and `out` until disconnect. The launch
 // request names the program (and may name target, motion, instructionTime, symbols,
@@ -53,9 +81,10 @@ struct FrontEnd {
 // them, -1: a bad value (FrontEnd::error says why).
 int parse_option(const std::string& arg, bool has_inline, const std::function<bool(std::string&)>& value, FrontEnd& fe);
 
-// Loads PROGRAM and runs the command line (or DAP) on it. Returns tmclrun's exit status.
+// Loads PROGRAM and runs the command line (or DAP) on it; with `serve`, while serving a host
+// (serve_debug). Returns tmclrun's exit status.
 int main(const FrontEnd& fe, const Profile& profile, std::unique_ptr<MotionCore> core, const std::string& program,
          const AsmOptions& asm_options, SimTime instr_time, const Limits& limits, std::vector<InputEvent> inputs,
-         const EepromImage* eeprom);
+         const EepromImage* eeprom, const ServeOptions* serve = nullptr);
 
 }  // namespace tmcl::debug

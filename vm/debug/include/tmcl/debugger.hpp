@@ -114,6 +114,11 @@ struct Setup {
   std::optional<EepromImage> eeprom; // power-up image
   std::size_t checkpoint_bytes = std::size_t{64} << 20;  // --checkpoint-memory
   std::uint64_t checkpoint_interval = std::uint64_t{1} << 20;  // instructions between checkpoints
+  std::uint64_t slice_steps = std::uint64_t{1} << 16;  // instructions between two Engine::on_slice calls
+  // Serving a host at the same time (tmclrun --serve --debug): `run` and `start` reset the
+  // application (as command 131) instead of power-cycling the module, `kill` stops it (128),
+  // and a command that runs the program restarts one the host stopped.
+  bool serving = false;
 };
 
 class Engine {
@@ -155,6 +160,23 @@ class Engine {
   Stop advance(SimTime duration);  // run for that much simulated time
   void kill();
   void pause() { pause_.store(true); }  // from a signal handler or another thread
+  // Pause from the front end's own thread (inside on_slice), with the text the stop carries
+  // (Stop::message of the Pause), e.g. "Program stopped by the host (command 128)."
+  void pause_for(std::string why) {
+    pause_note_ = std::move(why);
+    pause_.store(true);
+  }
+  // Called between slices of a run (every Setup::slice_steps instructions, and whenever
+  // simulated time reaches the bound it returned last): a front end serves its other inputs
+  // here (DAP requests, a virtual module's host) and may call pause_for() or change points.
+  // Returns how far simulated time may go before the next call (kNever: no bound), which is how
+  // a server paces the program by the wall clock. Never called while a reverse command or a
+  // watchpoint's search re-executes.
+  std::function<SimTime()> on_slice;
+  // The machine was changed from outside the debugger (a host's request while serving):
+  // history starts again here, watchpoints take the values as they are, and a program the
+  // host started counts as running.
+  void external_change();
   // Moves pc (DAP goto, `jump`); history before it stays, a reverse step comes back here.
   void set_pc(std::int32_t address);
 
@@ -216,6 +238,12 @@ class Engine {
   std::size_t checkpoint_size_ = 0;  // bytes of one checkpoint (estimate)
   bool reversible_ = true;
   bool paused_ = false;
+  std::string pause_note_;        // Stop::message of the next Pause (pause_for)
+  std::int32_t temp_trap_ = -1;   // go()'s temporary trap, kept when points change meanwhile
+  std::uint64_t next_slice_ = 0;  // on_slice is due when steps reach this ...
+  SimTime slice_bound_ = kNever;  // ... or time reaches this
+  bool in_slice_ = false;         // on_slice is running (no nested call)
+  bool no_slice_ = false;         // a watchpoint's search re-executes: no on_slice
 };
 
 std::string stop_kind_name(StopKind k);

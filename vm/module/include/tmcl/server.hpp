@@ -21,6 +21,7 @@
 #include <cstdint>
 #include <functional>
 #include <iosfwd>
+#include <memory>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -79,6 +80,9 @@ class TmclModule {
 
   // Program faults and other notes for the operator (nullptr: dropped).
   std::function<void(const std::string&)> on_message;
+  // A debugger owns the program's execution (tmclrun --serve --debug): advance() calls this
+  // with the instant to reach instead of running the program itself (nullptr: it runs it).
+  std::function<void(SimTime until)> run_program;
   // One answered request (tmclrun --serve --trace): when, the addresses, the request, the
   // reply's status and value, and whether the reply was sent (global 255 suppresses most).
   struct Exchange {
@@ -179,6 +183,10 @@ struct ServeOptions {
   std::vector<BusModule> bus;        // more modules on the line, each answering its own address
   FaultPlan faults;                  // faults injected into the replies (faults.hpp)
   std::function<void(const TmclModule::Exchange&)> on_exchange;  // every module's answers (--trace)
+  // A debugger sharing the loop (tmclrun --serve --debug): runs the primary module's program
+  // (TmclModule::run_program), and SIGINT calls on_interrupt instead of stopping the server.
+  std::function<void(SimTime until)> run_program;
+  std::function<void()> on_interrupt;
 };
 
 // Serves until SIGINT/SIGTERM, stop_fd, max_wall_ms, or end of input (stdio). The caller has
@@ -186,6 +194,31 @@ struct ServeOptions {
 // 0 clean shutdown, 71 the transport could not be set up (message on `log`), 74 the EEPROM
 // file could not be written.
 int serve(Vm& vm, const ServeOptions& options);
+
+// serve() as an object, for a front end that shares the thread with the module (tmclrun
+// --serve --debug): serve() is open(), poll_once() until it returns false, then close().
+class ServeLoop {
+ public:
+  ServeLoop(Vm& vm, const ServeOptions& options);
+  ~ServeLoop();
+  ServeLoop(const ServeLoop&) = delete;
+  ServeLoop& operator=(const ServeLoop&) = delete;
+  // Sets up the transport and announces it: 0, or 71 (the message went to the log).
+  int open();
+  // One round: brings the module up to the wall clock, sends replies, waits at most
+  // `max_wait_ms` (-1: as long as the module has nothing to do) for a request, a client, a
+  // signal or `extra_fd` to become readable, and handles what came. False: stop serving
+  // (a signal, stop_fd, max_wall_ms, end of stdio input).
+  bool poll_once(int max_wait_ms = -1, int extra_fd = -1);
+  // Whether extra_fd was readable (or closed) in the last poll_once.
+  bool extra_ready() const;
+  // Shuts down: pending replies, the connection, the EEPROM file. Returns serve()'s status.
+  int close();
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
 
 // Parses a --serve argument: "tcp:HOST:PORT" (HOST may be "[v6]"; "tcp:PORT" means
 // 127.0.0.1), "pty" or "stdio". Returns false with a message on error.
