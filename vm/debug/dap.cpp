@@ -117,7 +117,8 @@ class Dap {
     if (address < 0 || static_cast<std::size_t>(address) >= info.lines.size()) return Value();
     int f = info.lines[static_cast<std::size_t>(address)].file;
     if (f < 0) return Value();
-    const std::string& name = info.files[static_cast<std::size_t>(f)].name;
+    const auto& file = info.files[static_cast<std::size_t>(f)];
+    const std::string& name = file.path.empty() ? file.name : file.path;  // a .bin's source as found
     std::string base = name.substr(name.find_last_of('/') + 1);
     return obj({{"name", base}, {"path", name}});
   }

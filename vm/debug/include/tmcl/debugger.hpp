@@ -30,6 +30,7 @@ struct ProgramInfo {
   std::vector<Line> lines;  // per address (may be shorter than program)
   struct File {
     std::string name;
+    std::string path;               // where the text was found, when not `name` (a .bin's sources)
     std::vector<std::string> text;  // lines; empty when the text is not at hand
   };
   std::vector<File> files;

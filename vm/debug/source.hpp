@@ -1,0 +1,21 @@
+// Source positions of an image for the debugger: the labels and line table of a symbols file
+// (tmclasm -f symbols) applied to a .bin's ProgramInfo, and the sources' text found on disk.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "tmcl/debugger.hpp"
+
+namespace tmcl::debug {
+
+// A source text as lines, without their line breaks (a CR before LF dropped).
+std::vector<std::string> split_source_lines(const std::string& text);
+
+// Reads the symbols file `symbols` into `info`: its labels, and from its line table every
+// address's file and line, with each file's text when it is found (relative paths: beside the
+// symbols file, then in the current folder). A malformed file is an error ("prog.sym:7: error:
+// ...") and false; a missing source or a table longer than the program a warning in `messages`.
+bool apply_symbols(const std::string& symbols, ProgramInfo& info, std::string& messages);
+
+}  // namespace tmcl::debug
