@@ -111,8 +111,11 @@ bool parse_symbols(const std::string& text, LabelNames& out, int& error_line, st
       if (v[1] < 1) return fail("count 0: a run has at least one instruction");
       if (v[3] < 1) return fail("line 0: lines count from 1");
       if (v[2] >= static_cast<std::int64_t>(out.lines.files.size()))
-        return fail("file number " + f[3] + " has no '#file' record (the files before this line are numbered 0 to " +
-                    std::to_string(static_cast<std::int64_t>(out.lines.files.size()) - 1) + ")");
+        return fail("file number " + f[3] + " has no '#file' record (" +
+                    (out.lines.files.empty() ? std::string("there is none before this line")
+                                             : "the files before this line are numbered 0 to " +
+                                                   std::to_string(out.lines.files.size() - 1)) +
+                    ")");
       if (v[0] < out.lines.end())
         return fail("address " + f[1] + " is not after the previous run, which ends before " +
                     std::to_string(out.lines.end()) + " (runs are in address order and do not overlap)");

@@ -738,7 +738,7 @@ int run_cli(Engine& engine, const CliOptions& options, std::FILE* in, std::FILE*
 // ---- loading ----
 
 bool load_program_info(const std::string& path, const Profile& profile, AsmOptions asm_options, const std::string& symbols,
-                       ProgramInfo& info, std::string& messages) {
+                       ProgramInfo& info, std::string& messages, const std::vector<std::string>& source_dirs) {
   std::vector<std::uint8_t> bytes;
   std::string err;
   if (!read_file(path, bytes, err)) {
@@ -755,7 +755,7 @@ bool load_program_info(const std::string& path, const Profile& profile, AsmOptio
   info = ProgramInfo{};
   if (ends(".bin") || ends(".dgm")) {
     if (!read_program_image(path, bytes, info.program, messages)) return false;
-    if (!symbols.empty() && !apply_symbols(symbols, info, messages)) return false;
+    if (!symbols.empty() && !apply_symbols(symbols, source_dirs, info, messages)) return false;
   } else {
     DiskReader reader;
     asm_options.profile = &profile;

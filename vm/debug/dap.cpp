@@ -168,7 +168,7 @@ bool Dap::launch(const Value& req, std::string& error) {
   }
   ProgramInfo info;
   std::string messages;
-  if (!load_program_info(program, *profile, setup_.asm_options, a["symbols"].as_string(), info, messages))
+  if (!load_program_info(program, *profile, setup_.asm_options, a["symbols"].as_string(), info, messages, setup_.source_dirs))
     return error = messages.empty() ? "cannot load " + program : messages, false;
   if (!messages.empty()) event("output", obj({{"category", "stderr"}, {"output", messages}}));
   engine_ = std::make_unique<Engine>(std::move(s), std::move(info), std::move(core));

@@ -2,6 +2,7 @@
 // come from the line table of its symbols file, and the text from the files that table names.
 #include "source.hpp"
 
+#include <filesystem>
 #include <sstream>
 
 #include "tmcl/asm/symbols.hpp"
@@ -19,7 +20,8 @@ std::vector<std::string> split_source_lines(const std::string& text) {
   return out;
 }
 
-bool apply_symbols(const std::string& symbols, ProgramInfo& info, std::string& messages) {
+bool apply_symbols(const std::string& symbols, const std::vector<std::string>& source_dirs, ProgramInfo& info,
+                   std::string& messages) {
   LabelNames names;
   std::string err;
   if (!load_symbols(symbols, "tmclrun", names, err)) {
@@ -30,23 +32,33 @@ bool apply_symbols(const std::string& symbols, ProgramInfo& info, std::string& m
   const LineTable& table = names.lines;
   if (table.empty()) return true;
   // Relative names are looked up beside the symbols file first (the two travel together), then
-  // in the current folder (where tmclasm was most likely run).
+  // in the current folder (where tmclasm was most likely run), then in the --source-dir folders.
   std::string folder = symbols.substr(0, symbols.find_last_of('/') + 1);
   for (const auto& name : table.files) {
     ProgramInfo::File f;
     f.name = name;
     std::vector<std::string> tried = {name};
-    if (name[0] != '/' && !folder.empty()) tried.insert(tried.begin(), folder + name);
+    if (name[0] != '/') {
+      if (!folder.empty()) tried.insert(tried.begin(), folder + name);
+      for (const auto& dir : source_dirs) tried.push_back(dir.back() == '/' ? dir + name : dir + "/" + name);
+    }
     for (const auto& path : tried) {
       std::vector<std::uint8_t> bytes;
       if (!read_file(path, bytes, err)) continue;
-      f.path = path;
+      // Absolute, as DAP clients open and match it (source.path, setBreakpoints).
+      std::error_code ec;
+      auto absolute = std::filesystem::absolute(path, ec);
+      f.path = ec ? path : absolute.lexically_normal().string();
       f.text = split_source_lines(std::string(bytes.begin(), bytes.end()));
       break;
     }
     if (f.path.empty())
       messages += symbols + ": warning: source file '" + name + "' not found" +
-                  (tried.size() > 1 ? " (looked beside the symbols file and in the current folder)" : "") +
+                  (name[0] != '/' ? std::string(source_dirs.empty()
+                                                    ? " (looked beside the symbols file and in the current folder)"
+                                                    : " (looked beside the symbols file, in the current folder and in the "
+                                                      "--source-dir folders)")
+                                  : std::string()) +
                   "; its lines are shown without text\n";
     info.files.push_back(std::move(f));
   }

@@ -30,8 +30,8 @@ struct ProgramInfo {
   std::vector<Line> lines;  // per address (may be shorter than program)
   struct File {
     std::string name;
-    std::string path;               // where the text was found, when not `name` (a .bin's sources)
     std::vector<std::string> text;  // lines; empty when the text is not at hand
+    std::string path = {};          // a .bin's source: the absolute path where it was found
   };
   std::vector<File> files;
   std::vector<std::pair<std::string, std::int64_t>> labels;     // name, address
