@@ -55,7 +55,6 @@ std::pair<int, int> LineTable::at(std::int64_t address) const {
 }
 
 bool parse_symbols(const std::string& text, LabelNames& out, int& error_line, std::string& error) {
-  std::size_t pos = 0;
   int line_no = 0;
   bool header = false, in_table = false;
   auto fail = [&](std::string what) {
@@ -63,13 +62,8 @@ bool parse_symbols(const std::string& text, LabelNames& out, int& error_line, st
     error = std::move(what);
     return false;
   };
-  while (pos < text.size()) {
-    std::size_t end = text.find('\n', pos);
-    if (end == std::string::npos) end = text.size();
-    std::string line = text.substr(pos, end - pos);
-    pos = end + 1;
+  for (const std::string& line : split_lines(text)) {
     ++line_no;
-    if (!line.empty() && line.back() == '\r') line.pop_back();
     if (line_no == 1) {
       if (line != kSymbolsHeader)
         return fail(std::string("expected '") + kSymbolsHeader + "' (a file written by tmclasm -f symbols)");

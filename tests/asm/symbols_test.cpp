@@ -115,3 +115,16 @@ TEST(malformed_tables_name_their_line) {
     CHECK(!error.empty());
   }
 }
+
+TEST(crlf_files_read_like_lf_files) {
+  tmcl::LabelNames names;
+  int line = 0;
+  std::string error;
+  CHECK(tmcl::parse_symbols("# tmclasm symbols 1\r\nlabel\tA\t3\tp.tmc:2\tlocal\r\n# tmclasm lines 1\r\n#file\t0\tp.tmc\r\n"
+                            "#lines\t0\t2\t0\t7\r\n",
+                            names, line, error));
+  CHECK_EQ(error, std::string());
+  CHECK_EQ(names.lines.files.size(), std::size_t{1});
+  if (!names.lines.files.empty()) CHECK_EQ(names.lines.files[0], std::string("p.tmc"));
+  CHECK_EQ(names.lines.at(1).second, 8);
+}

@@ -767,7 +767,7 @@ bool load_program_info(const std::string& path, const Profile& profile, AsmOptio
     for (const auto& f : res.sources.files) {
       ProgramInfo::File pf;
       pf.name = f.name;
-      pf.text = split_source_lines(f.text);
+      pf.text = split_lines(f.text);
       info.files.push_back(std::move(pf));
     }
     for (const auto& li : res.lines) info.lines.push_back({li.file, li.line});

@@ -3,22 +3,11 @@
 #include "source.hpp"
 
 #include <filesystem>
-#include <sstream>
 
 #include "tmcl/asm/symbols.hpp"
 #include "tmcl/fileio.hpp"
 
 namespace tmcl::debug {
-
-std::vector<std::string> split_source_lines(const std::string& text) {
-  std::vector<std::string> out;
-  std::istringstream lines(text);
-  for (std::string l; std::getline(lines, l);) {
-    if (!l.empty() && l.back() == '\r') l.pop_back();
-    out.push_back(std::move(l));
-  }
-  return out;
-}
 
 bool apply_symbols(const std::string& symbols, const std::vector<std::string>& source_dirs, ProgramInfo& info,
                    std::string& messages) {
@@ -49,7 +38,7 @@ bool apply_symbols(const std::string& symbols, const std::vector<std::string>& s
       std::error_code ec;
       auto absolute = std::filesystem::absolute(path, ec);
       f.path = ec ? path : absolute.lexically_normal().string();
-      f.text = split_source_lines(std::string(bytes.begin(), bytes.end()));
+      f.text = split_lines(std::string(bytes.begin(), bytes.end()));
       break;
     }
     if (f.path.empty())

@@ -9,9 +9,6 @@
 
 namespace tmcl::debug {
 
-// A source text as lines, without their line breaks (a CR before LF dropped).
-std::vector<std::string> split_source_lines(const std::string& text);
-
 // Reads the symbols file `symbols` into `info`: its labels, and from its line table every
 // address's file and line, with each file's text when it is found (relative paths: beside the
 // symbols file, in the current folder, then in each of `source_dirs`). A malformed file is an
