@@ -166,7 +166,7 @@ std::string address_text(std::size_t a) {
 // Lays out header, prelude (directives, constants), labels and instructions.
 std::string layout(const std::vector<std::string>& header, const std::vector<std::string>& prelude,
                    const std::vector<Form>& forms, const std::vector<std::string>& notes, const Labels& labels,
-                   bool no_append_stop) {
+                   bool no_append_stop, const std::vector<std::string>& places = {}) {
   std::string out;
   for (const auto& h : header) out += "; " + h + "\n";
   if (no_append_stop) out += "#no_append_stop  // the image does not end in STOP; reassembly must not add one\n";
@@ -177,6 +177,7 @@ std::string layout(const std::vector<std::string>& header, const std::vector<std
       for (const auto& n : *names) out += n + ":\n";
     if (i == forms.size()) break;
     std::string comment = address_text(i);
+    if (i < places.size() && !places[i].empty()) comment += "  " + places[i];
     if (!forms[i].why.empty()) comment += "  " + forms[i].why;
     if (i < notes.size() && !notes[i].empty()) comment += "  " + notes[i];
     out += pad_comment(forms[i].text, comment);
@@ -198,53 +199,6 @@ std::string format_instruction(const Instruction& ins) {
   return f.text;
 }
 
-bool parse_symbols(const std::string& text, LabelNames& out, std::string& error) {
-  std::size_t pos = 0;
-  int line_no = 0;
-  bool header = false;
-  while (pos < text.size()) {
-    std::size_t end = text.find('\n', pos);
-    if (end == std::string::npos) end = text.size();
-    std::string line = text.substr(pos, end - pos);
-    pos = end + 1;
-    ++line_no;
-    if (!line.empty() && line.back() == '\r') line.pop_back();
-    if (line_no == 1) {
-      if (line != "# tmclasm symbols 1") {
-        error = "line 1: expected '# tmclasm symbols 1' (a file written by tmclasm -f symbols)";
-        return false;
-      }
-      header = true;
-      continue;
-    }
-    if (line.empty() || line[0] == '#') continue;
-    std::vector<std::string> f;
-    for (std::size_t p = 0;;) {
-      std::size_t t = line.find('\t', p);
-      f.push_back(line.substr(p, t == std::string::npos ? std::string::npos : t - p));
-      if (t == std::string::npos) break;
-      p = t + 1;
-    }
-    if (f.size() != 5 || (f[0] != "label" && f[0] != "const")) {
-      error = "line " + std::to_string(line_no) + ": expected 'label' or 'const' and 5 tab-separated fields";
-      return false;
-    }
-    if (f[0] != "label") continue;
-    char* endp = nullptr;
-    long long v = std::strtoll(f[2].c_str(), &endp, 10);
-    if (f[2].empty() || *endp || !is_valid_name(f[1])) {
-      error = "line " + std::to_string(line_no) + ": invalid label name or address";
-      return false;
-    }
-    out.labels.emplace_back(f[1], v);
-  }
-  if (!header) {
-    error = "empty file (expected '# tmclasm symbols 1')";
-    return false;
-  }
-  return true;
-}
-
 std::string disassemble_program(const std::vector<Instruction>& program, const LabelNames* names,
                                 const std::vector<std::string>& header, const std::vector<std::string>& notes) {
   Labels labels(program.size());
@@ -252,7 +206,16 @@ std::string disassemble_program(const std::vector<Instruction>& program, const L
     for (const auto& [name, address] : names->labels) labels.add(name, address);
   std::vector<Form> forms;
   for (std::size_t i = 0; i < program.size(); ++i) forms.push_back(render(program, i, {}, false, false, labels));
-  return layout(header, {}, forms, notes, labels, !ends_in_stop(program));
+  // A line table in the symbols file: each instruction's source position after its address.
+  std::vector<std::string> places;
+  if (names && !names->lines.empty()) {
+    places.resize(program.size());
+    for (std::size_t i = 0; i < program.size(); ++i) {
+      auto [file, line] = names->lines.at(static_cast<std::int64_t>(i));
+      if (file >= 0) places[i] = names->lines.files[static_cast<std::size_t>(file)] + ":" + std::to_string(line);
+    }
+  }
+  return layout(header, {}, forms, notes, labels, !ends_in_stop(program), places);
 }
 
 std::string disassemble_object(const ObjectFile& obj, const std::vector<std::string>& header) {

@@ -5,6 +5,7 @@
 #include <cstdio>
 
 #include "tmcl/asm/disasm.hpp"
+#include "tmcl/asm/symbols.hpp"
 #include "tmcl/image.hpp"
 
 namespace tmcl {
@@ -75,7 +76,7 @@ std::string format_symbols(const AsmResult& r) {
       out += "-";
     out += s.exported ? "\texport\n" : "\tlocal\n";
   }
-  return out;
+  return out + format_line_table(r);
 }
 
 std::string format_map(const AsmResult& r) {

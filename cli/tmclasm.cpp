@@ -46,13 +46,14 @@ options:
   -f, --format FMT   bin (default)  TMCL-IDE .bin, 8 bytes per instruction
                      datagrams      one 9-byte TMCL request per instruction (.dgm)
                      listing        addresses, bytes, source lines (.lst)
-                     symbols        labels and constants, tab-separated (.sym)
+                     symbols        labels, constants and line table, tab-separated (.sym)
                      dot            the control-flow graph for Graphviz (.dot; docs/analysis.md)
                      lib            a library of the inputs (needs -o)
   -c                 assemble each source into a relocatable object (FILE.o)
   --map FILE         also write a link map: input address ranges, every symbol's address
   -d, --disassemble  turn the FILE (.bin, .dgm datagrams, object) into .tmc source
-  --symbols FILE     with -d: label names from a symbols file (tmclasm -f symbols)
+  --symbols FILE     with -d: label names and file:line comments from a symbols file
+                     (tmclasm -f symbols)
   --from FMT         with -d: read FILE as bin, datagrams or object (default: by its contents
                      and extension)
   --dump-object      show an object or a library (every member) as text
@@ -147,13 +148,9 @@ int analyze_image(const std::string& file, tmcl::AsmOptions opts, const tmcl::Di
   tmcl::LabelNames names;
   tmcl::DisasmOptions o = dopts;
   if (!symbols_file.empty()) {
-    std::string text, error;
-    if (!disk.read(symbols_file, text)) {
-      std::fprintf(stderr, "tmclasm: error: cannot read '%s': %s\n", symbols_file.c_str(), disk.last_error().c_str());
-      return kExitInput;
-    }
-    if (!tmcl::parse_symbols(text, names, error)) {
-      std::fprintf(stderr, "%s: error: not a symbols file: %s\n", symbols_file.c_str(), error.c_str());
+    std::string error;
+    if (!tmcl::load_symbols(symbols_file, "tmclasm", names, error)) {
+      std::fprintf(stderr, "%s\n", error.c_str());
       return kExitInput;
     }
     o.names = &names;
@@ -199,13 +196,9 @@ int disassemble(const std::string& file, const std::string& output, const tmcl::
   tmcl::LabelNames names;
   tmcl::DisasmOptions o = options;
   if (!symbols_file.empty()) {
-    std::string text, error;
-    if (!reader.read(symbols_file, text)) {
-      std::fprintf(stderr, "tmclasm: error: cannot read '%s': %s\n", symbols_file.c_str(), reader.last_error().c_str());
-      return kExitInput;
-    }
-    if (!tmcl::parse_symbols(text, names, error)) {
-      std::fprintf(stderr, "%s: error: not a symbols file: %s\n", symbols_file.c_str(), error.c_str());
+    std::string error;
+    if (!tmcl::load_symbols(symbols_file, "tmclasm", names, error)) {
+      std::fprintf(stderr, "%s\n", error.c_str());
       return kExitInput;
     }
     o.names = &names;

@@ -75,7 +75,8 @@ options:
   --debug                debug PROGRAM with gdb's commands (docs/debugger.md), read from
                          standard input: a terminal, or a pipe or file for scripts
   --debug-commands FILE  debug PROGRAM with the commands in FILE, then quit (gdb -batch -x)
-  --symbols FILE         with --debug: the labels of a .bin (tmclasm -f symbols)
+  --symbols FILE         with --debug: the labels and source lines of a .bin (tmclasm -f symbols)
+  --source-dir DIR       with --debug or --dap: look for the sources of a .bin in DIR too
   --checkpoint-memory MIB  with --debug: memory for reverse execution (default 64)
   --dap                  the debugger over the Debug Adapter Protocol on stdin/stdout
   -I DIR                 search DIR for #include files

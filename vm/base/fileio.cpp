@@ -20,6 +20,18 @@ std::string size_text(std::size_t bytes) {
 }
 }  // namespace
 
+std::vector<std::string> split_lines(const std::string& text) {
+  std::vector<std::string> out;
+  for (std::size_t pos = 0; pos < text.size();) {
+    std::size_t end = text.find('\n', pos);
+    if (end == std::string::npos) end = text.size();
+    out.push_back(text.substr(pos, end - pos));
+    if (!out.back().empty() && out.back().back() == '\r') out.back().pop_back();
+    pos = end + 1;
+  }
+  return out;
+}
+
 bool read_file(const std::string& path, std::vector<std::uint8_t>& out, std::string& error, std::size_t max_bytes) {
   int fd = path == "-" ? 0 : ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
   if (fd < 0) {

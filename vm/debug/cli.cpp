@@ -13,6 +13,7 @@
 #include "tmcl/duration.hpp"
 #include "tmcl/fileio.hpp"
 #include "tmcl/program_image.hpp"
+#include "source.hpp"
 
 namespace tmcl::debug {
 namespace {
@@ -369,7 +370,9 @@ void Cli::cmd_list(const std::string& arg) {
     list_next_ = std::max(1, center - 5);
   }
   if (file < 0 || static_cast<std::size_t>(file) >= info.files.size() || info.files[static_cast<std::size_t>(file)].text.empty())
-    return error("no source text at hand");
+    return error(file >= 0 && static_cast<std::size_t>(file) < info.files.size()
+                     ? "no source text for '" + info.files[static_cast<std::size_t>(file)].name + "' (the file was not found)"
+                     : "no source text at hand");
   list_file_ = file;
   const auto& text = info.files[static_cast<std::size_t>(file)].text;
   if (static_cast<std::size_t>(list_next_) > text.size())
@@ -765,7 +768,7 @@ int run_cli(Engine& engine, const CliOptions& options, std::FILE* in, std::FILE*
 // ---- loading ----
 
 bool load_program_info(const std::string& path, const Profile& profile, AsmOptions asm_options, const std::string& symbols,
-                       ProgramInfo& info, std::string& messages) {
+                       ProgramInfo& info, std::string& messages, const std::vector<std::string>& source_dirs) {
   std::vector<std::uint8_t> bytes;
   std::string err;
   if (!read_file(path, bytes, err)) {
@@ -782,19 +785,7 @@ bool load_program_info(const std::string& path, const Profile& profile, AsmOptio
   info = ProgramInfo{};
   if (ends(".bin") || ends(".dgm")) {
     if (!read_program_image(path, bytes, info.program, messages)) return false;
-    if (!symbols.empty()) {
-      std::vector<std::uint8_t> sb;
-      if (!read_file(symbols, sb, err)) {
-        messages += "tmclrun: error: " + err + "\n";
-        return false;
-      }
-      LabelNames names;
-      if (!parse_symbols(std::string(sb.begin(), sb.end()), names, err)) {
-        messages += symbols + ":" + err + "\n";
-        return false;
-      }
-      info.labels = names.labels;
-    }
+    if (!symbols.empty() && !apply_symbols(symbols, source_dirs, info, messages)) return false;
   } else {
     DiskReader reader;
     asm_options.profile = &profile;
@@ -806,11 +797,7 @@ bool load_program_info(const std::string& path, const Profile& profile, AsmOptio
     for (const auto& f : res.sources.files) {
       ProgramInfo::File pf;
       pf.name = f.name;
-      std::istringstream lines(f.text);
-      for (std::string l; std::getline(lines, l);) {
-        if (!l.empty() && l.back() == '\r') l.pop_back();
-        pf.text.push_back(l);
-      }
+      pf.text = split_lines(f.text);
       info.files.push_back(std::move(pf));
     }
     for (const auto& li : res.lines) info.lines.push_back({li.file, li.line});

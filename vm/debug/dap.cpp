@@ -180,7 +180,8 @@ class Dap {
     if (address < 0 || static_cast<std::size_t>(address) >= info.lines.size()) return Value();
     int f = info.lines[static_cast<std::size_t>(address)].file;
     if (f < 0) return Value();
-    const std::string& name = info.files[static_cast<std::size_t>(f)].name;
+    const auto& file = info.files[static_cast<std::size_t>(f)];
+    const std::string& name = file.path.empty() ? file.name : file.path;  // a .bin's source as found
     std::string base = name.substr(name.find_last_of('/') + 1);
     return obj({{"name", base}, {"path", name}});
   }
@@ -235,7 +236,7 @@ bool Dap::launch(const Value& req, std::string& error) {
   }
   ProgramInfo info;
   std::string messages;
-  if (!load_program_info(program, *profile, setup_.asm_options, a["symbols"].as_string(), info, messages))
+  if (!load_program_info(program, *profile, setup_.asm_options, a["symbols"].as_string(), info, messages, setup_.source_dirs))
     return error = messages.empty() ? "cannot load " + program : messages, false;
   if (!messages.empty()) event("output", obj({{"category", "stderr"}, {"output", messages}}));
   engine_ = std::make_unique<Engine>(std::move(s), std::move(info), std::move(core));

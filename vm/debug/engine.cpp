@@ -118,7 +118,7 @@ bool Engine::resolve(const std::string& location, std::int32_t& address, std::st
       for (std::size_t i = 0; i < info_.files.size(); ++i) {
         const std::string& n = info_.files[i].name;
         bool tail = n.size() > file.size() && n.compare(n.size() - file.size(), file.size(), file) == 0 && n[n.size() - file.size() - 1] == '/';
-        if (n == file || tail) {
+        if (n == file || tail || (!info_.files[i].path.empty() && info_.files[i].path == file)) {
           file_index = static_cast<int>(i);
           break;
         }

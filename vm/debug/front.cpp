@@ -26,6 +26,12 @@ int parse_option(const std::string& a, bool has_inline, const std::function<bool
     if (!value(fe.symbols)) return fe.error = "--symbols needs a file (tmclasm -f symbols)", -1;
     return 1;
   }
+  if (a == "--source-dir") {
+    std::string dir;
+    if (!value(dir) || dir.empty()) return fe.error = "--source-dir needs a folder", -1;
+    fe.source_dirs.push_back(dir);
+    return 1;
+  }
   if (a == "--checkpoint-memory") {
     std::string v;
     if (!value(v)) return fe.error = "--checkpoint-memory needs a size in MiB", -1;
@@ -46,6 +52,7 @@ int main(const FrontEnd& fe, const Profile& profile, std::unique_ptr<MotionCore>
     ds.target = std::string(profile.name);
     ds.instr_time = instr_time;
     ds.asm_options = asm_options;
+    ds.source_dirs = fe.source_dirs;
     ds.limits = limits;
     ds.inputs = std::move(inputs);
     if (eeprom) ds.eeprom = *eeprom;
@@ -57,7 +64,7 @@ int main(const FrontEnd& fe, const Profile& profile, std::unique_ptr<MotionCore>
   }
   ProgramInfo info;
   std::string messages;
-  bool ok = load_program_info(program, profile, asm_options, fe.symbols, info, messages);
+  bool ok = load_program_info(program, profile, asm_options, fe.symbols, info, messages, fe.source_dirs);
   std::fputs(messages.c_str(), stderr);
   if (!ok) return 65;
   Setup setup;

@@ -9,19 +9,13 @@
 #include <vector>
 
 #include "tmcl/asm/object.hpp"
+#include "tmcl/asm/symbols.hpp"
 #include "tmcl/isa.hpp"
 
 namespace tmcl {
 
 // One instruction as source without labels ("MVP ABS, 0, 1000", "JA 12", ".raw 99, 0, 0, 0").
 std::string format_instruction(const Instruction& ins);
-
-// Label names for a .bin, from a symbols file (tmclasm -f symbols).
-struct LabelNames {
-  std::vector<std::pair<std::string, std::int64_t>> labels;  // name, address; in file order
-};
-// Parses the symbols format of docs/tmclasm.md; false with `error` ("line 3: ...") when it is not one.
-bool parse_symbols(const std::string& text, LabelNames& out, std::string& error);
 
 enum class ImageKind { Auto, Bin, Datagrams, Object, Library };
 
@@ -42,7 +36,7 @@ struct DisasmResult {
 
 struct DisasmOptions {
   ImageKind kind = ImageKind::Auto;  // Auto: object or library by magic, datagrams by .dgm, else .bin
-  const LabelNames* names = nullptr; // --symbols
+  const LabelNames* names = nullptr; // --symbols: label names; a line table adds "file:line" comments
   bool warnings_are_errors = false;
 };
 

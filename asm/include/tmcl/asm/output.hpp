@@ -15,7 +15,8 @@ enum class OutputFormat { Bin, Datagrams, Listing, Symbols };
 std::vector<std::uint8_t> format_datagrams(const std::vector<Instruction>& program, std::uint8_t address);
 // Address, instruction bytes with checksum, source file:line and the source line.
 std::string format_listing(const AsmResult& result, const Profile& profile);
-// "kind<TAB>name<TAB>value<TAB>file:line<TAB>scope" per label and constant (docs/tmclasm.md).
+// "kind<TAB>name<TAB>value<TAB>file:line<TAB>scope" per label and constant, then the line table
+// (symbols.hpp; docs/tmclasm.md).
 std::string format_symbols(const AsmResult& result);
 // The link map (--map): each input's address range, library members linked and why, and every
 // symbol's final value (docs/tmclasm.md).

@@ -15,6 +15,9 @@ inline constexpr std::size_t kMaxEepromBytes = 1u << 20;
 
 // Reads a whole file ("-" = standard input) of at most `max_bytes`. False with `error` set when
 // it cannot, or when the file is larger ("'x' is larger than the limit of 16 MiB").
+// The lines of a text file's contents, without their line breaks (a CR before the LF dropped);
+// a final line without a line break counts, an empty text has none.
+std::vector<std::string> split_lines(const std::string& text);
 bool read_file(const std::string& path, std::vector<std::uint8_t>& out, std::string& error,
                std::size_t max_bytes = kMaxInputBytes);
 // Writes through a temporary file in the same folder and a rename, so that a reader never sees

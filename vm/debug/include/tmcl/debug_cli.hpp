@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <functional>
 #include <string>
+#include <vector>
 
 #include "tmcl/asm/assembler.hpp"
 #include "tmcl/debugger.hpp"
@@ -13,10 +14,12 @@
 namespace tmcl::debug {
 
 // Reads PROGRAM (.tmc assembled with its line table and symbols, or a .bin/.dgm image with an
-// optional symbols file `symbols`, as tmclasm -f symbols writes it) into `info`. Diagnostics go
-// to `messages`; false when the program cannot be debugged.
+// optional symbols file `symbols`, as tmclasm -f symbols writes it, whose sources are also
+// looked for in `source_dirs`) into `info`. Diagnostics go to `messages`; false when the program
+// cannot be debugged.
 bool load_program_info(const std::string& path, const Profile& profile, AsmOptions asm_options,
-                       const std::string& symbols, ProgramInfo& info, std::string& messages);
+                       const std::string& symbols, ProgramInfo& info, std::string& messages,
+                       const std::vector<std::string>& source_dirs = {});
 
 struct CliOptions {
   std::string commands_file;  // --debug-commands FILE: run these, then quit (like gdb -batch -x)
@@ -62,6 +65,7 @@ struct DapSetup {
   std::string target = "generic";
   SimTime instr_time = 20;
   AsmOptions asm_options;
+  std::vector<std::string> source_dirs;  // --source-dir: where an image's sources may be
   Limits limits;                     // --max-time, --max-steps
   std::vector<InputEvent> inputs;    // --scenario
   std::optional<EepromImage> eeprom; // --eeprom (read at power-up)
@@ -73,7 +77,8 @@ struct FrontEnd {
   bool enabled = false;         // --debug, --debug-commands or --dap
   bool dap = false;             // --dap
   std::string commands_file;    // --debug-commands FILE
-  std::string symbols;          // --symbols FILE (labels for a .bin)
+  std::string symbols;          // --symbols FILE (labels and line table for a .bin)
+  std::vector<std::string> source_dirs;  // --source-dir DIR (repeatable): sources of a .bin
   std::size_t checkpoint_bytes = std::size_t{64} << 20;  // --checkpoint-memory MiB
   std::string error;            // when parse_option returns -1
 };

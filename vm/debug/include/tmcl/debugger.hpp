@@ -31,6 +31,7 @@ struct ProgramInfo {
   struct File {
     std::string name;
     std::vector<std::string> text;  // lines; empty when the text is not at hand
+    std::string path = {};          // a .bin's source: the absolute path where it was found
   };
   std::vector<File> files;
   std::vector<std::pair<std::string, std::int64_t>> labels;     // name, address
