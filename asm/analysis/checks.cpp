@@ -320,14 +320,14 @@ void Walker::check_depth() {
       if (prev_site[static_cast<std::size_t>(x)] >= 0) sites.push_back(prev_site[static_cast<std::size_t>(x)]);
     std::reverse(sites.begin(), sites.end());
     for (int s : sites) {
-      int to = entry_region[static_cast<std::size_t>(ins(s).value)];
+      int to = region_of_entry(ins(s).value);
       diags.note(d, loc(s), "which calls " + (to >= 0 ? region_word(region(to)) : std::string("a subroutine")) + " here");
     }
   }
 
   // -Wcall-depth: the main program's deepest chain, then each handler on top of it.
   auto callee_word = [&](int site) {
-    int to = entry_region[static_cast<std::size_t>(ins(site).value)];
+    int to = region_of_entry(ins(site).value);
     return to >= 0 ? region_word(region(to)) : std::string("a subroutine");
   };
   const Region& main = region(0);
