@@ -1,6 +1,7 @@
 // tmclasm: the command-line assembler, linker and disassembler. Parses arguments, calls the
 // assembler library, writes the output. Exit status: 0 success, 65 errors in the input, 64 usage
 // errors, 74 output not written.
+#include <algorithm>
 #include <cerrno>
 #include <cstdio>
 #include <cstdlib>
@@ -132,6 +133,26 @@ std::string analyze_program(tmcl::AsmResult& result, Extra extra, bool targets_c
   if (extra == Extra::Dot) return tmcl::cfg_dot(a, in);
   if (extra == Extra::StackUsage) return tmcl::stack_usage_report(a, in);
   return {};
+}
+
+// True when the analysis of a program assembled without label names reports nothing: then it
+// reports nothing with them either, and needs no names. Names change only the words of messages,
+// and exported labels nothing calls, which become subroutines with names; without names their
+// code is unreachable, so -Wunreachable is counted here even where -Wno-unreachable is given.
+bool analysis_is_silent(const tmcl::AsmResult& result) {
+  tmcl::AnalysisInput in;
+  in.program = result.program;
+  in.lines = result.lines;
+  in.sources = &result.sources;
+  in.profile = result.profile;
+  in.appended_stop = result.appended_stop;
+  in.targets_checked = true;
+  tmcl::WarningOptions w = result.diags.warning_options();
+  w.off.erase("unreachable");
+  tmcl::Diagnostics scratch;
+  scratch.set_warning_options(w);
+  tmcl::analyze(in, scratch);
+  return scratch.all().empty();
 }
 
 // --analyze: an image is disassembled (with --symbols' names) and the source assembled again
@@ -483,11 +504,22 @@ int run(int argc, char** argv) {
     return 0;
   }
 
-  // Label names: for the symbols format, the map, and the analysis' messages and pictures.
-  opts.symbols = format == tmcl::OutputFormat::Symbols || !map_file.empty() || analysis;
+  // Label names: for the symbols format, the map, the analysis' pictures and its messages. A
+  // million-line program has a hundred thousand labels, and collecting them costs more than the
+  // whole analysis (docs/performance.md), so a plain link first analyses without them and
+  // assembles again with them only when the analysis has something to say. Standard input
+  // cannot be read twice: names up front then.
+  opts.symbols = format == tmcl::OutputFormat::Symbols || !map_file.empty() || extra != Extra::None ||
+                 (analysis && std::find(files.begin(), files.end(), "-") != files.end());
   tmcl::AsmResult result = tmcl::assemble(files, opts, reader);
   std::string extra_text;
-  if (analysis && result.ok()) extra_text = analyze_program(result, extra, true);
+  if (analysis && result.ok() && !(!opts.symbols && analysis_is_silent(result))) {
+    if (!opts.symbols) {
+      opts.symbols = true;
+      result = tmcl::assemble(files, opts, reader);
+    }
+    if (result.ok()) extra_text = analyze_program(result, extra, true);
+  }
   std::string text = result.diags.render(result.sources, opts.error_limit);
   std::fputs(text.c_str(), stderr);
   if (!result.ok()) {
