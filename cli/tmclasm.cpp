@@ -116,9 +116,8 @@ enum class Mode { Link, Compile, Library, Disassemble, Dump, Fmt, Analyze };
 // stack report (which then replace the program as the output).
 enum class Extra { None, Dot, StackUsage };
 
-// Runs the analysis on a linked program, adding its warnings to result.diags; returns the text
-// of the extra output.
-std::string analyze_program(tmcl::AsmResult& result, Extra extra, bool targets_checked) {
+// What the analysis reads of an assembled program (the label names only when it has them).
+tmcl::AnalysisInput analysis_input(const tmcl::AsmResult& result, bool targets_checked) {
   tmcl::AnalysisInput in;
   in.program = result.program;
   in.lines = result.lines;
@@ -127,6 +126,13 @@ std::string analyze_program(tmcl::AsmResult& result, Extra extra, bool targets_c
   in.profile = result.profile;
   in.appended_stop = result.appended_stop;
   in.targets_checked = targets_checked;
+  return in;
+}
+
+// Runs the analysis on a linked program, adding its warnings to result.diags; returns the text
+// of the extra output.
+std::string analyze_program(tmcl::AsmResult& result, Extra extra, bool targets_checked) {
+  tmcl::AnalysisInput in = analysis_input(result, targets_checked);
   tmcl::AnalysisOptions o;
   o.graph = extra == Extra::Dot;
   tmcl::Analysis a = tmcl::analyze(in, result.diags, o);
@@ -140,13 +146,7 @@ std::string analyze_program(tmcl::AsmResult& result, Extra extra, bool targets_c
 // and exported labels nothing calls, which become subroutines with names; without names their
 // code is unreachable, so -Wunreachable is counted here even where -Wno-unreachable is given.
 bool analysis_is_silent(const tmcl::AsmResult& result) {
-  tmcl::AnalysisInput in;
-  in.program = result.program;
-  in.lines = result.lines;
-  in.sources = &result.sources;
-  in.profile = result.profile;
-  in.appended_stop = result.appended_stop;
-  in.targets_checked = true;
+  tmcl::AnalysisInput in = analysis_input(result, true);
   tmcl::WarningOptions w = result.diags.warning_options();
   w.off.erase("unreachable");
   tmcl::Diagnostics scratch;
