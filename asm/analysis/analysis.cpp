@@ -189,7 +189,12 @@ void Walker::walk(int r, int from, int start) {
           if (t_ok) {
             edge(i, t, EdgeKind::Jump);
             if (r == 0) reach(r, i, t);
-            else restarts.push_back({i, t});  // a reset leaves any region cleanly for the main program
+            else {
+              // A reset leaves any region cleanly for the main program: it clears the call stack
+              // and the interrupt state, so it is also a way out of a handler (errata E31, E43).
+              restarts.push_back({i, t});
+              f().resets.push_back(i);
+            }
           } else {
             bad_jumps.push_back(i);
           }

@@ -23,6 +23,7 @@ struct AddressBits {
 // What one region's walk met, by instruction address.
 struct RegionFacts {
   std::vector<int> rsubs, retis, stops, waits, falloffs;
+  std::vector<int> resets;  // RSTs (outside the main program): a clean way out of any region (E43)
   int last_caller = -1;  // the region whose call of this one was recorded last (Walker::calls)
 };
 
