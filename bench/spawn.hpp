@@ -4,6 +4,7 @@
 
 #include <fcntl.h>
 #include <spawn.h>
+#include <sys/resource.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -16,8 +17,9 @@ namespace tmcl::bench {
 // Wall time in seconds of running argv to completion (output discarded); negative when it could
 // not run or did not exit with 0. posix_spawn, not fork: the benchmark holds a million-line
 // program, and fork would copy its page tables into every child, which is the benchmark's cost,
-// not the tool's.
-inline double run_process(const std::vector<std::string>& argv) {
+// not the tool's. `cpu_seconds`, when given, receives the child's user + system time (steadier
+// than wall time on a loaded machine).
+inline double run_process(const std::vector<std::string>& argv, double* cpu_seconds = nullptr) {
   using Clock = std::chrono::steady_clock;
   auto t = Clock::now();
   posix_spawn_file_actions_t actions;
@@ -32,7 +34,11 @@ inline double run_process(const std::vector<std::string>& argv) {
   posix_spawn_file_actions_destroy(&actions);
   if (rc != 0) return -1;
   int st = 0;
-  ::waitpid(pid, &st, 0);
+  rusage ru{};
+  ::wait4(pid, &st, 0, &ru);
+  if (cpu_seconds)
+    *cpu_seconds = static_cast<double>(ru.ru_utime.tv_sec + ru.ru_stime.tv_sec) +
+                   static_cast<double>(ru.ru_utime.tv_usec + ru.ru_stime.tv_usec) / 1e6;
   if (!WIFEXITED(st) || WEXITSTATUS(st) != 0) return -1;
   return std::chrono::duration<double>(Clock::now() - t).count();
 }
