@@ -2,10 +2,7 @@
 // (labels, constants, expressions, comments) compared with GNU as on an x86 file of the same
 // line count, and the wall time of a whole tmclasm process on a 500-line program.
 // Prints "figure<TAB>goal<TAB>measured" rows for bench/run_all.sh.
-#include <fcntl.h>
 #include <malloc.h>
-#include <spawn.h>
-#include <sys/wait.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -15,10 +12,12 @@
 #include <fstream>
 #include <string>
 
+#include "spawn.hpp"
 #include "tmcl/asm/assembler.hpp"
 
 namespace {
 
+using tmcl::bench::run_process;
 using Clock = std::chrono::steady_clock;
 
 double seconds_since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
@@ -62,28 +61,6 @@ std::string x86_program(int lines) {
   }
   s += ".set Base, 0x1F\n";
   return s;
-}
-
-// Wall time of running argv to completion (output discarded); negative when it could not run.
-// posix_spawn, not fork: this process holds a million-line program, and fork would copy its page
-// tables into every child, which is the benchmark's cost, not tmclasm's.
-double run_process(const std::vector<std::string>& argv) {
-  auto t = Clock::now();
-  posix_spawn_file_actions_t actions;
-  posix_spawn_file_actions_init(&actions);
-  posix_spawn_file_actions_addopen(&actions, 1, "/dev/null", O_WRONLY, 0);
-  posix_spawn_file_actions_addopen(&actions, 2, "/dev/null", O_WRONLY, 0);
-  std::vector<char*> args;
-  for (const auto& a : argv) args.push_back(const_cast<char*>(a.c_str()));
-  args.push_back(nullptr);
-  pid_t pid = 0;
-  int rc = posix_spawnp(&pid, args[0], &actions, nullptr, args.data(), environ);
-  posix_spawn_file_actions_destroy(&actions);
-  if (rc != 0) return -1;
-  int st = 0;
-  ::waitpid(pid, &st, 0);
-  if (!WIFEXITED(st) || WEXITSTATUS(st) != 0) return -1;
-  return seconds_since(t);
 }
 
 }  // namespace

@@ -1,6 +1,7 @@
 // tmclasm: the command-line assembler, linker and disassembler. Parses arguments, calls the
 // assembler library, writes the output. Exit status: 0 success, 65 errors in the input, 64 usage
 // errors, 74 output not written.
+#include <algorithm>
 #include <cerrno>
 #include <cstdio>
 #include <cstdlib>
@@ -8,6 +9,10 @@
 #include <filesystem>
 #include <string>
 #include <vector>
+
+#if defined(__GLIBC__)
+#include <malloc.h>
+#endif
 
 #include "tmcl/analysis.hpp"
 #include "tmcl/asm/assembler.hpp"
@@ -116,9 +121,8 @@ enum class Mode { Link, Compile, Library, Disassemble, Dump, Fmt, Analyze };
 // stack report (which then replace the program as the output).
 enum class Extra { None, Dot, StackUsage };
 
-// Runs the analysis on a linked program, adding its warnings to result.diags; returns the text
-// of the extra output.
-std::string analyze_program(tmcl::AsmResult& result, Extra extra, bool targets_checked) {
+// What the analysis reads of an assembled program (the label names only when it has them).
+tmcl::AnalysisInput analysis_input(const tmcl::AsmResult& result, bool targets_checked) {
   tmcl::AnalysisInput in;
   in.program = result.program;
   in.lines = result.lines;
@@ -127,12 +131,33 @@ std::string analyze_program(tmcl::AsmResult& result, Extra extra, bool targets_c
   in.profile = result.profile;
   in.appended_stop = result.appended_stop;
   in.targets_checked = targets_checked;
+  return in;
+}
+
+// Runs the analysis on a linked program, adding its warnings to result.diags; returns the text
+// of the extra output.
+std::string analyze_program(tmcl::AsmResult& result, Extra extra, bool targets_checked) {
+  tmcl::AnalysisInput in = analysis_input(result, targets_checked);
   tmcl::AnalysisOptions o;
   o.graph = extra == Extra::Dot;
   tmcl::Analysis a = tmcl::analyze(in, result.diags, o);
   if (extra == Extra::Dot) return tmcl::cfg_dot(a, in);
   if (extra == Extra::StackUsage) return tmcl::stack_usage_report(a, in);
   return {};
+}
+
+// True when the analysis of a program assembled without label names reports nothing: then it
+// reports nothing with them either, and needs no names. Names change only the words of messages,
+// and exported labels nothing calls, which become subroutines with names; without names their
+// code is unreachable, so -Wunreachable is counted here even where -Wno-unreachable is given.
+bool analysis_is_silent(const tmcl::AsmResult& result) {
+  tmcl::AnalysisInput in = analysis_input(result, true);
+  tmcl::WarningOptions w = result.diags.warning_options();
+  w.off.erase("unreachable");
+  tmcl::Diagnostics scratch;
+  scratch.set_warning_options(w);
+  tmcl::analyze(in, scratch);
+  return scratch.all().empty();
 }
 
 // --analyze: an image is disassembled (with --symbols' names) and the source assembled again
@@ -476,11 +501,22 @@ int run(int argc, char** argv) {
     return 0;
   }
 
-  // Label names: for the symbols format, the map, and the analysis' messages and pictures.
-  opts.symbols = format == tmcl::OutputFormat::Symbols || !map_file.empty() || analysis;
+  // Label names: for the symbols format, the map, the analysis' pictures and its messages. A
+  // million-line program has a hundred thousand labels, and collecting them costs more than the
+  // whole analysis (docs/performance.md), so a plain link first analyses without them and
+  // assembles again with them only when the analysis has something to say. Standard input
+  // cannot be read twice: names up front then.
+  opts.symbols = format == tmcl::OutputFormat::Symbols || !map_file.empty() || extra != Extra::None ||
+                 (analysis && std::find(files.begin(), files.end(), "-") != files.end());
   tmcl::AsmResult result = tmcl::assemble(files, opts, reader);
   std::string extra_text;
-  if (analysis && result.ok()) extra_text = analyze_program(result, extra, true);
+  if (analysis && result.ok() && !(!opts.symbols && analysis_is_silent(result))) {
+    if (!opts.symbols) {
+      opts.symbols = true;
+      result = tmcl::assemble(files, opts, reader);
+    }
+    if (result.ok()) extra_text = analyze_program(result, extra, true);
+  }
   std::string text = result.diags.render(result.sources, opts.error_limit);
   std::fputs(text.c_str(), stderr);
   if (!result.ok()) {
@@ -511,6 +547,14 @@ int run(int argc, char** argv) {
 }  // namespace
 
 int main(int argc, char** argv) {
+#if defined(__GLIBC__)
+  // tmclasm is a short process whose big buffers come and go in phases (the assembler's, then
+  // the analysis', then the output's). Kept in the heap instead of unmapped at each free, a later
+  // phase reuses the pages an earlier one already faulted in: on a million-line program the
+  // analysis then costs no page faults at all (docs/performance.md, issue 13).
+  mallopt(M_MMAP_THRESHOLD, 1 << 30);
+  mallopt(M_TRIM_THRESHOLD, 1 << 30);
+#endif
   int status = run(argc, argv);
   // Every write is checked, standard output included (--help, --version, -o -).
   if (std::string err; !tmcl::flush_stdout(err)) {

@@ -4,6 +4,7 @@
 // live in vm/; see docs/tmclrun.md. Exit status: 0 STOP, 3 limit reached or blocked, 70 runtime
 // fault, 65 bad input, 64 usage, 71 --serve transport failed, 74 an output file or standard
 // output not written. With --json every outcome is one JSON object on standard output.
+#include <algorithm>
 #include <cctype>
 #include <cerrno>
 #include <cstdio>
@@ -14,6 +15,7 @@
 #include <string>
 #include <vector>
 
+#include "tmcl/analysis.hpp"
 #include "tmcl/asm/assembler.hpp"
 #include "tmcl/debug_cli.hpp"
 #include "tmcl/diag_text.hpp"
@@ -398,6 +400,25 @@ int parse_args(int argc, char** argv, Options& o) {
   return -1;
 }
 
+// Per address, 1 where the control-flow analysis puts the instruction in an interrupt handler's
+// own code: the VM then reports a handler that goes on elsewhere without RETI, as tmclasm's
+// -Wreti does before the run (errata E43). Empty when the program sets no vector.
+std::vector<std::uint8_t> handler_code(const std::vector<tmcl::Instruction>& program) {
+  bool vect = std::any_of(program.begin(), program.end(),
+                          [](const tmcl::Instruction& i) { return i.op == static_cast<std::uint8_t>(tmcl::Op::VECT); });
+  if (!vect) return {};
+  tmcl::AnalysisInput in;
+  in.program = program;
+  tmcl::Diagnostics ignored;  // tmclasm reports them; tmclrun only needs the regions
+  tmcl::Analysis a = tmcl::analyze(in, ignored);
+  std::vector<std::uint8_t> code(program.size(), 0);
+  for (std::size_t i = 0; i < program.size(); ++i) {
+    int r = a.owner[i];
+    code[i] = r >= 0 && a.regions[static_cast<std::size_t>(r)].kind == tmcl::RegionKind::Handler;
+  }
+  return code;
+}
+
 // Reads PROGRAM (.tmc assembled in-process, .bin, .dgm, or - ) into `program` and the source
 // place of every instruction into `sources`. Returns -1 on success, else an exit status.
 int load_program(Options& o, const tmcl::Profile* profile, std::vector<tmcl::Instruction>& program,
@@ -582,6 +603,7 @@ int run(int argc, char** argv) {
   tmcl::RecordingTrace recording_trace(vm.trace, recorder);
   if (recording) vm.trace = &recording_trace;
   vm.load(program);
+  if (o.serve.empty()) vm.handler_code = handler_code(program);
   vm.source_of = sources;
   vm.power_on(o.eeprom.empty() ? nullptr : &image);
   vm.add_inputs(std::move(inputs));

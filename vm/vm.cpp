@@ -216,6 +216,20 @@ bool Vm::warn(RuntimeWarning::Kind kind, std::string message) {
   return false;
 }
 
+bool Vm::check_handler_code() {
+  if (handler_left_ || sp > saved.stack_depth || pc < 0 || static_cast<std::size_t>(pc) >= handler_code.size() ||
+      handler_code[static_cast<std::size_t>(pc)])
+    return false;
+  handler_left_ = true;
+  // Reported as the instruction's own warning: it starts now, and warn() counts from its end.
+  now += instr_time;
+  bool faulted = warn(RuntimeWarning::HandlerWithoutReti,
+                      "the handler of interrupt " + std::to_string(saved.vector) +
+                          " goes on outside its code without RETI: interrupts stay blocked until a RETI or RST");
+  now -= instr_time;
+  return faulted;
+}
+
 bool Vm::jump_ok(std::int32_t target) {
   if (target >= 0 && target < program_size) return true;
   fault("jump to address " + std::to_string(target) + " outside the program (0.." +
@@ -249,6 +263,7 @@ bool Vm::try_enter_interrupt() {
     pending[w] &= ~(std::uint64_t{1} << (n & 63));
     saved = InterruptContext{pc, acc, x, flags, wait, sp, n};
     in_handler = true;
+    handler_left_ = false;
     wait = WaitState{};
     std::int32_t from = pc;
     pc = vectors[static_cast<std::size_t>(n)];

@@ -147,6 +147,7 @@ RunResult Vm::Loop::run_traced(Vm& vm, const Limits& lim) {
     const SimTime t0 = vm.now;
     const bool was_in_handler = vm.in_handler;
     const std::uint64_t warned = vm.warnings_total;
+    if (vm.in_handler && !vm.handler_code.empty() && vm.check_handler_code()) continue;  // --strict: a fault
     vm.now += vm.instr_time;
     ++vm.steps;
     execute(vm, at);
@@ -162,6 +163,7 @@ RunResult Vm::Loop::run_traced(Vm& vm, const Limits& lim) {
 // two comparisons.
 std::uint64_t Vm::Loop::burst_length(const Vm& vm, const Limits& lim) {
   if (vm.now >= vm.next_check_ || vm.steps >= lim.max_steps) return 0;
+  if (vm.in_handler && !vm.handler_code.empty()) return 1;  // check_handler_code() before each
   std::uint64_t n = lim.max_steps - vm.steps;
   if (vm.next_check_ != kNever && vm.instr_time > 0) {
     auto by_time = static_cast<std::uint64_t>((vm.next_check_ - vm.now + vm.instr_time - 1) / vm.instr_time);
@@ -178,6 +180,7 @@ std::uint64_t Vm::Loop::burst_length(const Vm& vm, const Limits& lim) {
 RunResult Vm::Loop::run_fast(Vm& vm, const Limits& lim) {
   using namespace ops;
   for (;;) {
+    if (vm.in_handler && !vm.handler_code.empty() && vm.check_handler_code()) continue;  // --strict: a fault
     std::uint64_t total = burst_length(vm, lim);
     if (total == 0) {
       if (auto r = service(vm, lim)) return *r;
@@ -292,7 +295,8 @@ RunResult Vm::Loop::run_fast(Vm& vm, const Limits& lim) {
       flags = vm.flags;
       base_now = vm.now;
       base_steps = vm.steps;
-      total = left = burst_length(vm, lim);
+      // Inside a handler with its code known, back to the top: the next instruction is checked.
+      total = left = vm.in_handler && !vm.handler_code.empty() ? 0 : burst_length(vm, lim);
     }
     std::uint64_t done = total - left;
     vm.now = base_now + static_cast<SimTime>(done) * dt;

@@ -9,10 +9,10 @@
 
 #include <algorithm>
 #include <string>
-#include <unordered_map>
 
 #include "analysis_internal.hpp"
 #include "graph.hpp"
+#include "tmcl/fileio.hpp"
 
 namespace tmcl {
 namespace detail {
@@ -54,140 +54,194 @@ SourceLoc Walker::loc(int address) const {
   return l;
 }
 
-std::string Walker::label_at(int address) const {
-  auto it = labels.find(address);
-  return it == labels.end() ? std::string() : it->second;
-}
-
+// The region starting at `address` (a call or VECT target), made on first use. A region owns
+// its entry from the start: no other region's walk claims a target address (claim() records a
+// flow there instead), so owner[] doubles as the table of entries and no second per-address
+// table is needed.
 int Walker::region_at(int address) {
-  int& r = entry_region[static_cast<std::size_t>(address)];
-  if (r >= 0) return r;
-  r = static_cast<int>(a.regions.size());
+  int& o = a.owner[static_cast<std::size_t>(address)];
+  if (o >= 0) return o;
+  o = static_cast<int>(a.regions.size());
   Region reg;
-  reg.kind = (target_flags[static_cast<std::size_t>(address)] & kVectTarget) ? RegionKind::Handler : RegionKind::Subroutine;
+  reg.kind = vect_target.test(address) ? RegionKind::Handler : RegionKind::Subroutine;
   reg.entry = address;
-  reg.name = label_at(address);
-  if (reg.name.empty())
-    reg.name = std::string(reg.kind == RegionKind::Handler ? "handler_" : "sub_") + std::to_string(address);
   a.regions.push_back(std::move(reg));
   facts.emplace_back();
-  queue.push_back(r);
-  return r;
+  queue.push_back(o);
+  return o;
+}
+
+int Walker::region_of_entry(int address) const {
+  if (address < 0 || static_cast<std::size_t>(address) >= a.owner.size()) return -1;
+  int o = a.owner[static_cast<std::size_t>(address)];
+  return o >= 0 && region(o).entry == address ? o : -1;
 }
 
 void Walker::edge(int from, int to, EdgeKind kind) {
   if (options.graph) a.edges.push_back({from, to, kind});
 }
 
-// Continues region `r` at address `to`, coming from instruction `from` (-1: the region's start).
-void Walker::reach(int r, int from, int to) {
-  auto t = static_cast<std::size_t>(to);
-  if ((target_flags[t] & (kCallTarget | kVectTarget)) && to != a.regions[static_cast<std::size_t>(r)].entry) {
-    int q = region_at(to);
-    if (q != r) {
-      flows.push_back({from, r, q, to});
-      return;
-    }
+// Region names come from the labels at their entries, given after the walk in one pass over
+// the symbols: the walk itself builds no table of label names (a million-line program has a
+// hundred thousand labels and a few dozen regions). The first label of an address names it.
+void Walker::name_regions() {
+  const auto n = static_cast<std::int64_t>(in.program.size());
+  std::vector<char> named(a.regions.size(), 0);
+  for (const auto& s : in.symbols) {
+    if (s.kind != SymbolKind::Label || s.value < 0 || s.value >= n) continue;
+    int r = region_of_entry(static_cast<int>(s.value));
+    if (r < 0 || named[static_cast<std::size_t>(r)]) continue;
+    named[static_cast<std::size_t>(r)] = 1;
+    a.regions[static_cast<std::size_t>(r)].name = s.name;
   }
-  if (a.owner[t] < 0) {
-    a.owner[t] = r;
-    work.push_back(to);
-  } else if (a.owner[t] != r) {
-    flows.push_back({from, r, a.owner[t], to});
+  for (std::size_t r = 0; r < a.regions.size(); ++r) {
+    Region& reg = a.regions[r];
+    if (named[r]) continue;
+    if (reg.kind == RegionKind::Main) reg.name = "main";
+    else reg.name = std::string(reg.kind == RegionKind::Handler ? "handler_" : "sub_") + std::to_string(reg.entry);
   }
 }
 
+// Region `r` reaches address `to` from instruction `from` (-1: the region's start). True when
+// `to` is new to the region and the walk must visit it; false when it was visited already or
+// belongs to another region (then the passage is recorded as a flow).
+bool Walker::claim(int r, int from, int to) {
+  auto t = static_cast<std::size_t>(to);
+  if (is_target(to) && to != a.regions[static_cast<std::size_t>(r)].entry) {
+    int q = region_at(to);
+    if (q != r) {
+      flows.push_back({from, r, q, to});
+      return false;
+    }
+  }
+  int& o = a.owner[t];
+  if (o < 0) {
+    o = r;
+    return true;
+  }
+  if (o != r) flows.push_back({from, r, o, to});
+  return false;
+}
+
+bool Walker::writes_eeprom(const Instruction& x) const {
+  switch (static_cast<Op>(x.op)) {
+    case Op::STAP:
+    case Op::STGP: return true;
+    case Op::SCO: return x.motor == 255;  // E29: SCO n, 255 copies coordinates to the EEPROM
+    case Op::SGP: {
+      const ParamInfo* p = in.profile ? in.profile->global_param(x.motor, x.type) : nullptr;
+      return p && (p->access & kAutoStore);
+    }
+    default: return false;
+  }
+}
+
+void Walker::reach(int r, int from, int to) {
+  if (claim(r, from, to)) work.push_back(to);
+}
+
+// Depth first from `start`. Straight-line code is followed without the work stack: the next
+// instruction is taken at once when it is new (the order is the one a stack would give, as the
+// next instruction is always pushed last).
 void Walker::walk(int r, int from, int start) {
-  reach(r, from, start);
+  if (from < 0 && start == region(r).entry) work.push_back(start);  // owned since region_at()
+  else reach(r, from, start);
   const int n = static_cast<int>(in.program.size());
   while (!work.empty()) {
     int i = work.back();
     work.pop_back();
-    const Instruction& ins = in.program[static_cast<std::size_t>(i)];
-    auto f = [this, r]() -> RegionFacts& { return facts[static_cast<std::size_t>(r)]; };  // facts may grow
-    const int t = ins.value;
-    const bool t_ok = t >= 0 && t < n;
-    bool next = true;
-    switch (static_cast<Op>(ins.op)) {
-      case Op::JA:
-        next = false;
-        [[fallthrough]];
-      case Op::JC:
-      case Op::DJNZ:
-        if (t_ok) {
-          edge(i, t, EdgeKind::Jump);
-          reach(r, i, t);
-        } else {
-          bad_jumps.push_back(i);
-        }
+    for (;;) {
+      const Instruction& ins = in.program[static_cast<std::size_t>(i)];
+      auto f = [this, r]() -> RegionFacts& { return facts[static_cast<std::size_t>(r)]; };  // facts may grow
+      const int t = ins.value;
+      const bool t_ok = t >= 0 && t < n;
+      bool next = true;
+      switch (static_cast<Op>(ins.op)) {
+        case Op::JA:
+          next = false;
+          [[fallthrough]];
+        case Op::JC:
+        case Op::DJNZ:
+          if (t_ok) {
+            edge(i, t, EdgeKind::Jump);
+            reach(r, i, t);
+          } else {
+            bad_jumps.push_back(i);
+          }
+          break;
+        case Op::CSUB:
+        case Op::CALL:
+          if (t_ok) {
+            edge(i, t, EdgeKind::Call);
+            int q = region_at(t);
+            int& last = facts[static_cast<std::size_t>(q)].last_caller;
+            if (last != r) calls.push_back({i, r, q});
+            last = r;
+            if (keep_call_sites) call_sites.push_back(i);
+            // After a subroutine that never returns (it stops, restarts or loops) nothing follows.
+            if (!noreturn_at.empty() && noreturn_at[static_cast<std::size_t>(t)]) next = false;
+          } else {
+            bad_jumps.push_back(i);
+          }
+          break;
+        case Op::RST:
+          next = false;
+          if (t_ok) {
+            edge(i, t, EdgeKind::Jump);
+            if (r == 0) reach(r, i, t);
+            else {
+              // A reset leaves any region cleanly for the main program: it clears the call stack
+              // and the interrupt state, so it is also a way out of a handler (errata E31, E43).
+              restarts.push_back({i, t});
+              f().resets.push_back(i);
+            }
+          } else {
+            bad_jumps.push_back(i);
+          }
+          break;
+        case Op::VECT:
+          if (t_ok) {
+            edge(i, t, EdgeKind::Vect);
+            int h = region_at(t);
+            auto& v = a.regions[static_cast<std::size_t>(h)].vectors;
+            if (std::find(v.begin(), v.end(), ins.type) == v.end()) v.push_back(ins.type);
+            vect_set[ins.type] = true;
+          } else {
+            bad_vects.push_back(i);
+          }
+          break;
+        case Op::EI: eis.push_back(i); break;
+        // With nothing to return to, RSUB and RETI are ignored (manual; errata E6, E13) and the
+        // program goes on: in the main program and in a handler (RSUB), in the main program (RETI).
+        case Op::RSUB:
+          f().rsubs.push_back(i);
+          next = a.regions[static_cast<std::size_t>(r)].kind != RegionKind::Subroutine;
+          break;
+        case Op::RETI:
+          f().retis.push_back(i);
+          next = a.regions[static_cast<std::size_t>(r)].kind == RegionKind::Main;
+          break;
+        case Op::STOP: f().stops.push_back(i); next = false; break;
+        case Op::WAIT: f().waits.push_back(i); break;
+        case Op::STAP:
+        case Op::STGP:
+        case Op::SCO:
+        case Op::SGP:
+          if (writes_eeprom(ins)) writes.push_back(i);
+          break;
+        default:
+          if (!op_info(ins.op)) next = false;  // not an instruction: the VM faults here (E20)
+          break;
+      }
+      if (!next) break;
+      if (i + 1 >= n) {
+        f().falloffs.push_back(i);
         break;
-      case Op::CSUB:
-      case Op::CALL:
-        if (t_ok) {
-          edge(i, t, EdgeKind::Call);
-          calls.push_back({i, r, region_at(t)});
-          // After a subroutine that never returns (it stops, restarts or loops) nothing follows.
-          if (!noreturn_at.empty() && noreturn_at[static_cast<std::size_t>(t)]) next = false;
-        } else {
-          bad_jumps.push_back(i);
-        }
-        break;
-      case Op::RST:
-        next = false;
-        if (t_ok) {
-          edge(i, t, EdgeKind::Jump);
-          if (r == 0) reach(r, i, t);
-          else restarts.push_back({i, t});  // a reset leaves any region cleanly for the main program
-        } else {
-          bad_jumps.push_back(i);
-        }
-        break;
-      case Op::VECT:
-        if (t_ok) {
-          edge(i, t, EdgeKind::Vect);
-          int h = region_at(t);
-          auto& v = a.regions[static_cast<std::size_t>(h)].vectors;
-          if (std::find(v.begin(), v.end(), ins.type) == v.end()) v.push_back(ins.type);
-          vect_set[ins.type] = true;
-        } else {
-          bad_vects.push_back(i);
-        }
-        break;
-      case Op::EI: eis.push_back(i); break;
-      // With nothing to return to, RSUB and RETI are ignored (manual; errata E6, E13) and the
-      // program goes on: in the main program and in a handler (RSUB), in the main program (RETI).
-      case Op::RSUB:
-        f().rsubs.push_back(i);
-        next = a.regions[static_cast<std::size_t>(r)].kind != RegionKind::Subroutine;
-        break;
-      case Op::RETI:
-        f().retis.push_back(i);
-        next = a.regions[static_cast<std::size_t>(r)].kind == RegionKind::Main;
-        break;
-      case Op::STOP: f().stops.push_back(i); next = false; break;
-      case Op::WAIT: f().waits.push_back(i); break;
-      case Op::STAP:
-      case Op::STGP: writes.push_back(i); break;
-      case Op::SCO:
-        if (ins.motor == 255) writes.push_back(i);  // E29: SCO n, 255 copies coordinates to the EEPROM
-        break;
-      case Op::SGP:
-        if (in.profile) {
-          const ParamInfo* p = in.profile->global_param(ins.motor, ins.type);
-          if (p && (p->access & kAutoStore)) writes.push_back(i);
-        }
-        break;
-      default:
-        if (!op_info(ins.op)) next = false;  // not an instruction: the VM faults here (E20)
-        break;
+      }
+      edge(i, i + 1, EdgeKind::Next);
+      if (!claim(r, i, i + 1)) break;
+      ++i;
     }
-    if (!next) continue;
-    if (i + 1 >= n) {
-      f().falloffs.push_back(i);
-      continue;
-    }
-    edge(i, i + 1, EdgeKind::Next);
-    reach(r, i, i + 1);
   }
 }
 
@@ -228,10 +282,10 @@ void Walker::build() {
   if (!again) return;
   a = Analysis{};
   facts.clear();
-  labels.clear();
   queue.clear();
   flows.clear();
   calls.clear();
+  call_sites.clear();
   restarts.clear();
   bad_jumps.clear();
   bad_vects.clear();
@@ -244,29 +298,29 @@ void Walker::build() {
 
 void Walker::pass() {
   const int n = static_cast<int>(in.program.size());
+  a.owner.reserve(static_cast<std::size_t>(n));
+  prefer_huge_pages(a.owner.data(), a.owner.capacity() * sizeof(int));  // fewer page faults
   a.owner.assign(static_cast<std::size_t>(n), -1);
-  entry_region.assign(static_cast<std::size_t>(n), -1);
-  target_flags.assign(static_cast<std::size_t>(n), 0);
-  for (const auto& s : in.symbols)
-    if (s.kind == SymbolKind::Label && s.value >= 0 && s.value < n) labels.emplace(static_cast<int>(s.value), s.name);
+  call_target.reset(n);
+  vect_target.reset(n);
   // Every call and VECT target is an entry, whether or not its caller is reachable, so that a
   // walk stops at a subroutine's label even before the CSUB naming it has been seen.
   for (int i = 0; i < n; ++i) {
     const Instruction& ins = in.program[static_cast<std::size_t>(i)];
+    keep_call_sites = keep_call_sites || writes_eeprom(ins);
     if (ins.value < 0 || ins.value >= n) continue;
     if (ins.op == static_cast<std::uint8_t>(Op::CSUB) || ins.op == static_cast<std::uint8_t>(Op::CALL))
-      target_flags[static_cast<std::size_t>(ins.value)] |= kCallTarget;
+      call_target.set(ins.value);
     else if (ins.op == static_cast<std::uint8_t>(Op::VECT))
-      target_flags[static_cast<std::size_t>(ins.value)] |= kVectTarget;
+      vect_target.set(ins.value);
   }
   if (n == 0) return;
   Region main;
   main.kind = RegionKind::Main;
   main.entry = 0;
-  main.name = label_at(0).empty() ? "main" : label_at(0);
   a.regions.push_back(main);
   facts.emplace_back();
-  entry_region[0] = 0;
+  a.owner[0] = 0;
   // The main program first: it owns its code; then every region in the order found. A program
   // that begins with a run of JAs is a table of entry points a host starts with command 129
   // (USB-2-SD manual 7.6): each JA of the run starts the main program.
@@ -294,8 +348,8 @@ void Walker::pass() {
     for (const auto& sym : in.symbols) {
       if (sym.kind != SymbolKind::Label || !sym.exported || sym.value < 0 || sym.value >= n) continue;
       auto t = static_cast<std::size_t>(sym.value);
-      if (a.owner[t] >= 0 || entry_region[t] >= 0) continue;
-      target_flags[t] |= kCallTarget;
+      if (a.owner[t] >= 0) continue;
+      call_target.set(static_cast<int>(t));
       region_at(static_cast<int>(t));
       more = true;
     }
@@ -308,6 +362,7 @@ void Walker::pass() {
 Analysis analyze(const AnalysisInput& in, Diagnostics& diags, const AnalysisOptions& options) {
   detail::Walker w(in, diags, options);
   w.build();
+  w.name_regions();
   w.depths();
   w.check_flow();
   w.check_interrupts();

@@ -4,7 +4,6 @@
 #include <array>
 #include <cstdint>
 #include <string>
-#include <unordered_map>
 #include <utility>
 #include <vector>
 
@@ -12,11 +11,20 @@
 
 namespace tmcl::detail {
 
-inline constexpr std::uint8_t kCallTarget = 1, kVectTarget = 2;
+// One bit per address, packed (a million addresses take 125 KB: every page the analysis touches
+// is a page fault the whole process pays for).
+struct AddressBits {
+  std::vector<std::uint64_t> words;
+  void reset(int n) { words.assign((static_cast<std::size_t>(n) + 63) / 64, 0); }
+  bool test(int i) const { return (words[static_cast<std::size_t>(i) >> 6] >> (i & 63)) & 1u; }
+  void set(int i) { words[static_cast<std::size_t>(i) >> 6] |= std::uint64_t{1} << (i & 63); }
+};
 
 // What one region's walk met, by instruction address.
 struct RegionFacts {
   std::vector<int> rsubs, retis, stops, waits, falloffs;
+  std::vector<int> resets;  // RSTs (outside the main program): a clean way out of any region (E43)
+  int last_caller = -1;  // the region whose call of this one was recorded last (Walker::calls)
 };
 
 // Control passes from region `from_region` into `to_region` without a call: a jump or running
@@ -51,13 +59,19 @@ struct Walker {
   Analysis a;
 
   std::vector<RegionFacts> facts;
-  std::vector<int> entry_region;           // per address: the region starting there, or -1
-  std::vector<std::uint8_t> target_flags;  // per address: kCallTarget | kVectTarget
-  std::unordered_map<int, std::string> labels;
+  AddressBits call_target, vect_target;    // per address: a CSUB/CALL or VECT names it
   std::vector<int> queue;                  // regions to walk, in the order found
   std::vector<int> work;                   // the walk's stack of addresses
   std::vector<Flow> flows;
+  // The calls between regions, in the order the walk met them, without repeats in a row of the
+  // same caller and callee: a later call of the same subroutine from the same region changes no
+  // depth, chain or note (each reads the first edge that fits), and a loop of 100,000 CSUBs of
+  // one subroutine would otherwise make 100,000 entries.
   std::vector<CallSite> calls;
+  // Every call the walk met, in order, for -Weeprom-wear (a call from a loop repeats a write):
+  // kept only when the program has an EEPROM write at all.
+  std::vector<int> call_sites;
+  bool keep_call_sites = false;
   std::vector<std::pair<int, int>> restarts;  // RST outside the main program: (site, target)
   std::vector<int> bad_jumps, bad_vects, eis, writes;
   std::array<bool, 256> vect_set{};
@@ -70,9 +84,12 @@ struct Walker {
   std::vector<char> recursive;   // per component
 
   SourceLoc loc(int address) const;
-  std::string label_at(int address) const;
   int region_at(int address);
+  int region_of_entry(int address) const;
+  bool is_target(int address) const { return call_target.test(address) || vect_target.test(address); }
+  void name_regions();
   void edge(int from, int to, EdgeKind kind);
+  bool claim(int r, int from, int to);
   void reach(int r, int from, int to);
   void walk(int r, int from, int start);
   void build();
@@ -89,6 +106,7 @@ struct Walker {
   const RegionFacts& fact(int r) const { return facts[static_cast<std::size_t>(r)]; }
   const Instruction& ins(int i) const { return in.program[static_cast<std::size_t>(i)]; }
   std::string mnemonic(int i) const;
+  bool writes_eeprom(const Instruction& x) const;
 };
 
 }  // namespace tmcl::detail

@@ -129,6 +129,24 @@ void Walker::check_flow() {
         }
     }
   }
+  // Whether a handler can end in RST, itself or in a subroutine it calls: RST clears the
+  // interrupt state (E31), a legitimate way out of a handler, not a handler that never ends (E43).
+  auto resets_from = [&](int h) {
+    std::vector<char> seen_region(static_cast<std::size_t>(nr), 0);
+    std::vector<int> todo{h};
+    seen_region[static_cast<std::size_t>(h)] = 1;
+    while (!todo.empty()) {
+      int v = todo.back();
+      todo.pop_back();
+      if (!fact(v).resets.empty()) return true;
+      for (const auto& e : out[static_cast<std::size_t>(v)])
+        if (!seen_region[static_cast<std::size_t>(e.to)]) {
+          seen_region[static_cast<std::size_t>(e.to)] = 1;
+          todo.push_back(e.to);
+        }
+    }
+    return false;
+  };
   auto note_start = [&](Diagnostic& d, int r) {
     diags.note(d, loc(region(r).entry), region_word(region(r)) + " starts here");
   };
@@ -206,7 +224,7 @@ void Walker::check_flow() {
       bool leaves = false;
       for (const auto& e : out[static_cast<std::size_t>(r)]) leaves = leaves || e.weight == 0;
       for (const auto& fl : flows) leaves = leaves || (fl.from_region == r && fl.to_region != r);
-      if (!leaves && f.falloffs.empty() && f.rsubs.empty() && f.stops.empty())
+      if (!leaves && f.falloffs.empty() && f.rsubs.empty() && f.stops.empty() && !resets_from(r))
         diags.warning(loc(reg.entry), region_word(reg) + " never reaches RETI: once it runs, other interrupts stay blocked",
                       "reti");
     }
@@ -320,14 +338,14 @@ void Walker::check_depth() {
       if (prev_site[static_cast<std::size_t>(x)] >= 0) sites.push_back(prev_site[static_cast<std::size_t>(x)]);
     std::reverse(sites.begin(), sites.end());
     for (int s : sites) {
-      int to = entry_region[static_cast<std::size_t>(ins(s).value)];
+      int to = region_of_entry(ins(s).value);
       diags.note(d, loc(s), "which calls " + (to >= 0 ? region_word(region(to)) : std::string("a subroutine")) + " here");
     }
   }
 
   // -Wcall-depth: the main program's deepest chain, then each handler on top of it.
   auto callee_word = [&](int site) {
-    int to = entry_region[static_cast<std::size_t>(ins(site).value)];
+    int to = region_of_entry(ins(site).value);
     return to >= 0 ? region_word(region(to)) : std::string("a subroutine");
   };
   const Region& main = region(0);

@@ -85,11 +85,13 @@ void Walker::check_eeprom() {
           stack.push_back(r);
         }
   }
-  for (const auto& c : calls)
-    if (cyclic(c.site) && loop_site[static_cast<std::size_t>(c.callee)] == -2) {
-      loop_site[static_cast<std::size_t>(c.callee)] = c.site;
-      stack.push_back(c.callee);
+  for (int site : call_sites) {
+    int callee = region_of_entry(ins(site).value);
+    if (callee >= 0 && cyclic(site) && loop_site[static_cast<std::size_t>(callee)] == -2) {
+      loop_site[static_cast<std::size_t>(callee)] = site;
+      stack.push_back(callee);
     }
+  }
   while (!stack.empty()) {
     int v = stack.back();
     stack.pop_back();

@@ -109,7 +109,7 @@ struct RuntimeWarning {
     CallStackFull,       // CSUB/CALL with 8 return addresses on the stack (E5)
     ReturnWithoutCall,   // RSUB with nothing to return to (E6)
     RetiOutsideHandler,  // RETI while no interrupt is being served (E13)
-    HandlerWithoutReti,  // a handler that ends otherwise than with RETI (STOP)
+    HandlerWithoutReti,  // a handler that ends otherwise than with RETI (STOP, a jump out; E42, E43)
   };
   SimTime at = 0;        // the instruction's start
   std::int32_t pc = 0;   // its address
@@ -212,6 +212,12 @@ struct Vm {
   std::vector<RuntimeWarning> warnings;   // the first kMaxWarnings
   std::uint64_t warnings_total = 0;       // including those past the cap
   RuntimeWarning last_warning;            // the latest, for the trace even past the cap
+  // Optional, from the front end's control-flow analysis (tmcl::analyze): per address, non-zero
+  // where the instruction is an interrupt handler's own code. When set, a handler that goes on
+  // outside that code without a call of its own (a jump out, or running on into other code) is a
+  // run-time warning, once per interrupt served, as -Wreti warns of it before the run (E43).
+  std::vector<std::uint8_t> handler_code;
+  bool handler_left_ = false;             // this handler's jump out was reported
 
   // ---- external inputs queued by time ----
   std::vector<InputEvent> inputs_queue;  // sorted by time; consumed from input_next
@@ -311,6 +317,9 @@ struct Vm {
 
   void fault(std::string message);
   bool warn(RuntimeWarning::Kind kind, std::string message);  // true: strict made it a fault
+  // Before the instruction at pc runs inside a handler: reports it when it is outside the
+  // handler's code (handler_code); true when --strict made that a fault.
+  bool check_handler_code();
   void handle_motion_event(const MotionEvent& ev);
   void apply_input(const InputEvent& ev);
   void raise(int vector);          // latch an interrupt if it is enabled and has a vector
