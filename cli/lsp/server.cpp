@@ -319,6 +319,7 @@ Server::Reply Server::dispatch(const std::string& method, const Value& params, b
   if (method == "workspace/symbol") return workspace_symbols(params);
   if (method == "textDocument/signatureHelp") return signature_help(params);
   if (method == "textDocument/foldingRange") return folding_ranges(params);
+  if (method == "textDocument/codeAction") return code_actions(params);
   if (!is_request) return r;  // unknown notifications ($/cancelRequest, ...) are ignored
   return {Value(), kMethodNotFound, "unknown method '" + method + "'"};
 }
@@ -348,6 +349,7 @@ Server::Reply Server::initialize(const Value& params) {
   caps.set("renameProvider", true);
   caps.set("workspaceSymbolProvider", true);
   caps.set("foldingRangeProvider", true);
+  caps.set("codeActionProvider", Value::object()).set("codeActionKinds", Value::array()).push("quickfix");
   caps.set("signatureHelpProvider", Value::object()).set("triggerCharacters", Value::array()).push(",");
   Value& comp = caps.set("completionProvider", Value::object());
   comp.set("triggerCharacters", Value::array()).push(" ");

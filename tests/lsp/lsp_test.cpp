@@ -7,55 +7,14 @@
 #include <cstdio>
 
 #include "check.hpp"
-#include "tmcl/json.hpp"
-#include "tmcl/lsp/server.hpp"
+#include "lsp_client.hpp"
 
 using tmcl::json::Value;
+using tmcl_test::Client;
+using tmcl_test::pos;
+using tmcl_test::start;
 
 namespace {
-
-struct Client {
-  tmcl::lsp::Server server;
-  int next_id = 1;
-  std::vector<Value> notifications;
-  Value last;  // the last response (replies are read through references into it)
-
-  // Sends a request; returns its response (notifications sent meanwhile are kept).
-  const Value& request(const std::string& method, const std::string& params) {
-    int id = next_id++;
-    std::string body = R"({"jsonrpc":"2.0","id":)" + std::to_string(id) + R"(,"method":")" + method + R"(","params":)" + params + "}";
-    return send(body, id);
-  }
-  void notify(const std::string& method, const std::string& params) {
-    send(R"({"jsonrpc":"2.0","method":")" + method + R"(","params":)" + params + "}", -1);
-  }
-  const Value& send(const std::string& body, int id) {
-    Value& response = last;
-    response = Value();
-    for (const std::string& out : server.handle(body)) {
-      Value v;
-      tmcl::json::Error e;
-      if (!tmcl::json::parse(out, v, e)) tmcl_test::fail(__FILE__, __LINE__, "server sent bad JSON: " + out);
-      if (v.contains("method")) notifications.push_back(v);
-      else if (v["id"].as_int(-2) == id || id == 0) response = v;
-    }
-    return response;
-  }
-  void open(const std::string& uri, const std::string& text) {
-    notify("textDocument/didOpen", R"({"textDocument":{"uri":")" + uri + R"(","languageId":"tmcl","version":1,"text":)" +
-                                       tmcl::json::quote(text) + "}}");
-  }
-  Value last_diagnostics(const std::string& uri) {
-    for (auto it = notifications.rbegin(); it != notifications.rend(); ++it)
-      if ((*it)["params"]["uri"].as_string() == uri) return (*it)["params"]["diagnostics"];
-    return Value();
-  }
-};
-
-std::string pos(const std::string& uri, int line, int ch) {
-  return R"({"textDocument":{"uri":")" + uri + R"("},"position":{"line":)" + std::to_string(line) + R"(,"character":)" +
-         std::to_string(ch) + "}}";
-}
 
 const char* kUri = "file:///work/t.tmc";
 const char* kProgram =
@@ -64,12 +23,6 @@ const char* kProgram =
     "  SAP 4, 0, Speed\n"
     "  MVP ABS, 0, 100\n"
     "  JA Lop\n";
-
-void start(Client& c, const std::string& options = R"({"target":"usb-2-sd"})") {
-  Value r = c.request("initialize", R"({"processId":null,"capabilities":{},"initializationOptions":)" + options + "}");
-  CHECK(r["result"]["capabilities"]["hoverProvider"].as_bool());
-  c.notify("initialized", "{}");
-}
 
 }  // namespace
 
@@ -123,12 +76,20 @@ TEST(hover) {
   start(c);
   c.open(kUri, kProgram);
   CHECK_EQ(c.request("textDocument/hover", pos(kUri, 2, 6))["result"]["contents"]["value"].as_string(),
-           "4: Maximum positioning speed, 0…16777215, RW, default 51200 (usb-2-sd)");
+           "4: Maximum positioning speed, 0…16777215 pps, RW, default 51200 pps (usb-2-sd)");
   CHECK_EQ(c.request("textDocument/hover", pos(kUri, 2, 3))["result"]["contents"]["value"].as_string(),
            "```tmcl\nSAP <axis parameter>, <motor>, <value>\n```\nSet axis parameter (opcode 5)");
   CHECK_EQ(c.request("textDocument/hover", pos(kUri, 2, 12))["result"]["contents"]["value"].as_string(),
            "constant `Speed` = 1000");
   CHECK(c.request("textDocument/hover", pos(kUri, 3, 0))["result"].is_null());  // blank before MVP
+  // Units come from the profile; a parameter the manual gives none for has none.
+  c.open("file:///work/units.tmc", "  SAP 14, 0, 1\n  SGP 0, 3, 1000\n  SAP 1, 0, 0\n");
+  CHECK_EQ(c.request("textDocument/hover", pos("file:///work/units.tmc", 0, 7))["result"]["contents"]["value"].as_string(),
+           "14: Ramp type, 0…1, RW, default 0 (usb-2-sd)");
+  CHECK_EQ(c.request("textDocument/hover", pos("file:///work/units.tmc", 1, 6))["result"]["contents"]["value"].as_string(),
+           "0: Timer 0 period (ms), 0…4294967295 ms, RW, default 0 ms (usb-2-sd)");
+  CHECK_EQ(c.request("textDocument/hover", pos("file:///work/units.tmc", 2, 6))["result"]["contents"]["value"].as_string(),
+           "1: Actual position, -2147483648…2147483647 \u03bcsteps, RW, default 0 \u03bcsteps (usb-2-sd)");
 }
 
 TEST(definition_references_symbols_completion_formatting) {

@@ -92,6 +92,18 @@ class Server {
   Reply workspace_symbols(const Value& params);
   Reply signature_help(const Value& params);
   Reply folding_ranges(const Value& params);
+  Reply code_actions(const Value& params);  // actions.cpp
+
+  // The prologue every request about a document shares: the document, and with a position
+  // the byte offset and the token there; or, when either is missing, the error reply.
+  struct Target {
+    Document* doc = nullptr;
+    std::size_t offset = 0;
+    const SourceToken* token = nullptr;  // under (or just before) the position; may be null
+    Reply error;
+    explicit operator bool() const { return doc != nullptr; }
+  };
+  Target target(const Value& params, bool with_position);
 
   // Finding the document and the token a request is about; errors as replies.
   Document* find_document(const Value& params, Reply& err);
