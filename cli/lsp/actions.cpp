@@ -28,11 +28,13 @@ bool touches(const Value& a, const Value& b) {
   return !(point(a["end"]) < point(b["start"]) || point(b["end"]) < point(a["start"]));
 }
 
-// A diagnostic the client sends back in context.diagnostics is ours when it starts at the same
-// place with the same message.
-bool same_diagnostic(const Value& ours, const Value& theirs) {
-  return is_range(theirs["range"]) && point(ours["range"]["start"]) == point(theirs["range"]["start"]) &&
-         theirs["message"].is_string() && ours["message"].as_string() == theirs["message"].as_string();
+// A diagnostic the client sends back in context.diagnostics is ours when it starts on the same
+// line with the same message (the client may have moved its column with an edit since).
+bool listed(const Value& context, std::int64_t line, const std::string& message) {
+  for (const Value& theirs : context["diagnostics"].items())
+    if (theirs["range"]["start"]["line"].as_int(-1) == line && theirs["message"].is_string() && theirs["message"].as_string() == message)
+      return true;
+  return false;
 }
 
 // A 1-based line and byte column of a source file as an LSP position.
@@ -64,17 +66,17 @@ Server::Reply Server::code_actions(const Value& params) {
   const Value& context = params["context"];
   if (!at.doc->result || !quickfix_wanted(context)) return r;
   const AsmResult& res = *at.doc->result;
-  // diagnostics_of publishes exactly the sorted list, one item per diagnostic, in this order.
-  Value shown = diagnostics_of(*at.doc);
-  std::vector<const Diagnostic*> sorted = res.diags.sorted(res.sources);
-  for (std::size_t k = 0; k < sorted.size() && k < shown.size(); ++k) {
-    const Diagnostic& d = *sorted[k];
-    if (d.fixes.empty()) continue;
-    const Value& item = shown.items()[k];
-    bool wanted = touches(item["range"], range);
-    for (const Value& theirs : context["diagnostics"].items()) wanted = wanted || same_diagnostic(item, theirs);
-    if (!wanted) continue;
-    for (const Fix& fix : d.fixes) {
+  // Only the diagnostics with fixes become JSON, and only when selected: a file full of errors
+  // answers as fast as a clean one.
+  for (const Diagnostic* d : res.diags.sorted(res.sources)) {
+    if (d->fixes.empty()) continue;
+    SourceLoc shown = shown_at(*d, res);
+    std::int64_t line = shown.line - 1;
+    bool wanted = line >= range["start"]["line"].as_int() && line <= range["end"]["line"].as_int() &&
+                  touches(location_of(shown, res)["range"], range);
+    if (!wanted && !listed(context, line, d->message)) continue;
+    Value item = diagnostic_json(*d, res);
+    for (const Fix& fix : d->fixes) {
       if (fix.begin.file < 0 || fix.begin.file != fix.end.file ||
           static_cast<std::size_t>(fix.begin.file) >= res.sources.files.size())
         continue;
@@ -88,7 +90,7 @@ Server::Reply Server::code_actions(const Value& params) {
       action.set("title", fix.title);
       action.set("kind", "quickfix");
       action.set("diagnostics", Value::array()).push(item);
-      if (d.fixes.size() == 1) action.set("isPreferred", true);
+      if (d->fixes.size() == 1) action.set("isPreferred", true);
       action.set("edit", Value::object()).set("changes", Value::object()).set(path_to_uri(f.path), Value::array()).push(std::move(edit));
     }
   }

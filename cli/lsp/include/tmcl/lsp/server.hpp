@@ -80,6 +80,9 @@ class Server {
   void check(Document& doc);
   void check_includers(const std::string& path);
   Value diagnostics_of(const Document& doc) const;
+  Value diagnostic_json(const Diagnostic& d, const AsmResult& r) const;
+  // Where a diagnostic is shown in the root file: one in an included file at its #include line.
+  SourceLoc shown_at(const Diagnostic& d, const AsmResult& r) const;
 
   // Features (features.cpp).
   Reply hover(const Value& params);
