@@ -109,6 +109,14 @@ TEST(applying_a_did_you_mean_fix_clears_the_error) {
   apply(c, uri, a.at(0), 2);
   CHECK_EQ(c.server.document(uri)->text, "Loop:\n  SAP 4, 0, 1\n  JA Loop\n");
   CHECK_EQ(c.last_diagnostics(uri).size(), 0u);
+  // A parameter name from a bundled include file, misspelt.
+  const std::string named = "file:///work/named.tmc";
+  c.open(named, "#include TMCLParam.tmc\n  SAP MaxPositioningSped, 0, 1\n");
+  a = actions(c, named, 1, 10, 1, 10);
+  CHECK_EQ(a.size(), 1u);
+  CHECK_EQ(a.at(0)["title"].as_string(), "replace 'MaxPositioningSped' with 'APMaxPositioningSpeed'");
+  apply(c, named, a.at(0), 2);
+  CHECK_EQ(c.last_diagnostics(named).size(), 0u);
 }
 
 TEST(add_reti_where_a_handler_runs_on) {

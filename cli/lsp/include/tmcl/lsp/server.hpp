@@ -1,8 +1,9 @@
 // The TMCL language server (tmcl-lsp, docs/lsp.md): JSON-RPC 2.0 over Content-Length framed
 // messages, the LSP lifecycle, open documents with full and incremental sync, and the features
 // (diagnostics, hover, definition, references, completion, document symbols, formatting, code
-// actions), all computed by the assembler library on the editor's text. The Server is transport-free: it takes
-// one message body and returns the bodies to send, so tests drive it directly.
+// actions), all computed by the assembler library on the editor's text. The Server is
+// transport-free: it takes one message body and returns the bodies to send, so tests drive it
+// directly.
 #pragma once
 
 #include <cstdio>
