@@ -123,8 +123,7 @@ class Encoder {
         list += (list.empty() ? "" : ", ") + std::string(k.name);
       }
     auto& d = diags_.error(o.loc, "unknown " + std::string(kwset_name(set)) + " '" + word + "'");
-    std::string hint = closest_match(word, names);
-    if (!hint.empty()) diags_.note(d, o.loc, "did you mean '" + hint + "'?");
+    diags_.suggest(d, o.loc, word, closest_match(word, names));
     diags_.note(d, o.loc, "expected one of " + list);
   }
 

@@ -39,29 +39,29 @@ int SourceSet::add(SourceFile f) {
 
 Diagnostic& Diagnostics::error(SourceLoc loc, std::string message) {
   ++errors_;
-  list_.push_back({Severity::Error, loc, std::move(message), {}, {}});
+  list_.push_back({Severity::Error, loc, std::move(message), {}, {}, {}});
   return list_.back();
 }
 
 Diagnostic& Diagnostics::warning(SourceLoc loc, std::string message) {
   if (flags_.all_errors) return error(loc, std::move(message) + " [-Werror]");
   ++warnings_;
-  list_.push_back({Severity::Warning, loc, std::move(message), {}, {}});
+  list_.push_back({Severity::Warning, loc, std::move(message), {}, {}, {}});
   return list_.back();
 }
 
 Diagnostic& Diagnostics::warning(SourceLoc loc, std::string message, std::string_view name) {
   if (name.empty()) return warning(loc, std::move(message));
   if (!flags_.enabled(name)) {
-    dropped_ = Diagnostic{Severity::Note, {}, {}, {}, {}};
+    dropped_ = Diagnostic{Severity::Note, {}, {}, {}, {}, {}};
     return dropped_;
   }
   if (flags_.is_error(name)) {
     ++errors_;
-    list_.push_back({Severity::Error, loc, std::move(message), {}, std::string(name)});
+    list_.push_back({Severity::Error, loc, std::move(message), {}, std::string(name), {}});
   } else {
     ++warnings_;
-    list_.push_back({Severity::Warning, loc, std::move(message), {}, std::string(name)});
+    list_.push_back({Severity::Warning, loc, std::move(message), {}, std::string(name), {}});
   }
   return list_.back();
 }
@@ -137,7 +137,19 @@ bool WarningOptions::parse(std::string_view arg, std::string& error) {
 }
 
 void Diagnostics::note(Diagnostic& d, SourceLoc loc, std::string message) {
-  d.notes.push_back({Severity::Note, loc, std::move(message), {}, {}});
+  d.notes.push_back({Severity::Note, loc, std::move(message), {}, {}, {}});
+}
+
+void Diagnostics::suggest(Diagnostic& d, SourceLoc loc, std::string_view wrote, const std::string& hint) {
+  suggest(d, loc, loc, wrote, hint);
+}
+
+void Diagnostics::suggest(Diagnostic& d, SourceLoc loc, SourceLoc replace, std::string_view wrote, const std::string& hint) {
+  if (hint.empty()) return;
+  note(d, loc, "did you mean '" + hint + "'?");
+  SourceLoc end = replace;
+  end.col += replace.len;
+  d.fixes.push_back({"replace '" + std::string(wrote) + "' with '" + hint + "'", replace, end, hint});
 }
 
 namespace {

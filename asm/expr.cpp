@@ -152,8 +152,7 @@ void Resolver::report_undefined(int unit, const ExprNode& n, const std::string& 
   std::vector<std::string_view> names;
   const Unit& u = units_[static_cast<std::size_t>(unit)];
   for (const auto& def : u.defs) names.push_back(def.name);
-  std::string hint = closest_match(n.name, names);
-  if (!hint.empty()) diags_.note(d, n.loc, "did you mean '" + hint + "'?");
+  diags_.suggest(d, n.loc, n.name, closest_match(n.name, names));
   auto ex = exported_.find(key);
   if (ex != exported_.end()) {
     const SymDef& other = units_[static_cast<std::size_t>(ex->second.first)].defs[static_cast<std::size_t>(ex->second.second)];

@@ -103,7 +103,7 @@ void format_line(const std::vector<SourceToken>& line, std::vector<Row>& rows) {
     }
     Row r;
     r.type = Row::CommentOnly;
-    r.indent = line[0].col > 1 ? 2 : 0;
+    r.indent = line[0].col > 1 ? kFormatIndent : 0;
     r.code = comment;
     rows.push_back(std::move(r));
     return;
@@ -117,7 +117,7 @@ void format_line(const std::vector<SourceToken>& line, std::vector<Row>& rows) {
     r.code = join(line, i, end);
   } else {
     // An instruction: the mnemonic (upper case when it is one), then the operands.
-    r.indent = 2;
+    r.indent = kFormatIndent;
     r.code = op_by_mnemonic(first.text) ? detail::upper(first.text) : std::string(first.text);
     std::size_t k = i + 1;
     while (k < end && line[k].kind == Kind::Comment) {  // a block comment right after the mnemonic

@@ -179,8 +179,10 @@ class Parser {
       auto& d = diags_.error(loc(nt), "cannot find include file '" + name + "'");
       std::vector<std::string_view> names;
       for (const auto& b : bundled_includes()) names.push_back(b.first);
-      std::string hint = closest_match(name, names);
-      if (!hint.empty()) diags_.note(d, loc(nt), "did you mean '" + hint + "'?");
+      // The fix replaces the name between the quotes or angle brackets.
+      SourceLoc inner = loc(nt);
+      if (nt.text.size() >= 2 && (nt.text[0] == '"' || nt.text[0] == '<')) inner.col += 1, inner.len -= 2;
+      diags_.suggest(d, loc(nt), inner, name, closest_match(name, names));
       return;
     }
     const std::string& key = inc.key;
@@ -242,8 +244,7 @@ class Parser {
       return;
     }
     auto& diag = diags_.error(loc(cur()), "unknown directive '" + std::string(cur().text) + "'");
-    std::string hint = closest_match(cur().text, {"#include", "#export", "#import", "#no_append_stop"});
-    if (!hint.empty()) diags_.note(diag, loc(cur()), "did you mean '" + hint + "'?");
+    diags_.suggest(diag, loc(cur()), cur().text, closest_match(cur().text, {"#include", "#export", "#import", "#no_append_stop"}));
     skip_line();
   }
 
@@ -396,7 +397,7 @@ class Parser {
         return skip_line();
       }
       auto& d = diags_.error(loc(mn), "unknown instruction mnemonic '" + std::string(mn.text) + "'");
-      if (!hint.empty()) diags_.note(d, loc(mn), "did you mean '" + hint + "'?");
+      diags_.suggest(d, loc(mn), mn.text, hint);
       s.op = nullptr;
       s.count = -1;  // poisoned: takes its address, encodes nothing
       unit_.stmts.push_back(s);

@@ -19,7 +19,9 @@ bool has_role(const OpInfo& op, Role r) {
   return false;
 }
 
-std::string range_text(const ParamInfo& p) { return std::to_string(p.min) + " to " + std::to_string(p.max); }
+std::string range_text(const ParamInfo& p) {
+  return std::to_string(p.min) + " to " + std::to_string(p.max) + (p.unit.empty() ? "" : " " + std::string(p.unit));
+}
 
 std::string param_text(const char* kind, int number, const ParamInfo* p) {
   std::string s = std::string(kind) + " " + std::to_string(number);

@@ -101,6 +101,10 @@ struct Walker {
   void check_unreachable();
   void check_depth();
   void check_eeprom();
+  // Fixes for editors (fixes.cpp): a RETI on its own line after instruction `after`, and the
+  // removal of the lines of instructions `first` to `last`.
+  void fix_add_reti(Diagnostic& d, int after) const;
+  void fix_remove(Diagnostic& d, int first, int last) const;
 
   const Region& region(int r) const { return a.regions[static_cast<std::size_t>(r)]; }
   const RegionFacts& fact(int r) const { return facts[static_cast<std::size_t>(r)]; }

@@ -187,6 +187,7 @@ void Walker::check_flow() {
     } else if (fr.kind == RegionKind::Handler && tr.kind != RegionKind::Handler) {
       auto& d = diags.warning(loc(f.from), how + " without RETI: other interrupts stay blocked", "reti");
       note_start(d, f.from_region);
+      if (!jumps) fix_add_reti(d, f.from);
     }
   }
 
@@ -219,6 +220,8 @@ void Walker::check_flow() {
         auto& d = diags.warning(loc(i), "STOP ends the program inside " + region_word(h) + ", without RETI", "reti");
         if (reg.kind == RegionKind::Subroutine) note_called(d, r);
         else note_start(d, r);
+        // The assembler's STOP after a handler at the end of the program: its RETI is missing.
+        if (in.appended_stop && i == n - 1 && i > 0) fix_add_reti(d, i - 1);
       }
     if (reg.kind == RegionKind::Handler && f.retis.empty()) {
       bool leaves = false;
@@ -297,6 +300,7 @@ void Walker::check_unreachable() {
                                          "reaches these " + std::to_string(count) + " instructions",
                             "unreachable");
     if (count > 1) diags.note(d, loc(j - 1), "the unreachable code ends here");
+    fix_remove(d, i, j - 1);
     i = j;
   }
 }

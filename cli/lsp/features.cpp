@@ -25,8 +25,9 @@ std::string access_text(std::uint8_t a) {
 }
 
 std::string param_text(const ParamInfo& p) {
+  std::string unit = p.unit.empty() ? "" : " " + std::string(p.unit);
   return std::to_string(p.number) + ": " + std::string(p.name) + ", " + std::to_string(p.min) + "…" +
-         std::to_string(p.max) + ", " + access_text(p.access) + ", default " + std::to_string(p.default_value);
+         std::to_string(p.max) + unit + ", " + access_text(p.access) + ", default " + std::to_string(p.default_value) + unit;
 }
 
 std::string operand_name(const OperandSpec& o) {
@@ -73,6 +74,18 @@ bool Server::position(const Document& doc, const Value& params, std::size_t& off
   return true;
 }
 
+Server::Target Server::target(const Value& params, bool with_position) {
+  Target at;
+  Document* doc = find_document(params, at.error);
+  if (!doc) return at;
+  if (with_position) {
+    if (!position(*doc, params, at.offset, at.error)) return at;
+    at.token = token_at(*doc, at.offset);
+  }
+  at.doc = doc;
+  return at;
+}
+
 // The token under (or just before) the cursor.
 const SourceToken* Server::token_at(const Document& doc, std::size_t offset) const {
   auto it = std::upper_bound(doc.tokens.begin(), doc.tokens.end(), offset,
@@ -101,11 +114,10 @@ Server::Value Server::range_of(const Document& doc, std::size_t offset, std::siz
 }
 
 Server::Reply Server::hover(const Value& params) {
-  Reply err;
-  Document* doc = find_document(params, err);
-  std::size_t offset;
-  if (!doc || !position(*doc, params, offset, err)) return err;
-  const SourceToken* t = token_at(*doc, offset);
+  Target at = target(params, true);
+  if (!at) return at.error;
+  Document* doc = at.doc;
+  const SourceToken* t = at.token;
   Reply r;
   if (!t) return r;
   std::size_t index = static_cast<std::size_t>(t - doc->tokens.data());
@@ -160,26 +172,23 @@ Server::Reply Server::hover(const Value& params) {
 }
 
 Server::Reply Server::definition(const Value& params) {
-  Reply err;
-  Document* doc = find_document(params, err);
-  std::size_t offset;
-  if (!doc || !position(*doc, params, offset, err)) return err;
+  Target at = target(params, true);
+  if (!at) return at.error;
   Reply r;
-  const SourceToken* t = token_at(*doc, offset);
+  const SourceToken* t = at.token;
   if (!t || t->kind != Kind::Name) return r;
-  const Symbol* s = symbol(*doc, t->text);
+  const Symbol* s = symbol(*at.doc, t->text);
   if (!s || s->defined_at.file < 0) return r;
-  r.result = location_of(s->defined_at, *doc->result);
+  r.result = location_of(s->defined_at, *at.doc->result);
   return r;
 }
 
 Server::Reply Server::references(const Value& params) {
-  Reply err;
-  Document* doc = find_document(params, err);
-  std::size_t offset;
-  if (!doc || !position(*doc, params, offset, err)) return err;
+  Target at = target(params, true);
+  if (!at) return at.error;
+  Document* doc = at.doc;
   Reply r;
-  const SourceToken* t = token_at(*doc, offset);
+  const SourceToken* t = at.token;
   if (!t || t->kind != Kind::Name) return r;
   std::string name(t->text);
   bool with_decl = params["context"]["includeDeclaration"].as_bool(true);
@@ -201,10 +210,10 @@ Server::Reply Server::references(const Value& params) {
 }
 
 Server::Reply Server::completion(const Value& params) {
-  Reply err;
-  Document* doc = find_document(params, err);
-  std::size_t offset;
-  if (!doc || !position(*doc, params, offset, err)) return err;
+  Target at = target(params, true);
+  if (!at) return at.error;
+  Document* doc = at.doc;
+  std::size_t offset = at.offset;
   Reply r;
   r.result = Value::array();
   auto item = [&](std::string label, int kind, std::string detail) {
@@ -259,9 +268,9 @@ Server::Reply Server::completion(const Value& params) {
 }
 
 Server::Reply Server::document_symbols(const Value& params) {
-  Reply err;
-  Document* doc = find_document(params, err);
-  if (!doc) return err;
+  Target at = target(params, false);
+  if (!at) return at.error;
+  Document* doc = at.doc;
   Reply r;
   r.result = Value::array();
   if (!doc->result) return r;
@@ -279,9 +288,9 @@ Server::Reply Server::document_symbols(const Value& params) {
 }
 
 Server::Reply Server::formatting(const Value& params) {
-  Reply err;
-  Document* doc = find_document(params, err);
-  if (!doc) return err;
+  Target at = target(params, false);
+  if (!at) return at.error;
+  Document* doc = at.doc;
   FormatResult f = format_source(doc->text);
   if (!f.ok) return {Value(), kRequestFailed, "cannot format: " + f.error};
   Reply r;
@@ -296,11 +305,10 @@ Server::Reply Server::formatting(const Value& params) {
 // Rename of a label or constant: every use in the file and the files it includes, as one
 // WorkspaceEdit. The new name must be a valid name that is not a mnemonic or keyword.
 Server::Reply Server::rename(const Value& params) {
-  Reply err;
-  Document* doc = find_document(params, err);
-  std::size_t offset;
-  if (!doc || !position(*doc, params, offset, err)) return err;
-  const SourceToken* t = token_at(*doc, offset);
+  Target at = target(params, true);
+  if (!at) return at.error;
+  Document* doc = at.doc;
+  const SourceToken* t = at.token;
   if (!t || t->kind != Kind::Name || !symbol(*doc, t->text))
     return {Value(), kInvalidParams, "no label or constant at this position to rename"};
   std::string to = params["newName"].as_string();
@@ -345,10 +353,10 @@ Server::Reply Server::workspace_symbols(const Value& params) {
 // Signature help: the instruction's syntax from the table, its operands as parameters, and the
 // operand the cursor is in as the active one.
 Server::Reply Server::signature_help(const Value& params) {
-  Reply err;
-  Document* doc = find_document(params, err);
-  std::size_t offset;
-  if (!doc || !position(*doc, params, offset, err)) return err;
+  Target at = target(params, true);
+  if (!at) return at.error;
+  Document* doc = at.doc;
+  std::size_t offset = at.offset;
   Reply r;
   std::size_t line_begin = doc->line_starts[static_cast<std::size_t>(
       std::upper_bound(doc->line_starts.begin(), doc->line_starts.end(), offset) - doc->line_starts.begin()) - 1];
@@ -384,9 +392,9 @@ Server::Reply Server::signature_help(const Value& params) {
 // Folding: each label's block (up to the line before the next label, without trailing blank
 // lines) and every comment spanning several lines.
 Server::Reply Server::folding_ranges(const Value& params) {
-  Reply err;
-  Document* doc = find_document(params, err);
-  if (!doc) return err;
+  Target at = target(params, false);
+  if (!at) return at.error;
+  Document* doc = at.doc;
   Reply r;
   r.result = Value::array();
   auto add = [&](int first, int last, const char* kind) {

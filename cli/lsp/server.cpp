@@ -330,6 +330,7 @@ Server::Reply Server::dispatch(const std::string& method, const Value& params, b
     watched_files_changed(params);
     return r;
   }
+  if (method == "textDocument/codeAction") return code_actions(params);
   if (!is_request) return r;  // unknown notifications ($/cancelRequest, ...) are ignored
   return {Value(), kMethodNotFound, "unknown method '" + method + "'"};
 }
@@ -357,6 +358,7 @@ Server::Reply Server::initialize(const Value& params) {
   caps.set("inlayHintProvider", true);
   caps.set("workspaceSymbolProvider", true);
   caps.set("foldingRangeProvider", true);
+  caps.set("codeActionProvider", Value::object()).set("codeActionKinds", Value::array()).push("quickfix");
   caps.set("signatureHelpProvider", Value::object()).set("triggerCharacters", Value::array()).push(",");
   Value& comp = caps.set("completionProvider", Value::object());
   comp.set("triggerCharacters", Value::array()).push(" ");
@@ -477,45 +479,63 @@ Server::Value Server::location_of(const SourceLoc& loc, const AsmResult& r) cons
   return l;
 }
 
-// Every diagnostic of the document's assembly. One in an included file is shown at the
-// #include line of this document that leads to it, with its real place as related information.
+// Every diagnostic of the document's assembly.
 Server::Value Server::diagnostics_of(const Document& doc) const {
   Value list = Value::array();
   const AsmResult& r = *doc.result;
-  for (const Diagnostic* d : r.diags.sorted(r.sources)) {
-    Value item = Value::object();
-    Value related = Value::array();
-    SourceLoc at = d->loc;
-    if (at.file < 0) {
-      at = SourceLoc{0, 1, 1, 0};
-    }
-    // Walk up the include chain to the root file (includer -1).
-    while (r.sources.files[static_cast<std::size_t>(at.file)].includer >= 0) {
-      const SourceFile& f = r.sources.files[static_cast<std::size_t>(at.file)];
-      Value rel = Value::object();
-      rel.set("location", location_of(at, r));
-      rel.set("message", "in " + f.name + ": " + d->message);
-      related.push(std::move(rel));
-      const SourceFile& up = r.sources.files[static_cast<std::size_t>(f.includer)];
-      at = SourceLoc{f.includer, f.include_line, 1, static_cast<int>(up.line(f.include_line).size())};
-    }
-    Value loc = location_of(at, r);
-    item.set("range", loc["range"]);
-    item.set("severity", d->severity == Severity::Error ? 1 : d->severity == Severity::Warning ? 2 : 3);
-    if (!d->name.empty()) item.set("code", d->name);
-    item.set("source", "tmcl");
-    item.set("message", d->message);
-    for (const Diagnostic& note : d->notes) {
-      if (note.loc.file < 0) continue;
-      Value rel = Value::object();
-      rel.set("location", location_of(note.loc, r));
-      rel.set("message", note.message);
-      related.push(std::move(rel));
-    }
-    if (related.size()) item.set("relatedInformation", std::move(related));
-    list.push(std::move(item));
-  }
+  for (const Diagnostic* d : r.diags.sorted(r.sources)) list.push(diagnostic_json(*d, r));
   return list;
+}
+
+namespace {
+// The #include line of the file that includes the one `at` is in.
+SourceLoc includer_of(const SourceLoc& at, const AsmResult& r) {
+  const SourceFile& f = r.sources.files[static_cast<std::size_t>(at.file)];
+  const SourceFile& up = r.sources.files[static_cast<std::size_t>(f.includer)];
+  return SourceLoc{f.includer, f.include_line, 1, static_cast<int>(up.line(f.include_line).size())};
+}
+}  // namespace
+
+SourceLoc Server::shown_at(const Diagnostic& d, const AsmResult& r) const {
+  SourceLoc at = d.loc.file < 0 ? SourceLoc{0, 1, 1, 0} : d.loc;
+  while (r.sources.files[static_cast<std::size_t>(at.file)].includer >= 0) at = includer_of(at, r);
+  return at;
+}
+
+// One diagnostic. One in an included file is shown at the #include line of this document that
+// leads to it, with its real place as related information.
+Server::Value Server::diagnostic_json(const Diagnostic& diag, const AsmResult& r) const {
+  const Diagnostic* d = &diag;
+  Value item = Value::object();
+  Value related = Value::array();
+  SourceLoc at = d->loc;
+  if (at.file < 0) {
+    at = SourceLoc{0, 1, 1, 0};
+  }
+  // Walk up the include chain to the root file (includer -1).
+  while (r.sources.files[static_cast<std::size_t>(at.file)].includer >= 0) {
+    const SourceFile& f = r.sources.files[static_cast<std::size_t>(at.file)];
+    Value rel = Value::object();
+    rel.set("location", location_of(at, r));
+    rel.set("message", "in " + f.name + ": " + d->message);
+    related.push(std::move(rel));
+    at = includer_of(at, r);
+  }
+  Value loc = location_of(at, r);
+  item.set("range", loc["range"]);
+  item.set("severity", d->severity == Severity::Error ? 1 : d->severity == Severity::Warning ? 2 : 3);
+  if (!d->name.empty()) item.set("code", d->name);
+  item.set("source", "tmcl");
+  item.set("message", d->message);
+  for (const Diagnostic& note : d->notes) {
+    if (note.loc.file < 0) continue;
+    Value rel = Value::object();
+    rel.set("location", location_of(note.loc, r));
+    rel.set("message", note.message);
+    related.push(std::move(rel));
+  }
+  if (related.size()) item.set("relatedInformation", std::move(related));
+  return item;
 }
 
 }  // namespace tmcl::lsp

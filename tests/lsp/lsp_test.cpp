@@ -73,12 +73,20 @@ TEST(hover) {
   start(c);
   c.open(kUri, kProgram);
   CHECK_EQ(c.request("textDocument/hover", pos(kUri, 2, 6))["result"]["contents"]["value"].as_string(),
-           "4: Maximum positioning speed, 0…16777215, RW, default 51200 (usb-2-sd)");
+           "4: Maximum positioning speed, 0…16777215 pps, RW, default 51200 pps (usb-2-sd)");
   CHECK_EQ(c.request("textDocument/hover", pos(kUri, 2, 3))["result"]["contents"]["value"].as_string(),
            "```tmcl\nSAP <axis parameter>, <motor>, <value>\n```\nSet axis parameter (opcode 5)");
   CHECK_EQ(c.request("textDocument/hover", pos(kUri, 2, 12))["result"]["contents"]["value"].as_string(),
            "constant `Speed` = 1000");
   CHECK(c.request("textDocument/hover", pos(kUri, 3, 0))["result"].is_null());  // blank before MVP
+  // Units come from the profile; a parameter the manual gives none for has none.
+  c.open("file:///work/units.tmc", "  SAP 14, 0, 1\n  SGP 0, 3, 1000\n  SAP 1, 0, 0\n");
+  CHECK_EQ(c.request("textDocument/hover", pos("file:///work/units.tmc", 0, 7))["result"]["contents"]["value"].as_string(),
+           "14: Ramp type, 0…1, RW, default 0 (usb-2-sd)");
+  CHECK_EQ(c.request("textDocument/hover", pos("file:///work/units.tmc", 1, 6))["result"]["contents"]["value"].as_string(),
+           "0: Timer 0 period (ms), 0…4294967295 ms, RW, default 0 ms (usb-2-sd)");
+  CHECK_EQ(c.request("textDocument/hover", pos("file:///work/units.tmc", 2, 6))["result"]["contents"]["value"].as_string(),
+           "1: Actual position, -2147483648…2147483647 \u03bcsteps, RW, default 0 \u03bcsteps (usb-2-sd)");
 }
 
 TEST(definition_references_symbols_completion_formatting) {

@@ -21,7 +21,7 @@ local ok, err = pcall(function()
   local uri = vim.uri_from_bufnr(0)
   local r = vim.lsp.buf_request_sync(0, 'textDocument/hover', { textDocument = { uri = uri }, position = { line = 2, character = 4 } }, 5000)
   local hover = r[id].result.contents.value
-  assert(hover == '4: Maximum positioning speed, 0…16777215, RW, default 51200 (usb-2-sd)', 'hover: ' .. hover)
+  assert(hover == '4: Maximum positioning speed, 0…16777215 pps, RW, default 51200 pps (usb-2-sd)', 'hover: ' .. hover)
   vim.api.nvim_buf_set_text(0, 4, 6, 4, 6, { 'o' }) -- JA Lop -> JA Loop
   assert(vim.wait(10000, function() return #vim.diagnostic.get(0) == 0 end, 50),
     'diagnostics not cleared: ' .. vim.inspect(vim.diagnostic.get(0)))

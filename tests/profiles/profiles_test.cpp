@@ -293,6 +293,20 @@ TEST(generic_accepts_everything) {
 
 // ---- Invariants of every profile -------------------------------------------------------------
 
+TEST(units_of_the_manuals_tables) {
+  for (const Profile* p : {tmcl::find_profile("usb-2-sd"), tmcl::find_profile("tmc2300-eval")}) {
+    CHECK_EQ(p->axis_param(0)->unit, "\u03bcsteps");  // Range [Units] column: positions
+    CHECK_EQ(p->axis_param(4)->unit, "pps");
+    CHECK_EQ(p->axis_param(5)->unit, "pps\u00b2");
+    CHECK_EQ(p->axis_param(8)->unit, "");  // a flag: none
+  }
+  const Profile& usb = *tmcl::find_profile("usb-2-sd");
+  CHECK_EQ(usb.axis_param(18)->unit, "pps");  // errata: the table says pps² for a velocity
+  CHECK_EQ(usb.axis_param(22)->unit, "pps\u00b3");
+  CHECK_EQ(usb.global_param(3, 0)->unit, "ms");
+  CHECK_EQ(tmcl::find_profile("tmc2300-eval")->axis_param(220)->unit, "0.1 V");
+}
+
 TEST(tables_are_consistent) {
   for (const Profile* p : tmcl::all_profiles()) {
     const std::string who(p->name);
@@ -311,6 +325,10 @@ TEST(tables_are_consistent) {
         if (a.number > 255) ::tmcl_test::fail(__FILE__, __LINE__, what + ": not a byte");
         if (a.min < -2147483648LL || a.max > 4294967295LL)
           ::tmcl_test::fail(__FILE__, __LINE__, what + ": range wider than 32 bits");
+        // Units: the manuals' spellings (docs/profiles.md), so a typo cannot reach a hover.
+        static const std::set<std::string_view> kUnits = {"",   "pps", "pps\u00b2", "pps\u00b3", "\u03bcsteps", "ms", "fullsteps/round",
+                                                          "encoder steps", "1/16 \u00b5s", "0.1 V"};
+        if (!kUnits.count(a.unit)) ::tmcl_test::fail(__FILE__, __LINE__, what + ": unknown unit '" + std::string(a.unit) + "'");
       }
     }
     // E on an axis parameter only where STAP exists.

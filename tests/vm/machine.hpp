@@ -23,30 +23,30 @@ inline Instruction I(Op op, int type = 0, int motor = 0, std::int32_t value = 0)
 inline const tmcl::Profile& test_profile() {
   using namespace tmcl;
   static const ParamInfo axis[] = {
-      {0, "target", INT32_MIN, INT32_MAX, kRead | kWrite, 0},
-      {1, "actual", INT32_MIN, INT32_MAX, kRead | kWrite, 0},
-      {2, "target speed", -1000000, 1000000, kRead | kWrite, 0},
-      {3, "actual speed", -1000000, 1000000, kRead, 0},
-      {4, "max speed", 0, 1000000, kRead | kWrite | kEeprom, 1000},
-      {8, "reached", 0, 1, kRead, 0},
-      {127, "rel option", 0, 2, kRead | kWrite, 0},
-      {140, "microsteps", 0, 8, kRead | kWrite | kEeprom, 8},
-      {209, "encoder", INT32_MIN, INT32_MAX, kRead | kWrite, 0},
-      {212, "max deviation", 0, INT32_MAX, kRead | kWrite, 0},
+      {0, "target", INT32_MIN, INT32_MAX, kRead | kWrite, 0, ""},
+      {1, "actual", INT32_MIN, INT32_MAX, kRead | kWrite, 0, ""},
+      {2, "target speed", -1000000, 1000000, kRead | kWrite, 0, ""},
+      {3, "actual speed", -1000000, 1000000, kRead, 0, ""},
+      {4, "max speed", 0, 1000000, kRead | kWrite | kEeprom, 1000, ""},
+      {8, "reached", 0, 1, kRead, 0, ""},
+      {127, "rel option", 0, 2, kRead | kWrite, 0, ""},
+      {140, "microsteps", 0, 8, kRead | kWrite | kEeprom, 8, ""},
+      {209, "encoder", INT32_MIN, INT32_MAX, kRead | kWrite, 0, ""},
+      {212, "max deviation", 0, INT32_MAX, kRead | kWrite, 0, ""},
   };
   static const ParamInfo bank0[] = {
-      {77, "autostart", 0, 1, kRead | kWrite | kAutoStore, 0},
-      {84, "coords in eeprom", 0, 1, kRead | kWrite | kAutoStore, 0},
-      {85, "do not restore vars", 0, 1, kRead | kWrite | kAutoStore, 0},
-      {128, "status", 0, 3, kRead, 0},
-      {130, "pc", 0, 0, kRead, 0},
-      {132, "tick", 0, INT32_MAX, kRead | kWrite, 0},
-      {133, "random", 0, INT32_MAX, kRead | kWrite, 0},
+      {77, "autostart", 0, 1, kRead | kWrite | kAutoStore, 0, ""},
+      {84, "coords in eeprom", 0, 1, kRead | kWrite | kAutoStore, 0, ""},
+      {85, "do not restore vars", 0, 1, kRead | kWrite | kAutoStore, 0, ""},
+      {128, "status", 0, 3, kRead, 0, ""},
+      {130, "pc", 0, 0, kRead, 0, ""},
+      {132, "tick", 0, INT32_MAX, kRead | kWrite, 0, ""},
+      {133, "random", 0, INT32_MAX, kRead | kWrite, 0, ""},
   };
   static const ParamInfo bank3[] = {
-      {0, "timer 0", 0, 4294967295LL, kRead | kWrite, 0}, {1, "timer 1", 0, 4294967295LL, kRead | kWrite, 0},
-      {2, "timer 2", 0, 4294967295LL, kRead | kWrite, 0}, {27, "left 0", 0, 3, kRead | kWrite, 0},
-      {28, "right 0", 0, 3, kRead | kWrite, 0},
+      {0, "timer 0", 0, 4294967295LL, kRead | kWrite, 0, ""}, {1, "timer 1", 0, 4294967295LL, kRead | kWrite, 0, ""},
+      {2, "timer 2", 0, 4294967295LL, kRead | kWrite, 0, ""}, {27, "left 0", 0, 3, kRead | kWrite, 0, ""},
+      {28, "right 0", 0, 3, kRead | kWrite, 0, ""},
   };
   static const InterruptVector vectors[] = {
       {0, "TI_TIMER0", ""}, {1, "TI_TIMER1", ""}, {2, "TI_TIMER2", ""}, {3, "TI_TARGET0", ""},

@@ -22,46 +22,46 @@ constexpr std::int64_t kI32Max = 2147483647LL;
 
 // Table 11. The access column has no E although STAP/RSAP exist; settings get E, state does not.
 constexpr ParamInfo kAxis[] = {
-    {0, "Target position", kI32Min, kI32Max, RW, 0},
-    {1, "Actual position", kI32Min, kI32Max, RW, 0},
-    {2, "Target speed", -32768, 32767, RW, 0},
-    {3, "Actual speed", -32768, 32767, R, 0},
-    {4, "Maximum positioning speed", 0, 32767, RWE, 10000},
-    {5, "Maximum acceleration", 0, kI32Max, RWE, 10000},
-    {6, "Maximum current", 0, 31, RWE, 16},
-    {7, "Standby current", 0, 31, RWE, 8},
-    {8, "Position reached flag", 0, 1, R, 1},
-    {29, "Measured speed", 0, 7999774, R, 0},
-    {100, "Step generator", kI32Min, kI32Max, RW, 0},
-    {140, "Microstep resolution", 0, 8, RWE, 8},
-    {141, "Microstep interpolation enable", 0, 1, RWE, 1},
-    {162, "Chopper blank time", 0, 3, RWE, 2},
-    {168, "SmartEnergy current minimum (SEIMIN)", 0, 1, RWE, 0},
-    {169, "SmartEnergy current down step", 0, 3, RWE, 0},
-    {170, "SmartEnergy hysteresis", 0, 15, RWE, 0},
-    {171, "SmartEnergy current up step", 0, 3, RWE, 0},
-    {172, "SmartEnergy hysteresis start", 0, 15, RWE, 0},
-    {174, "StallGuard2 threshold", 0, 255, RWE, 0},
-    {180, "SmartEnergy actual current", 0, 31, R, 0},
-    {181, "Stop on stall", 0, kI32Max, RWE, 0},
-    {182, "SmartEnergy threshold speed", 0, 1048574, RWE, 0},
-    {187, "PWM gradient", 0, 15, RWE, 1},
-    {191, "PWM frequency", 0, 3, RWE, 1},
-    {192, "PWM autoscale", 0, 1, RWE, 1},
-    {204, "Freewheeling mode", 0, 3, RWE, 0},
-    {206, "Actual load value", 0, 1023, R, 0},
-    {220, "Supply voltage", 0, 51, R, 37},  // the table says RW: a measurement, read only
+    {0, "Target position", kI32Min, kI32Max, RW, 0, "μsteps"},
+    {1, "Actual position", kI32Min, kI32Max, RW, 0, "μsteps"},
+    {2, "Target speed", -32768, 32767, RW, 0, "pps"},
+    {3, "Actual speed", -32768, 32767, R, 0, "pps"},
+    {4, "Maximum positioning speed", 0, 32767, RWE, 10000, "pps"},
+    {5, "Maximum acceleration", 0, kI32Max, RWE, 10000, "pps²"},
+    {6, "Maximum current", 0, 31, RWE, 16, ""},
+    {7, "Standby current", 0, 31, RWE, 8, ""},
+    {8, "Position reached flag", 0, 1, R, 1, ""},
+    {29, "Measured speed", 0, 7999774, R, 0, "pps"},
+    {100, "Step generator", kI32Min, kI32Max, RW, 0, "pps"},  // unit from the text
+    {140, "Microstep resolution", 0, 8, RWE, 8, ""},
+    {141, "Microstep interpolation enable", 0, 1, RWE, 1, ""},
+    {162, "Chopper blank time", 0, 3, RWE, 2, ""},
+    {168, "SmartEnergy current minimum (SEIMIN)", 0, 1, RWE, 0, ""},
+    {169, "SmartEnergy current down step", 0, 3, RWE, 0, ""},
+    {170, "SmartEnergy hysteresis", 0, 15, RWE, 0, ""},
+    {171, "SmartEnergy current up step", 0, 3, RWE, 0, ""},
+    {172, "SmartEnergy hysteresis start", 0, 15, RWE, 0, ""},
+    {174, "StallGuard2 threshold", 0, 255, RWE, 0, ""},
+    {180, "SmartEnergy actual current", 0, 31, R, 0, ""},
+    {181, "Stop on stall", 0, kI32Max, RWE, 0, "pps"},
+    {182, "SmartEnergy threshold speed", 0, 1048574, RWE, 0, "pps"},
+    {187, "PWM gradient", 0, 15, RWE, 1, ""},
+    {191, "PWM frequency", 0, 3, RWE, 1, ""},
+    {192, "PWM autoscale", 0, 1, RWE, 1, ""},
+    {204, "Freewheeling mode", 0, 3, RWE, 0, ""},
+    {206, "Actual load value", 0, 1023, R, 0, ""},
+    {220, "Supply voltage", 0, 51, R, 37, "0.1 V"},  // the table says RW (a measurement) and 1/10V
 };
 
 // Table 13, plus 66 (the SGP/GGP examples) and 85 (section 6.4).
 constexpr ParamInfo kBank0[] = {
-    {65, "UART baud rate", 0, 7, RWA, 0},
-    {66, "Serial address", 1, 255, RWA, 1},                // not in table
-    {77, "Auto start mode", 0, 1, RWA, 0},
-    {85, "Do not restore user variables", 0, 1, RWA, 0},   // not in table
-    {128, "TMCL application status", 0, 3, R, 0},
-    {130, "TMCL program counter", 0, 2047, R, 0},
-    {132, "TMCL tick timer", 0, kI32Max, RW, 0},
+    {65, "UART baud rate", 0, 7, RWA, 0, ""},
+    {66, "Serial address", 1, 255, RWA, 1, ""},                // not in table
+    {77, "Auto start mode", 0, 1, RWA, 0, ""},
+    {85, "Do not restore user variables", 0, 1, RWA, 0, ""},   // not in table
+    {128, "TMCL application status", 0, 3, R, 0, ""},
+    {130, "TMCL program counter", 0, 2047, R, 0, ""},
+    {132, "TMCL tick timer", 0, kI32Max, RW, 0, "ms"},  // unit from the text
 };
 
 std::bitset<256> opcodes(std::initializer_list<int> codes) {

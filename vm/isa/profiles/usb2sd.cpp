@@ -29,69 +29,69 @@ std::bitset<256> opcodes(std::initializer_list<int> codes) {
 
 // Table 14, plus 140, 201 and 255 from sections 6.1 and 6.2.
 constexpr ParamInfo kAxis[] = {
-    {0, "Target position", kI32Min, kI32Max, RW, 0},
-    {1, "Actual position", kI32Min, kI32Max, RW, 0},
-    {2, "Target speed", -kVelMax, kVelMax, RW, 0},
-    {3, "Actual speed", -kVelMax, kVelMax, R, 0},
-    {4, "Maximum positioning speed", 0, kVelMax, RW, 51200},
-    {5, "Maximum acceleration", 0, kI32Max, RW, 51200},
-    {8, "Position reached flag", 0, 1, R, 1},
-    {14, "Ramp type", 0, 1, RW, 0},
-    {15, "Start velocity", 0, kVelMax, RW, 0},
-    {16, "Start acceleration", 0, kI32Max, RW, 0},     // 0: same as 5
-    {17, "Maximum deceleration", 0, kI32Max, RW, 0},   // 0: same as 5
-    {18, "Break velocity", 0, kVelMax, RW, 0},         // 0: no break point
-    {19, "Final deceleration", 0, kI32Max, RW, 0},     // 0: same as 17
-    {20, "Stop velocity", 0, kVelMax, RW, 0},
-    {21, "Stop deceleration", 0, kI32Max, RW, 0},      // 0: hard stop at a switch
-    {22, "Bow 1", 0, kI32Max, RW, 512000},
-    {23, "Bow 2", 0, kI32Max, RW, 512000},
-    {24, "Bow 3", 0, kI32Max, RW, 512000},
-    {25, "Bow 4", 0, kI32Max, RW, 512000},
-    {26, "Virtual stop left", kI32Min, kI32Max, RW, 0},
-    {27, "Virtual stop right", kI32Min, kI32Max, RW, 0},
-    {28, "Virtual stop enable", 0, 3, RW, 0},
-    {29, "Virtual stop mode", 0, 2, RW, 0},            // the table says R: a typo
-    {35, "Bow scaling factor", 1, 255, RW, 1},
-    {127, "Relative positioning option", 0, 2, RW, 0}, // the table says 0/1 but lists 0..2
-    {131, "Measured speed", kI32Min, kI32Max, R, 0},
-    {132, "Current measured speed", kI32Min, kI32Max, R, 0},
-    {140, "Microstep resolution", 0, 8, RW, 8},        // not in table (section 6.2)
-    {201, "Encoder special functions", 0, 65535, RW, 0},  // not in table (section 6.1)
-    {202, "Motor full step resolution", 0, 65535, RW, 200},
-    {207, "Extended error flags", 0, 2, R, 0},
-    {209, "Encoder position", kI32Min, kI32Max, RW, 0},
-    {210, "Encoder resolution", -65535, 65535, RW, 51200},
-    {212, "Maximum encoder deviation", 0, kI32Max, RW, 0},
-    {213, "Maximum velocity deviation", 0, kI32Max, RW, 0},
-    {251, "Reverse shaft", 0, 1, RW, 0},
-    {255, "Unit mode", 0, 1, RW, 1},                   // not in table (section 6.2)
+    {0, "Target position", kI32Min, kI32Max, RW, 0, "μsteps"},
+    {1, "Actual position", kI32Min, kI32Max, RW, 0, "μsteps"},
+    {2, "Target speed", -kVelMax, kVelMax, RW, 0, "pps"},
+    {3, "Actual speed", -kVelMax, kVelMax, R, 0, "pps"},
+    {4, "Maximum positioning speed", 0, kVelMax, RW, 51200, "pps"},
+    {5, "Maximum acceleration", 0, kI32Max, RW, 51200, "pps²"},
+    {8, "Position reached flag", 0, 1, R, 1, ""},
+    {14, "Ramp type", 0, 1, RW, 0, ""},
+    {15, "Start velocity", 0, kVelMax, RW, 0, "pps"},
+    {16, "Start acceleration", 0, kI32Max, RW, 0, "pps²"},     // 0: same as 5
+    {17, "Maximum deceleration", 0, kI32Max, RW, 0, "pps²"},   // 0: same as 5
+    {18, "Break velocity", 0, kVelMax, RW, 0, "pps"},  // 0: no break point; the table says pps² for a velocity
+    {19, "Final deceleration", 0, kI32Max, RW, 0, "pps²"},     // 0: same as 17
+    {20, "Stop velocity", 0, kVelMax, RW, 0, "pps"},
+    {21, "Stop deceleration", 0, kI32Max, RW, 0, "pps²"},      // 0: hard stop at a switch
+    {22, "Bow 1", 0, kI32Max, RW, 512000, "pps³"},
+    {23, "Bow 2", 0, kI32Max, RW, 512000, "pps³"},
+    {24, "Bow 3", 0, kI32Max, RW, 512000, "pps³"},
+    {25, "Bow 4", 0, kI32Max, RW, 512000, "pps³"},
+    {26, "Virtual stop left", kI32Min, kI32Max, RW, 0, "μsteps"},
+    {27, "Virtual stop right", kI32Min, kI32Max, RW, 0, "μsteps"},
+    {28, "Virtual stop enable", 0, 3, RW, 0, ""},
+    {29, "Virtual stop mode", 0, 2, RW, 0, ""},            // the table says R: a typo
+    {35, "Bow scaling factor", 1, 255, RW, 1, ""},
+    {127, "Relative positioning option", 0, 2, RW, 0, ""}, // the table says 0/1 but lists 0..2
+    {131, "Measured speed", kI32Min, kI32Max, R, 0, "pps"},
+    {132, "Current measured speed", kI32Min, kI32Max, R, 0, "pps"},
+    {140, "Microstep resolution", 0, 8, RW, 8, ""},        // not in table (section 6.2)
+    {201, "Encoder special functions", 0, 65535, RW, 0, ""},  // not in table (section 6.1)
+    {202, "Motor full step resolution", 0, 65535, RW, 200, "fullsteps/round"},
+    {207, "Extended error flags", 0, 2, R, 0, ""},
+    {209, "Encoder position", kI32Min, kI32Max, RW, 0, "μsteps"},
+    {210, "Encoder resolution", -65535, 65535, RW, 51200, ""},
+    {212, "Maximum encoder deviation", 0, kI32Max, RW, 0, "encoder steps"},
+    {213, "Maximum velocity deviation", 0, kI32Max, RW, 0, "pps"},  // the table says encoder steps
+    {251, "Reverse shaft", 0, 1, RW, 0, ""},
+    {255, "Unit mode", 0, 1, RW, 1, ""},                   // not in table (section 6.2)
 };
 
 // Table 16, plus 66, 76, 77, 84 and 85, which the text uses (SGP/GGP examples, sections 3.6.19,
 // 7.4 and 7.7). Numbers 64..127 are stored in EEPROM on every SGP (section 5.1): access A.
 constexpr ParamInfo kBank0[] = {
-    {66, "Serial address", 1, 255, RWA, 1},            // not in table
-    {76, "Serial host address", 1, 255, RWA, 2},       // not in table
-    {77, "Auto start mode", 0, 1, RWA, 0},             // not in table
-    {84, "Store coordinates in EEPROM", 0, 1, RWA, 0}, // not in table
-    {85, "Do not restore user variables", 0, 1, RWA, 0},  // not in table
-    {86, "Step pulse length", 0, 255, RWA, 32},
-    {128, "TMCL application status", 0, 3, R, 0},
-    {129, "Download mode", 0, 1, R, 0},
-    {130, "TMCL program counter", 0, 576, R, 0},
-    {132, "TMCL tick timer", 0, kI32Max, RW, 0},
-    {133, "Random number", 0, kI32Max, RW, 0},
-    {255, "Suppress reply", 0, 1, RW, 0},
+    {66, "Serial address", 1, 255, RWA, 1, ""},            // not in table
+    {76, "Serial host address", 1, 255, RWA, 2, ""},       // not in table
+    {77, "Auto start mode", 0, 1, RWA, 0, ""},             // not in table
+    {84, "Store coordinates in EEPROM", 0, 1, RWA, 0, ""}, // not in table
+    {85, "Do not restore user variables", 0, 1, RWA, 0, ""},  // not in table
+    {86, "Step pulse length", 0, 255, RWA, 32, "1/16 µs"},  // unit from the text: 32 = 2 µs
+    {128, "TMCL application status", 0, 3, R, 0, ""},
+    {129, "Download mode", 0, 1, R, 0, ""},
+    {130, "TMCL program counter", 0, 576, R, 0, ""},
+    {132, "TMCL tick timer", 0, kI32Max, RW, 0, "ms"},  // unit from the text
+    {133, "Random number", 0, kI32Max, RW, 0, ""},
+    {255, "Suppress reply", 0, 1, RW, 0, ""},
 };
 
 // Table 18: interrupt configuration. Timer periods are unsigned 32-bit values.
 constexpr ParamInfo kBank3[] = {
-    {0, "Timer 0 period (ms)", 0, kU32Max, RW, 0},
-    {1, "Timer 1 period (ms)", 0, kU32Max, RW, 0},
-    {2, "Timer 2 period (ms)", 0, kU32Max, RW, 0},
-    {27, "Stop left 0 trigger transition", 0, 3, RW, 0},
-    {28, "Stop right 0 trigger transition", 0, 3, RW, 0},
+    {0, "Timer 0 period (ms)", 0, kU32Max, RW, 0, "ms"},
+    {1, "Timer 1 period (ms)", 0, kU32Max, RW, 0, "ms"},
+    {2, "Timer 2 period (ms)", 0, kU32Max, RW, 0, "ms"},
+    {27, "Stop left 0 trigger transition", 0, 3, RW, 0, ""},
+    {28, "Stop right 0 trigger transition", 0, 3, RW, 0, ""},
 };
 
 // Table 11. TI_TIMER0 and TI_GLOBAL are the names the manual shows; the others are ours.

@@ -37,6 +37,16 @@ struct SourceLoc {
 
 enum class Severity : std::uint8_t { Note, Warning, Error };
 
+// A machine-readable fix an editor can offer (the language server's code actions): replace the
+// text from `begin` up to `end` (same file, 1-based line and byte column, `end` exclusive; equal
+// for an insertion) with `text`. Never rendered: tmclasm prints the same with or without fixes.
+struct Fix {
+  std::string title;  // "replace 'SAPP' with 'SAP'", "add RETI", "remove unreachable code"
+  SourceLoc begin;
+  SourceLoc end;
+  std::string text;
+};
+
 struct Diagnostic {
   Severity severity;
   SourceLoc loc;
@@ -45,6 +55,7 @@ struct Diagnostic {
   // A named warning's name ("call-depth"), rendered after the message as " [-Wcall-depth]", or as
   // " [-Werror=call-depth]" when -Werror made it an error. Empty: an error or an unnamed warning.
   std::string name;
+  std::vector<Fix> fixes;
 };
 
 // Every named warning: its name (-Wname, -Wno-name, -Werror=name), whether it is on without
@@ -86,6 +97,11 @@ class Diagnostics {
   Diagnostic& warning(SourceLoc loc, std::string message, std::string_view name);
   bool enabled(std::string_view name) const { return flags_.enabled(name); }
   void note(Diagnostic& d, SourceLoc loc, std::string message);
+  // Did-you-mean: the note "did you mean 'HINT'?" at `loc`, and the fix replacing the `wrote`
+  // there (the `loc.len` bytes at `loc`, or at `replace` when the word is only part of what the
+  // note points at) with `hint`. Nothing when `hint` is empty.
+  void suggest(Diagnostic& d, SourceLoc loc, std::string_view wrote, const std::string& hint);
+  void suggest(Diagnostic& d, SourceLoc loc, SourceLoc replace, std::string_view wrote, const std::string& hint);
 
   bool has_errors() const { return errors_ > 0; }
   int error_count() const { return errors_; }
@@ -107,7 +123,7 @@ class Diagnostics {
   int errors_ = 0;
   int warnings_ = 0;
   WarningOptions flags_;
-  Diagnostic dropped_{Severity::Note, {}, {}, {}, {}};
+  Diagnostic dropped_{Severity::Note, {}, {}, {}, {}, {}};
 };
 
 // Renders one diagnostic (with its notes).

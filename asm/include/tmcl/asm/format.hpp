@@ -27,6 +27,9 @@ struct SourceToken {
 // Lexical errors (bad characters and numbers, unterminated comments) go to `diags` when given.
 std::vector<SourceToken> tokenize(std::string_view text, Diagnostics* diags = nullptr);
 
+// How far the canonical layout indents an instruction (and anything an editor inserts as one).
+inline constexpr int kFormatIndent = 2;
+
 struct FormatResult {
   bool ok = false;
   std::string text;   // the formatted source (ok)

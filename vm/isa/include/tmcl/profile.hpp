@@ -25,6 +25,8 @@ struct ParamInfo {
   std::int64_t max;
   std::uint8_t access;    // Access bits
   std::int32_t default_value;
+  // The unit of the manual's "Range [Units]" column ("pps", "μsteps"); empty where it gives none.
+  std::string_view unit;
 };
 
 struct InterruptVector {

@@ -81,6 +81,9 @@ class Server {
   void check(Document& doc);
   void check_includers(const std::string& path);
   Value diagnostics_of(const Document& doc) const;
+  Value diagnostic_json(const Diagnostic& d, const AsmResult& r) const;
+  // Where a diagnostic is shown in the root file: one in an included file at its #include line.
+  SourceLoc shown_at(const Diagnostic& d, const AsmResult& r) const;
 
   // Features (features.cpp).
   Reply hover(const Value& params);
@@ -104,6 +107,18 @@ class Server {
   void watched_files_changed(const Value& params);
   void watch_settings_file();  // asks the client to report changes (dynamic registration)
   void complete_include(const Document& doc, Value& items) const;
+  Reply code_actions(const Value& params);  // actions.cpp
+
+  // The prologue every request about a document shares: the document, and with a position
+  // the byte offset and the token there; or, when either is missing, the error reply.
+  struct Target {
+    Document* doc = nullptr;
+    std::size_t offset = 0;
+    const SourceToken* token = nullptr;  // under (or just before) the position; may be null
+    Reply error;
+    explicit operator bool() const { return doc != nullptr; }
+  };
+  Target target(const Value& params, bool with_position);
 
   // Finding the document and the token a request is about; errors as replies.
   Document* find_document(const Value& params, Reply& err);
