@@ -3,6 +3,7 @@
 // probably not as meant — an unknown parameter, a write to a read-only one, a value outside the
 // documented range, a motor or variable that does not exist — is a warning.
 #include "internal.hpp"
+#include "tmcl/params.hpp"
 
 namespace tmcl::detail {
 namespace {
@@ -80,7 +81,7 @@ class Checker {
                    "interrupt " + std::to_string(v) + " does not exist on " + std::string(p_.title), "target");
     }
     if ((op == Op::ROR || op == Op::ROL))
-      if (const ParamInfo* speed = p_.axis_param(2); speed && !in_range(ins_.value, speed->min, speed->max))
+      if (const ParamInfo* speed = p_.axis_param(kApTargetSpeed); speed && !in_range(ins_.value, speed->min, speed->max))
         d_.warning(operand_loc(s_, Field::Value), "velocity " + std::to_string(ins_.value) +
                                                       " is outside the range of " + std::string(p_.title) + " (" +
                                                       range_text(*speed) + ")", "target");

@@ -7,6 +7,7 @@
 
 #include "tmcl/duration.hpp"
 #include "tmcl/json.hpp"
+#include "tmcl/params.hpp"
 
 namespace tmcl {
 
@@ -174,8 +175,8 @@ std::string state_json(Vm& vm, const RunResult& result) {
     for (const auto& p : vm.profile->bank0) nums.insert(p.number);
     for (int p = 0; p < 256; ++p)
       if (vm.bank0[static_cast<std::size_t>(p)] != 0) nums.insert(p);
-    nums.insert({128, 129, 130, 132});
-    nums.erase(133);  // reading the random number would change it
+    nums.insert({kGpApplicationStatus, kGpDownloadMode, kGpProgramCounter, kGpTickTimer});
+    nums.erase(kGpRandomNumber);  // reading it would change it
     for (int p : nums) g0.set(std::to_string(p), static_cast<long long>(vm.global_param(0, p)));
     json::Value& g3 = globals.set("3", json::Value::object());
     nums.clear();
@@ -212,15 +213,15 @@ std::string state_json(Vm& vm, const RunResult& result) {
 
 std::string status_text(int status) {
   switch (status) {
-    case 1: return "wrong checksum";
-    case 2: return "invalid command";
-    case 3: return "wrong type";
-    case 4: return "invalid value";
-    case 5: return "EEPROM locked";
-    case 6: return "command not available";
-    case 100: return "ok";
-    case 101: return "loaded into program memory";
-    case 128: return "position reached";
+    case kStatusWrongChecksum: return "wrong checksum";
+    case kStatusInvalidCommand: return "invalid command";
+    case kStatusWrongType: return "wrong type";
+    case kStatusInvalidValue: return "invalid value";
+    case kStatusEepromLocked: return "EEPROM locked";
+    case kStatusNotAvailable: return "command not available";
+    case kStatusOk: return "ok";
+    case kStatusLoaded: return "loaded into program memory";
+    case kStatusPositionReached: return "position reached";
     default: return "status " + std::to_string(status);
   }
 }

@@ -5,6 +5,7 @@
 // up at the profile's default (writable ones; the core computes the read-only ones), and the
 // profile's minimum and maximum are accepted.
 #include <string>
+#include <utility>
 
 #include "check.hpp"
 #include "tmcl/motion.hpp"
@@ -53,4 +54,45 @@ TEST(motion_cores_take_missing_defaults_from_their_home_profile) {
   linear->reset(*usb, 1);
   CHECK(!usb->axis_param(6));
   CHECK_EQ(linear->get_param(0, 6), tmc->axis_param(6)->default_value);  // run current
+}
+
+// Under the generic profile the VM checks no range, so a core checks a write against the row of
+// the module it models (tmc4361 and ideal: usb-2-sd, linear: tmc2300-eval), the same rows that
+// give its defaults: every writable owned parameter takes its row's minimum and maximum and
+// refuses one beyond either. No core keeps a range table of its own (vm/motion/core_skeleton.hpp).
+TEST(motion_cores_check_their_home_rows_under_the_generic_profile) {
+  const tmcl::Profile* generic = tmcl::find_profile("generic");
+  CHECK(generic && generic->any_parameter);
+  if (!generic) return;
+  const std::pair<const char*, const char*> cores[] = {{"tmc4361", "usb-2-sd"}, {"ideal", "usb-2-sd"}, {"linear", "tmc2300-eval"}};
+  int checked = 0;
+  for (const auto& [name, home_name] : cores) {
+    const tmcl::Profile* home = tmcl::find_profile(home_name);
+    CHECK(home != nullptr);
+    if (!home) continue;
+    for (const auto& info : home->axis_params) {
+      auto core = tmcl::make_motion_core(name);
+      core->reset(*generic, 1);
+      // 0 and 2 start moves, 1 and 209 set positions: every 32-bit value is a position or speed
+      if (!core->owns(info.number) || !(info.access & tmcl::kWrite) || info.number <= 2 || info.number == 209) continue;
+      const std::string what = std::string(name) + " under generic, axis parameter " + std::to_string(info.number);
+      for (std::int64_t v : {info.min, info.max}) {
+        if (v < INT32_MIN || v > INT32_MAX) continue;
+        if (core->set_param(0, info.number, static_cast<std::int32_t>(v)) != tmcl::ParamWrite::Ok)
+          CHECK_EQ(what + ": " + std::to_string(v) + " refused", what + ": " + std::to_string(v) + " accepted");
+      }
+      for (std::int64_t v : {info.min - 1, info.max + 1}) {
+        if (v < INT32_MIN || v > INT32_MAX) continue;
+        ++checked;
+        if (core->set_param(0, info.number, static_cast<std::int32_t>(v)) != tmcl::ParamWrite::OutOfRange)
+          CHECK_EQ(what + ": " + std::to_string(v) + " accepted", what + ": " + std::to_string(v) + " refused");
+      }
+    }
+  }
+  CHECK(checked > 30);
+  // The speed limit of the linear core is the top of its row too: ROR beyond it is clipped.
+  auto linear = tmcl::make_motion_core("linear");
+  linear->reset(*generic, 1);
+  linear->rotate(0, 40000);
+  CHECK_EQ(linear->get_param(0, 2), 32767);
 }

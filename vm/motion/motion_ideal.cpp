@@ -6,10 +6,18 @@
 // Parameters it owns: 0 target, 1 actual position, 2 target speed, 3 actual speed,
 // 8 position reached, 127 relative positioning option, 209 encoder position, 212 maximum
 // encoder deviation. Stop and home switches do not stop an ideal motor (documented).
+//
+// It shares the skeleton of every core (core_skeleton.hpp: owned parameters with the profile's
+// defaults and ranges, events a command causes), not RampCore's plans: a plan is a continuous
+// motion in double-precision seconds and steps, and an ideal motor jumps. Its position is an
+// exact integer line instead, so after hours of rotation it is still the exact step count that
+// p0 + v * t gives, which a plan's floating-point segment would not promise (docs/motion.md).
+#include <array>
 #include <cstdlib>
-#include <deque>
 
+#include "core_skeleton.hpp"
 #include "tmcl/motion.hpp"
+#include "tmcl/params.hpp"
 
 namespace tmcl {
 namespace {
@@ -18,46 +26,32 @@ constexpr SimTime kUsPerSecond = 1'000'000;
 
 std::int32_t wrap32(std::int64_t v) { return static_cast<std::int32_t>(static_cast<std::uint32_t>(static_cast<std::uint64_t>(v))); }
 
+constexpr int kOwned[] = {kApTargetPosition, kApActualPosition,           kApTargetSpeed,     kApActualSpeed,
+                          kApPositionReached, kApRelativePositioningOption, kApEncoderPosition, kApMaxEncoderDeviation};
+
 struct Motor {
+  std::array<std::int32_t, 256> p{};  // owned parameters: 127 and 212 are kept here
   std::int64_t base = 0;     // position at t0 (not wrapped; reads wrap to 32 bits)
   SimTime t0 = 0;
   std::int32_t velocity = 0; // pps; 0 in position mode
   std::int32_t target = 0;
   std::int64_t encoder_offset = 0;  // encoder position - actual position
-  std::int32_t rel_option = 0;      // 127
-  std::int32_t max_deviation = 0;   // 212
 };
 
-class IdealCore final : public MotionCore {
+class IdealCore final : public CoreSkeleton<Motor> {
  public:
   std::string_view name() const override { return "ideal"; }
   std::unique_ptr<MotionCore> clone() const override { return std::make_unique<IdealCore>(*this); }
 
-  void reset(const Profile& profile, int motors) override {
-    motors_.assign(static_cast<std::size_t>(motors), Motor{});
-    for (auto& m : motors_) {
-      if (auto* p = profile.axis_param(127)) m.rel_option = p->default_value;
-      if (auto* p = profile.axis_param(212)) m.max_deviation = p->default_value;
-    }
-    now_ = 0;
-    events_.clear();
-  }
+  // The ideal core models no particular module: where a profile lacks 127 or 212 the USB-2-SD's
+  // rows stand in (both default to 0, the power-on state of an ideal motor).
+  IdealCore() : CoreSkeleton(kOwned, "usb-2-sd") {}
 
-  SimTime next_event() const override { return events_.empty() ? kNever : events_.front().at; }
+  SimTime next_event() const override { return next_pending(); }
 
   void advance(SimTime to, std::vector<MotionEvent>& out) override {
     if (to > now_) now_ = to;
-    while (!events_.empty() && events_.front().at <= now_) {
-      out.push_back(events_.front());
-      events_.pop_front();
-    }
-  }
-
-  bool owns(int param) const override {
-    switch (param) {
-      case 0: case 1: case 2: case 3: case 8: case 127: case 209: case 212: return true;
-      default: return false;
-    }
+    take_pending(out);
   }
 
   ParamWrite set_param(int motor, int param, std::int32_t value) override {
@@ -70,14 +64,11 @@ class IdealCore final : public MotionCore {
         return ParamWrite::Ok;
       case 2: rotate(motor, value); return ParamWrite::Ok;
       case 127:
-        if (value < 0 || value > 2) return ParamWrite::OutOfRange;
-        m.rel_option = value;
+      case 212:  // within the profile's range (core_skeleton.hpp)
+        if (!in_range(param, value)) return ParamWrite::OutOfRange;
+        m.p[static_cast<std::size_t>(param)] = value;
         return ParamWrite::Ok;
       case 209: m.encoder_offset = static_cast<std::int64_t>(value) - pos(m); return ParamWrite::Ok;
-      case 212:
-        if (value < 0) return ParamWrite::OutOfRange;
-        m.max_deviation = value;
-        return ParamWrite::Ok;
       default: return ParamWrite::ReadOnly;
     }
   }
@@ -90,9 +81,8 @@ class IdealCore final : public MotionCore {
       case 2: return m.velocity;
       case 3: return m.velocity;
       case 8: return target_reached(motor) ? 1 : 0;
-      case 127: return m.rel_option;
+      case 127: case 212: return m.p[static_cast<std::size_t>(param)];
       case 209: return wrap32(pos(m) + m.encoder_offset);
-      case 212: return m.max_deviation;
       default: return 0;
     }
   }
@@ -108,7 +98,7 @@ class IdealCore final : public MotionCore {
 
   void move_relative(int motor, std::int32_t offset) override {
     Motor& m = at(motor);
-    std::int64_t start = m.rel_option == 0 ? m.target : m.rel_option == 1 ? pos(m) : pos(m) + m.encoder_offset;
+    std::int64_t start = m.p[kApRelativePositioningOption] == 0 ? m.target : m.p[kApRelativePositioningOption] == 1 ? pos(m) : pos(m) + m.encoder_offset;
     move_absolute(motor, wrap32(start + offset));
   }
 
@@ -145,7 +135,8 @@ class IdealCore final : public MotionCore {
   void encoder_slip(int motor, std::int32_t counts) override {
     Motor& m = at(motor);
     m.encoder_offset += counts;
-    if (m.max_deviation > 0 && std::llabs(m.encoder_offset) > m.max_deviation) {
+    const std::int32_t max_deviation = m.p[kApMaxEncoderDeviation];
+    if (max_deviation > 0 && std::llabs(m.encoder_offset) > max_deviation) {
       rebase(m);
       m.velocity = 0;
       m.target = wrap32(m.base);
@@ -161,8 +152,6 @@ class IdealCore final : public MotionCore {
   bool reference_done(int) const override { return true; }
 
  private:
-  Motor& at(int motor) { return motors_[static_cast<std::size_t>(motor)]; }
-
   // Position at now_: exact integer arithmetic, truncated toward zero.
   std::int64_t pos(const Motor& m) const {
     if (m.velocity == 0) return m.base;
@@ -174,13 +163,7 @@ class IdealCore final : public MotionCore {
     m.base = pos(m);
     m.t0 = now_;
   }
-  void emit(int motor, MotionEventKind kind, const Motor& m) {
-    events_.push_back(MotionEvent{now_, static_cast<std::uint8_t>(motor), kind, wrap32(pos(m))});
-  }
-
-  std::vector<Motor> motors_;
-  SimTime now_ = 0;
-  std::deque<MotionEvent> events_;
+  void emit(int motor, MotionEventKind kind, const Motor& m) { report_now(motor, kind, wrap32(pos(m))); }
 };
 
 }  // namespace

@@ -21,9 +21,6 @@ using ramp::EventKind;
 using ramp::RampMotor;
 using ramp::wrap32;
 
-// The module's speed limit when the profile does not give one (generic): the TMC2300's 32767 pps.
-// A profile that lists parameter 4 sets the limit with its range (the profile is the only source).
-constexpr std::int32_t kMaxSpeed = 32767;
 constexpr int kOwned[] = {0, 1, 2, 3, 4, 5, 6, 7, 8, 140, 141, 180};
 
 enum class Goal : std::uint8_t { Idle, Position, Velocity };
@@ -42,10 +39,12 @@ class LinearCore final : public ramp::RampCore<Motor> {
 
   LinearCore() : RampCore(kOwned, "tmc2300-eval") {}  // the TMC2300-MOTOR-EVAL's ramp
 
+  // The speed limit is the top of parameter 4's range: the active profile's, or under the generic
+  // profile the TMC2300-MOTOR-EVAL's 32767 pps (core_skeleton.hpp: the profile is the only source).
   void reset(const Profile& profile, int motors) override {
-    const ParamInfo* speed = profile.any_parameter ? nullptr : profile.axis_param(kApMaxPositioningSpeed);
-    vmax_ = speed ? static_cast<std::int32_t>(std::clamp<std::int64_t>(speed->max, 0, INT32_MAX)) : kMaxSpeed;
     RampCore::reset(profile, motors);
+    const ParamInfo* speed = range_row(kApMaxPositioningSpeed);
+    vmax_ = speed ? static_cast<std::int32_t>(std::clamp<std::int64_t>(speed->max, 0, INT32_MAX)) : INT32_MAX;
   }
 
   void advance(SimTime to, std::vector<MotionEvent>& out) override {
@@ -65,11 +64,9 @@ class LinearCore final : public ramp::RampCore<Motor> {
         return ParamWrite::Ok;
       case 2: rotate(motor, value); return ParamWrite::Ok;
       case 3: case 8: case 180: return ParamWrite::ReadOnly;
-      case 4: if (value < 0 || value > vmax_) return ParamWrite::OutOfRange; break;
-      case 5: if (value < 0) return ParamWrite::OutOfRange; break;
-      case 6: case 7: if (value < 0 || value > 31) return ParamWrite::OutOfRange; break;
-      case 140: if (value < 0 || value > 8) return ParamWrite::OutOfRange; break;
-      case 141: if (value < 0 || value > 1) return ParamWrite::OutOfRange; break;
+      case 4: case 5: case 6: case 7: case 140: case 141:  // within the profile's range (core_skeleton.hpp)
+        if (!in_range(param, value)) return ParamWrite::OutOfRange;
+        break;
       default: return ParamWrite::ReadOnly;
     }
     bool changed = m.p[static_cast<std::size_t>(param)] != value;
@@ -127,7 +124,7 @@ class LinearCore final : public ramp::RampCore<Motor> {
   void encoder_slip(int, std::int32_t) override {}
 
  private:
-  std::int32_t vmax_ = kMaxSpeed;  // pps, from the profile's range of parameter 4 (reset)
+  std::int32_t vmax_ = INT32_MAX;  // pps, the top of parameter 4's range (reset)
 
   void replan(Motor& m) {
     if (m.goal == Goal::Idle) return;

@@ -69,15 +69,14 @@ class Tmc4361Core final : public ramp::RampCore<Motor> {
       case 3: case 8: case 131: case 132: case 207: return ParamWrite::ReadOnly;
       case 209: m.enc_off = static_cast<std::int64_t>(value) - enc_sign(m) * m.rm.xactual(now_); break;
       case 210: case 251: {  // keep the encoder reading, change how it follows the motor
-        if (param == 210 && (value < -65535 || value > 65535)) return ParamWrite::OutOfRange;
-        if (param == 251 && (value < 0 || value > 1)) return ParamWrite::OutOfRange;
+        if (!in_range(param, value)) return ParamWrite::OutOfRange;
         std::int64_t e = encoder(m);
         m.p[static_cast<std::size_t>(param)] = value;
         m.enc_off = e - enc_sign(m) * m.rm.xactual(now_);
         break;
       }
       default: {
-        if (!valid(param, value)) return ParamWrite::OutOfRange;
+        if (!in_range(param, value)) return ParamWrite::OutOfRange;  // the profile's range (core_skeleton.hpp)
         Limits before = limits(m);
         m.p[static_cast<std::size_t>(param)] = value;
         Limits after = limits(m);
@@ -173,23 +172,7 @@ class Tmc4361Core final : public ramp::RampCore<Motor> {
     }
   }
 
-
  private:
-
-  static bool valid(int param, std::int32_t v) {
-    switch (param) {
-      case 14: return v == 0 || v == 1;
-      case 28: return v >= 0 && v <= 3;
-      case 29: return v >= 0 && v <= 2;
-      case 35: return v >= 1 && v <= 255;
-      case 127: return v >= 0 && v <= 2;
-      case 140: return v >= 0 && v <= 8;
-      case 255: return v == 0 || v == 1;
-      case 26: case 27: return true;
-      default: return v >= 0;  // speeds, accelerations, bows, resolutions, deviations
-    }
-  }
-
   // Unit mode 255: 1 = pps, pps², pps³; 0 = the ramp generator's fixed-point registers
   // (velocities 24.8, accelerations 22.2, bows unscaled).
   static double vunit(const Motor& m) { return m.p[255] ? 1.0 : 1.0 / 256; }

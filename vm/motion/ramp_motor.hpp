@@ -10,6 +10,7 @@
 #include <span>
 #include <string_view>
 
+#include "core_skeleton.hpp"
 #include "ramp.hpp"
 #include "tmcl/motion.hpp"
 #include "tmcl/profile.hpp"
@@ -66,37 +67,19 @@ struct RampMotor {
 };
 
 
-// What every core built on RampMotor shares: one M per motor (M has a RampMotor `rm` and the
-// owned parameters `p`), the instant of the last advance, events that commands caused (reported
-// by the next advance), and turning each motor's plan events into MotionEvents in time order.
-// A core adds its parameters and commands and reacts to its motors' events in collect's hook.
+// What every core built on RampMotor shares beyond the skeleton (core_skeleton.hpp): each
+// motor's plan (M has a RampMotor `rm` besides the owned parameters `p`), the next event, the
+// position and samples read from the plans, and turning each motor's plan events into
+// MotionEvents in time order. A core adds its parameters and commands and reacts to its motors'
+// events in collect's hook.
 template <class M>
-class RampCore : public MotionCore {
+class RampCore : public CoreSkeleton<M> {
  public:
-  // `owned`: the axis parameters the core owns (a static table); `home`: the profile of the
-  // module the core models, whose defaults stand in where another module's profile does not
-  // list an owned parameter. Profiles stay the only source of defaults.
-  RampCore(std::span<const int> owned, std::string_view home) : owned_(owned), home_(home) {}
-
-  // Power-on: every owned parameter at the profile's default, else the home profile's, else 0.
-  void reset(const Profile& profile, int motors) override {
-    const Profile* home = find_profile(home_);
-    motors_.assign(static_cast<std::size_t>(motors), M{});
-    for (auto& m : motors_)
-      for (int n : owned_) {
-        const ParamInfo* info = profile.axis_param(n);
-        if (!info && home) info = home->axis_param(n);
-        m.p[static_cast<std::size_t>(n)] = info ? info->default_value : 0;
-      }
-    now_ = 0;
-    pending_.clear();
-  }
-  bool owns(int param) const override { return std::find(owned_.begin(), owned_.end(), param) != owned_.end(); }
+  using CoreSkeleton<M>::CoreSkeleton;
 
   SimTime next_event() const override {
-    SimTime t = kNever;
+    SimTime t = this->next_pending();
     for (const auto& m : motors_) t = std::min(t, m.rm.next_event());
-    if (!pending_.empty()) t = std::min(t, pending_.front().at);
     return t;
   }
   std::int32_t position(int motor) const override {
@@ -115,19 +98,22 @@ class RampCore : public MotionCore {
   }
 
  protected:
+  using CoreSkeleton<M>::motors_;
+  using CoreSkeleton<M>::now_;
+  using CoreSkeleton<M>::at;
+
   // Advances to `to` and appends the events on the way; on_event(motor, kind) runs after each.
   template <class OnEvent>
   void collect(SimTime to, std::vector<MotionEvent>& out, OnEvent on_event) {
     if (to > now_) now_ = to;
     std::size_t first = out.size();
-    out.insert(out.end(), pending_.begin(), pending_.end());
-    pending_.clear();
+    this->take_pending(out);
     for (std::size_t i = 0; i < motors_.size(); ++i) {
       M& m = motors_[i];
       while (m.rm.next_event() <= now_) {
-        SimTime at = m.rm.event_time(m.rm.next);
+        SimTime when = m.rm.event_time(m.rm.next);
         EventKind k = m.rm.plan.events[m.rm.next++].kind;
-        out.push_back({at, static_cast<std::uint8_t>(i), motion_kind(k), wrap32(m.rm.xactual(at))});
+        out.push_back({when, static_cast<std::uint8_t>(i), motion_kind(k), wrap32(m.rm.xactual(when))});
         on_event(m, k);
       }
     }
@@ -135,8 +121,6 @@ class RampCore : public MotionCore {
       std::stable_sort(out.begin() + static_cast<std::ptrdiff_t>(first), out.end(),
                        [](const MotionEvent& a, const MotionEvent& b) { return a.at < b.at; });
   }
-
-  M& at(int motor) { return motors_[static_cast<std::size_t>(motor)]; }
 
   // An instant reference search: the motor stops where it is, that place becomes position 0
   // (and the target), and ReferenceDone is reported by the next advance.
@@ -148,7 +132,7 @@ class RampCore : public MotionCore {
     m.rm.plan.events.clear();
     m.rm.base -= m.rm.xactual(now_);
     m.p[0] = 0;
-    pending_.push_back({now_, static_cast<std::uint8_t>(motor), MotionEventKind::ReferenceDone, 0});
+    this->report_now(motor, MotionEventKind::ReferenceDone, 0);
   }
 
   static MotionEventKind motion_kind(EventKind k) {
@@ -161,11 +145,6 @@ class RampCore : public MotionCore {
     return MotionEventKind::Stopped;
   }
 
-  std::span<const int> owned_;
-  std::string_view home_;
-  std::vector<M> motors_;
-  SimTime now_ = 0;
-  std::vector<MotionEvent> pending_;  // caused by a command, reported by the next advance
 };
 
 }  // namespace tmcl::ramp

@@ -24,6 +24,7 @@
 
 #include "tmcl/eeprom.hpp"
 #include "tmcl/isa.hpp"
+#include "tmcl/params.hpp"  // status codes
 #include "tmcl/motion.hpp"
 #include "tmcl/profile.hpp"
 
@@ -99,8 +100,7 @@ struct DirectReply {
   std::uint8_t status;
   std::int32_t value;
 };
-inline constexpr std::uint8_t kStatusOk = 100, kStatusInvalidCommand = 2, kStatusWrongType = 3,
-                              kStatusInvalidValue = 4, kStatusNotAvailable = 6;
+// (the kStatus names: params.hpp)
 
 // A mistake the manuals let pass silently (the instruction is ignored), noticed as it happens:
 // tmclrun prints these in its summary, trace and JSON; with Vm::strict each is a fault instead.

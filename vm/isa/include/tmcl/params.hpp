@@ -1,7 +1,8 @@
 // Names for the axis and global parameter numbers the code itself needs (the manuals' numbers
 // and names, USB-2-SD section 6 and TMC2300-MOTOR-EVAL section 5), so that no file writes a bare
-// 4 or 84. Only the names live here: a parameter's range, default and access come from the
-// module's profile (profile.hpp) and nowhere else.
+// 4 or 84, and for the status codes of a module's replies. Only the names live here: a
+// parameter's range, default and access come from the module's profile (profile.hpp) and
+// nowhere else.
 #pragma once
 
 #include <cstdint>
@@ -40,5 +41,10 @@ enum GlobalParam : std::uint8_t {
   kGpRandomNumber = 133,
   kGpSuppressReply = 255,
 };
+
+// Status codes of a reply (the manuals' table of reply status, TMCL host protocol).
+inline constexpr std::uint8_t kStatusWrongChecksum = 1, kStatusInvalidCommand = 2, kStatusWrongType = 3,
+                              kStatusInvalidValue = 4, kStatusEepromLocked = 5, kStatusNotAvailable = 6,
+                              kStatusOk = 100, kStatusLoaded = 101, kStatusPositionReached = 128;
 
 }  // namespace tmcl

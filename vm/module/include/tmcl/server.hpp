@@ -32,9 +32,7 @@
 
 namespace tmcl {
 
-// Status codes of the protocol beyond the VM's (vm.hpp: 2, 3, 4, 6, 100).
-inline constexpr std::uint8_t kStatusWrongChecksum = 1, kStatusEepromLocked = 5, kStatusLoaded = 101,
-                              kStatusPositionReached = 128;
+// Status codes of the protocol: params.hpp (through vm.hpp).
 
 struct ProtocolOptions {
   // Override the module's serial address (global 66) and host address (global 76). Written into

@@ -1,0 +1,83 @@
+// What every built-in motion core shares, however its motors move: one M per motor (M holds the
+// owned axis parameters in `p`), the owned parameters' power-on defaults and write ranges taken
+// from the module profiles (the only source of both), the instant of the last advance, and the
+// events a command causes at its own instant, reported by the next advance. RampCore
+// (ramp_motor.hpp) adds motion planned in time on top; the ideal core, whose motors jump, adds
+// its jumps (motion_ideal.cpp).
+#pragma once
+
+#include <algorithm>
+#include <array>
+#include <cstdint>
+#include <span>
+#include <string_view>
+#include <vector>
+
+#include "tmcl/motion.hpp"
+#include "tmcl/profile.hpp"
+
+namespace tmcl {
+
+template <class M>
+class CoreSkeleton : public MotionCore {
+ public:
+  // `owned`: the axis parameters the core owns (a static table); `home`: the profile of the
+  // module the core models, whose rows stand in where the active profile has none.
+  CoreSkeleton(std::span<const int> owned, std::string_view home) : owned_(owned), home_(home) {}
+
+  // Power-on: every owned parameter at the profile's default, else the home profile's, else 0.
+  void reset(const Profile& profile, int motors) override {
+    const Profile* home = find_profile(home_);
+    motors_.assign(static_cast<std::size_t>(motors), M{});
+    range_.fill(nullptr);
+    for (int n : owned_) {
+      const ParamInfo* info = profile.axis_param(n);
+      if (!info && home) info = home->axis_param(n);
+      for (auto& m : motors_) m.p[static_cast<std::size_t>(n)] = info ? info->default_value : 0;
+      // The VM checks a write against the active profile's range before the core sees it, except
+      // under a profile that checks nothing (generic): there the module the core models decides,
+      // from its own profile's row, so the core never holds a value its module would refuse.
+      const ParamInfo* rule = profile.any_parameter ? nullptr : profile.axis_param(n);
+      if (!rule && home) rule = home->axis_param(n);
+      range_[static_cast<std::size_t>(n)] = rule;
+    }
+    now_ = 0;
+    pending_.clear();
+  }
+  bool owns(int param) const override { return std::find(owned_.begin(), owned_.end(), param) != owned_.end(); }
+
+ protected:
+  M& at(int motor) { return motors_[static_cast<std::size_t>(motor)]; }
+
+  // Whether an owned parameter may take value v: within the range of its profile row (above);
+  // a parameter no profile lists takes any value.
+  bool in_range(int param, std::int32_t v) const {
+    const ParamInfo* r = range_row(param);
+    return !r || (v >= r->min && v <= r->max);
+  }
+  const ParamInfo* range_row(int param) const {
+    return param >= 0 && param < 256 ? range_[static_cast<std::size_t>(param)] : nullptr;
+  }
+
+  // An event a command caused now, reported by the next advance.
+  void report_now(int motor, MotionEventKind kind, std::int32_t position) {
+    pending_.push_back({now_, static_cast<std::uint8_t>(motor), kind, position});
+  }
+  SimTime next_pending() const { return pending_.empty() ? kNever : pending_.front().at; }
+  // Moves the commands' events to `out` (all of them lie at or before now_).
+  void take_pending(std::vector<MotionEvent>& out) {
+    out.insert(out.end(), pending_.begin(), pending_.end());
+    pending_.clear();
+  }
+
+  std::span<const int> owned_;
+  std::string_view home_;
+  std::vector<M> motors_;
+  SimTime now_ = 0;
+
+ private:
+  std::array<const ParamInfo*, 256> range_{};  // per owned parameter: the profile row that bounds it
+  std::vector<MotionEvent> pending_;           // caused by a command, reported by the next advance
+};
+
+}  // namespace tmcl
