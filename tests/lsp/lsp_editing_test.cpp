@@ -234,7 +234,7 @@ TEST(project_file_sets_target_and_include_folders) {
   std::string main = dir.uri("main.tmc");
   c.open(main, "#include mylib.inc\n  SAP 4, 0, Far\n");
   CHECK_EQ(c.last_diagnostics(main).size(), 0u);  // found in lib/, relative to the file
-  CHECK_EQ(hover_text(c, main, 1, 6), "4: Maximum positioning speed, 0…16777215, RW, default 51200 (usb-2-sd)");
+  CHECK_EQ(hover_text(c, main, 1, 6), "4: Maximum positioning speed, 0…16777215 pps, RW, default 51200 pps (usb-2-sd)");
   // Include completion: beside the document, then the include folders, then the bundled files.
   std::string other = dir.uri("new.tmc");
   c.open(other, "#include \n");
