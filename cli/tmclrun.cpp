@@ -134,7 +134,7 @@ int input_error(const std::string& file, const std::string& msg, int status = kE
   return fail(status == kExitIo ? "io" : "input", status, {file, 0, 0, "error", "", msg});
 }
 
-// Errors of a scenario file, collected with places, shown like the assembler's.
+// Errors of a scenario or EEPROM file, collected with places, shown like the assembler's.
 int file_errors(const std::vector<tmcl::FileDiag>& diags) {
   std::fputs(tmcl::render_file_diags(diags, g_failure.error_limit).c_str(), stderr);
   for (const auto& d : diags) {
@@ -527,7 +527,9 @@ int run(int argc, char** argv) {
   if (int r = parse_args(argc, argv, o); r >= 0) return r;
   if (!o.eeprom_seal.empty()) {
     std::string why;
-    if (tmcl::seal_eeprom_file(o.eeprom_seal, why)) return kExitOk;
+    std::vector<tmcl::FileDiag> ediags;
+    if (tmcl::seal_eeprom_file(o.eeprom_seal, ediags, why)) return kExitOk;
+    if (!ediags.empty()) return file_errors(ediags);
     // A file that cannot be written is an I/O error; one that cannot be read or parsed, bad input.
     if (why.find(": error: cannot write") != std::string::npos) {
       std::fprintf(stderr, "%s\n", why.c_str());
@@ -575,7 +577,8 @@ int run(int argc, char** argv) {
   tmcl::EepromImage image;
   if (!o.eeprom.empty()) {
     bool existed = false;
-    if (!tmcl::load_eeprom_file(o.eeprom, image, existed, err)) return located_error(err);
+    std::vector<tmcl::FileDiag> ediags;
+    if (!tmcl::load_eeprom_file(o.eeprom, image, existed, ediags, err)) return ediags.empty() ? located_error(err) : file_errors(ediags);
     if (existed && image.profile != profile->name)
       return located_error(o.eeprom + ":2: error: EEPROM written for module '" + image.profile + "', not '" + o.target + "'");
   }

@@ -10,6 +10,7 @@
 #include <sstream>
 #include <vector>
 
+#include "tmcl/diag_text.hpp"
 #include "tmcl/fileio.hpp"
 #include "tmcl/numbers.hpp"
 
@@ -41,6 +42,33 @@ bool parse_int(const std::string& s, long long lo, long long hi, long long& out)
   return true;
 }
 
+// A record's shape: its word count with the keyword, and what each number after it is.
+struct RecordKind {
+  const char* name;
+  std::size_t words;
+  const char* shape;
+  const char* fields[3];
+};
+constexpr RecordKind kRecords[] = {
+    {"var", 3, "var INDEX VALUE", {"variable number", "value", nullptr}},
+    {"global", 3, "global PARAM VALUE", {"parameter number", "value", nullptr}},
+    {"axis", 4, "axis MOTOR PARAM VALUE", {"motor number", "parameter number", "value"}},
+    {"coord", 4, "coord MOTOR N VALUE", {"motor number", "coordinate number", "value"}},
+};
+const RecordKind* find_record(const std::string& word) {
+  for (const auto& k : kRecords)
+    if (word == k.name) return &k;
+  return nullptr;
+}
+
+// The string forms of the readers: every error (up to the default cap) as one text, without the
+// final newline.
+std::string rendered(const std::vector<FileDiag>& diags) {
+  std::string text = render_file_diags(diags, kDefaultErrorLimit);
+  if (!text.empty() && text.back() == '\n') text.pop_back();
+  return text;
+}
+
 }  // namespace
 
 std::string eeprom_to_text(const EepromImage& image) {
@@ -57,63 +85,113 @@ std::string eeprom_to_text(const EepromImage& image) {
   return body + check;
 }
 
-bool eeprom_from_text(const std::string& text, const std::string& file, EepromImage& image, std::string& error,
+bool eeprom_from_text(const std::string& text, const std::string& file, EepromImage& image, std::vector<FileDiag>& diags,
                       bool check_checksum) {
   image = EepromImage{};
-  auto fail = [&](int line, const std::string& msg) {
-    error = file + ":" + std::to_string(line) + ": error: " + msg;
-    return false;
-  };
+  const std::size_t errors_before = diags.size();
+  std::map<std::string, int> seen;  // "var 3" -> the line that set it, for duplicates
   std::size_t pos = 0;
   int line_no = 0;
   bool checked = false;
   while (pos < text.size()) {
     std::size_t end = text.find('\n', pos);
-    if (end == std::string::npos) {
-      if (check_checksum) return fail(line_no + 1, "EEPROM file is truncated (no final newline)" + std::string(kSealHint));
-      end = text.size();  // sealing: a hand-edited last line may lack its newline
-    }
+    const bool unterminated = end == std::string::npos;
+    if (unterminated) end = text.size();
     std::string line = text.substr(pos, end - pos);
     ++line_no;
-    if (checked && check_checksum) return fail(line_no, "text after the checksum line");
-    std::istringstream is(line);
-    std::vector<std::string> w;
-    for (std::string t; is >> t;) w.push_back(t);
-    long long a = 0, b = 0, c = 0;
+    if (!line.empty() && line.back() == '\r') line.pop_back();
+    const std::string& source = line;
+    std::vector<LineWord> w = split_words(line);
+    auto error = [&](int col, int len, const std::string& msg) { diags.push_back({file, line_no, col, len, msg, source}); };
+    auto at_word = [&](std::size_t i, const std::string& msg) { error(w[i].col, static_cast<int>(w[i].text.size()), msg); };
+    auto at_line = [&](const std::string& msg) { error(1, static_cast<int>(source.size()), msg); };
+    // Sealing takes a hand-edited last line without its newline; a run refuses a cut-off file.
+    if (unterminated && check_checksum) {
+      error(static_cast<int>(source.size()) + 1, 1, "EEPROM file is truncated (no final newline)" + std::string(kSealHint));
+      break;
+    }
+    if (checked && check_checksum) {
+      at_line("text after the checksum line");
+      break;
+    }
     if (line_no == 1) {
-      if (w.size() != 2 || w[0] != "tmcl-eeprom") return fail(1, "not a tmclrun EEPROM file (expected 'tmcl-eeprom 1')");
-      if (w[1] != "1") return fail(1, "unsupported EEPROM file version " + w[1] + " (this tmclrun reads version 1)");
-    } else if (!w.empty() && w[0] == "check") {
+      // Not our header: the rest is not worth an error a line.
+      if (w.size() != 2 || w[0].text != "tmcl-eeprom") {
+        at_line("not a tmclrun EEPROM file (expected 'tmcl-eeprom 1')");
+        return false;
+      }
+      if (w[1].text != "1") {
+        at_word(1, "unsupported EEPROM file version " + w[1].text + " (this tmclrun reads version 1)");
+        return false;
+      }
+    } else if (w.empty()) {
+      at_line("empty line (every line is a record)");
+    } else if (w[0].text == "check") {
       unsigned long expect = 0;
       if (check_checksum) {
-        if (w.size() != 2 || w[1].size() != 8 || std::sscanf(w[1].c_str(), "%8lx", &expect) != 1)
-          return fail(line_no, "malformed checksum line" + std::string(kSealHint));
-        if (fnv1a(std::string_view(text).substr(0, pos)) != expect)
-          return fail(line_no, "EEPROM file is corrupt (checksum mismatch)" + std::string(kSealHint));
+        if (w.size() != 2 || w[1].text.size() != 8 || std::sscanf(w[1].text.c_str(), "%8lx", &expect) != 1)
+          at_line("malformed checksum line" + std::string(kSealHint));
+        else if (fnv1a(std::string_view(text).substr(0, pos)) != expect)
+          at_word(1, "EEPROM file is corrupt (checksum mismatch)" + std::string(kSealHint));
       }
       checked = true;
-    } else if (w.size() == 2 && w[0] == "profile") {
-      image.profile = w[1];
-    } else if (w.size() == 3 && w[0] == "var" && parse_int(w[1], 0, 255, a) && parse_int(w[2], INT32_MIN, INT32_MAX, b)) {
-      if (!image.vars.emplace(static_cast<int>(a), static_cast<std::int32_t>(b)).second) return fail(line_no, "duplicate record");
-    } else if (w.size() == 3 && w[0] == "global" && parse_int(w[1], 0, 255, a) && parse_int(w[2], INT32_MIN, INT32_MAX, b)) {
-      if (!image.globals.emplace(static_cast<int>(a), static_cast<std::int32_t>(b)).second) return fail(line_no, "duplicate record");
-    } else if (w.size() == 4 && (w[0] == "axis" || w[0] == "coord") && parse_int(w[1], 0, 255, a) &&
-               parse_int(w[2], 0, 255, b) && parse_int(w[3], INT32_MIN, INT32_MAX, c)) {
-      auto& map = w[0] == "axis" ? image.axis : image.coords;
-      if (!map.emplace(std::make_pair(static_cast<int>(a), static_cast<int>(b)), static_cast<std::int32_t>(c)).second)
-        return fail(line_no, "duplicate record");
+    } else if (w[0].text == "profile") {
+      if (w.size() != 2) at_line("malformed EEPROM record '" + source + "' (expected 'profile NAME')");
+      else image.profile = w[1].text;
+    } else if (const RecordKind* kind = find_record(w[0].text)) {
+      // Every word is checked, so one line can carry several errors.
+      if (w.size() != kind->words) {
+        at_line("malformed EEPROM record '" + source + "' (expected '" + kind->shape + "')");
+      } else {
+        long long n[3] = {0, 0, 0};
+        bool ok = true;
+        for (std::size_t i = 1; i < w.size(); ++i) {
+          const bool value = i + 1 == w.size();
+          if (!parse_int(w[i].text, value ? INT32_MIN : 0, value ? INT32_MAX : 255, n[i - 1])) {
+            at_word(i, "malformed EEPROM record '" + source + "': bad " + kind->fields[i - 1] + " '" + w[i].text + "' (" +
+                           (value ? "a 32-bit integer" : "0..255") + ")");
+            ok = false;
+          }
+        }
+        if (ok) {
+          std::string key = w[0].text + " " + w[1].text + (kind->words == 4 ? " " + w[2].text : std::string());
+          if (auto [it, fresh] = seen.emplace(key, line_no); !fresh) {
+            at_line("duplicate record: " + key + " is already set on line " + std::to_string(it->second));
+          } else if (kind->words == 3) {
+            auto& map = w[0].text == "var" ? image.vars : image.globals;
+            map.emplace(static_cast<int>(n[0]), static_cast<std::int32_t>(n[1]));
+          } else {
+            auto& map = w[0].text == "axis" ? image.axis : image.coords;
+            map.emplace(std::make_pair(static_cast<int>(n[0]), static_cast<int>(n[1])), static_cast<std::int32_t>(n[2]));
+          }
+        }
+      }
     } else {
-      return fail(line_no, "malformed EEPROM record '" + line + "'");
+      std::vector<std::string_view> names{"var", "global", "axis", "coord", "profile", "check"};
+      std::string hint = closest_match(w[0].text, names);
+      at_word(0, "malformed EEPROM record '" + source + "': unknown record '" + w[0].text +
+                     "' (var, global, axis, coord, profile, check)" + (hint.empty() ? "" : "; did you mean '" + hint + "'?"));
     }
     pos = end + 1;
   }
-  if (line_no == 0) return fail(1, "EEPROM file is empty");
-  if (!checked && check_checksum) return fail(line_no, "EEPROM file is truncated (no checksum line)" + std::string(kSealHint));
-  return true;
+  if (line_no == 0) {
+    diags.push_back({file, 1, 0, 1, "EEPROM file is empty", ""});
+  } else if (!checked && check_checksum) {
+    diags.push_back({file, line_no, 0, 1, "EEPROM file is truncated (no checksum line)" + std::string(kSealHint), ""});
+  }
+  return diags.size() == errors_before;
 }
 
-bool load_eeprom_file(const std::string& path, EepromImage& image, bool& existed, std::string& error) {
+bool eeprom_from_text(const std::string& text, const std::string& file, EepromImage& image, std::string& error,
+                      bool check_checksum) {
+  std::vector<FileDiag> diags;
+  if (eeprom_from_text(text, file, image, diags, check_checksum)) return true;
+  error = rendered(diags);
+  return false;
+}
+
+bool load_eeprom_file(const std::string& path, EepromImage& image, bool& existed, std::vector<FileDiag>& diags,
+                      std::string& error) {
   image = EepromImage{};
   existed = false;
   struct stat st {};
@@ -125,7 +203,14 @@ bool load_eeprom_file(const std::string& path, EepromImage& image, bool& existed
     error = path + ": error: cannot read EEPROM file: " + why;
     return false;
   }
-  return eeprom_from_text(std::string(bytes.begin(), bytes.end()), path, image, error);
+  return eeprom_from_text(std::string(bytes.begin(), bytes.end()), path, image, diags);
+}
+
+bool load_eeprom_file(const std::string& path, EepromImage& image, bool& existed, std::string& error) {
+  std::vector<FileDiag> diags;
+  if (load_eeprom_file(path, image, existed, diags, error)) return true;
+  if (!diags.empty()) error = rendered(diags);
+  return false;
 }
 
 // Through a temporary file, fsync and rename: a killed process or a power cut never leaves a
@@ -140,7 +225,7 @@ bool save_eeprom_file(const std::string& path, const EepromImage& image, std::st
   return true;
 }
 
-bool seal_eeprom_file(const std::string& path, std::string& error) {
+bool seal_eeprom_file(const std::string& path, std::vector<FileDiag>& diags, std::string& error) {
   std::vector<std::uint8_t> bytes;
   std::string why;
   if (!read_file(path, bytes, why, kMaxEepromBytes)) {
@@ -148,8 +233,15 @@ bool seal_eeprom_file(const std::string& path, std::string& error) {
     return false;
   }
   EepromImage image;
-  if (!eeprom_from_text(std::string(bytes.begin(), bytes.end()), path, image, error, false)) return false;
+  if (!eeprom_from_text(std::string(bytes.begin(), bytes.end()), path, image, diags, false)) return false;
   return save_eeprom_file(path, image, error);
+}
+
+bool seal_eeprom_file(const std::string& path, std::string& error) {
+  std::vector<FileDiag> diags;
+  if (seal_eeprom_file(path, diags, error)) return true;
+  if (!diags.empty()) error = rendered(diags);
+  return false;
 }
 
 }  // namespace tmcl

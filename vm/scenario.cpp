@@ -23,11 +23,6 @@ constexpr KindName kKinds[] = {
     {"home", InputEvent::Home, 255, true},                {"slip", InputEvent::Slip, 255, true},
 };
 
-struct Word {
-  std::string text;
-  int col;  // 1-based
-};
-
 }  // namespace
 
 bool parse_scenario(const std::string& text, const std::string& file, std::vector<InputEvent>& out,
@@ -43,22 +38,12 @@ bool parse_scenario(const std::string& text, const std::string& file, std::vecto
     if (!line.empty() && line.back() == '\r') line.pop_back();
     std::string source = line;
     if (auto hash = line.find('#'); hash != std::string::npos) line.resize(hash);
-    std::vector<Word> w;
-    for (std::size_t i = 0; i < line.size();) {
-      if (line[i] == ' ' || line[i] == '\t') {
-        ++i;
-        continue;
-      }
-      std::size_t j = i;
-      while (j < line.size() && line[j] != ' ' && line[j] != '\t') ++j;
-      w.push_back({line.substr(i, j - i), static_cast<int>(i) + 1});
-      i = j;
-    }
+    std::vector<LineWord> w = split_words(line);
     if (w.empty()) continue;
     auto error = [&](int col, int len, const std::string& msg) {
       diags.push_back({file, line_no, col, len, msg, source});
     };
-    auto at_word = [&](const Word& x, const std::string& msg) { error(x.col, static_cast<int>(x.text.size()), msg); };
+    auto at_word = [&](const LineWord& x, const std::string& msg) { error(x.col, static_cast<int>(x.text.size()), msg); };
     static const char* kShape = "expected 'at TIME WHAT INDEX = VALUE'";
     if (w[0].text != "at") {
       at_word(w[0], std::string(kShape) + ", found '" + w[0].text + "'");

@@ -24,18 +24,18 @@ if(NOT rc EQUAL 0)
   message(FATAL_ERROR "cmake --install ${BUILD} --prefix ${prefix} failed (${rc}):\n${out}\n${err}")
 endif()
 
-# Every library of the tree (each folder's `add_library(tmcl::NAME ALIAS ...)`, examples aside).
+# Every library of the tree (each folder's `tmcl_library(NAME ...)`, examples aside).
 set(libs "")
 file(GLOB_RECURSE lists "${ROOT}/vm/CMakeLists.txt" "${ROOT}/asm/CMakeLists.txt" "${ROOT}/cli/CMakeLists.txt")
 foreach(list_file IN LISTS lists)
-  file(STRINGS "${list_file}" aliases REGEX "add_library\\(tmcl::[a-z_0-9]+ ALIAS")
+  file(STRINGS "${list_file}" aliases REGEX "^tmcl_library\\([a-z_0-9]+[ )]")
   foreach(a IN LISTS aliases)
-    string(REGEX REPLACE ".*add_library\\(tmcl::([a-z_0-9]+) ALIAS.*" "\\1" name "${a}")
+    string(REGEX REPLACE "^tmcl_library\\(([a-z_0-9]+).*" "\\1" name "${a}")
     list(APPEND libs ${name})
   endforeach()
 endforeach()
 if(NOT libs)
-  problem("found no library in the tree (add_library(tmcl::NAME ALIAS ...))")
+  problem("found no library in the tree (tmcl_library(NAME ...))")
 endif()
 
 set(expect

@@ -81,7 +81,7 @@ TEST(file_round_trip_and_corruption) {
   std::string bad = text;
   bad[bad.find("-5")] = '+';
   CHECK(!tmcl::eeprom_from_text(bad, "e.txt", back, err));
-  CHECK(err.find("e.txt:3: error:") != std::string::npos);
+  CHECK(err.find("e.txt:3:7: error:") != std::string::npos);
   bad = text;
   bad.replace(bad.find("100"), 3, "101");
   CHECK(!tmcl::eeprom_from_text(bad, "e.txt", back, err));
@@ -91,6 +91,40 @@ TEST(file_round_trip_and_corruption) {
   CHECK(err.find("version 2") != std::string::npos);
   CHECK(!tmcl::eeprom_from_text("", "e.txt", back, err));
   CHECK(!tmcl::eeprom_from_text("hello\n", "e.txt", back, err));
+}
+
+// Every bad line is reported in one go, each with its line, column and length for a caret, in
+// line order, so a hand-edited file is mended in one pass (the golden case eeprom-errors shows
+// the rendered text).
+TEST(text_reports_every_error) {
+  const std::string text =
+      "tmcl-eeprom 1\nprofile generic\nvar 1 x\nglobl 7 1\nvar 2 3\nvar 2 4\naxis 0 1\ncheck 00000000\n";
+  tmcl::EepromImage back;
+  std::vector<tmcl::FileDiag> diags;
+  CHECK(!tmcl::eeprom_from_text(text, "e.txt", back, diags));
+  CHECK_EQ(diags.size(), 5u);
+  if (diags.size() == 5) {
+    CHECK_EQ(diags[0].line, 3);
+    CHECK_EQ(diags[0].col, 7);
+    CHECK_EQ(diags[0].len, 1);
+    CHECK_EQ(diags[1].line, 4);
+    CHECK(diags[1].message.find("did you mean 'global'?") != std::string::npos);
+    CHECK_EQ(diags[2].line, 6);
+    CHECK(diags[2].message.find("already set on line 5") != std::string::npos);
+    CHECK_EQ(diags[3].line, 7);
+    CHECK(diags[3].message.find("expected 'axis MOTOR PARAM VALUE'") != std::string::npos);
+    CHECK_EQ(diags[4].line, 8);
+    CHECK(diags[4].message.find("checksum mismatch") != std::string::npos);
+  }
+  // Sealing ignores the checksum but not the records.
+  diags.clear();
+  CHECK(!tmcl::eeprom_from_text(text, "e.txt", back, diags, false));
+  CHECK_EQ(diags.size(), 4u);
+  // The string form renders them all, capped like the assembler's.
+  std::string err;
+  CHECK(!tmcl::eeprom_from_text(text, "e.txt", back, err));
+  CHECK(err.find("e.txt:3:7: error:") != std::string::npos);
+  CHECK(err.find("e.txt:8:7: error:") != std::string::npos);
 }
 
 TEST(file_save_is_atomic_and_loads) {

@@ -75,6 +75,21 @@ std::string more_errors_note(const std::string& where, long long errors, long lo
   return (where.empty() ? std::string() : where + ": ") + "note: " + what + " not shown (--error-limit N changes the limit, 0 shows all)\n";
 }
 
+std::vector<LineWord> split_words(std::string_view line) {
+  std::vector<LineWord> w;
+  for (std::size_t i = 0; i < line.size();) {
+    if (line[i] == ' ' || line[i] == '\t') {
+      ++i;
+      continue;
+    }
+    std::size_t j = i;
+    while (j < line.size() && line[j] != ' ' && line[j] != '\t') ++j;
+    w.push_back({std::string(line.substr(i, j - i)), static_cast<int>(i) + 1});
+    i = j;
+  }
+  return w;
+}
+
 std::string render_file_diags(const std::vector<FileDiag>& diags, int limit) {
   std::string out;
   std::size_t shown = 0;

@@ -9,8 +9,8 @@
 //   axis <motor> <param> <value>
 //   coord <motor> <n> <value>
 //   check <8 hex digits>            FNV-1a 32 of every byte before this line
-// A file that does not match (header, syntax, duplicate record, checksum) is rejected with
-// FILE:LINE: error: ... . Saving writes FILE.tmp, flushes it, then renames it over FILE, so a
+// A file that does not match (header, syntax, duplicate record, checksum) is rejected with every
+// error in one go, each FILE:LINE:COL: error: ... with the line and a caret, like the assembler. Saving writes FILE.tmp, flushes it, then renames it over FILE, so a
 // killed process leaves either the old or the new file, never half of one.
 //
 // Editing by hand: change, add or delete records in any text editor, then run
@@ -22,6 +22,9 @@
 #include <map>
 #include <string>
 #include <utility>
+#include <vector>
+
+#include "tmcl/diag_text.hpp"
 
 namespace tmcl {
 
@@ -35,17 +38,28 @@ struct EepromImage {
 };
 
 std::string eeprom_to_text(const EepromImage& image);
-// Parses `text` (named `file` in messages). On error returns false and sets `error` to
-// "file:line: error: ...". `check_checksum` false (sealing) ignores the checksum line.
+// Parses `text` (named `file` in messages), checking every line; returns false when any is bad,
+// with `diags` holding every error in line order (render_file_diags shows them, capped).
+// `check_checksum` false (sealing) ignores the checksum line.
+bool eeprom_from_text(const std::string& text, const std::string& file, EepromImage& image, std::vector<FileDiag>& diags,
+                      bool check_checksum = true);
+// The same, with the errors rendered (at most kDefaultErrorLimit) into `error`.
 bool eeprom_from_text(const std::string& text, const std::string& file, EepromImage& image, std::string& error,
                       bool check_checksum = true);
 
-// Loads FILE; a missing file is an empty EEPROM (returns true, `existed` false).
+// Loads FILE; a missing file is an empty EEPROM (returns true, `existed` false). A bad file
+// returns false with its errors in `diags`; one that cannot be read, with `error` set
+// ("FILE: error: cannot read EEPROM file: ...") and `diags` untouched.
+bool load_eeprom_file(const std::string& path, EepromImage& image, bool& existed, std::vector<FileDiag>& diags,
+                      std::string& error);
+// The same, with the errors rendered into `error`.
 bool load_eeprom_file(const std::string& path, EepromImage& image, bool& existed, std::string& error);
 // Atomic save: temporary file + rename.
 bool save_eeprom_file(const std::string& path, const EepromImage& image, std::string& error);
 // --eeprom-seal: reads a hand-edited FILE without checking its checksum, checks every record and
-// saves it again (sorted, with a fresh checksum line).
+// saves it again (sorted, with a fresh checksum line). Errors as load_eeprom_file reports them;
+// a file that cannot be written sets `error` to "FILE: error: cannot write EEPROM file: ...".
+bool seal_eeprom_file(const std::string& path, std::vector<FileDiag>& diags, std::string& error);
 bool seal_eeprom_file(const std::string& path, std::string& error);
 
 }  // namespace tmcl

@@ -19,6 +19,14 @@ std::string closest_match(std::string_view word, const std::vector<std::string_v
 // up) and a caret under column `col` (1-based) with `len - 1` tildes, clipped to the line.
 std::string caret_lines(std::string_view line, int col, int len);
 
+// A word of a line of a line-based text file and its 1-based column, for carets under it.
+struct LineWord {
+  std::string text;
+  int col;
+};
+// The words of `line`, split at blanks and tabs.
+std::vector<LineWord> split_words(std::string_view line);
+
 // One error in a line-based text file: FILE:LINE:COL: error: MESSAGE, then the line and a caret
 // (col 0: FILE:LINE: only, no caret).
 struct FileDiag {

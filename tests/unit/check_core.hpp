@@ -1,0 +1,80 @@
+// The core of our unit-test harness (tests/unit/check.hpp, which tests include): the registry of
+// TEST cases, CHECK and CHECK_EQ.
+#pragma once
+
+#include <cstdio>
+#include <sstream>
+#include <string>
+#include <vector>
+
+namespace tmcl_test {
+
+struct Case {
+  const char* name;
+  void (*fn)();
+};
+
+inline std::vector<Case>& registry() {
+  static std::vector<Case> cases;
+  return cases;
+}
+inline int& failures() {
+  static int n = 0;
+  return n;
+}
+
+struct Register {
+  Register(const char* name, void (*fn)()) { registry().push_back({name, fn}); }
+};
+
+template <typename T>
+std::string show(const T& v) {
+  std::ostringstream os;
+  if constexpr (requires { os << v; })
+    os << v;
+  else
+    os << "<value>";
+  return os.str();
+}
+
+// Compares inside the full expression that made its operands, so an operand that refers into a
+// temporary (`CHECK_EQ(parse(x).name(), "a")`) is still alive when it is compared and shown.
+struct Compared {
+  bool equal;
+  std::string left, right;
+};
+template <typename A, typename B>
+Compared compare_eq(const A& a, const B& b) {
+  if (a == b) return {true, {}, {}};
+  return {false, show(a), show(b)};
+}
+
+inline void fail(const char* file, int line, const std::string& what) {
+  ++failures();
+  std::fprintf(stderr, "%s:%d: check failed: %s\n", file, line, what.c_str());
+}
+
+// Out of line from the macro, so a CHECK_EQ costs one call, not a string expression, per site.
+inline void fail_eq(const char* file, int line, const char* what, const Compared& c) {
+  fail(file, line, std::string(what) + "\n    left:  " + c.left + "\n    right: " + c.right);
+}
+
+}  // namespace tmcl_test
+
+#define TMCL_CAT2(a, b) a##b
+#define TMCL_CAT(a, b) TMCL_CAT2(a, b)
+#define TEST(name)                                                                     \
+  static void name();                                                                  \
+  static ::tmcl_test::Register TMCL_CAT(tmcl_reg_, name)(#name, name);                 \
+  static void name()
+
+#define CHECK(cond)                                                 \
+  do {                                                              \
+    if (!(cond)) ::tmcl_test::fail(__FILE__, __LINE__, #cond);       \
+  } while (0)
+
+#define CHECK_EQ(a, b)                                                                     \
+  do {                                                                                     \
+    const ::tmcl_test::Compared tmcl_c_ = ::tmcl_test::compare_eq((a), (b));               \
+    if (!tmcl_c_.equal) ::tmcl_test::fail_eq(__FILE__, __LINE__, #a " == " #b, tmcl_c_);   \
+  } while (0)
