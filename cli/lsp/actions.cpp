@@ -13,7 +13,6 @@ namespace tmcl::lsp {
 namespace {
 
 using Value = json::Value;
-constexpr int kInvalidParams = -32602;
 
 std::pair<std::int64_t, std::int64_t> point(const Value& p) { return {p["line"].as_int(), p["character"].as_int()}; }
 

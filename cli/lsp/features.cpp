@@ -12,8 +12,6 @@ namespace tmcl::lsp {
 namespace {
 
 using Kind = SourceToken::Kind;
-constexpr int kInvalidParams = -32602;
-constexpr int kRequestFailed = -32803;
 
 std::string access_text(std::uint8_t a) {
   std::string s;

@@ -19,11 +19,6 @@ namespace tmcl::lsp {
 
 namespace {
 
-constexpr int kParseError = -32700;
-constexpr int kInvalidRequest = -32600;
-constexpr int kMethodNotFound = -32601;
-constexpr int kInvalidParams = -32602;
-constexpr int kServerNotInitialized = -32002;
 constexpr std::size_t kMaxMessage = 256u << 20;  // a bigger Content-Length is an error, not an allocation
 
 int hex_digit(char c) {

@@ -16,7 +16,6 @@ namespace tmcl::lsp {
 
 namespace {
 
-constexpr int kInvalidParams = -32602;
 constexpr int kMessageError = 1;    // MessageType.Error
 constexpr int kMessageWarning = 2;  // MessageType.Warning
 constexpr int kFileKind = 17;       // CompletionItemKind.File

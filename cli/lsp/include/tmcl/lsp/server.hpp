@@ -21,6 +21,14 @@
 
 namespace tmcl::lsp {
 
+// Error codes of responses: JSON-RPC 2.0's, and the LSP's own (RequestFailed, ServerNotInitialized).
+inline constexpr int kParseError = -32700;
+inline constexpr int kInvalidRequest = -32600;
+inline constexpr int kMethodNotFound = -32601;
+inline constexpr int kInvalidParams = -32602;
+inline constexpr int kServerNotInitialized = -32002;
+inline constexpr int kRequestFailed = -32803;
+
 // ---- framing --------------------------------------------------------------------------------
 // "Content-Length: N\r\n\r\n" + body.
 std::string frame(std::string_view body);
