@@ -74,11 +74,10 @@ Server::Reply Server::inlay_hints(const Value& params) {
 
 // Only labels and constants can be renamed; anything else gets RequestFailed saying what it is.
 Server::Reply Server::prepare_rename(const Value& params) {
-  Reply err;
-  Document* doc = find_document(params, err);
-  std::size_t offset;
-  if (!doc || !position(*doc, params, offset, err)) return err;
-  const SourceToken* t = token_at(*doc, offset);
+  Target at = target(params, true);
+  if (!at) return at.error;
+  Document* doc = at.doc;
+  const SourceToken* t = at.token;
   auto refuse = [](std::string what) {
     return Reply{Value(), kRequestFailed, what + ": only labels and constants can be renamed"};
   };
