@@ -75,7 +75,8 @@ options:
   --sample DURATION      the sampling period of --csv and --plot (default 10ms)
   --plot FILE.svg        draw position, velocity and acceleration against time as an SVG
   --debug                debug PROGRAM with gdb's commands (docs/debugger.md), read from
-                         standard input: a terminal, or a pipe or file for scripts
+                         standard input: a terminal, or a pipe or file for scripts; with
+                         --serve tcp:... or pty, while the module keeps answering its host
   --debug-commands FILE  debug PROGRAM with the commands in FILE, then quit (gdb -batch -x)
   --symbols FILE         with --debug: the labels and source lines of a .bin (tmclasm -f symbols)
   --source-dir DIR       with --debug or --dap: look for the sources of a .bin in DIR too
