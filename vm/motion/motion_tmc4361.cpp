@@ -97,7 +97,7 @@ class Tmc4361Core final : public ramp::RampCore<Motor> {
       }
     }
     m.p[static_cast<std::size_t>(param)] = value;
-    if (param != 209 || m.goal != Goal::Idle) replan(m);
+    if (param != kApEncoderPosition || m.goal != Goal::Idle) replan(m);
     return ParamWrite::Ok;
   }
 
