@@ -7,6 +7,7 @@
 
 #include "tmcl/asm/disasm.hpp"
 #include "tmcl/codec.hpp"
+#include "tmcl/params.hpp"
 
 namespace tmcl::host {
 namespace {
@@ -16,7 +17,7 @@ constexpr auto kQuietGap = std::chrono::milliseconds(20);  // a lone bad window 
 
 bool checksum_ok(const std::uint8_t* p) { return frame_checksum_ok(p); }
 
-bool known_status(std::uint8_t s) { return (s >= 1 && s <= 6) || s == kStatusOk || s == kStatusLoaded || s == kStatusPositionReached; }
+bool known_status(std::uint8_t s) { return (s >= kStatusWrongChecksum && s <= kStatusNotAvailable) || s == kStatusOk || s == kStatusLoaded || s == kStatusPositionReached; }
 
 
 bool special_134(const Instruction& ins) { return ins.op == static_cast<std::uint8_t>(Op::ReadProgramMemory) && ins.type == 0; }
@@ -36,15 +37,15 @@ std::string hex(const std::uint8_t* p, std::size_t n) {
 
 std::string status_text(std::uint8_t status) {
   switch (status) {
-    case 1: return "wrong checksum";
-    case 2: return "invalid command";
-    case 3: return "wrong type";
-    case 4: return "invalid value";
-    case 5: return "configuration EEPROM locked";
-    case 6: return "command not available";
-    case 100: return "success";
-    case 101: return "command loaded";
-    case 128: return "position reached";
+    case kStatusWrongChecksum: return "wrong checksum";
+    case kStatusInvalidCommand: return "invalid command";
+    case kStatusWrongType: return "wrong type";
+    case kStatusInvalidValue: return "invalid value";
+    case kStatusEepromLocked: return "configuration EEPROM locked";
+    case kStatusNotAvailable: return "command not available";
+    case kStatusOk: return "success";
+    case kStatusLoaded: return "command loaded";
+    case kStatusPositionReached: return "position reached";
     default: return "status " + std::to_string(status);
   }
 }

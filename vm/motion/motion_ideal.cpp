@@ -57,18 +57,18 @@ class IdealCore final : public CoreSkeleton<Motor> {
   ParamWrite set_param(int motor, int param, std::int32_t value) override {
     Motor& m = at(motor);
     switch (param) {
-      case 0: move_absolute(motor, value); return ParamWrite::Ok;
-      case 1:
+      case kApTargetPosition: move_absolute(motor, value); return ParamWrite::Ok;
+      case kApActualPosition:
         rebase(m);
         m.base = value;
         return ParamWrite::Ok;
-      case 2: rotate(motor, value); return ParamWrite::Ok;
-      case 127:
-      case 212:  // within the profile's range (core_skeleton.hpp)
+      case kApTargetSpeed: rotate(motor, value); return ParamWrite::Ok;
+      case kApRelativePositioningOption:
+      case kApMaxEncoderDeviation:  // within the profile's range (core_skeleton.hpp)
         if (!in_range(param, value)) return ParamWrite::OutOfRange;
         m.p[static_cast<std::size_t>(param)] = value;
         return ParamWrite::Ok;
-      case 209: m.encoder_offset = static_cast<std::int64_t>(value) - pos(m); return ParamWrite::Ok;
+      case kApEncoderPosition: m.encoder_offset = static_cast<std::int64_t>(value) - pos(m); return ParamWrite::Ok;
       default: return ParamWrite::ReadOnly;
     }
   }
@@ -76,13 +76,13 @@ class IdealCore final : public CoreSkeleton<Motor> {
   std::int32_t get_param(int motor, int param) override {
     Motor& m = at(motor);
     switch (param) {
-      case 0: return m.target;
-      case 1: return wrap32(pos(m));
-      case 2: return m.velocity;
-      case 3: return m.velocity;
-      case 8: return target_reached(motor) ? 1 : 0;
-      case 127: case 212: return m.p[static_cast<std::size_t>(param)];
-      case 209: return wrap32(pos(m) + m.encoder_offset);
+      case kApTargetPosition: return m.target;
+      case kApActualPosition: return wrap32(pos(m));
+      case kApTargetSpeed: return m.velocity;
+      case kApActualSpeed: return m.velocity;
+      case kApPositionReached: return target_reached(motor) ? 1 : 0;
+      case kApRelativePositioningOption: case kApMaxEncoderDeviation: return m.p[static_cast<std::size_t>(param)];
+      case kApEncoderPosition: return wrap32(pos(m) + m.encoder_offset);
       default: return 0;
     }
   }

@@ -21,7 +21,10 @@ using ramp::EventKind;
 using ramp::RampMotor;
 using ramp::wrap32;
 
-constexpr int kOwned[] = {0, 1, 2, 3, 4, 5, 6, 7, 8, 140, 141, 180};
+constexpr int kOwned[] = {kApTargetPosition,      kApActualPosition,         kApTargetSpeed,
+                          kApActualSpeed,         kApMaxPositioningSpeed,    kApMaxAcceleration,
+                          kApRunCurrent,          kApStandbyCurrent,         kApPositionReached,
+                          kApMicrostepResolution, kApMicrostepInterpolation, kApSmartEnergyActualCurrent};
 
 enum class Goal : std::uint8_t { Idle, Position, Velocity };
 
@@ -57,49 +60,49 @@ class LinearCore final : public ramp::RampCore<Motor> {
   ParamWrite set_param(int motor, int param, std::int32_t value) override {
     Motor& m = at(motor);
     switch (param) {
-      case 0: move_absolute(motor, value); return ParamWrite::Ok;
-      case 1:
+      case kApTargetPosition: move_absolute(motor, value); return ParamWrite::Ok;
+      case kApActualPosition:
         m.rm.base += static_cast<std::int64_t>(value) - m.rm.xactual(now_);
         if (m.goal == Goal::Position) replan(m);
         return ParamWrite::Ok;
-      case 2: rotate(motor, value); return ParamWrite::Ok;
-      case 3: case 8: case 180: return ParamWrite::ReadOnly;
-      case 4: case 5: case 6: case 7: case 140: case 141:  // within the profile's range (core_skeleton.hpp)
+      case kApTargetSpeed: rotate(motor, value); return ParamWrite::Ok;
+      case kApActualSpeed: case kApPositionReached: case kApSmartEnergyActualCurrent: return ParamWrite::ReadOnly;
+      case kApMaxPositioningSpeed: case kApMaxAcceleration: case kApRunCurrent: case kApStandbyCurrent: case kApMicrostepResolution: case kApMicrostepInterpolation:  // within the profile's range (core_skeleton.hpp)
         if (!in_range(param, value)) return ParamWrite::OutOfRange;
         break;
       default: return ParamWrite::ReadOnly;
     }
     bool changed = m.p[static_cast<std::size_t>(param)] != value;
     m.p[static_cast<std::size_t>(param)] = value;
-    if (changed && (param == 4 || param == 5)) replan(m);
+    if (changed && (param == kApMaxPositioningSpeed || param == kApMaxAcceleration)) replan(m);
     return ParamWrite::Ok;
   }
 
   std::int32_t get_param(int motor, int param) override {
     Motor& m = at(motor);
     switch (param) {
-      case 1: return wrap32(m.rm.xactual(now_));
-      case 2: return m.vt;
-      case 3: {
+      case kApActualPosition: return wrap32(m.rm.xactual(now_));
+      case kApTargetSpeed: return m.vt;
+      case kApActualSpeed: {
         double v = m.rm.state(now_).v;
         return static_cast<std::int32_t>(v > 0 ? v + 1e-9 : v - 1e-9);
       }
-      case 8: return target_reached(motor) ? 1 : 0;
-      case 180: return m.rm.at_rest(now_) ? m.p[7] : m.p[6];
+      case kApPositionReached: return target_reached(motor) ? 1 : 0;
+      case kApSmartEnergyActualCurrent: return m.rm.at_rest(now_) ? m.p[kApStandbyCurrent] : m.p[kApRunCurrent];
       default: return m.p[static_cast<std::size_t>(param)];
     }
   }
 
   void move_absolute(int motor, std::int32_t target) override {
     Motor& m = at(motor);
-    m.p[0] = target;
+    m.p[kApTargetPosition] = target;
     m.goal = Goal::Position;
     replan(m);
   }
   // The module has no parameter 127: MVP REL counts from the last target, as the manual says.
   void move_relative(int motor, std::int32_t offset) override {
     Motor& m = at(motor);
-    move_absolute(motor, wrap32(static_cast<std::int64_t>(m.p[0]) + offset));
+    move_absolute(motor, wrap32(static_cast<std::int64_t>(m.p[kApTargetPosition]) + offset));
   }
   void rotate(int motor, std::int32_t velocity) override {
     Motor& m = at(motor);
@@ -129,11 +132,11 @@ class LinearCore final : public ramp::RampCore<Motor> {
   void replan(Motor& m) {
     if (m.goal == Goal::Idle) return;
     ramp::Limits lim;
-    lim.vmax = std::min(m.p[4], vmax_);
-    lim.amax = lim.astart = lim.dmax = lim.dfinal = m.p[5];
+    lim.vmax = std::min(m.p[kApMaxPositioningSpeed], vmax_);
+    lim.amax = lim.astart = lim.dmax = lim.dfinal = m.p[kApMaxAcceleration];
     Builder b = m.rm.restart(now_);
     if (m.goal == Goal::Position)
-      b.plan_position(lim, static_cast<double>(m.p[0] - m.rm.base));
+      b.plan_position(lim, static_cast<double>(m.p[kApTargetPosition] - m.rm.base));
     else
       b.plan_velocity(lim, m.vt);
   }

@@ -13,6 +13,7 @@
 
 #include "ramp_motor.hpp"
 #include "tmcl/motion.hpp"
+#include "tmcl/params.hpp"
 
 namespace tmcl {
 namespace {
@@ -23,8 +24,18 @@ using ramp::Limits;
 using ramp::RampMotor;
 using ramp::wrap32;
 
-constexpr int kOwned[] = {0,  1,  2,  3,  4,  5,  8,  14, 15, 16,  17,  18,  19,  20,  21,  22,  23,  24,
-                          25, 26, 27, 28, 29, 35, 127, 131, 132, 140, 202, 207, 209, 210, 212, 251, 255};
+constexpr int kOwned[] = {kApTargetPosition,    kApActualPosition,      kApTargetSpeed,
+                          kApActualSpeed,       kApMaxPositioningSpeed, kApMaxAcceleration,
+                          kApPositionReached,   kApRampType,            kApStartVelocity,
+                          kApStartAcceleration, kApMaxDeceleration,     kApBreakVelocity,
+                          kApFinalDeceleration, kApStopVelocity,        kApStopDeceleration,
+                          kApBow1,              kApBow2,                kApBow3,
+                          kApBow4,              kApVirtualStopLeft,     kApVirtualStopRight,
+                          kApVirtualStopEnable, kApVirtualStopMode,     kApBowScalingFactor,
+                          kApRelativePositioningOption, kApMeasuredSpeed, kApCurrentMeasuredSpeed,
+                          kApMicrostepResolution, kApFullStepResolution, kApExtendedErrorFlags,
+                          kApEncoderPosition,   kApEncoderResolution,   kApMaxEncoderDeviation,
+                          kApReverseShaft,      kApUnitMode};
 
 enum class Goal : std::uint8_t { Idle, Position, Velocity, Halt };
 enum class Halt : std::uint8_t { Switch, VirtualStop, Deviation };
@@ -59,16 +70,16 @@ class Tmc4361Core final : public ramp::RampCore<Motor> {
   ParamWrite set_param(int motor, int param, std::int32_t value) override {
     Motor& m = at(motor);
     switch (param) {
-      case 0: move_absolute(motor, value); return ParamWrite::Ok;
-      case 1: {  // shift the coordinate system; a move in progress still goes to its target
+      case kApTargetPosition: move_absolute(motor, value); return ParamWrite::Ok;
+      case kApActualPosition: {  // shift the coordinate system; a move in progress still goes to its target
         m.rm.base += static_cast<std::int64_t>(value) - m.rm.xactual(now_);
         if (m.goal == Goal::Position) replan(m);
         return ParamWrite::Ok;
       }
-      case 2: rotate(motor, value); return ParamWrite::Ok;
-      case 3: case 8: case 131: case 132: case 207: return ParamWrite::ReadOnly;
-      case 209: m.enc_off = static_cast<std::int64_t>(value) - enc_sign(m) * m.rm.xactual(now_); break;
-      case 210: case 251: {  // keep the encoder reading, change how it follows the motor
+      case kApTargetSpeed: rotate(motor, value); return ParamWrite::Ok;
+      case kApActualSpeed: case kApPositionReached: case kApMeasuredSpeed: case kApCurrentMeasuredSpeed: case kApExtendedErrorFlags: return ParamWrite::ReadOnly;
+      case kApEncoderPosition: m.enc_off = static_cast<std::int64_t>(value) - enc_sign(m) * m.rm.xactual(now_); break;
+      case kApEncoderResolution: case kApReverseShaft: {  // keep the encoder reading, change how it follows the motor
         if (!in_range(param, value)) return ParamWrite::OutOfRange;
         std::int64_t e = encoder(m);
         m.p[static_cast<std::size_t>(param)] = value;
@@ -80,37 +91,37 @@ class Tmc4361Core final : public ramp::RampCore<Motor> {
         Limits before = limits(m);
         m.p[static_cast<std::size_t>(param)] = value;
         Limits after = limits(m);
-        bool ramp_changed = std::memcmp(&before, &after, sizeof before) != 0 || param == 14 || param == 255;
-        if (ramp_changed || (param >= 26 && param <= 29) || param == 212) replan(m);
+        bool ramp_changed = std::memcmp(&before, &after, sizeof before) != 0 || param == kApRampType || param == kApUnitMode;
+        if (ramp_changed || (param >= kApVirtualStopLeft && param <= kApVirtualStopMode) || param == kApMaxEncoderDeviation) replan(m);
         return ParamWrite::Ok;
       }
     }
     m.p[static_cast<std::size_t>(param)] = value;
-    if (param != 209 || m.goal != Goal::Idle) replan(m);
+    if (param != kApEncoderPosition || m.goal != Goal::Idle) replan(m);
     return ParamWrite::Ok;
   }
 
   std::int32_t get_param(int motor, int param) override {
     Motor& m = at(motor);
     switch (param) {
-      case 1: return wrap32(m.rm.xactual(now_));
-      case 2: return m.vt;
-      case 3: return speed_raw(m, m.rm.state(now_).v);
-      case 8: return target_reached(motor) ? 1 : 0;
-      case 131: case 132: return speed_raw(m, static_cast<double>(enc_sign(m)) * m.rm.state(now_).v);
-      case 207: {
+      case kApActualPosition: return wrap32(m.rm.xactual(now_));
+      case kApTargetSpeed: return m.vt;
+      case kApActualSpeed: return speed_raw(m, m.rm.state(now_).v);
+      case kApPositionReached: return target_reached(motor) ? 1 : 0;
+      case kApMeasuredSpeed: case kApCurrentMeasuredSpeed: return speed_raw(m, static_cast<double>(enc_sign(m)) * m.rm.state(now_).v);
+      case kApExtendedErrorFlags: {
         std::int32_t e = m.errors;
         m.errors = 0;
         return e;
       }
-      case 209: return wrap32(encoder(m));
+      case kApEncoderPosition: return wrap32(encoder(m));
       default: return m.p[static_cast<std::size_t>(param)];
     }
   }
 
   void move_absolute(int motor, std::int32_t target) override {
     Motor& m = at(motor);
-    m.p[0] = target;
+    m.p[kApTargetPosition] = target;
     m.errors = 0;
     m.goal = Goal::Position;
     m.trip_t = ramp::kInf;
@@ -119,7 +130,7 @@ class Tmc4361Core final : public ramp::RampCore<Motor> {
 
   void move_relative(int motor, std::int32_t offset) override {
     Motor& m = at(motor);
-    std::int64_t start = m.p[127] == 0 ? m.p[0] : m.p[127] == 1 ? m.rm.xactual(now_) : encoder(m);
+    std::int64_t start = m.p[kApRelativePositioningOption] == 0 ? m.p[kApTargetPosition] : m.p[kApRelativePositioningOption] == 1 ? m.rm.xactual(now_) : encoder(m);
     move_absolute(motor, wrap32(start + offset));
   }
 
@@ -161,10 +172,10 @@ class Tmc4361Core final : public ramp::RampCore<Motor> {
 
   void encoder_slip(int motor, std::int32_t counts) override {
     Motor& m = at(motor);
-    double res = std::abs(m.p[210]);
-    double factor = res > 0 ? m.p[202] * std::ldexp(1.0, m.p[140]) / res : 0;
+    double res = std::abs(m.p[kApEncoderResolution]);
+    double factor = res > 0 ? m.p[kApFullStepResolution] * std::ldexp(1.0, m.p[kApMicrostepResolution]) / res : 0;
     m.enc_off += std::llround(counts * factor);
-    if (m.p[212] > 0 && std::llabs(deviation(m)) > m.p[212]) {
+    if (m.p[kApMaxEncoderDeviation] > 0 && std::llabs(deviation(m)) > m.p[kApMaxEncoderDeviation]) {
       if (m.goal == Goal::Position || m.goal == Goal::Velocity)
         replan(m);  // the trip scan finds the deviation at once
       else
@@ -175,8 +186,8 @@ class Tmc4361Core final : public ramp::RampCore<Motor> {
  private:
   // Unit mode 255: 1 = pps, pps², pps³; 0 = the ramp generator's fixed-point registers
   // (velocities 24.8, accelerations 22.2, bows unscaled).
-  static double vunit(const Motor& m) { return m.p[255] ? 1.0 : 1.0 / 256; }
-  static double aunit(const Motor& m) { return m.p[255] ? 1.0 : 1.0 / 4; }
+  static double vunit(const Motor& m) { return m.p[kApUnitMode] ? 1.0 : 1.0 / 256; }
+  static double aunit(const Motor& m) { return m.p[kApUnitMode] ? 1.0 : 1.0 / 4; }
   static std::int32_t speed_raw(const Motor& m, double v) { return static_cast<std::int32_t>(std::trunc(v / vunit(m) + (v > 0 ? 1e-9 : -1e-9))); }
 
   // The effective ramp: 16, 17 = 0 mean "as 5", 19 = 0 means "as the effective 17" (profiles.md).
@@ -184,25 +195,25 @@ class Tmc4361Core final : public ramp::RampCore<Motor> {
     auto p = [&](int n) { return static_cast<double>(m.p[static_cast<std::size_t>(n)]); };
     const double vu = vunit(m), au = aunit(m);
     Limits l;
-    l.vmax = p(4) * vu;
-    l.amax = p(5) * au;
-    l.vstart = std::min(p(15) * vu, l.vmax);
-    l.vstop = p(20) * vu;
-    double dmax_raw = m.p[17] ? p(17) : p(5);
+    l.vmax = p(kApMaxPositioningSpeed) * vu;
+    l.amax = p(kApMaxAcceleration) * au;
+    l.vstart = std::min(p(kApStartVelocity) * vu, l.vmax);
+    l.vstop = p(kApStopVelocity) * vu;
+    double dmax_raw = m.p[kApMaxDeceleration] ? p(kApMaxDeceleration) : p(kApMaxAcceleration);
     l.dmax = dmax_raw * au;
-    if (m.p[14] == 1) {  // S-shaped: bows, no break velocity (16, 18, 19 are trapezoid settings)
-      double scale = p(35);
+    if (m.p[kApRampType] == 1) {  // S-shaped: bows, no break velocity (16, 18, 19 are trapezoid settings)
+      double scale = p(kApBowScalingFactor);
       auto inv = [&](int n) { return m.p[static_cast<std::size_t>(n)] > 0 ? 1.0 / (p(n) * scale) : 0.0; };
-      l.ij1 = inv(22);
-      l.ij2 = inv(23);
-      l.ij3 = inv(24);
-      l.ij4 = inv(25);
+      l.ij1 = inv(kApBow1);
+      l.ij2 = inv(kApBow2);
+      l.ij3 = inv(kApBow3);
+      l.ij4 = inv(kApBow4);
       l.astart = l.amax;
       l.dfinal = l.dmax;
     } else {
-      l.vbreak = p(18) * vu;
-      l.astart = (m.p[16] ? p(16) : p(5)) * au;
-      l.dfinal = (m.p[19] ? p(19) : dmax_raw) * au;
+      l.vbreak = p(kApBreakVelocity) * vu;
+      l.astart = (m.p[kApStartAcceleration] ? p(kApStartAcceleration) : p(kApMaxAcceleration)) * au;
+      l.dfinal = (m.p[kApFinalDeceleration] ? p(kApFinalDeceleration) : dmax_raw) * au;
     }
     return l;
   }
@@ -210,8 +221,8 @@ class Tmc4361Core final : public ramp::RampCore<Motor> {
   // Encoder direction relative to XACTUAL: reverse shaft turns the motor, not the encoder's
   // counting (manual, parameter 251); a negative resolution reverses the counting; 0 = none.
   static std::int64_t enc_sign(const Motor& m) {
-    if (m.p[210] == 0) return 0;
-    return (m.p[251] ? -1 : 1) * (m.p[210] < 0 ? -1 : 1);
+    if (m.p[kApEncoderResolution] == 0) return 0;
+    return (m.p[kApReverseShaft] ? -1 : 1) * (m.p[kApEncoderResolution] < 0 ? -1 : 1);
   }
   std::int64_t encoder(const Motor& m) const { return enc_sign(m) * m.rm.xactual(now_) + m.enc_off; }
   std::int64_t deviation(const Motor& m) const { return m.rm.xactual(now_) - encoder(m); }
@@ -236,7 +247,7 @@ class Tmc4361Core final : public ramp::RampCore<Motor> {
     Limits lim = limits(m);
     Builder b = m.rm.restart(now_);
     switch (m.goal) {
-      case Goal::Position: b.plan_position(lim, static_cast<double>(m.p[0] - m.rm.base)); break;
+      case Goal::Position: b.plan_position(lim, static_cast<double>(m.p[kApTargetPosition] - m.rm.base)); break;
       case Goal::Velocity: b.plan_velocity(lim, m.vt * vunit(m)); break;
       case Goal::Halt: return halt(m, b, lim, m.halt);
       case Goal::Idle: break;
@@ -249,14 +260,14 @@ class Tmc4361Core final : public ramp::RampCore<Motor> {
   }
 
   void halt(Motor& m, Builder& b, const Limits& lim, Halt kind) {
-    double dstop = m.p[21] * aunit(m);
+    double dstop = m.p[kApStopDeceleration] * aunit(m);
     if (kind == Halt::Deviation) {
       b.stop_hard();
       b.event(EventKind::Deviation);
     } else {
-      if (kind == Halt::VirtualStop && m.p[29] == 0)
+      if (kind == Halt::VirtualStop && m.p[kApVirtualStopMode] == 0)
         b.stop_ramp(lim);
-      else if (kind == Halt::VirtualStop && m.p[29] == 1)
+      else if (kind == Halt::VirtualStop && m.p[kApVirtualStopMode] == 1)
         b.stop_hard();
       else
         b.stop_linear(dstop);  // 0: hard
@@ -270,8 +281,8 @@ class Tmc4361Core final : public ramp::RampCore<Motor> {
   void scan_trips(Motor& m, const Limits& lim) {
     const auto& segs = m.rm.plan.segs;
     const double base = static_cast<double>(m.rm.base);
-    const int vs_en = m.p[28];
-    const std::int64_t maxdev = m.p[212];
+    const int vs_en = m.p[kApVirtualStopEnable];
+    const std::int64_t maxdev = m.p[kApMaxEncoderDeviation];
     const std::int64_t c = 1 - enc_sign(m);  // deviation = c * XACTUAL - enc_off
     for (const auto& seg : segs) {
       if (seg.dir == 0) continue;
@@ -281,8 +292,8 @@ class Tmc4361Core final : public ramp::RampCore<Motor> {
         if (dt >= 0 && seg.t0 + dt < best) best = seg.t0 + dt, kind = k;
       };
       if ((seg.dir < 0 && m.left) || (seg.dir > 0 && m.right)) consider(0, Halt::Switch);
-      if (seg.dir > 0 && (vs_en & 2)) consider(ramp::crossing(seg, m.p[27] - base), Halt::VirtualStop);
-      if (seg.dir < 0 && (vs_en & 1)) consider(ramp::crossing(seg, m.p[26] - base), Halt::VirtualStop);
+      if (seg.dir > 0 && (vs_en & 2)) consider(ramp::crossing(seg, m.p[kApVirtualStopRight] - base), Halt::VirtualStop);
+      if (seg.dir < 0 && (vs_en & 1)) consider(ramp::crossing(seg, m.p[kApVirtualStopLeft] - base), Halt::VirtualStop);
       if (maxdev > 0) {
         if (c == 0) {
           if (std::llabs(m.enc_off) > maxdev) consider(0, Halt::Deviation);

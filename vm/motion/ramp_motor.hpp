@@ -13,6 +13,7 @@
 #include "core_skeleton.hpp"
 #include "ramp.hpp"
 #include "tmcl/motion.hpp"
+#include "tmcl/params.hpp"
 #include "tmcl/profile.hpp"
 
 namespace tmcl::ramp {
@@ -88,7 +89,7 @@ class RampCore : public CoreSkeleton<M> {
   // At rest on the target (parameter 0): WAIT POS and parameter 8.
   bool target_reached(int motor) const override {
     const M& m = motors_[static_cast<std::size_t>(motor)];
-    return m.rm.at_rest(now_) && wrap32(m.rm.xactual(now_)) == m.p[0];
+    return m.rm.at_rest(now_) && wrap32(m.rm.xactual(now_)) == m.p[kApTargetPosition];
   }
   bool reference_done(int) const override { return true; }
   MotionSample sample_at(int motor, SimTime t) const override {
@@ -131,7 +132,7 @@ class RampCore : public CoreSkeleton<M> {
     b.finish_rest();
     m.rm.plan.events.clear();
     m.rm.base -= m.rm.xactual(now_);
-    m.p[0] = 0;
+    m.p[kApTargetPosition] = 0;
     this->report_now(motor, MotionEventKind::ReferenceDone, 0);
   }
 
