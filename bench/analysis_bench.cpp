@@ -55,14 +55,7 @@ double run(tmcl::MemoryReader& reader, bool analysis, double& cpu) {
   opts.symbols = false;
   auto r = tmcl::assemble({"bench.tmc"}, opts, reader);
   if (analysis) {
-    tmcl::AnalysisInput in;
-    in.program = r.program;
-    in.lines = r.lines;
-    in.sources = &r.sources;
-    in.profile = r.profile;
-    in.appended_stop = r.appended_stop;
-    in.targets_checked = true;
-    tmcl::analyze(in, r.diags);
+    tmcl::analyze(tmcl::analysis_input(r), r.diags);
   }
   if (!r.ok() || r.diags.warning_count() != 0) std::fprintf(stderr, "%s", r.diags.render(r.sources).c_str());
   cpu = cpu_now() - c0;

@@ -121,23 +121,10 @@ enum class Mode { Link, Compile, Library, Disassemble, Dump, Fmt, Analyze };
 // stack report (which then replace the program as the output).
 enum class Extra { None, Dot, StackUsage };
 
-// What the analysis reads of an assembled program (the label names only when it has them).
-tmcl::AnalysisInput analysis_input(const tmcl::AsmResult& result, bool targets_checked) {
-  tmcl::AnalysisInput in;
-  in.program = result.program;
-  in.lines = result.lines;
-  in.sources = &result.sources;
-  in.symbols = result.symbols;
-  in.profile = result.profile;
-  in.appended_stop = result.appended_stop;
-  in.targets_checked = targets_checked;
-  return in;
-}
-
 // Runs the analysis on a linked program, adding its warnings to result.diags; returns the text
 // of the extra output.
 std::string analyze_program(tmcl::AsmResult& result, Extra extra, bool targets_checked) {
-  tmcl::AnalysisInput in = analysis_input(result, targets_checked);
+  tmcl::AnalysisInput in = tmcl::analysis_input(result, targets_checked);
   tmcl::AnalysisOptions o;
   o.graph = extra == Extra::Dot;
   tmcl::Analysis a = tmcl::analyze(in, result.diags, o);
@@ -151,7 +138,7 @@ std::string analyze_program(tmcl::AsmResult& result, Extra extra, bool targets_c
 // and exported labels nothing calls, which become subroutines with names; without names their
 // code is unreachable, so -Wunreachable is counted here even where -Wno-unreachable is given.
 bool analysis_is_silent(const tmcl::AsmResult& result) {
-  tmcl::AnalysisInput in = analysis_input(result, true);
+  tmcl::AnalysisInput in = tmcl::analysis_input(result, true);
   tmcl::WarningOptions w = result.diags.warning_options();
   w.off.erase("unreachable");
   tmcl::Diagnostics scratch;
@@ -160,18 +147,15 @@ bool analysis_is_silent(const tmcl::AsmResult& result) {
   return scratch.all().empty();
 }
 
-// --analyze: an image is disassembled (with --symbols' names) and the source assembled again
-// (the same instructions, tmclasm -d guarantees it) so that every warning has a line to show.
-int analyze_image(const std::string& file, tmcl::AsmOptions opts, const tmcl::DisasmOptions& dopts,
-                  const std::string& symbols_file, Extra extra, const std::string& output) {
+// Reads the image or object FILE for -d and --analyze, and with --symbols FILE the label names
+// into `names` (pointed to by `o.names`). 0, or the exit status after saying what went wrong.
+int read_input_image(const std::string& file, const std::string& symbols_file, std::string& bytes,
+                     tmcl::LabelNames& names, tmcl::DisasmOptions& o) {
   tmcl::DiskReader disk;
-  std::string bytes;
   if (!disk.read(file, bytes)) {
     std::fprintf(stderr, "tmclasm: error: cannot read '%s': %s\n", file.c_str(), disk.last_error().c_str());
     return kExitInput;
   }
-  tmcl::LabelNames names;
-  tmcl::DisasmOptions o = dopts;
   if (!symbols_file.empty()) {
     std::string error;
     if (!tmcl::load_symbols(symbols_file, "tmclasm", names, error)) {
@@ -180,6 +164,17 @@ int analyze_image(const std::string& file, tmcl::AsmOptions opts, const tmcl::Di
     }
     o.names = &names;
   }
+  return 0;
+}
+
+// --analyze: an image is disassembled (with --symbols' names) and the source assembled again
+// (the same instructions, tmclasm -d guarantees it) so that every warning has a line to show.
+int analyze_image(const std::string& file, tmcl::AsmOptions opts, const tmcl::DisasmOptions& dopts,
+                  const std::string& symbols_file, Extra extra, const std::string& output) {
+  std::string bytes;
+  tmcl::LabelNames names;
+  tmcl::DisasmOptions o = dopts;
+  if (int status = read_input_image(file, symbols_file, bytes, names, o)) return status;
   std::string shown = file == "-" ? "<stdin>" : file;
   tmcl::DisasmResult d = tmcl::disassemble(file, bytes, o);
   int derrors = 0;
@@ -212,22 +207,10 @@ int analyze_image(const std::string& file, tmcl::AsmOptions opts, const tmcl::Di
 // -d: one image or object in, source out.
 int disassemble(const std::string& file, const std::string& output, const tmcl::DisasmOptions& options,
                 const std::string& symbols_file) {
-  tmcl::DiskReader reader;
   std::string bytes;
-  if (!reader.read(file, bytes)) {
-    std::fprintf(stderr, "tmclasm: error: cannot read '%s': %s\n", file.c_str(), reader.last_error().c_str());
-    return kExitInput;
-  }
   tmcl::LabelNames names;
   tmcl::DisasmOptions o = options;
-  if (!symbols_file.empty()) {
-    std::string error;
-    if (!tmcl::load_symbols(symbols_file, "tmclasm", names, error)) {
-      std::fprintf(stderr, "%s\n", error.c_str());
-      return kExitInput;
-    }
-    o.names = &names;
-  }
+  if (int status = read_input_image(file, symbols_file, bytes, names, o)) return status;
   tmcl::DisasmResult r = tmcl::disassemble(file, bytes, o);
   int errors = 0, warnings = 0;
   std::string shown = file == "-" ? "<stdin>" : file;

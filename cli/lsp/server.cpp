@@ -428,15 +428,7 @@ void Server::check(Document& doc) {
   auto r = std::make_shared<AsmResult>(assemble({doc.path}, opts, reader));
 #ifdef TMCL_LSP_ANALYSIS
   if (r->ok()) {
-    AnalysisInput in;
-    in.program = r->program;
-    in.lines = r->lines;
-    in.sources = &r->sources;
-    in.symbols = r->symbols;
-    in.profile = r->profile;
-    in.appended_stop = r->appended_stop;
-    in.targets_checked = true;
-    analyze(in, r->diags, AnalysisOptions{});
+    analyze(analysis_input(*r), r->diags, AnalysisOptions{});
   }
 #endif
   doc.reads.clear();

@@ -33,6 +33,20 @@ struct AnalysisInput {
   std::int64_t instr_time_us = 20;   // time per instruction, for the EEPROM-wear estimate
 };
 
+// What the analysis reads of an assembled program (label names only when the assembly collected
+// them). `targets_checked`: the assembler has already warned of jump targets outside the program.
+inline AnalysisInput analysis_input(const AsmResult& result, bool targets_checked = true) {
+  AnalysisInput in;
+  in.program = result.program;
+  in.lines = result.lines;
+  in.sources = &result.sources;
+  in.symbols = result.symbols;
+  in.profile = result.profile;
+  in.appended_stop = result.appended_stop;
+  in.targets_checked = targets_checked;
+  return in;
+}
+
 // The call stack of both modules holds 8 return addresses (CSUB/CALL manuals; errata E5).
 inline constexpr int kCallStackDepth = 8;
 inline constexpr int kUnbounded = 1 << 30;  // the depth of a region that can recurse
