@@ -65,7 +65,8 @@ std::string instruction_text(const Instruction& ins, const std::unordered_map<in
   return s;
 }
 
-std::string quoted(const std::string& s) {
+// Named apart from std::quoted, which argument-dependent lookup finds for a std::string.
+std::string dot_quoted(const std::string& s) {
   std::string out = "\"";
   for (char c : s) {
     if (c == '"' || c == '\\') out += '\\';
@@ -146,8 +147,8 @@ std::string cfg_dot(const Analysis& a, const AnalysisInput& in) {
   auto node = [&](int block) {
     int s = starts[static_cast<std::size_t>(block)];
     auto it = labels.find(s);
-    if (it == labels.end()) return quoted("a" + std::to_string(s));
-    return quoted(uses[it->second] > 1 ? it->second + "@" + std::to_string(s) : it->second);
+    if (it == labels.end()) return dot_quoted("a" + std::to_string(s));
+    return dot_quoted(uses[it->second] > 1 ? it->second + "@" + std::to_string(s) : it->second);
   };
   std::set<int> chain_sites(a.regions.empty() ? std::set<int>{} : std::set<int>(a.regions[0].chain.begin(), a.regions[0].chain.end()));
   std::set<int> chain_regions;
@@ -177,7 +178,7 @@ std::string cfg_dot(const Analysis& a, const AnalysisInput& in) {
       for (int v : reg.vectors) title += " " + std::to_string(v);
       title += ")";
     }
-    out += "  subgraph cluster_" + std::to_string(r) + " {\n    label=" + quoted(title) + ";\n";
+    out += "  subgraph cluster_" + std::to_string(r) + " {\n    label=" + dot_quoted(title) + ";\n";
     if (chain_regions.count(static_cast<int>(r)) || (r == 0 && !chain_sites.empty())) out += "    color=red;\n";
     for (int b = 0; b < static_cast<int>(starts.size()); ++b)
       if (a.owner[static_cast<std::size_t>(starts[static_cast<std::size_t>(b)])] == static_cast<int>(r))
@@ -196,7 +197,7 @@ std::string cfg_dot(const Analysis& a, const AnalysisInput& in) {
     if (e.kind == EdgeKind::Jump && in.program[static_cast<std::size_t>(e.from)].op != static_cast<std::uint8_t>(Op::JA))
     {
       std::string t = instruction_text(in.program[static_cast<std::size_t>(e.from)], labels);
-      attrs = "label=" + quoted(t.substr(0, t.find(',')));
+      attrs = "label=" + dot_quoted(t.substr(0, t.find(',')));
     }
     while (!attrs.empty() && attrs.back() == ' ') attrs.pop_back();
     out += "  " + node(fb) + " -> " + node(tb) + (attrs.empty() ? "" : " [" + attrs + "]") + ";\n";

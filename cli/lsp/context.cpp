@@ -4,8 +4,6 @@
 
 namespace tmcl::lsp {
 
-using Kind = SourceToken::Kind;
-
 Context context_at(const std::vector<SourceToken>& toks, std::size_t index) {
   Context c;
   std::size_t b = index;

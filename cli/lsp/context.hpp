@@ -14,6 +14,9 @@
 
 namespace tmcl::lsp {
 
+// The kind of an assembler token; every file of the server reads tokens.
+using Kind = SourceToken::Kind;
+
 // The statement a token is in: its mnemonic (nullptr when the line holds no instruction) and which
 // operand (0-based, -1 for the mnemonic itself) the token belongs to.
 struct Context {

@@ -11,8 +11,6 @@ namespace tmcl::lsp {
 
 namespace {
 
-using Kind = SourceToken::Kind;
-
 std::string access_text(std::uint8_t a) {
   std::string s;
   if (a & kRead) s += 'R';

@@ -9,7 +9,6 @@ namespace tmcl::lsp {
 
 namespace {
 
-using Kind = SourceToken::Kind;
 constexpr int kHintParameter = 2;  // InlayHintKind.Parameter
 
 // The name the profile gives the value of this operand: a parameter or an interrupt vector.

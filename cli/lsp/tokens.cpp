@@ -12,8 +12,6 @@ namespace tmcl::lsp {
 
 namespace {
 
-using Kind = SourceToken::Kind;
-
 // Token types, numbered by their place in the legend.
 enum Type : int { kMnemonic, kTypeKeyword, kLabel, kConstant, kNumber, kComment, kDirective, kIncludeName };
 constexpr const char* kTypeNames[] = {"keyword", "enumMember", "function", "variable", "number", "comment", "macro", "string"};
