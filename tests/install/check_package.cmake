@@ -20,6 +20,11 @@ execute_process(COMMAND "${CPACK}" -G "TGZ;DEB" --config "${BUILD}/CPackConfig.c
 if(NOT rc EQUAL 0)
   message(FATAL_ERROR "cpack failed (${rc}):\n${out}\n${err}")
 endif()
+# cpack reads the configuration the project wrote (CPackConfig.cmake); a warning there, such as a
+# badly escaped regular expression, is a defect users would see on every run.
+if("${out}${err}" MATCHES "CMake (Warning|Deprecation)")
+  message(FATAL_ERROR "cpack warned:\n${out}\n${err}")
+endif()
 file(GLOB deb "${WORK}/tmcl_${VERSION}_*.deb")
 file(GLOB tgz "${WORK}/tmcl-${VERSION}-*.tar.gz")
 if(NOT deb OR NOT tgz)
