@@ -1,6 +1,6 @@
 # Every tool (TMCL_TOOLS in cli/CMakeLists.txt) has a man page docs/man/TOOL.1 and a bash
 # completion cli/completion/TOOL, and every option its --help lists appears in both; every
-# add_executable of cli/CMakeLists.txt is in TMCL_TOOLS.
+# executable of cli/CMakeLists.txt is in TMCL_TOOLS.
 # Run as: cmake -DROOT=<source dir> "-DTOOLS=name=path;..." -P check_man_pages.cmake
 cmake_minimum_required(VERSION 3.25)
 set(failures 0)
@@ -75,10 +75,11 @@ foreach(entry IN LISTS TOOLS)
   endif()
 endforeach()
 
-# Every executable of cli/CMakeLists.txt is a tool of TMCL_TOOLS.
-file(STRINGS "${ROOT}/cli/CMakeLists.txt" exes REGEX "^[ \t]*add_executable\\(")
+# Every executable of cli/CMakeLists.txt (add_executable, or tmcl_tool, which makes one) is a
+# tool of TMCL_TOOLS; the add_executable inside tmcl_tool names ${name}, not a tool.
+file(STRINGS "${ROOT}/cli/CMakeLists.txt" exes REGEX "^[ \t]*(add_executable|tmcl_tool)\\([A-Za-z0-9_.+-]")
 foreach(e IN LISTS exes)
-  string(REGEX REPLACE "^[ \t]*add_executable\\(([A-Za-z0-9_.+-]+).*" "\\1" exe "${e}")
+  string(REGEX REPLACE "^[ \t]*(add_executable|tmcl_tool)\\(([A-Za-z0-9_.+-]+).*" "\\2" exe "${e}")
   list(FIND names "${exe}" at)
   if(at EQUAL -1)
     problem("cli/CMakeLists.txt builds ${exe}, which is not in TMCL_TOOLS")
