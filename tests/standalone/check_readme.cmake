@@ -6,11 +6,7 @@
 # Run as: cmake -DROOT=<source dir> -DBUILD=<build dir> "-DQUICKSTART=<target;...>"
 #               "-DTOOLS=<name=path;...>" -P check_readme.cmake
 cmake_minimum_required(VERSION 3.25)
-set(failures 0)
-macro(problem text)
-  message(SEND_ERROR "${text}")
-  math(EXPR failures "${failures} + 1")
-endmacro()
+include(${CMAKE_CURRENT_LIST_DIR}/../unit/checks.cmake)
 
 file(READ "${ROOT}/README.md" readme)
 string(REGEX MATCHALL "```sh\n[^`]*```" blocks "${readme}")
@@ -41,13 +37,7 @@ if(at EQUAL -1)
 endif()
 
 # The first command: what it builds, and what it runs.
-set(tool_names "")
-foreach(entry IN LISTS TOOLS)
-  string(REGEX MATCH "^[^=]+" tool "${entry}")
-  string(REGEX REPLACE "^[^=]+=" "" path "${entry}")
-  list(APPEND tool_names ${tool})
-  set(path_${tool} "${path}")
-endforeach()
+tmcl_read_tools(TOOLS tool_names)
 string(REGEX MATCHALL "--target [^ ]+" targets "${first}")
 set(built "")
 foreach(t IN LISTS targets)
@@ -87,9 +77,7 @@ foreach(f IN LISTS inputs)
   endif()
 endforeach()
 
-if(failures GREATER 0)
-  message(FATAL_ERROR "README commands: ${failures} problem(s)")
-endif()
+tmcl_check_done("README commands")
 list(JOIN built ", " built)
 list(JOIN ran ", " ran)
 message(STATUS "README: the test command is .ci/run's; the first builds ${built} and runs ${ran}")

@@ -1,0 +1,28 @@
+# The harness of the test scripts run with `cmake -P` (tests/install, tests/standalone), as
+# check.hpp is of the C++ tests: problems are collected, so that a script reports all of them
+# before it fails, and the tool list a test passes is read in one place. A script does
+# include(${CMAKE_CURRENT_LIST_DIR}/../unit/checks.cmake), calls problem("...") for each one
+# found and tmcl_check_done("what was checked") at the end.
+set(failures 0)
+macro(problem text)
+  message(SEND_ERROR "${text}")
+  math(EXPR failures "${failures} + 1")
+endmacro()
+
+# Ends the script: a fatal error naming how many problems there were, if any.
+macro(tmcl_check_done what)
+  if(failures GREATER 0)
+    message(FATAL_ERROR "${what}: ${failures} problem(s)")
+  endif()
+endmacro()
+
+# tmcl_read_tools(ENTRIES NAMES_VAR): ENTRIES is the list "tool=path;..." a test passes as TOOLS;
+# sets NAMES_VAR to the tool names and path_<tool> to each tool's path, in the caller's scope.
+macro(tmcl_read_tools entries names_var)
+  set(${names_var} "")
+  foreach(entry IN LISTS ${entries})
+    string(REGEX MATCH "^[^=]+" tool "${entry}")
+    string(REGEX REPLACE "^[^=]+=" "" path_${tool} "${entry}")
+    list(APPEND ${names_var} ${tool})
+  endforeach()
+endmacro()
