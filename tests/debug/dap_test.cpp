@@ -18,7 +18,7 @@ using tmcl::json::Value;
 
 namespace {
 
-const char* kProgram = R"(        VECT 0, tick
+const char* kDapProgram = R"(        VECT 0, tick
         SGP 0, 3, 10
         EI 0
         EI 255
@@ -85,7 +85,7 @@ Session run(const std::vector<std::string>& requests) {
 
 std::string program_file() {
   std::string path = "dap_test_prog.tmc";
-  std::ofstream(path) << kProgram;
+  std::ofstream(path) << kDapProgram;
   return path;
 }
 

@@ -17,7 +17,7 @@ using namespace tmcl_lsp_test;
 
 namespace {
 
-const char* kUri = "file:///work/e.tmc";
+const char* kEditUri = "file:///work/e.tmc";
 
 // The semantic tokens of a response, decoded from relative to absolute positions:
 // "line:char:length:type:modifiers" each, space-separated.
@@ -87,7 +87,7 @@ TEST(capabilities_declare_tokens_hints_and_prepare_rename) {
 TEST(semantic_tokens_full) {
   Client c;
   start(c);
-  c.open(kUri,
+  c.open(kEditUri,
          "#include TMCLParam.tmc\n"   // 0
          "Speed = 1000 // fast\n"     // 1
          "Loop:\n"                    // 2
@@ -99,7 +99,7 @@ TEST(semantic_tokens_full) {
          "Stop = 3\n"                 // 8: a constant named like a mnemonic
          "  WAIT TICKS, 0, Stop\n"    // 9
          "  JA Nowhere\n");           // 10: undefined, no token
-  Value r = c.request("textDocument/semanticTokens/full", doc(kUri))["result"];
+  Value r = c.request("textDocument/semanticTokens/full", doc(kEditUri))["result"];
   CHECK_EQ(decode(r),
            "0:0:8:6:0 0:9:13:7:0 "
            "1:0:5:3:3 1:8:4:4:0 1:13:7:5:0 "
@@ -118,25 +118,25 @@ TEST(semantic_tokens_full) {
 TEST(semantic_tokens_range_and_bad_input) {
   Client c;
   start(c);
-  c.open(kUri, "Loop:\n  SAP 4, 0, 1\n  MVP ABS, 0, 100\n  JA Loop\n");
-  Value r = c.request("textDocument/semanticTokens/range", range(kUri, 1, 0, 2, 8))["result"];
+  c.open(kEditUri, "Loop:\n  SAP 4, 0, 1\n  MVP ABS, 0, 100\n  JA Loop\n");
+  Value r = c.request("textDocument/semanticTokens/range", range(kEditUri, 1, 0, 2, 8))["result"];
   CHECK_EQ(decode(r), "1:2:3:0:0 1:6:1:4:0 1:9:1:4:0 1:12:1:4:0 2:2:3:0:0 2:6:3:1:0");
   CHECK_EQ(tmcl::json::write(r["data"]).substr(0, 12), "[1,2,3,0,0,0");  // relative to the document start
   Value unknown = c.request("textDocument/semanticTokens/full", doc("file:///nowhere.tmc"));
   CHECK_EQ(unknown["error"]["code"].as_int(), -32602);
   CHECK_EQ(unknown["error"]["message"].as_string(), "unknown document 'file:///nowhere.tmc' (not opened with didOpen)");
-  Value outside = c.request("textDocument/semanticTokens/range", range(kUri, 0, 0, 99, 0));
+  Value outside = c.request("textDocument/semanticTokens/range", range(kEditUri, 0, 0, 99, 0));
   CHECK_EQ(outside["error"]["code"].as_int(), -32602);
   CHECK_EQ(outside["error"]["message"].as_string(), "position line 99 is outside the document (5 lines)");
-  CHECK_EQ(c.request("textDocument/semanticTokens/range", doc(kUri))["error"]["message"].as_string(), "missing params.range");
-  CHECK_EQ(c.request("textDocument/semanticTokens/range", range(kUri, 2, 0, 1, 0))["error"]["message"].as_string(),
+  CHECK_EQ(c.request("textDocument/semanticTokens/range", doc(kEditUri))["error"]["message"].as_string(), "missing params.range");
+  CHECK_EQ(c.request("textDocument/semanticTokens/range", range(kEditUri, 2, 0, 1, 0))["error"]["message"].as_string(),
            "params.range ends before it starts");
 }
 
 TEST(inlay_hints_name_bare_parameter_numbers) {
   Client c;
   start(c);
-  c.open(kUri,
+  c.open(kEditUri,
          "Speed = 4\n"                    // 0
          "  SAP 4, 0, 1000\n"             // 1
          "  GAP 4 /* x */ , 0\n"          // 2: a comment after the number is still bare
@@ -147,7 +147,7 @@ TEST(inlay_hints_name_bare_parameter_numbers) {
          "  EI 1\n"                       // 7: an interrupt vector
          "  SAP 999, 0, 1\n"              // 8: not a parameter of the target
          "  MVP ABS, 0, 4\n");            // 9: a position, not a parameter
-  Value r = c.request("textDocument/inlayHint", range(kUri, 0, 0, 10, 0))["result"];
+  Value r = c.request("textDocument/inlayHint", range(kEditUri, 0, 0, 10, 0))["result"];
   std::string got;
   for (const Value& h : r.items())
     got += std::to_string(h["position"]["line"].as_int()) + ":" + std::to_string(h["position"]["character"].as_int()) + " " +
@@ -159,17 +159,17 @@ TEST(inlay_hints_name_bare_parameter_numbers) {
            "6:7 : Timer 0 period (ms) (2)\n"
            "7:6 : TI_TIMER1 (2)\n");
   // Only the range asked for.
-  CHECK_EQ(c.request("textDocument/inlayHint", range(kUri, 5, 0, 6, 0))["result"].size(), 1u);
+  CHECK_EQ(c.request("textDocument/inlayHint", range(kEditUri, 5, 0, 6, 0))["result"].size(), 1u);
   CHECK_EQ(c.request("textDocument/inlayHint", range("file:///nowhere.tmc", 0, 0, 1, 0))["error"]["code"].as_int(), -32602);
-  CHECK_EQ(c.request("textDocument/inlayHint", range(kUri, 0, 0, 50, 0))["error"]["message"].as_string(),
+  CHECK_EQ(c.request("textDocument/inlayHint", range(kEditUri, 0, 0, 50, 0))["error"]["message"].as_string(),
            "position line 50 is outside the document (11 lines)");
 }
 
 TEST(inlay_hints_follow_the_target) {
   Client c;
   start(c, R"({"target":"tmc2300-eval"})");
-  c.open(kUri, "  SAP 4, 0, 1000\n");
-  Value r = c.request("textDocument/inlayHint", range(kUri, 0, 0, 1, 0))["result"];
+  c.open(kEditUri, "  SAP 4, 0, 1000\n");
+  Value r = c.request("textDocument/inlayHint", range(kEditUri, 0, 0, 1, 0))["result"];
   CHECK_EQ(r.size(), 1u);
   const tmcl::ParamInfo* p = tmcl::find_profile("tmc2300-eval")->axis_param(4);
   CHECK(p != nullptr);
@@ -179,13 +179,13 @@ TEST(inlay_hints_follow_the_target) {
 TEST(prepare_rename) {
   Client c;
   start(c);
-  c.open(kUri,
+  c.open(kEditUri,
          "Speed = 1000\n"                 // 0
          "Loop: SAP 4, 0, Speed // c\n"   // 1
          "  MVP ABS, 0, 100\n"            // 2
          "  JA loop\n"                    // 3
          "  JA Nowhere\n");               // 4
-  auto prepare = [&](int line, int ch) { return c.request("textDocument/prepareRename", pos(kUri, line, ch)); };
+  auto prepare = [&](int line, int ch) { return c.request("textDocument/prepareRename", pos(kEditUri, line, ch)); };
   CHECK_EQ(tmcl::json::write(prepare(1, 18)["result"]),
            R"({"range":{"start":{"line":1,"character":16},"end":{"line":1,"character":21}},"placeholder":"Speed"})");
   CHECK_EQ(tmcl::json::write(prepare(3, 6)["result"]),
@@ -211,14 +211,14 @@ TEST(prepare_rename) {
   edit = c.request("textDocument/rename", R"({"textDocument":{"uri":"file:///work/e.tmc"},"position":{"line":3,"character":6},"newName":"LOOP"})")["result"];
   CHECK_EQ(edit["changes"]["file:///work/e.tmc"].size(), 2u);
   // Hover on that label shows the label, not the instruction after it.
-  CHECK_EQ(hover_text(c, kUri, 1, 1), "label `Loop`: address 0");
+  CHECK_EQ(hover_text(c, kEditUri, 1, 1), "label `Loop`: address 0");
 }
 
 TEST(hover_reads_the_bank_after_the_parameter) {
   Client c;
   start(c);
-  c.open(kUri, "  SGP 0, 3, 10\n");
-  CHECK_EQ(hover_text(c, kUri, 0, 6).substr(0, 22), "0: Timer 0 period (ms)");
+  c.open(kEditUri, "  SGP 0, 3, 10\n");
+  CHECK_EQ(hover_text(c, kEditUri, 0, 6).substr(0, 22), "0: Timer 0 period (ms)");
 }
 
 TEST(project_file_sets_target_and_include_folders) {
@@ -337,7 +337,7 @@ TEST(project_file_is_watched_and_read_again) {
 TEST(malformed_params_get_answers) {
   Client c;
   start(c);
-  c.open(kUri, "Loop:\n  SAP 4, 0, 1\n  JA Loop\n");
+  c.open(kEditUri, "Loop:\n  SAP 4, 0, 1\n  JA Loop\n");
   const char* methods[] = {"textDocument/semanticTokens/full", "textDocument/semanticTokens/range", "textDocument/inlayHint",
                            "textDocument/prepareRename"};
   const std::string bad[] = {
@@ -356,7 +356,7 @@ TEST(malformed_params_get_answers) {
       else CHECK_EQ(r["error"]["code"].as_int(), -32602);
     }
   // The server still answers.
-  CHECK(c.request("textDocument/semanticTokens/full", doc(kUri))["result"]["data"].size() > 0u);
+  CHECK(c.request("textDocument/semanticTokens/full", doc(kEditUri))["result"]["data"].size() > 0u);
   Value w = c.request("workspace/didChangeWatchedFiles", R"({"changes":5})");  // a notification sent as a request
   CHECK(w.contains("result"));
   c.notify("workspace/didChangeWatchedFiles", R"({"changes":[{"uri":5},{"type":1}]})");

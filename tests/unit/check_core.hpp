@@ -12,6 +12,7 @@ namespace tmcl_test {
 struct Case {
   const char* name;
   void (*fn)();
+  const char* file;  // __FILE__ of the TEST, for `--file STEM` (tmcl_unit_suite in tests/CMakeLists.txt)
 };
 
 inline std::vector<Case>& registry() {
@@ -24,7 +25,7 @@ inline int& failures() {
 }
 
 struct Register {
-  Register(const char* name, void (*fn)()) { registry().push_back({name, fn}); }
+  Register(const char* name, void (*fn)(), const char* file) { registry().push_back({name, fn, file}); }
 };
 
 template <typename T>
@@ -49,6 +50,17 @@ Compared compare_eq(const A& a, const B& b) {
   return {false, show(a), show(b)};
 }
 
+// Whether a TEST of file `file` belongs to the source file named `stem` (its name without folder
+// and extension): a suite of several files runs one file's cases as one CTest test.
+inline bool from_file(const char* file, const std::string& stem) {
+  std::string f = file;
+  const auto slash = f.find_last_of('/');
+  if (slash != std::string::npos) f.erase(0, slash + 1);
+  const auto dot = f.rfind('.');
+  if (dot != std::string::npos) f.erase(dot);
+  return f == stem;
+}
+
 inline void fail(const char* file, int line, const std::string& what) {
   ++failures();
   std::fprintf(stderr, "%s:%d: check failed: %s\n", file, line, what.c_str());
@@ -65,7 +77,7 @@ inline void fail_eq(const char* file, int line, const char* what, const Compared
 #define TMCL_CAT(a, b) TMCL_CAT2(a, b)
 #define TEST(name)                                                                     \
   static void name();                                                                  \
-  static ::tmcl_test::Register TMCL_CAT(tmcl_reg_, name)(#name, name);                 \
+  static ::tmcl_test::Register TMCL_CAT(tmcl_reg_, name)(#name, name, __FILE__);       \
   static void name()
 
 #define CHECK(cond)                                                 \
