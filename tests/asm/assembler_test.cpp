@@ -1,7 +1,6 @@
 // Unit tests of the assembler library: expressions, symbols, includes, linking of units,
 // line information and diagnostics counts. CLI behaviour and messages are pinned by the golden
 // suite in tests/golden/asm/.
-#define TMCL_TEST_MAIN
 #include "check.hpp"
 #include "tmcl/asm/assembler.hpp"
 

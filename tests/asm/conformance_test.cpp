@@ -1,7 +1,6 @@
 // Every binary example of both manuals (tests/data/manual-binary-forms.tsv, with the
 // manuals' mistakes corrected) assembles to exactly the expected 9-byte datagram, as
 // `tmclasm -f datagrams --no-append-stop` writes it; likewise the requests of the direct-mode table.
-#define TMCL_TEST_MAIN
 #include <cstdio>
 #include <fstream>
 #include <sstream>

@@ -2,7 +2,6 @@
 // accepts a program, and give up on everything else. Checked on every source in the repository,
 // on targeted edge cases, and on thousands of seeded mutations of those sources (a mutation the
 // fast path accepts must assemble cleanly and identically through the full assembler).
-#define TMCL_TEST_MAIN
 #include <algorithm>
 #include <filesystem>
 #include <fstream>

@@ -3,7 +3,6 @@
 // object), runs are compact, a reader of symbols version 1 that skips '#' lines still sees
 // exactly the symbol lines, and files without a line table still read. Messages of malformed
 // tables are pinned by tests/golden/disasm/symbols-errors.run.
-#define TMCL_TEST_MAIN
 #include <algorithm>
 
 #include "check.hpp"

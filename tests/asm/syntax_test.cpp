@@ -2,7 +2,6 @@
 // precedence and values at their edges, and where an #include file name starts and ends. The
 // equality of the two paths on whole programs is fast_path_test's job; this pins the one
 // definition both read.
-#define TMCL_TEST_MAIN
 #include "check.hpp"
 #include "syntax.hpp"
 

@@ -1,6 +1,5 @@
 // Unit tests of tmcl::json: every kind of value, every error the parser reports (with where and
 // what it expected), \u escapes and surrogate pairs, the depth limit, and stable writer output.
-#define TMCL_TEST_MAIN
 #include "check.hpp"
 #include "tmcl/json.hpp"
 

@@ -1,7 +1,6 @@
 // A DAP test client: drives run_dap through every request the adapter supports, a refused
 // request, a runtime fault and reverse steps, and checks the responses and events (type,
 // success, reasons, values) as a client would see them.
-#define TMCL_TEST_MAIN
 #include "check.hpp"
 
 #include <cstdio>

@@ -2,7 +2,6 @@
 // run nothing; stepping and re-execution are deterministic (one instruction at a time gives the
 // state one run gives); reverse steps return to the exact earlier state; checkpoint memory stays
 // within its bound.
-#define TMCL_TEST_MAIN
 #include "check.hpp"
 
 #include <map>

@@ -6,7 +6,6 @@
 // debugger, 129 continues it, SIGINT (Ctrl-C) pauses the program and the server stays. Also
 // tmclrun --dap over a pipe: pause stops a running endless loop. Every wait is for an event with
 // a generous deadline (a loaded machine), never a sleep.
-#define TMCL_TEST_MAIN
 #include "check.hpp"
 
 #include <signal.h>

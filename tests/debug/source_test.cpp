@@ -2,7 +2,6 @@
 // gives a .bin's ProgramInfo every address's file and line and the text of the sources found
 // beside the symbols file or in a --source-dir folder (with their absolute path, which DAP clients
 // send back in setBreakpoints); a missing source is a warning, not a failure.
-#define TMCL_TEST_MAIN
 #include "check.hpp"
 
 #include <unistd.h>

@@ -4,7 +4,6 @@
 // identical .bin, run/stop/step/reset/status, monitor rows, parameters by name, scan on a bus of
 // three modules, every fault kind of --faults recovered or reported, Ctrl-C during a download,
 // a silent module, exclusive ports and atomic output files.
-#define TMCL_TEST_MAIN
 #include <algorithm>
 #include <cstdio>
 

@@ -2,7 +2,6 @@
 // clear error, never a crash): include depth, expression nesting, evaluation depth, line length,
 // file size, names per unit, program size per profile. Also the inputs the fuzzer found that
 // exhausted the native stack (kept as regression tests; they run under the sanitizers in CI).
-#define TMCL_TEST_MAIN
 #include <string>
 
 #include "check.hpp"

@@ -1,7 +1,6 @@
 // The input-file limits of tmclrun (docs/limits.md), through tmclrun itself: a file at its limit
 // is read (its content may still be rejected for other reasons, never for its size), one byte
 // more is rejected with a message naming the limit, exit status 65, and nothing crashes.
-#define TMCL_TEST_MAIN
 #include <sys/wait.h>
 
 #include <cstdio>

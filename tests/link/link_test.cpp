@@ -1,7 +1,6 @@
 // Unit tests of objects, linking and the disassembler: symbolic values in objects, relocation,
 // library member selection, the object reader under every truncation and every flipped byte,
 // and 100,000 random instruction records that must survive disassemble -> reassemble exactly.
-#define TMCL_TEST_MAIN
 #include <random>
 
 #include "check.hpp"

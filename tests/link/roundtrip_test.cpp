@@ -2,7 +2,6 @@
 // assembles without error is assembled, disassembled and reassembled, and must give the
 // identical bytes with no diagnostic — as a .bin, as datagrams, without the appended STOP, and as
 // an object (-c -> -d -> -c, linked alone when it imports nothing).
-#define TMCL_TEST_MAIN
 #include <algorithm>
 #include <filesystem>
 

@@ -2,7 +2,6 @@
 // analysis' notes as related information: every did-you-mean fix the assembler attaches, "add
 // RETI" and "remove unreachable code" from the analysis, which diagnostics a request's range or
 // context selects, and that applying an action's edit makes its warning go away.
-#define TMCL_TEST_MAIN
 #include "check.hpp"
 #include "lsp_client.hpp"
 

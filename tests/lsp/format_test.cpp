@@ -2,7 +2,6 @@
 // example programs, include_files/, every golden case: formatting twice gives what formatting
 // once gave, and the formatted source assembles to exactly the same bytes for every target.
 // Plus the layout rules on small inputs, and sources the formatter must refuse.
-#define TMCL_TEST_MAIN
 #include <algorithm>
 #include <filesystem>
 #include <fstream>

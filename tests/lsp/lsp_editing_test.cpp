@@ -2,7 +2,6 @@
 // and range), inlay hints, prepareRename, the project settings file .tmcl-lsp.json and include
 // completion from the include folders. Each request also gets its bad inputs: an unknown document
 // and positions or ranges outside the document.
-#define TMCL_TEST_MAIN
 #include <stdlib.h>
 #include <sys/stat.h>
 #include <unistd.h>

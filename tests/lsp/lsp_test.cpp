@@ -1,7 +1,6 @@
 // Protocol tests of the language server (cli/lsp/): a scripted client sends every request the
 // server offers and every kind of bad input, and checks the exact replies. The Reader is tested
 // on a pipe with good, bad and truncated frames.
-#define TMCL_TEST_MAIN
 #include <unistd.h>
 
 #include <cstdio>

@@ -1,7 +1,6 @@
 // Unit tests of the module profiles and of the bundled include files: facts from the two
 // manuals, consistency of every table, and agreement of the include files with the tables and
 // with TMCL-IDE's list of TMCLParam.tmc names.
-#define TMCL_TEST_MAIN
 #include "check.hpp"
 #include "data_file.hpp"
 

@@ -1,7 +1,6 @@
 // The protocol engine (TmclModule) without any I/O: framing and resynchronisation byte by byte,
 // the 17-byte and quiet-gap rules, download bookkeeping, option handling. Fast and exact: the
 // transports test the same behaviour end to end in test_transports.cpp.
-#define TMCL_TEST_MAIN
 #include "check.hpp"
 #include "client.hpp"
 

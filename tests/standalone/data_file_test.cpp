@@ -2,7 +2,6 @@
 // table is missing, empty or holds only comments, so a lost data file can never pass as "0 rows".
 // Each case below expects exactly one failure and takes it back, so the test passes only if the
 // reader reported it.
-#define TMCL_TEST_MAIN
 #include "check.hpp"
 #include "data_file.hpp"
 

@@ -1,16 +1,13 @@
-// Our small unit-test harness: TEST(name) { CHECK(...); CHECK_EQ(a, b); } and one main per
-// executable (define TMCL_TEST_MAIN in exactly one file). Prints a failure with file:line and
-// both values, and a closing "N passed, N failed" line; exits non-zero on any failure.
-// `EXE [--file STEM] [CASE]` runs only the cases of source file STEM (a suite of several test
-// files, tmcl_unit_suite in tests/CMakeLists.txt) and only the case named CASE.
-// The harness is check_core.hpp; this file adds main(). It has no include guard of its own, so a
-// unity build (several test files compiled as one unit, tests/CMakeLists.txt) still gets main()
-// from the file that defines TMCL_TEST_MAIN, wherever that file falls in the unit. A suite
-// defines TMCL_TEST_NO_MAIN for its test files and takes main() from tests/unit/test_main.cpp.
+// Our small unit-test harness: TEST(name) { CHECK(...); CHECK_EQ(a, b); }. Prints a failure with
+// file:line and both values, and a closing "N passed, N failed" line; exits non-zero on any
+// failure. `EXE [--file STEM] [CASE]` runs only the cases of source file STEM (a suite of several
+// test files, tmcl_unit_suite in tests/CMakeLists.txt) and only the case named CASE.
+// The harness is check_core.hpp; this file adds main() where TMCL_TEST_MAIN is defined, which is
+// tests/unit/test_main.cpp alone: tmcl_test_main in tests/CMakeLists.txt links it into every
+// unit-test executable.
 #include "check_core.hpp"
 
-#if defined(TMCL_TEST_MAIN) && !defined(TMCL_TEST_MAIN_DONE) && !defined(TMCL_TEST_NO_MAIN)
-#define TMCL_TEST_MAIN_DONE
+#ifdef TMCL_TEST_MAIN
 int main(int argc, char** argv) {
   std::string file, only;
   for (int i = 1; i < argc; ++i) {

@@ -1,5 +1,4 @@
-// The one main() of a suite of test files (tmcl_unit_suite in tests/CMakeLists.txt), whose files
-// are compiled with TMCL_TEST_NO_MAIN; this file is compiled on its own, outside their unit.
-#undef TMCL_TEST_NO_MAIN
+// The one main() of every unit-test executable (tests/unit/check.hpp); tmcl_test_main in
+// tests/CMakeLists.txt adds it, compiled on its own, outside the tests' unity unit.
 #define TMCL_TEST_MAIN
 #include "check.hpp"
