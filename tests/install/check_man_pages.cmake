@@ -1,7 +1,8 @@
 # Every tool (TMCL_TOOLS in cli/CMakeLists.txt) has a man page docs/man/TOOL.1 and a bash
 # completion cli/completion/TOOL, and every option its --help lists appears in both; every
-# executable of cli/CMakeLists.txt is in TMCL_TOOLS.
-# Run as: cmake -DROOT=<source dir> "-DTOOLS=name=path;..." -P check_man_pages.cmake
+# executable cli/ builds is in TMCL_TOOLS.
+# Run as: cmake -DROOT=<source dir> "-DTOOLS=name=path;..." "-DEXECUTABLES=name;..."
+#               -P check_man_pages.cmake
 cmake_minimum_required(VERSION 3.25)
 include(${CMAKE_CURRENT_LIST_DIR}/../unit/checks.cmake)
 
@@ -69,14 +70,10 @@ foreach(tool IN LISTS names)
   endif()
 endforeach()
 
-# Every executable of cli/CMakeLists.txt (add_executable, or tmcl_tool, which makes one) is a
-# tool of TMCL_TOOLS; the add_executable inside tmcl_tool names ${name}, not a tool.
-file(STRINGS "${ROOT}/cli/CMakeLists.txt" exes REGEX "^[ \t]*(add_executable|tmcl_tool)\\([A-Za-z0-9_.+-]")
-foreach(e IN LISTS exes)
-  string(REGEX REPLACE "^[ \t]*(add_executable|tmcl_tool)\\(([A-Za-z0-9_.+-]+).*" "\\2" exe "${e}")
-  list(FIND names "${exe}" at)
-  if(at EQUAL -1)
-    problem("cli/CMakeLists.txt builds ${exe}, which is not in TMCL_TOOLS")
+# Every executable cli/ builds (EXECUTABLES, from the build's own target list) is a tool.
+foreach(exe IN LISTS EXECUTABLES)
+  if(NOT exe IN_LIST names)
+    problem("cli/ builds the executable ${exe}, which is not in TMCL_TOOLS")
   endif()
 endforeach()
 
