@@ -23,6 +23,12 @@ extern "C" void on_sigint(int) {
   if (g_engine) g_engine->pause();
 }
 
+}  // namespace
+
+// A named namespace, not an anonymous one: CommandLine::Impl holds a Cli, and in the library's
+// unity unit GCC refuses a member of a file-local type in a type with linkage (-Wsubobject-linkage).
+namespace gdb {
+
 std::string trim(const std::string& s) {
   std::size_t a = s.find_first_not_of(" \t\r\n"), b = s.find_last_not_of(" \t\r\n");
   return a == std::string::npos ? "" : s.substr(a, b - a + 1);
@@ -680,10 +686,10 @@ bool Cli::command(const std::string& raw) {
   return true;
 }
 
-}  // namespace
+}  // namespace gdb
 
 struct CommandLine::Impl {
-  Cli cli;
+  gdb::Cli cli;
   bool echo, repeat;
   std::string last;
   Impl(Engine& e, std::FILE* out, bool echo_lines, bool repeat_empty) : cli(e, out), echo(echo_lines), repeat(repeat_empty) {}
@@ -700,8 +706,8 @@ bool CommandLine::line(std::string text) {
     std::fprintf(out_, "(tmdb) %s\n", text.c_str());
     std::fflush(out_);  // seen before a command that runs for long
   }
-  if (trim(text).empty() && impl_->repeat) text = impl_->last;  // Enter repeats the last command
-  else if (!trim(text).empty()) impl_->last = text;
+  if (gdb::trim(text).empty() && impl_->repeat) text = impl_->last;  // Enter repeats the last command
+  else if (!gdb::trim(text).empty()) impl_->last = text;
   bool more = impl_->cli.command(text);
   std::fflush(out_);
   return more;
