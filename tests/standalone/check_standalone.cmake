@@ -5,7 +5,8 @@
 #    `${PROJECT_SOURCE_DIR}/..`, `${CMAKE_SOURCE_DIR}/..` and the absolute `/work/shared`.
 # 2. Copies the tree (without build*/ and .git) into a fresh folder under WORK that has nothing
 #    beside it, configures it, checks that the generated build names no file of the original
-#    tree, and builds one small target (tmcl_base) from the copy. Configuring plus one library
+#    tree, and builds one small target (tmcl_base) from the copy, whose Makefile output says
+#    which target was built and nothing per compiled file. Configuring plus one library
 #    keeps this a few seconds (docs/performance.md, "Build time"); the whole suite from a copy is
 #    what .ci/run does.
 cmake_minimum_required(VERSION 3.25)
@@ -109,6 +110,14 @@ else()
   if(NOT rc EQUAL 0)
     message(SEND_ERROR "building tmcl_base in the copy ${copy} failed (${rc}):\n${out}\n${err}")
     math(EXPR failures "${failures} + 1")
+  endif()
+  # What the README promises of the Makefiles' output: a line per target built, none per compiled
+  # file (each would cost a process; CMAKE_RULE_MESSAGES=ON brings them back).
+  if(NOT GENERATOR OR GENERATOR MATCHES "Makefiles")
+    if(NOT out MATCHES "Built target tmcl_base" OR out MATCHES "Building CXX object")
+      message(SEND_ERROR "the Makefiles should print 'Built target tmcl_base' and no 'Building CXX object' line:\n${out}")
+      math(EXPR failures "${failures} + 1")
+    endif()
   endif()
   string(TIMESTAMP t2 "%s")
   math(EXPR secs "${t2} - ${t1}")
