@@ -1,9 +1,10 @@
 // tmclrun: runs a TMCL program on the virtual machine without hardware. Parses arguments, loads
 // the program (assembling .tmc in-process), scenario and EEPROM, runs the VM library, prints the
-// summary, trace, JSON, CSV or plot, or serves it as a virtual module (--serve). All semantics
-// live in vm/; see docs/tmclrun.md. Exit status: 0 STOP, 3 limit reached or blocked, 70 runtime
-// fault, 65 bad input, 64 usage, 71 --serve transport failed, 74 an output file or standard
-// output not written. With --json every outcome is one JSON object on standard output.
+// summary, trace, JSON, CSV or plot. Serving (--serve) and debugging are tmclrun_modes.cpp's, in
+// tmclrun-full only (cli/tmclrun.hpp). All semantics live in vm/; see docs/tmclrun.md. Exit
+// status: 0 STOP, 3 limit reached or blocked, 70 runtime fault, 65 bad input, 64 usage, 71
+// --serve transport failed or tmclrun-full missing, 74 an output file or standard output not
+// written. With --json every outcome is one JSON object on standard output.
 #include <algorithm>
 #include <cctype>
 #include <cerrno>
@@ -17,7 +18,6 @@
 
 #include "tmcl/analysis.hpp"
 #include "tmcl/asm/assembler.hpp"
-#include "tmcl/debug_cli.hpp"
 #include "tmcl/diag_text.hpp"
 #include "tmcl/duration.hpp"
 #include "tmcl/eeprom.hpp"
@@ -26,14 +26,14 @@
 #include "tmcl/numbers.hpp"
 #include "tmcl/program_image.hpp"
 #include "tmcl/scenario.hpp"
-#include "tmcl/server.hpp"
 #include "tmcl/version.hpp"
 #include "tmcl/vm.hpp"
 #include "tmcl/vm_output.hpp"
+#include "tmclrun.hpp"
+
+using namespace tmclrun;
 
 namespace {
-
-constexpr int kExitOk = 0, kExitLimit = 3, kExitUsage = 64, kExitInput = 65, kExitFault = 70, kExitIo = 74;
 
 const char* kUsage = R"(usage: tmclrun [options] PROGRAM        PROGRAM: .tmc source, .bin, .dgm, or - (stdin)
 
@@ -99,8 +99,8 @@ examples:
   tmclrun --serve tcp:127.0.0.1:2001 prog.tmc   a virtual module for PyTrinamic (Ctrl-C stops it)
 
 exit status: 0 STOP, 3 limit reached or blocked forever, 70 runtime fault, 65 bad input,
-             64 usage error, 71 --serve transport failed, 74 an output file (EEPROM, --csv,
-             --plot) or standard output could not be written
+             64 usage error, 71 --serve transport failed or tmclrun-full missing, 74 an output
+             file (EEPROM, --csv, --plot) or standard output could not be written
 )";
 
 std::string joined(const std::vector<std::string>& names) {
@@ -124,16 +124,30 @@ int fail(const char* kind, int status, tmcl::JsonDiagnostic d) {
   return status;
 }
 
-int usage_error(const std::string& msg) {
+}  // namespace
+
+int tmclrun::usage_error(const std::string& msg) {
   std::fprintf(stderr, "tmclrun: %s\n(see tmclrun --help)\n", msg.c_str());
   return fail("usage", kExitUsage, {"", 0, 0, "error", "", msg});
 }
 
 // An error that has no line to point at: "tmclrun: error: ..." or "FILE: error: ...".
-int input_error(const std::string& file, const std::string& msg, int status = kExitInput) {
+int tmclrun::input_error(const std::string& file, const std::string& msg, int status) {
   std::fprintf(stderr, "%s: error: %s\n", file.empty() ? "tmclrun" : file.c_str(), msg.c_str());
   return fail(status == kExitIo ? "io" : "input", status, {file, 0, 0, "error", "", msg});
 }
+
+int tmclrun::duration_option(const char* opt, const ValueFn& value, tmcl::SimTime& out) {
+  std::string v;
+  if (!value(v)) return usage_error(std::string(opt) + " needs a duration");
+  std::string why;
+  auto d = tmcl::parse_duration(v, why);
+  if (!d) return usage_error("bad duration for " + std::string(opt) + ": " + why);
+  out = *d;
+  return -1;
+}
+
+namespace {
 
 // Errors of a scenario or EEPROM file, collected with places, shown like the assembler's.
 int file_errors(const std::vector<tmcl::FileDiag>& diags) {
@@ -193,48 +207,6 @@ class StdinFirstReader final : public tmcl::FileReader {
   tmcl::DiskReader disk_;
 };
 
-struct Options {
-  std::string target = "generic";  // one default for every tool (docs/errata.md)
-  std::string motion;
-  tmcl::SimTime instr_time = 20;
-  tmcl::Limits limits;
-  std::string scenario, eeprom, program;
-  std::string eeprom_seal;
-  bool trace = false, json = false;
-  bool strict = false;  // a run-time warning (docs/tmclrun.md) is a runtime fault
-  std::string csv, plot;
-  std::string log;  // --serve --trace: the request log (empty: standard error)
-  std::string serve;
-  tmcl::ServeOptions serve_opts;
-  std::vector<std::string> modules;  // --module ADDR[/TARGET][:FILE], in order
-  tmcl::SimTime sample = 10 * tmcl::kUsPerMs;
-  tmcl::AsmOptions asm_opts;
-  tmcl::debug::FrontEnd debug;  // --debug, --debug-commands, --symbols, --checkpoint-memory
-};
-
-// --module ADDR[/TARGET][:FILE]: one module of a bus.
-struct BusSpec {
-  std::uint8_t address = 1;
-  std::string target, file;
-};
-bool parse_bus_spec(const std::string& spec, BusSpec& out, std::string& error) {
-  const std::size_t colon = spec.find(':');
-  std::string head = spec.substr(0, colon);
-  out.file = colon == std::string::npos ? "" : spec.substr(colon + 1);
-  if (const std::size_t slash = head.find('/'); slash != std::string::npos) {
-    out.target = head.substr(slash + 1);
-    head = head.substr(0, slash);
-  }
-  char* end = nullptr;
-  const long n = std::strtol(head.c_str(), &end, 0);
-  if (head.empty() || *end || n < 1 || n > 255 || (colon != std::string::npos && out.file.empty())) {
-    error = "--module needs ADDR[/TARGET][:FILE] with ADDR from 1 to 255, not '" + spec + "'";
-    return false;
-  }
-  out.address = static_cast<std::uint8_t>(n);
-  return true;
-}
-
 // Returns -1 when the run should go on, otherwise an exit status.
 int parse_args(int argc, char** argv, Options& o) {
   std::vector<std::string> args(argv + 1, argv + argc);
@@ -261,15 +233,7 @@ int parse_args(int argc, char** argv, Options& o) {
       out = args[++i];
       return true;
     };
-    auto duration = [&](const char* opt, tmcl::SimTime& out) -> int {
-      std::string v;
-      if (!value(v)) return usage_error(std::string(opt) + " needs a duration");
-      std::string why;
-      auto d = tmcl::parse_duration(v, why);
-      if (!d) return usage_error("bad duration for " + std::string(opt) + ": " + why);
-      out = *d;
-      return -1;
-    };
+    auto duration = [&](const char* opt, tmcl::SimTime& out) { return duration_option(opt, value, out); };
     std::string v;
     if (a == "--help" || a == "-h") {
       std::printf(kUsage, joined(tmcl::motion_core_names()).c_str());
@@ -304,39 +268,6 @@ int parse_args(int argc, char** argv, Options& o) {
       if (!tmcl::parse_int(v, 0, 1'000'000'000, n))
         return usage_error("bad error limit '" + v + "' for --error-limit (a number, 0 for no limit)");
       g_failure.error_limit = static_cast<int>(n);
-    } else if (a == "--serve") {
-      if (!value(o.serve)) return usage_error("--serve needs tcp:HOST:PORT, pty or stdio");
-      std::string err;
-      if (!tmcl::parse_serve_spec(o.serve, o.serve_opts, err)) return usage_error(err);
-    } else if (a == "--autostart" && !has_inline) {
-      o.serve_opts.autostart = true;
-    } else if (a == "--eeprom-locked" && !has_inline) {
-      o.serve_opts.protocol.eeprom_locked = true;
-    } else if (a == "--time-scale") {
-      if (!value(v)) return usage_error("--time-scale needs a number");
-      char* end = nullptr;
-      errno = 0;
-      double x = std::strtod(v.c_str(), &end);
-      if (v.empty() || *end || errno || !(x > 0) || x > 1e9) return usage_error("--time-scale needs a number greater than 0");
-      o.serve_opts.time_scale = x;
-    } else if (a == "--module-address" || a == "--host-address") {
-      if (!value(v)) return usage_error(a + " needs a number from 0 to 255");
-      char* end = nullptr;
-      long n = std::strtol(v.c_str(), &end, 0);
-      if (v.empty() || *end || n < 0 || n > 255) return usage_error(a + " needs a number from 0 to 255");
-      (a == "--module-address" ? o.serve_opts.protocol.module_address : o.serve_opts.protocol.host_address) =
-          static_cast<std::uint8_t>(n);
-    } else if (a == "--faults") {
-      std::string err;
-      if (!value(v)) return usage_error("--faults needs a SPEC (e.g. drop@3,corrupt@p=0.1,seed=7)");
-      if (!tmcl::parse_faults(v, o.serve_opts.faults, err)) return usage_error(err);
-    } else if (a == "--module") {
-      if (!value(v)) return usage_error("--module needs ADDR[/TARGET][:FILE]");
-      o.modules.push_back(v);
-    } else if (a == "--max-wall-time") {
-      tmcl::SimTime wall = 0;
-      if (int r = duration("--max-wall-time", wall); r >= 0) return r;
-      o.serve_opts.max_wall_ms = wall / tmcl::kUsPerMs + (wall % tmcl::kUsPerMs ? 1 : 0);
     } else if (a == "--csv") {
       if (!value(o.csv)) return usage_error("--csv needs a file");
     } else if (a == "--plot") {
@@ -363,8 +294,8 @@ int parse_args(int argc, char** argv, Options& o) {
     } else if (a.rfind("-W", 0) == 0 && a.size() > 2) {
       std::string error;
       if (!o.asm_opts.warnings.parse(a, error)) return usage_error(error.empty() ? "unknown option '" + a + "'" : error);
-    } else if (int r = tmcl::debug::parse_option(a, has_inline, value, o.debug); r != 0) {
-      if (r < 0) return usage_error(o.debug.error);
+    } else if (int status = -1; mode_option(a, has_inline, value, o, status)) {
+      if (status >= 0) return status;
     } else if (a != "-" && a.size() > 1 && a[0] == '-') {
       return usage_error("unknown option '" + args[i] + "'");
     } else {
@@ -373,31 +304,14 @@ int parse_args(int argc, char** argv, Options& o) {
       have_program = true;
     }
   }
-  if (o.serve.empty()) {
-    for (const char* opt : {"--autostart", "--time-scale", "--module-address", "--host-address", "--eeprom-locked",
-                            "--max-wall-time", "--faults", "--module"})
-      for (const auto& arg : args)
-        if (arg == opt || arg.rfind(std::string(opt) + "=", 0) == 0)
-          return usage_error(std::string(opt) + " goes with --serve");
-  } else if (o.json || !o.csv.empty() || !o.plot.empty() || o.limits.until != tmcl::kNever ||
-             o.limits.max_steps != UINT64_MAX) {
-    return usage_error("--serve runs until stopped: --json, --csv, --plot, --max-time and --max-steps do not go with it");
-  }
-  if (!o.log.empty() && (o.serve.empty() || !o.trace)) return usage_error("--log FILE goes with --serve --trace");
+  if (int r = check_mode_options(o, args, have_program); r >= 0) return r;
+  if (!o.log.empty() && (!o.serving || !o.trace)) return usage_error("--log FILE goes with --serve --trace");
   if (!o.eeprom_seal.empty()) {
-    if (have_program || !o.serve.empty() || !o.eeprom.empty())
+    if (have_program || o.serving || !o.eeprom.empty())
       return usage_error("--eeprom-seal FILE goes alone (it seals FILE and runs nothing)");
     return -1;
   }
-  if (!o.modules.empty()) {  // the first --module is the primary module: its program and address
-    if (have_program) return usage_error("with --module, give each module's program there, not as PROGRAM");
-    BusSpec first;
-    if (std::string err; !parse_bus_spec(o.modules.front(), first, err)) return usage_error(err);
-    if (!first.target.empty()) o.target = first.target;
-    o.program = first.file;
-    o.serve_opts.protocol.module_address = first.address;
-  }
-  if (!have_program && o.serve.empty() && !o.debug.dap) return usage_error("no PROGRAM given");
+  if (!have_program && !o.serving && !o.dap) return usage_error("no PROGRAM given");
   return -1;
 }
 
@@ -420,9 +334,9 @@ std::vector<std::uint8_t> handler_code(const std::vector<tmcl::Instruction>& pro
   return code;
 }
 
-// Reads PROGRAM (.tmc assembled in-process, .bin, .dgm, or - ) into `program` and the source
-// place of every instruction into `sources`. Returns -1 on success, else an exit status.
-int load_program(Options& o, const tmcl::Profile* profile, std::vector<tmcl::Instruction>& program,
+}  // namespace
+
+int tmclrun::load_program(Options& o, const tmcl::Profile* profile, std::vector<tmcl::Instruction>& program,
                  tmcl::SourceMap& sources) {
   std::vector<std::uint8_t> bytes;
   std::string err;
@@ -483,48 +397,20 @@ int load_program(Options& o, const tmcl::Profile* profile, std::vector<tmcl::Ins
   return -1;
 }
 
-// The second and later --module: each its own profile, motion core, VM (program, EEPROM image
-// in memory) and address on the primary's line. Returns -1 on success, else an exit status.
-int build_bus(Options& o, std::vector<std::unique_ptr<tmcl::MotionCore>>& cores, std::vector<std::unique_ptr<tmcl::Vm>>& vms) {
-  std::vector<int> seen{o.serve_opts.protocol.module_address.value_or(1)};
-  for (std::size_t i = 1; i < o.modules.size(); ++i) {
-    BusSpec b;
-    if (std::string err; !parse_bus_spec(o.modules[i], b, err)) return usage_error(err);
-    for (int a : seen)
-      if (a == b.address) return usage_error("--module: two modules with address " + std::to_string(a));
-    seen.push_back(b.address);
-    const tmcl::Profile* profile = tmcl::find_profile(b.target.empty() ? o.target : b.target);
-    if (!profile) return usage_error("--module " + o.modules[i] + ": unknown module '" + b.target + "'");
-    auto core = tmcl::make_motion_core(std::string(profile->default_motion));
-    if (!core) core = tmcl::make_ideal_motion_core();
-    std::vector<tmcl::Instruction> program;
-    tmcl::SourceMap sources;
-    if (!b.file.empty()) {
-      Options each = o;
-      each.program = b.file;
-      each.target = std::string(profile->name);
-      if (int r = load_program(each, profile, program, sources); r >= 0) return r;
-    }
-    auto vm = std::make_unique<tmcl::Vm>(*profile, *core);
-    vm->instr_time = o.instr_time;
-    vm->load(program);
-    vm->source_of = sources;
-    vm->power_on(nullptr);
-    tmcl::BusModule member{vm.get(), {}};
-    member.protocol.module_address = b.address;
-    member.protocol.host_address = o.serve_opts.protocol.host_address;
-    member.protocol.eeprom_locked = o.serve_opts.protocol.eeprom_locked;
-    o.serve_opts.bus.push_back(member);
-    cores.push_back(std::move(core));
-    vms.push_back(std::move(vm));
-  }
-  return -1;
+void tmclrun::set_up_vm(tmcl::Vm& vm, const Options& o, const std::vector<tmcl::Instruction>& program,
+                        const tmcl::SourceMap& sources, const tmcl::EepromImage* image,
+                        std::vector<tmcl::InputEvent> inputs) {
+  vm.instr_time = o.instr_time;
+  vm.strict = o.strict;
+  vm.load(program);
+  vm.source_of = sources;
+  vm.power_on(image);
+  vm.add_inputs(std::move(inputs));
 }
-
-}  // namespace
 
 int run(int argc, char** argv) {
   Options o;
+  o.argv = argv;
   if (int r = parse_args(argc, argv, o); r >= 0) return r;
   if (!o.eeprom_seal.empty()) {
     std::string why;
@@ -559,7 +445,7 @@ int run(int argc, char** argv) {
   std::vector<tmcl::Instruction> program;
   tmcl::SourceMap sources;
   std::string err;
-  if (!o.program.empty() && !o.debug.enabled)
+  if (!o.program.empty() && !o.debugging)
     if (int r = load_program(o, profile, program, sources); r >= 0) return r;
 
   // ---- scenario and EEPROM ----
@@ -584,15 +470,9 @@ int run(int argc, char** argv) {
       return located_error(o.eeprom + ":2: error: EEPROM written for module '" + image.profile + "', not '" + o.target + "'");
   }
 
-  // --debug, --dap: the debugger runs the program (vm/debug, docs/debugger.md).
-  if (o.debug.enabled && !o.serve.empty()) {  // debugging while serving: tcp or pty, one module
-    if (o.debug.dap || o.serve_opts.transport == tmcl::Transport::Stdio || !o.modules.empty() || o.trace)
-      return usage_error("--serve with --debug takes tcp:HOST:PORT or pty, one module, no --dap and no --trace");
-    o.serve_opts.eeprom_path = o.eeprom;
-  }
-  if (o.debug.enabled)
-    return tmcl::debug::main(o.debug, *profile, std::move(core), o.program, o.asm_opts, o.instr_time, o.limits, std::move(inputs),
-                             o.eeprom.empty() ? nullptr : &image, o.serve.empty() ? nullptr : &o.serve_opts);
+  // --serve, --debug, --dap: tmclrun_modes.cpp (in tmclrun-full only).
+  if (o.serving || o.debugging)
+    return run_mode(o, *profile, std::move(core), program, sources, std::move(inputs), o.eeprom.empty() ? nullptr : &image);
 
   // ---- run ----
   // --csv/--plot: the VM drives a recording decorator around the real core.
@@ -600,40 +480,12 @@ int run(int argc, char** argv) {
   tmcl::MotionRecorder recorder(profile->motors, o.sample);
   tmcl::RecordingCore recording_core(*core, recorder);
   tmcl::Vm vm(*profile, recording ? static_cast<tmcl::MotionCore&>(recording_core) : *core);
-  vm.instr_time = o.instr_time;
-  vm.strict = o.strict;
   tmcl::TextTrace trace(o.json ? stderr : stdout, &sources);
-  if (o.trace && o.serve.empty()) vm.trace = &trace;  // serving, --trace logs the requests instead
+  if (o.trace) vm.trace = &trace;
   tmcl::RecordingTrace recording_trace(vm.trace, recorder);
   if (recording) vm.trace = &recording_trace;
-  vm.load(program);
-  if (o.serve.empty()) vm.handler_code = handler_code(program);
-  vm.source_of = sources;
-  vm.power_on(o.eeprom.empty() ? nullptr : &image);
-  vm.add_inputs(std::move(inputs));
-  if (!o.serve.empty()) {
-    // The virtual module runs until SIGINT/SIGTERM (or --max-wall-time) and saves the EEPROM.
-    o.serve_opts.eeprom_path = o.eeprom;
-    // --trace: every request and its reply, decoded, as it is answered (flushed: a user watches
-    // the traffic live, and a killed server loses nothing).
-    std::FILE* log = stderr;
-    if (o.trace && !o.log.empty()) {
-      log = std::fopen(o.log.c_str(), "w");
-      if (!log) return input_error("", "cannot open log file '" + o.log + "': " + std::strerror(errno), kExitIo);
-    }
-    if (o.trace)
-      o.serve_opts.on_exchange = [log](const tmcl::TmclModule::Exchange& e) {
-        std::fputs(tmcl::exchange_text(e.at, e.module, e.request, e.status, e.value, e.sent).c_str(), log);
-        std::fflush(log);
-      };
-    std::vector<std::unique_ptr<tmcl::MotionCore>> bus_cores;
-    std::vector<std::unique_ptr<tmcl::Vm>> bus_vms;
-    if (int r = build_bus(o, bus_cores, bus_vms); r >= 0) return r;
-    int served = tmcl::serve(vm, o.serve_opts);
-    if (log != stderr && std::fclose(log) != 0)
-      return input_error("", "cannot write log file '" + o.log + "': " + std::strerror(errno), kExitIo);
-    return served;
-  }
+  vm.handler_code = handler_code(program);
+  set_up_vm(vm, o, program, sources, o.eeprom.empty() ? nullptr : &image, std::move(inputs));
   vm.start(0);
   tmcl::RunResult result = vm.run(o.limits);
 

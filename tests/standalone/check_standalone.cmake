@@ -6,7 +6,8 @@
 # 2. Copies the tree (without build*/ and .git) into a fresh folder under WORK that has nothing
 #    beside it, configures it, checks that the generated build names no file of the original
 #    tree, and builds one small target (tmcl_base) from the copy, whose Makefile output says
-#    which target was built and nothing per compiled file. Configuring plus one library
+#    which target was built and nothing per compiled file, and checks that tmclrun links neither
+#    the debugger nor the virtual module (the quick start). Configuring plus one library
 #    keeps this a few seconds (docs/performance.md, "Build time"); the whole suite from a copy is
 #    what .ci/run does.
 cmake_minimum_required(VERSION 3.25)
@@ -116,6 +117,17 @@ else()
   if(NOT GENERATOR OR GENERATOR MATCHES "Makefiles")
     if(NOT out MATCHES "Built target tmcl_base" OR out MATCHES "Building CXX object")
       message(SEND_ERROR "the Makefiles should print 'Built target tmcl_base' and no 'Building CXX object' line:\n${out}")
+      math(EXPR failures "${failures} + 1")
+    endif()
+  endif()
+  # The quick start builds tmclasm and tmclrun; tmclrun links neither the debugger nor the
+  # virtual module, whose compiles took a fifth of it (tmclrun-full does; cli/tmclrun.hpp). The
+  # Makefiles' link line of tmclrun names every library it needs built.
+  set(link "${copy}/build/cli/CMakeFiles/tmclrun.dir/link.txt")
+  if(EXISTS "${link}")
+    file(READ "${link}" line)
+    if(NOT line MATCHES "libtmcl_asm\\.a" OR line MATCHES "libtmcl_(debug|module)\\.a")
+      message(SEND_ERROR "tmclrun should link tmcl_asm and neither tmcl_debug nor tmcl_module:\n${line}")
       math(EXPR failures "${failures} + 1")
     endif()
   endif()

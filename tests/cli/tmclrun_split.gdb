@@ -1,0 +1,7 @@
+break Trip
+run
+info registers
+continue
+delete
+continue
+quit
