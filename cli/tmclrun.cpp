@@ -1,7 +1,7 @@
 // tmclrun: runs a TMCL program on the virtual machine without hardware. Parses arguments, loads
 // the program (assembling .tmc in-process), scenario and EEPROM, runs the VM library, prints the
 // summary, trace, JSON, CSV or plot. Serving (--serve) and debugging are tmclrun_modes.cpp's, in
-// tmclrun-full only (cli/tmclrun.hpp). All semantics live in vm/; see docs/tmclrun.md. Exit
+// tmclrun-full only (cli/tmclrun_modes.hpp). All semantics live in vm/; see docs/tmclrun.md. Exit
 // status: 0 STOP, 3 limit reached or blocked, 70 runtime fault, 65 bad input, 64 usage, 71
 // --serve transport failed or tmclrun-full missing, 74 an output file or standard output not
 // written. With --json every outcome is one JSON object on standard output.
@@ -294,7 +294,7 @@ int parse_args(int argc, char** argv, Options& o) {
     } else if (a.rfind("-W", 0) == 0 && a.size() > 2) {
       std::string error;
       if (!o.asm_opts.warnings.parse(a, error)) return usage_error(error.empty() ? "unknown option '" + a + "'" : error);
-    } else if (int status = -1; mode_option(a, has_inline, value, o, status)) {
+    } else if (int status = -1; mode_option(a, has_inline, value, argv, o, status)) {
       if (status >= 0) return status;
     } else if (a != "-" && a.size() > 1 && a[0] == '-') {
       return usage_error("unknown option '" + args[i] + "'");
@@ -410,7 +410,6 @@ void tmclrun::set_up_vm(tmcl::Vm& vm, const Options& o, const std::vector<tmcl::
 
 int run(int argc, char** argv) {
   Options o;
-  o.argv = argv;
   if (int r = parse_args(argc, argv, o); r >= 0) return r;
   if (!o.eeprom_seal.empty()) {
     std::string why;

@@ -1,9 +1,9 @@
-// tmclrun's stand-in for tmclrun_modes.cpp (cli/tmclrun.hpp): an option that tmclrun.cpp does not
-// know may be one of serving or debugging, which tmclrun-full does. tmclrun becomes tmclrun-full
-// (execv with the same arguments, before anything is read or written), which parses the whole
-// command line again and reports a truly unknown option itself. tmclrun-full is looked for in
-// the installed place (TMCLRUN_FULL_FROM_BIN, relative to tmclrun's own folder), then beside
-// tmclrun (the build tree).
+// tmclrun's stand-in for tmclrun_modes.cpp (cli/tmclrun_modes.hpp): an option that tmclrun.cpp
+// does not know may be one of serving or debugging, which tmclrun-full does. tmclrun becomes
+// tmclrun-full (execv with the same arguments, before anything is read or written), which parses
+// the whole command line again and reports a truly unknown option itself. tmclrun-full is looked
+// for in the installed place (TMCLRUN_FULL_FROM_BIN, relative to tmclrun's own folder), then
+// beside tmclrun (the build tree).
 #include <unistd.h>
 
 #include <cerrno>
@@ -11,7 +11,7 @@
 #include <cstring>
 #include <string>
 
-#include "tmclrun.hpp"
+#include "tmclrun_modes.hpp"
 
 using namespace tmclrun;
 
@@ -29,13 +29,13 @@ std::string own_folder() {
 
 }  // namespace
 
-bool tmclrun::mode_option(const std::string& arg, bool, const ValueFn&, Options& o, int& status) {
+bool tmclrun::mode_option(const std::string& arg, bool, const ValueFn&, char** argv, Options&, int& status) {
   if (arg.size() < 2 || arg[0] != '-') return false;  // PROGRAM, or - for standard input
   const std::string folder = own_folder();
   std::string tried;
   for (const std::string& candidate : {folder + "/" TMCLRUN_FULL_FROM_BIN, folder + "/tmclrun-full"}) {
     if (folder.empty()) break;
-    ::execv(candidate.c_str(), o.argv);  // returns only when it failed
+    ::execv(candidate.c_str(), argv);  // returns only when it failed
     tried += (tried.empty() ? "" : ", ") + candidate + " (" + std::strerror(errno) + ")";
   }
   std::string flag = arg;
@@ -50,8 +50,8 @@ bool tmclrun::mode_option(const std::string& arg, bool, const ValueFn&, Options&
 int tmclrun::check_mode_options(Options&, const std::vector<std::string>&, bool) { return -1; }
 
 int tmclrun::run_mode(Options&, const tmcl::Profile&, std::unique_ptr<tmcl::MotionCore>,
-                      const std::vector<tmcl::Instruction>&, const tmcl::SourceMap&, std::vector<tmcl::InputEvent>,
-                      tmcl::EepromImage*) {
+                      const std::vector<tmcl::Instruction>&, const std::vector<std::string>&,
+                      std::vector<tmcl::InputEvent>, tmcl::EepromImage*) {
   // mode_option never returns with o.serving or o.debugging set here.
   return kExitOsErr;
 }

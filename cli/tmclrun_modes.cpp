@@ -1,4 +1,4 @@
-// tmclrun-full's part of tmclrun (cli/tmclrun.hpp): the options of serving (--serve and its
+// tmclrun-full's part of tmclrun (cli/tmclrun_modes.hpp): the options of serving (--serve and its
 // companions, --module, --faults) and debugging (--debug, --dap), their checks, and the runs that
 // serve a host with the virtual module (vm/module) or debug with the debugger (vm/debug).
 #include <cerrno>
@@ -91,7 +91,7 @@ int build_bus(Options& o, ModeOptions& m, std::vector<std::unique_ptr<tmcl::Moti
 
 }  // namespace
 
-bool tmclrun::mode_option(const std::string& a, bool has_inline, const ValueFn& value, Options& o, int& status) {
+bool tmclrun::mode_option(const std::string& a, bool has_inline, const ValueFn& value, char**, Options& o, int& status) {
   ModeOptions& m = g_modes;
   std::string v;
   status = -1;

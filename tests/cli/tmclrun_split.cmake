@@ -1,4 +1,4 @@
-# tmclrun and tmclrun-full (cli/tmclrun.hpp): tmclrun runs programs with no tmclrun-full beside
+# tmclrun and tmclrun-full (cli/tmclrun_modes.hpp): tmclrun runs programs with no tmclrun-full beside
 # it; it hands serving and debugging to tmclrun-full, looked for in the installed place
 # (../libexec/tmcl/ from its folder) and beside it; and without tmclrun-full it says so by name,
 # exit 71, as JSON too with --json. The install and package tests run it from an installed tree.

@@ -121,7 +121,7 @@ else()
     endif()
   endif()
   # The quick start builds tmclasm and tmclrun; tmclrun links neither the debugger nor the
-  # virtual module, whose compiles took a fifth of it (tmclrun-full does; cli/tmclrun.hpp). The
+  # virtual module, whose compiles took a fifth of it (tmclrun-full does; cli/tmclrun_modes.hpp). The
   # Makefiles' link line of tmclrun names every library it needs built.
   set(link "${copy}/build/cli/CMakeFiles/tmclrun.dir/link.txt")
   if(EXISTS "${link}")
