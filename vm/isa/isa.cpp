@@ -80,6 +80,9 @@ struct OpIndex {
   std::array<std::uint64_t, kSlots> mnemonic_keys{};
   std::array<const OpInfo*, kSlots> mnemonic_ops{};
   std::array<std::vector<std::pair<std::uint64_t, const Keyword*>>, 16> by_set;
+  // The keys of every set's keywords, open addressing (0: a free slot; no key is 0). The
+  // assembler asks of every constant it defines whether its name is a keyword.
+  std::array<std::uint64_t, kSlots> keyword_keys{};
   static std::size_t slot(std::uint64_t key) { return static_cast<std::size_t>((key * 0x9E3779B97F4A7C15ull) >> 55); }
   OpIndex() {
     for (const auto& op : kOps) {
@@ -95,6 +98,16 @@ struct OpIndex {
       std::uint64_t key = 0;
       pack_upper(k.name, key);
       by_set[static_cast<std::size_t>(k.set)].emplace_back(key, &k);
+      if (keyword(key)) continue;  // the same word in two sets
+      std::size_t i = slot(key);
+      while (keyword_keys[i]) i = (i + 1) % kSlots;
+      keyword_keys[i] = key;
+    }
+  }
+  bool keyword(std::uint64_t key) const {
+    for (std::size_t i = slot(key);; i = (i + 1) % kSlots) {
+      if (!keyword_keys[i]) return false;
+      if (keyword_keys[i] == key) return true;
     }
   }
   const OpInfo* mnemonic(std::uint64_t key) const {
@@ -131,11 +144,7 @@ std::optional<std::uint8_t> keyword_value(KwSet set, std::string_view name) {
 
 bool is_keyword(std::string_view name) {
   std::uint64_t key = 0;
-  if (!pack_upper(name, key)) return false;
-  for (const auto& set : index().by_set)
-    for (const auto& entry : set)
-      if (entry.first == key) return true;
-  return false;
+  return pack_upper(name, key) && index().keyword(key);
 }
 
 std::optional<std::string_view> keyword_name(KwSet set, std::uint8_t value) {
