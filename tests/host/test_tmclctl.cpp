@@ -272,14 +272,15 @@ TEST(download_verify_under_seeded_faults) {
   for (int i = 0; i < 99; ++i) src += "SAP 4, 0, " + std::to_string(i) + "\n";
   const std::string path = write_temp("faulty.tmc", src + "STOP\n");
   Server server(kRun, {"--serve", "pty", "-t", "usb-2-sd", "--faults", "stale,corrupt@p=0.1,drop@p=0.05,split@every=7,seed=7"});
-  // Each dropped reply costs one timeout; 8 attempts of 250 ms give a request 2 s to get through
-  // on a loaded machine.
-  Output d = ctl({"-t", "usb-2-sd", "--timeout", "250ms", "--retries", "8", server.port(), "download", path}, 90000);
+  // Each dropped reply costs one timeout, so it is short: a reply comes within a millisecond or
+  // two, and one later than 100 ms is only retried (a stale copy is skipped); 20 attempts give a
+  // request 2 s to get through on a loaded machine.
+  Output d = ctl({"-t", "usb-2-sd", "--timeout", "100ms", "--retries", "20", server.port(), "download", path}, 90000);
   show(d);
   CHECK_EQ(d.status, 0);
   CHECK(has(d.out, "verified 100 instructions"));
   const std::string up = temp_dir() + "/faulty.bin";
-  CHECK_EQ(ctl({"-t", "usb-2-sd", "--timeout", "250ms", "--retries", "8", server.port(), "upload", "-o", up}, 90000).status, 0);
+  CHECK_EQ(ctl({"-t", "usb-2-sd", "--timeout", "100ms", "--retries", "20", server.port(), "upload", "-o", up}, 90000).status, 0);
   const auto want = assembled_bin(path);
   CHECK(slurp(up) == std::string(want.begin(), want.end()));
 }
