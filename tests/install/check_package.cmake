@@ -37,6 +37,23 @@ if(NOT control MATCHES "Package: tmcl\nVersion: ${VERSION}\nDepends: [^\n]*libc6
   message(FATAL_ERROR "unexpected control data of ${deb}:\n${control}")
 endif()
 
+# ... and is exactly what dpkg-shlibdeps says of the package's programs (worked out at cpack time by
+# cli/package_depends.cmake.in, not by CPack's look at every file).
+find_program(SHLIBDEPS dpkg-shlibdeps)
+if(SHLIBDEPS)
+  file(GLOB programs "${WORK}/_CPack_Packages/Linux/DEB/*/usr/bin/*" "${WORK}/_CPack_Packages/Linux/DEB/*/usr/libexec/tmcl/*")
+  file(MAKE_DIRECTORY "${WORK}/shlibdeps/debian")
+  file(WRITE "${WORK}/shlibdeps/debian/control" "")
+  execute_process(COMMAND ${CMAKE_COMMAND} -E env LC_ALL=C "${SHLIBDEPS}" -O ${programs} WORKING_DIRECTORY "${WORK}/shlibdeps"
+    OUTPUT_VARIABLE shlibs ERROR_QUIET)
+  string(REGEX MATCH "shlibs:Depends=([^\n]+)" shlibs "${shlibs}")
+  set(want "${CMAKE_MATCH_1}")
+  string(REGEX MATCH "Depends: ([^\n]+)" got "${control}")
+  if(NOT programs OR NOT want OR NOT CMAKE_MATCH_1 STREQUAL want)
+    message(FATAL_ERROR "Depends of ${deb} is '${CMAKE_MATCH_1}', not dpkg-shlibdeps's '${want}' for ${programs}")
+  endif()
+endif()
+
 set(root "${WORK}/root")
 file(MAKE_DIRECTORY "${root}/var/lib/dpkg/info" "${root}/var/lib/dpkg/updates")
 file(TOUCH "${root}/var/lib/dpkg/status" "${root}/var/lib/dpkg/available")
