@@ -3,21 +3,7 @@
 # (../libexec/tmcl/ from its folder) and beside it; and without tmclrun-full it says so by name,
 # exit 71, as JSON too with --json. The install and package tests run it from an installed tree.
 # Run as: cmake -DTMCLRUN=... -DTMCLRUN_FULL=... -DSRC=<source dir> -DWORK=<scratch dir> -P tmclrun_split.cmake
-set(failures 0)
-macro(expect what want got)
-  if(NOT "${got}" STREQUAL "${want}")
-    message(SEND_ERROR "${what}: expected '${want}', got '${got}'")
-    math(EXPR failures "${failures} + 1")
-  endif()
-endmacro()
-# A function, not a macro: a macro would read the escapes of REGEX a second time.
-function(expect_match what regex text)
-  if(NOT "${text}" MATCHES "${regex}")
-    message(SEND_ERROR "${what}: expected a match of '${regex}' in:\n${text}")
-    math(EXPR failures "${failures} + 1")
-    set(failures ${failures} PARENT_SCOPE)
-  endif()
-endfunction()
+include(${CMAKE_CURRENT_LIST_DIR}/../unit/checks.cmake)
 
 file(REMOVE_RECURSE "${WORK}")
 set(alone "${WORK}/alone")
@@ -70,7 +56,5 @@ endforeach()
 
 if(failures EQUAL 0)
   file(REMOVE_RECURSE "${WORK}")
-  message(STATUS "tmclrun_split: tmclrun runs alone, hands serving and debugging to tmclrun-full, and names it when missing")
-else()
-  message(FATAL_ERROR "tmclrun_split: ${failures} problem(s); files kept in ${WORK}")
 endif()
+tmcl_check_done("tmclrun_split (files kept in ${WORK})")

@@ -1,13 +1,29 @@
-# The harness of the test scripts run with `cmake -P` (tests/install, tests/standalone), as
+# The harness of the test scripts run with `cmake -P` (tests/install, tests/cli, tests/unit), as
 # check.hpp is of the C++ tests: problems are collected, so that a script reports all of them
 # before it fails, and the tool list a test passes is read in one place. A script does
-# include(${CMAKE_CURRENT_LIST_DIR}/../unit/checks.cmake), calls problem("...") for each one
-# found and tmcl_check_done("what was checked") at the end.
+# include(${CMAKE_CURRENT_LIST_DIR}/../unit/checks.cmake), calls problem("...") (or expect,
+# expect_match) for each one found and tmcl_check_done("what was checked") at the end.
 set(failures 0)
 macro(problem text)
   message(SEND_ERROR "${text}")
   math(EXPR failures "${failures} + 1")
 endmacro()
+
+# expect(WHAT WANT GOT): a problem when GOT is not WANT.
+macro(expect what want got)
+  if(NOT "${got}" STREQUAL "${want}")
+    problem("${what}: expected '${want}', got '${got}'")
+  endif()
+endmacro()
+
+# expect_match(WHAT REGEX TEXT): a problem when TEXT does not match REGEX. A function, not a
+# macro: a macro would read the escapes of REGEX a second time.
+function(expect_match what regex text)
+  if(NOT "${text}" MATCHES "${regex}")
+    problem("${what}: expected a match of '${regex}' in:\n${text}")
+    set(failures ${failures} PARENT_SCOPE)
+  endif()
+endfunction()
 
 # Ends the script: a fatal error naming how many problems there were, if any.
 macro(tmcl_check_done what)
