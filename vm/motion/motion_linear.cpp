@@ -19,28 +19,27 @@ namespace {
 using ramp::Builder;
 using ramp::EventKind;
 using ramp::RampMotor;
-using ramp::wrap32;
 
-constexpr int kOwned[] = {kApTargetPosition,      kApActualPosition,         kApTargetSpeed,
+constexpr int kLinearOwned[] = {kApTargetPosition,      kApActualPosition,         kApTargetSpeed,
                           kApActualSpeed,         kApMaxPositioningSpeed,    kApMaxAcceleration,
                           kApRunCurrent,          kApStandbyCurrent,         kApPositionReached,
                           kApMicrostepResolution, kApMicrostepInterpolation, kApSmartEnergyActualCurrent};
 
-enum class Goal : std::uint8_t { Idle, Position, Velocity };
+enum class LinearGoal : std::uint8_t { Idle, Position, Velocity };
 
-struct Motor {
+struct LinearMotor {
   RampMotor rm;
   std::array<std::int32_t, 256> p{};
-  Goal goal = Goal::Idle;
+  LinearGoal goal = LinearGoal::Idle;
   std::int32_t vt = 0;
 };
 
-class LinearCore final : public ramp::RampCore<Motor> {
+class LinearCore final : public ramp::RampCore<LinearMotor> {
  public:
   std::string_view name() const override { return "linear"; }
   std::unique_ptr<MotionCore> clone() const override { return std::make_unique<LinearCore>(*this); }
 
-  LinearCore() : RampCore(kOwned, "tmc2300-eval") {}  // the TMC2300-MOTOR-EVAL's ramp
+  LinearCore() : RampCore(kLinearOwned, "tmc2300-eval") {}  // the TMC2300-MOTOR-EVAL's ramp
 
   // The speed limit is the top of parameter 4's range: the active profile's, or under the generic
   // profile the TMC2300-MOTOR-EVAL's 32767 pps (core_skeleton.hpp: the profile is the only source).
@@ -51,19 +50,19 @@ class LinearCore final : public ramp::RampCore<Motor> {
   }
 
   void advance(SimTime to, std::vector<MotionEvent>& out) override {
-    collect(to, out, [](Motor& m, EventKind k) {
-      if (k != EventKind::VelocityReached) m.goal = Goal::Idle;
+    collect(to, out, [](LinearMotor& m, EventKind k) {
+      if (k != EventKind::VelocityReached) m.goal = LinearGoal::Idle;
     });
   }
 
 
   ParamWrite set_param(int motor, int param, std::int32_t value) override {
-    Motor& m = at(motor);
+    LinearMotor& m = at(motor);
     switch (param) {
       case kApTargetPosition: move_absolute(motor, value); return ParamWrite::Ok;
       case kApActualPosition:
         m.rm.base += static_cast<std::int64_t>(value) - m.rm.xactual(now_);
-        if (m.goal == Goal::Position) replan(m);
+        if (m.goal == LinearGoal::Position) replan(m);
         return ParamWrite::Ok;
       case kApTargetSpeed: rotate(motor, value); return ParamWrite::Ok;
       case kApActualSpeed: case kApPositionReached: case kApSmartEnergyActualCurrent: return ParamWrite::ReadOnly;
@@ -79,9 +78,9 @@ class LinearCore final : public ramp::RampCore<Motor> {
   }
 
   std::int32_t get_param(int motor, int param) override {
-    Motor& m = at(motor);
+    LinearMotor& m = at(motor);
     switch (param) {
-      case kApActualPosition: return wrap32(m.rm.xactual(now_));
+      case kApActualPosition: return ramp::wrap32(m.rm.xactual(now_));
       case kApTargetSpeed: return m.vt;
       case kApActualSpeed: {
         double v = m.rm.state(now_).v;
@@ -94,33 +93,33 @@ class LinearCore final : public ramp::RampCore<Motor> {
   }
 
   void move_absolute(int motor, std::int32_t target) override {
-    Motor& m = at(motor);
+    LinearMotor& m = at(motor);
     m.p[kApTargetPosition] = target;
-    m.goal = Goal::Position;
+    m.goal = LinearGoal::Position;
     replan(m);
   }
   // The module has no parameter 127: MVP REL counts from the last target, as the manual says.
   void move_relative(int motor, std::int32_t offset) override {
-    Motor& m = at(motor);
-    move_absolute(motor, wrap32(static_cast<std::int64_t>(m.p[kApTargetPosition]) + offset));
+    LinearMotor& m = at(motor);
+    move_absolute(motor, ramp::wrap32(static_cast<std::int64_t>(m.p[kApTargetPosition]) + offset));
   }
   void rotate(int motor, std::int32_t velocity) override {
-    Motor& m = at(motor);
+    LinearMotor& m = at(motor);
     m.vt = std::clamp(velocity, -vmax_, vmax_);
-    m.goal = Goal::Velocity;
+    m.goal = LinearGoal::Velocity;
     replan(m);
   }
   void stop(int motor) override {
-    Motor& m = at(motor);
-    if (m.goal == Goal::Idle && m.rm.at_rest(now_)) return;
+    LinearMotor& m = at(motor);
+    if (m.goal == LinearGoal::Idle && m.rm.at_rest(now_)) return;
     m.vt = 0;
-    m.goal = Goal::Velocity;
+    m.goal = LinearGoal::Velocity;
     replan(m);
   }
   std::int32_t reference_search(int motor, RfsAction action) override {
     if (action != RfsAction::Start) return 0;
     zero_here(motor);
-    at(motor).goal = Goal::Idle;
+    at(motor).goal = LinearGoal::Idle;
     return 0;
   }
   void set_switch(int, SwitchInput, bool) override {}
@@ -129,13 +128,13 @@ class LinearCore final : public ramp::RampCore<Motor> {
  private:
   std::int32_t vmax_ = INT32_MAX;  // pps, the top of parameter 4's range (reset)
 
-  void replan(Motor& m) {
-    if (m.goal == Goal::Idle) return;
+  void replan(LinearMotor& m) {
+    if (m.goal == LinearGoal::Idle) return;
     ramp::Limits lim;
     lim.vmax = std::min(m.p[kApMaxPositioningSpeed], vmax_);
     lim.amax = lim.astart = lim.dmax = lim.dfinal = m.p[kApMaxAcceleration];
     Builder b = m.rm.restart(now_);
-    if (m.goal == Goal::Position)
+    if (m.goal == LinearGoal::Position)
       b.plan_position(lim, static_cast<double>(m.p[kApTargetPosition] - m.rm.base));
     else
       b.plan_velocity(lim, m.vt);

@@ -22,9 +22,8 @@ using ramp::Builder;
 using ramp::EventKind;
 using ramp::Limits;
 using ramp::RampMotor;
-using ramp::wrap32;
 
-constexpr int kOwned[] = {kApTargetPosition,    kApActualPosition,      kApTargetSpeed,
+constexpr int kTmc4361Owned[] = {kApTargetPosition,    kApActualPosition,      kApTargetSpeed,
                           kApActualSpeed,       kApMaxPositioningSpeed, kApMaxAcceleration,
                           kApPositionReached,   kApRampType,            kApStartVelocity,
                           kApStartAcceleration, kApMaxDeceleration,     kApBreakVelocity,
@@ -37,13 +36,13 @@ constexpr int kOwned[] = {kApTargetPosition,    kApActualPosition,      kApTarge
                           kApEncoderPosition,   kApEncoderResolution,   kApMaxEncoderDeviation,
                           kApReverseShaft,      kApUnitMode};
 
-enum class Goal : std::uint8_t { Idle, Position, Velocity, Halt };
+enum class Tmc4361Goal : std::uint8_t { Idle, Position, Velocity, Halt };
 enum class Halt : std::uint8_t { Switch, VirtualStop, Deviation };
 
-struct Motor {
+struct Tmc4361Motor {
   RampMotor rm;
   std::array<std::int32_t, 256> p{};  // owned parameters, raw as written
-  Goal goal = Goal::Idle;
+  Tmc4361Goal goal = Tmc4361Goal::Idle;
   std::int32_t vt = 0;                // velocity-mode target, raw (param 2)
   Halt halt = Halt::Switch;           // which stop a Halt goal is
   double trip_t = ramp::kInf;         // plan instant of a pending trip (switch, virtual stop, ...)
@@ -53,27 +52,27 @@ struct Motor {
   std::int32_t errors = 0;            // parameter 207
 };
 
-class Tmc4361Core final : public ramp::RampCore<Motor> {
+class Tmc4361Core final : public ramp::RampCore<Tmc4361Motor> {
  public:
   std::string_view name() const override { return "tmc4361"; }
   std::unique_ptr<MotionCore> clone() const override { return std::make_unique<Tmc4361Core>(*this); }
 
-  Tmc4361Core() : RampCore(kOwned, "usb-2-sd") {}  // the TMC4361 drives the USB-2-SD
+  Tmc4361Core() : RampCore(kTmc4361Owned, "usb-2-sd") {}  // the TMC4361 drives the USB-2-SD
 
   void advance(SimTime to, std::vector<MotionEvent>& out) override {
-    collect(to, out, [](Motor& m, EventKind k) {
+    collect(to, out, [](Tmc4361Motor& m, EventKind k) {
       if (k == EventKind::Deviation) m.errors = 2;
-      if (k != EventKind::VelocityReached) m.goal = Goal::Idle, m.trip_t = ramp::kInf;
+      if (k != EventKind::VelocityReached) m.goal = Tmc4361Goal::Idle, m.trip_t = ramp::kInf;
     });
   }
 
   ParamWrite set_param(int motor, int param, std::int32_t value) override {
-    Motor& m = at(motor);
+    Tmc4361Motor& m = at(motor);
     switch (param) {
       case kApTargetPosition: move_absolute(motor, value); return ParamWrite::Ok;
       case kApActualPosition: {  // shift the coordinate system; a move in progress still goes to its target
         m.rm.base += static_cast<std::int64_t>(value) - m.rm.xactual(now_);
-        if (m.goal == Goal::Position) replan(m);
+        if (m.goal == Tmc4361Goal::Position) replan(m);
         return ParamWrite::Ok;
       }
       case kApTargetSpeed: rotate(motor, value); return ParamWrite::Ok;
@@ -97,14 +96,14 @@ class Tmc4361Core final : public ramp::RampCore<Motor> {
       }
     }
     m.p[static_cast<std::size_t>(param)] = value;
-    if (param != kApEncoderPosition || m.goal != Goal::Idle) replan(m);
+    if (param != kApEncoderPosition || m.goal != Tmc4361Goal::Idle) replan(m);
     return ParamWrite::Ok;
   }
 
   std::int32_t get_param(int motor, int param) override {
-    Motor& m = at(motor);
+    Tmc4361Motor& m = at(motor);
     switch (param) {
-      case kApActualPosition: return wrap32(m.rm.xactual(now_));
+      case kApActualPosition: return ramp::wrap32(m.rm.xactual(now_));
       case kApTargetSpeed: return m.vt;
       case kApActualSpeed: return speed_raw(m, m.rm.state(now_).v);
       case kApPositionReached: return target_reached(motor) ? 1 : 0;
@@ -114,40 +113,40 @@ class Tmc4361Core final : public ramp::RampCore<Motor> {
         m.errors = 0;
         return e;
       }
-      case kApEncoderPosition: return wrap32(encoder(m));
+      case kApEncoderPosition: return ramp::wrap32(encoder(m));
       default: return m.p[static_cast<std::size_t>(param)];
     }
   }
 
   void move_absolute(int motor, std::int32_t target) override {
-    Motor& m = at(motor);
+    Tmc4361Motor& m = at(motor);
     m.p[kApTargetPosition] = target;
     m.errors = 0;
-    m.goal = Goal::Position;
+    m.goal = Tmc4361Goal::Position;
     m.trip_t = ramp::kInf;
     replan(m, true);
   }
 
   void move_relative(int motor, std::int32_t offset) override {
-    Motor& m = at(motor);
+    Tmc4361Motor& m = at(motor);
     std::int64_t start = m.p[kApRelativePositioningOption] == 0 ? m.p[kApTargetPosition] : m.p[kApRelativePositioningOption] == 1 ? m.rm.xactual(now_) : encoder(m);
-    move_absolute(motor, wrap32(start + offset));
+    move_absolute(motor, ramp::wrap32(start + offset));
   }
 
   void rotate(int motor, std::int32_t velocity) override {
-    Motor& m = at(motor);
+    Tmc4361Motor& m = at(motor);
     m.vt = velocity;
     m.errors = 0;
-    m.goal = Goal::Velocity;
+    m.goal = Tmc4361Goal::Velocity;
     m.trip_t = ramp::kInf;
     replan(m, true);
   }
 
   void stop(int motor) override {
-    Motor& m = at(motor);
-    if (m.goal == Goal::Idle && m.rm.at_rest(now_)) return;
+    Tmc4361Motor& m = at(motor);
+    if (m.goal == Tmc4361Goal::Idle && m.rm.at_rest(now_)) return;
     m.vt = 0;
-    m.goal = Goal::Velocity;
+    m.goal = Tmc4361Goal::Velocity;
     m.trip_t = ramp::kInf;
     replan(m);
   }
@@ -157,26 +156,26 @@ class Tmc4361Core final : public ramp::RampCore<Motor> {
   std::int32_t reference_search(int motor, RfsAction action) override {
     if (action != RfsAction::Start) return 0;
     zero_here(motor);
-    Motor& m = at(motor);
+    Tmc4361Motor& m = at(motor);
     m.enc_off = 0;
-    m.goal = Goal::Idle;
+    m.goal = Tmc4361Goal::Idle;
     m.trip_t = ramp::kInf;
     return 0;
   }
 
   void set_switch(int motor, SwitchInput input, bool active) override {
-    Motor& m = at(motor);
+    Tmc4361Motor& m = at(motor);
     (input == SwitchInput::StopLeft ? m.left : input == SwitchInput::StopRight ? m.right : m.home) = active;
-    if (input != SwitchInput::Home && active && (m.goal == Goal::Position || m.goal == Goal::Velocity)) replan(m);
+    if (input != SwitchInput::Home && active && (m.goal == Tmc4361Goal::Position || m.goal == Tmc4361Goal::Velocity)) replan(m);
   }
 
   void encoder_slip(int motor, std::int32_t counts) override {
-    Motor& m = at(motor);
+    Tmc4361Motor& m = at(motor);
     double res = std::abs(m.p[kApEncoderResolution]);
     double factor = res > 0 ? m.p[kApFullStepResolution] * std::ldexp(1.0, m.p[kApMicrostepResolution]) / res : 0;
     m.enc_off += std::llround(counts * factor);
     if (m.p[kApMaxEncoderDeviation] > 0 && std::llabs(deviation(m)) > m.p[kApMaxEncoderDeviation]) {
-      if (m.goal == Goal::Position || m.goal == Goal::Velocity)
+      if (m.goal == Tmc4361Goal::Position || m.goal == Tmc4361Goal::Velocity)
         replan(m);  // the trip scan finds the deviation at once
       else
         deviation_at_rest(m);
@@ -186,12 +185,12 @@ class Tmc4361Core final : public ramp::RampCore<Motor> {
  private:
   // Unit mode 255: 1 = pps, pps², pps³; 0 = the ramp generator's fixed-point registers
   // (velocities 24.8, accelerations 22.2, bows unscaled).
-  static double vunit(const Motor& m) { return m.p[kApUnitMode] ? 1.0 : 1.0 / 256; }
-  static double aunit(const Motor& m) { return m.p[kApUnitMode] ? 1.0 : 1.0 / 4; }
-  static std::int32_t speed_raw(const Motor& m, double v) { return static_cast<std::int32_t>(std::trunc(v / vunit(m) + (v > 0 ? 1e-9 : -1e-9))); }
+  static double vunit(const Tmc4361Motor& m) { return m.p[kApUnitMode] ? 1.0 : 1.0 / 256; }
+  static double aunit(const Tmc4361Motor& m) { return m.p[kApUnitMode] ? 1.0 : 1.0 / 4; }
+  static std::int32_t speed_raw(const Tmc4361Motor& m, double v) { return static_cast<std::int32_t>(std::trunc(v / vunit(m) + (v > 0 ? 1e-9 : -1e-9))); }
 
   // The effective ramp: 16, 17 = 0 mean "as 5", 19 = 0 means "as the effective 17" (profiles.md).
-  static Limits limits(const Motor& m) {
+  static Limits limits(const Tmc4361Motor& m) {
     auto p = [&](int n) { return static_cast<double>(m.p[static_cast<std::size_t>(n)]); };
     const double vu = vunit(m), au = aunit(m);
     Limits l;
@@ -220,14 +219,14 @@ class Tmc4361Core final : public ramp::RampCore<Motor> {
 
   // Encoder direction relative to XACTUAL: reverse shaft turns the motor, not the encoder's
   // counting (manual, parameter 251); a negative resolution reverses the counting; 0 = none.
-  static std::int64_t enc_sign(const Motor& m) {
+  static std::int64_t enc_sign(const Tmc4361Motor& m) {
     if (m.p[kApEncoderResolution] == 0) return 0;
     return (m.p[kApReverseShaft] ? -1 : 1) * (m.p[kApEncoderResolution] < 0 ? -1 : 1);
   }
-  std::int64_t encoder(const Motor& m) const { return enc_sign(m) * m.rm.xactual(now_) + m.enc_off; }
-  std::int64_t deviation(const Motor& m) const { return m.rm.xactual(now_) - encoder(m); }
+  std::int64_t encoder(const Tmc4361Motor& m) const { return enc_sign(m) * m.rm.xactual(now_) + m.enc_off; }
+  std::int64_t deviation(const Tmc4361Motor& m) const { return m.rm.xactual(now_) - encoder(m); }
 
-  void deviation_at_rest(Motor& m) {
+  void deviation_at_rest(Tmc4361Motor& m) {
     Builder b = m.rm.restart(now_);
     b.stop_hard();
     b.event(EventKind::Deviation);
@@ -237,29 +236,29 @@ class Tmc4361Core final : public ramp::RampCore<Motor> {
   // Re-plans motor m from its state now toward its goal, then cuts the plan at the first trip.
   // A re-plan caused by a parameter or switch (not a command) of a motor already cruising at its
   // target speed does not report "velocity reached" again.
-  void replan(Motor& m, bool by_command = false) {
-    if (m.trip_t != ramp::kInf && m.rm.secs(now_) >= m.trip_t && m.goal != Goal::Idle) {
-      m.goal = Goal::Halt;  // the trip already happened: what is left is its stop
+  void replan(Tmc4361Motor& m, bool by_command = false) {
+    if (m.trip_t != ramp::kInf && m.rm.secs(now_) >= m.trip_t && m.goal != Tmc4361Goal::Idle) {
+      m.goal = Tmc4361Goal::Halt;  // the trip already happened: what is left is its stop
       m.halt = m.trip_kind;
     }
     m.trip_t = ramp::kInf;
-    if (m.goal == Goal::Idle) return;
+    if (m.goal == Tmc4361Goal::Idle) return;
     Limits lim = limits(m);
     Builder b = m.rm.restart(now_);
     switch (m.goal) {
-      case Goal::Position: b.plan_position(lim, static_cast<double>(m.p[kApTargetPosition] - m.rm.base)); break;
-      case Goal::Velocity: b.plan_velocity(lim, m.vt * vunit(m)); break;
-      case Goal::Halt: return halt(m, b, lim, m.halt);
-      case Goal::Idle: break;
+      case Tmc4361Goal::Position: b.plan_position(lim, static_cast<double>(m.p[kApTargetPosition] - m.rm.base)); break;
+      case Tmc4361Goal::Velocity: b.plan_velocity(lim, m.vt * vunit(m)); break;
+      case Tmc4361Goal::Halt: return halt(m, b, lim, m.halt);
+      case Tmc4361Goal::Idle: break;
     }
     auto& ev = m.rm.plan.events;
-    if (!by_command && m.goal == Goal::Velocity && !ev.empty() && ev.front().t == 0 &&
+    if (!by_command && m.goal == Tmc4361Goal::Velocity && !ev.empty() && ev.front().t == 0 &&
         ev.front().kind == EventKind::VelocityReached && m.vt != 0)
       ev.erase(ev.begin());
     scan_trips(m, lim);
   }
 
-  void halt(Motor& m, Builder& b, const Limits& lim, Halt kind) {
+  void halt(Tmc4361Motor& m, Builder& b, const Limits& lim, Halt kind) {
     double dstop = m.p[kApStopDeceleration] * aunit(m);
     if (kind == Halt::Deviation) {
       b.stop_hard();
@@ -278,7 +277,7 @@ class Tmc4361Core final : public ramp::RampCore<Motor> {
 
   // The first instant the new plan hits a stop switch in its direction, a virtual stop or the
   // encoder deviation limit; there the plan is cut and the stop appended.
-  void scan_trips(Motor& m, const Limits& lim) {
+  void scan_trips(Tmc4361Motor& m, const Limits& lim) {
     const auto& segs = m.rm.plan.segs;
     const double base = static_cast<double>(m.rm.base);
     const int vs_en = m.p[kApVirtualStopEnable];
