@@ -6,7 +6,6 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
-#include <filesystem>
 #include <string>
 #include <vector>
 
@@ -94,6 +93,18 @@ examples:
 exit status: 0 success, 65 errors in the input, 64 usage error, 74 output (a file or standard
              output) could not be written
 )";
+
+// PATH with its extension (from the last dot of the file name on; none for a name that starts
+// with its only dot, or for "." and "..") replaced by EXT, as std::filesystem::path's
+// replace_extension does: "prog.tmc" -> "prog.bin", "dir.v2/prog" -> "dir.v2/prog.bin".
+std::string with_extension(const std::string& path, const char* ext) {
+  const std::size_t slash = path.rfind('/');
+  const std::size_t name = slash == std::string::npos ? 0 : slash + 1;
+  const std::size_t dot = path.rfind('.');
+  const bool dots_only = path.compare(name, std::string::npos, ".") == 0 || path.compare(name, std::string::npos, "..") == 0;
+  if (dot == std::string::npos || dot <= name || dots_only) return path + ext;
+  return path.substr(0, dot) + ext;
+}
 
 int usage_error(const std::string& msg) {
   std::fprintf(stderr, "tmclasm: %s\n(see tmclasm --help)\n", msg.c_str());
@@ -472,7 +483,7 @@ int run(int argc, char** argv) {
       if (!r.ok() || !r.object) continue;
       std::string out = have_output ? output
                         : file == "-" ? std::string("-")
-                                      : std::filesystem::path(file).replace_extension(".o").string();
+                                      : with_extension(file, ".o");
       objects.emplace_back(out, tmcl::write_object(*r.object));
     }
     if (errors > 0) {
@@ -512,11 +523,9 @@ int run(int argc, char** argv) {
       output = "-";
     } else {
       static const char* ext[] = {".bin", ".dgm", ".lst", ".sym"};
-      output = std::filesystem::path(files[0])
-                   .replace_extension(extra == Extra::Dot          ? ".dot"
-                                      : extra == Extra::StackUsage ? ".su"
-                                                                   : ext[static_cast<int>(format)])
-                   .string();
+      output = with_extension(files[0], extra == Extra::Dot          ? ".dot"
+                                        : extra == Extra::StackUsage ? ".su"
+                                                                     : ext[static_cast<int>(format)]);
     }
   }
   if (extra != Extra::None) return write_output(output, bytes_of(extra_text)) ? 0 : kExitOutput;

@@ -54,5 +54,24 @@ if(NOT err MATCHES "m.eeprom:[0-9]+:[0-9]+: error: malformed EEPROM record 'var 
   problem("--eeprom-seal: unexpected message: ${err}")
 endif()
 
+# Without -o, tmclasm writes beside the source, the source's extension replaced: only the file
+# name's last dot counts, and a name that starts with its only dot keeps it.
+file(MAKE_DIRECTORY "${WORK}/v1.2")
+foreach(pair "v1.2/prog=v1.2/prog.bin" "v1.2/p.x.tmc=v1.2/p.x.bin" "v1.2/.hidden=v1.2/.hidden.bin")
+  string(REPLACE "=" ";" pair "${pair}")
+  list(GET pair 0 src)
+  list(GET pair 1 want)
+  file(WRITE "${WORK}/${src}" "STOP\n")
+  execute_process(COMMAND "${TMCLASM}" "${WORK}/${src}" RESULT_VARIABLE rc ERROR_VARIABLE err)
+  expect("tmclasm ${src}: exit status" 0 "${rc}")
+  if(NOT EXISTS "${WORK}/${want}")
+    problem("tmclasm ${src} without -o did not write ${want}: ${err}")
+  endif()
+endforeach()
+execute_process(COMMAND "${TMCLASM}" -f dot "${WORK}/v1.2/prog" RESULT_VARIABLE rc ERROR_VARIABLE err)
+if(NOT EXISTS "${WORK}/v1.2/prog.dot")
+  problem("tmclasm -f dot v1.2/prog did not write v1.2/prog.dot (exit ${rc}): ${err}")
+endif()
+
 file(REMOVE_RECURSE "${WORK}")
 tmcl_check_done("standard output on a full disk, and a hand-edited EEPROM")
