@@ -53,7 +53,8 @@ bool parse_bus_spec(const std::string& spec, BusSpec& out, std::string& error) {
 
 // The second and later --module: each its own profile, motion core, VM (program, EEPROM image
 // in memory) and address on the primary's line. Returns -1 on success, else an exit status.
-int build_bus(Options& o, ModeOptions& m, std::vector<std::unique_ptr<tmcl::MotionCore>>& cores, std::vector<std::unique_ptr<tmcl::Vm>>& vms) {
+int build_bus(Options& o, ModeOptions& m, std::vector<std::unique_ptr<tmcl::MotionCore>>& cores,
+              std::vector<std::unique_ptr<tmcl::Vm>>& vms) {
   std::vector<int> seen{m.serve_opts.protocol.module_address.value_or(1)};
   for (std::size_t i = 1; i < m.modules.size(); ++i) {
     BusSpec b;
@@ -74,10 +75,7 @@ int build_bus(Options& o, ModeOptions& m, std::vector<std::unique_ptr<tmcl::Moti
       if (int r = load_program(each, profile, program, sources); r >= 0) return r;
     }
     auto vm = std::make_unique<tmcl::Vm>(*profile, *core);
-    vm->instr_time = o.instr_time;
-    vm->load(program);
-    vm->source_of = sources;
-    vm->power_on(nullptr);
+    set_up_vm(*vm, o, program, sources, nullptr, {});
     tmcl::BusModule member{vm.get(), {}};
     member.protocol.module_address = b.address;
     member.protocol.host_address = m.serve_opts.protocol.host_address;

@@ -2,9 +2,9 @@
 # GNUInstallDirs puts it, then configures, builds and runs examples/consumer against it through
 # find_package(tmcl 0.1) (assemble a program with tmcl::asm, run it on tmcl::vm).
 # Run as: cmake -DBUILD=<build dir> -DROOT=<source dir> -DWORK=<scratch dir> -DLIBDIR=<libdir> -DLIBEXECDIR=<libexecdir>
-#               [-DGENERATOR=<generator>] -DTOOLS=<tool;...> -P check_install.cmake
+#               [-DGENERATOR=<generator>] -DTOOLS=<tool;...> -DHELPERS=<program;...> -P check_install.cmake
 cmake_minimum_required(VERSION 3.25)
-foreach(v BUILD ROOT WORK LIBDIR LIBEXECDIR TOOLS)
+foreach(v BUILD ROOT WORK LIBDIR LIBEXECDIR TOOLS HELPERS)
   if(NOT DEFINED ${v})
     message(FATAL_ERROR "check_install.cmake needs -D${v}=...")
   endif()
@@ -46,7 +46,9 @@ endforeach()
 foreach(tool IN LISTS TOOLS)
   list(APPEND expect bin/${tool} share/man/man1/${tool}.1 share/bash-completion/completions/${tool})
 endforeach()
-list(APPEND expect ${LIBEXECDIR}/tmcl/tmclrun-full)
+foreach(helper IN LISTS HELPERS)
+  list(APPEND expect ${LIBEXECDIR}/tmcl/${helper})
+endforeach()
 foreach(f IN LISTS expect)
   if(NOT EXISTS "${prefix}/${f}")
     problem("not installed: ${f} (every library needs its tmcl_install_library line in CMakeLists.txt)")

@@ -33,8 +33,19 @@ inline Outcome finish_child(pid_t pid, int status, std::FILE* out) {
   for (std::size_t n; (n = std::fread(buf, 1, sizeof buf, out)) > 0;) text.append(buf, n);
   std::fclose(out);
   const bool passed = WIFEXITED(status) && WEXITSTATUS(status) == 0;
-  if (WIFSIGNALED(status)) text += "case process " + std::to_string(pid) + " killed by signal " + std::to_string(WTERMSIG(status)) + "\n";
+  if (WIFSIGNALED(status))
+    text += "case process " + std::to_string(pid) + " killed by signal " + std::to_string(WTERMSIG(status)) + "\n";
   return {passed, text};
+}
+
+// Counts a finished case and names it when it failed: the one tally of a serial and a --jobs run.
+inline void tally(const Case& c, bool ok, int& passed, int& failed) {
+  if (ok) {
+    ++passed;
+  } else {
+    ++failed;
+    std::fprintf(stderr, "FAILED: %s\n", c.name);
+  }
 }
 
 inline int run_in_children(const std::vector<const Case*>& cases, int jobs, int& passed, int& failed) {
@@ -84,12 +95,7 @@ inline int run_in_children(const std::vector<const Case*>& cases, int jobs, int&
     }
     for (; shown < cases.size() && outcomes[shown]; ++shown) {
       std::fputs(outcomes[shown]->output.c_str(), stderr);
-      if (outcomes[shown]->passed) {
-        ++passed;
-      } else {
-        ++failed;
-        std::fprintf(stderr, "FAILED: %s\n", cases[shown]->name);
-      }
+      tally(*cases[shown], outcomes[shown]->passed, passed, failed);
     }
   }
   return 0;
@@ -105,9 +111,11 @@ int main(int argc, char** argv) {
     if (a == "--file" && i + 1 < argc) {
       file = argv[++i];
     } else if (a == "--jobs" && i + 1 < argc) {
-      jobs = std::atoi(argv[++i]);
+      char* end = nullptr;
+      const long n = std::strtol(argv[++i], &end, 10);
+      jobs = *argv[i] && !*end && n >= 1 && n <= 256 ? static_cast<int>(n) : 0;
       if (jobs < 1) {
-        std::fprintf(stderr, "--jobs needs a number of at least 1, not '%s'\n", argv[i]);
+        std::fprintf(stderr, "--jobs needs a number from 1 to 256, not '%s'\n", argv[i]);
         return 2;
       }
     } else {
@@ -127,12 +135,7 @@ int main(int argc, char** argv) {
     for (const auto* c : selected) {
       int before = ::tmcl_test::failures();
       c->fn();
-      if (::tmcl_test::failures() == before) {
-        ++passed;
-      } else {
-        ++failed;
-        std::fprintf(stderr, "FAILED: %s\n", c->name);
-      }
+      ::tmcl_test::tally(*c, ::tmcl_test::failures() == before, passed, failed);
     }
   }
   std::printf("%d passed, %d failed\n", passed, failed);
