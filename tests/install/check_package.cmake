@@ -15,7 +15,12 @@ file(MAKE_DIRECTORY "${WORK}")
 get_filename_component(cmake_dir "${CMAKE_COMMAND}" DIRECTORY)
 find_program(CPACK cpack HINTS "${cmake_dir}" REQUIRED)
 
-execute_process(COMMAND "${CPACK}" -G "TGZ;DEB" --config "${BUILD}/CPackConfig.cmake" -B "${WORK}"
+# CPack's first step for each format is to build the project's `preinstall` target. The test runs
+# after the build, so that step finds nothing to do, but with the Makefiles it still walks every
+# target: 7 of the test's 12 s. CPACK_CMAKE_GENERATOR names the generator whose build CPack would
+# run; Ninja's has no such target, so CPack goes straight to the build's own install rules (the
+# packages are the same, file for file).
+execute_process(COMMAND "${CPACK}" -G "TGZ;DEB" -D CPACK_CMAKE_GENERATOR=Ninja --config "${BUILD}/CPackConfig.cmake" -B "${WORK}"
   RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
 if(NOT rc EQUAL 0)
   message(FATAL_ERROR "cpack failed (${rc}):\n${out}\n${err}")
