@@ -23,8 +23,8 @@ namespace {
 
 constexpr int kDeadlineMs = 60000;
 
-const std::uint8_t kGgp = static_cast<std::uint8_t>(Op::GGP), kSgp = static_cast<std::uint8_t>(Op::SGP),
-                   kSap = static_cast<std::uint8_t>(Op::SAP), kGap = static_cast<std::uint8_t>(Op::GAP),
+// kGgp and kSgp come from client.hpp.
+const std::uint8_t kSap = static_cast<std::uint8_t>(Op::SAP), kGap = static_cast<std::uint8_t>(Op::GAP),
                    kMvp = static_cast<std::uint8_t>(Op::MVP), kStop = static_cast<std::uint8_t>(Op::StopApplication),
                    kRun = static_cast<std::uint8_t>(Op::RunApplication), kStep = static_cast<std::uint8_t>(Op::StepApplication);
 

@@ -40,4 +40,8 @@ inline bool near(double a, double b, double rel = 1e-9, double abs = 1e-9) {
   return std::fabs(a - b) <= abs + rel * std::max(std::fabs(a), std::fabs(b));
 }
 
+// A duration in seconds as simulated microseconds, rounded up (a tick that is 1e-3 µs over the
+// whole number is float noise, not another microsecond).
+inline tmcl::SimTime us(double seconds) { return static_cast<tmcl::SimTime>(std::ceil(seconds * 1e6 - 1e-3)); }
+
 }  // namespace mt

@@ -6,11 +6,8 @@
 
 using mt::Bench;
 using mt::near;
+using mt::us;
 using tmcl::MotionEventKind;
-
-namespace {
-tmcl::SimTime us(double seconds) { return static_cast<tmcl::SimTime>(std::ceil(seconds * 1e6 - 1e-3)); }
-}  // namespace
 
 TEST(velocity_mode_reaches_speed) {
   Bench b;

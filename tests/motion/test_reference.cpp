@@ -6,6 +6,7 @@
 
 using mt::Bench;
 using mt::near;
+using mt::us;
 using tmcl::MotionEventKind;
 
 namespace {
@@ -29,8 +30,6 @@ double peak_velocity(Bench& b, tmcl::SimTime from, tmcl::SimTime to) {
   for (tmcl::SimTime t = from; t <= to; t += 50) peak = std::max(peak, std::fabs(b.core->sample_at(0, t).velocity));
   return peak;
 }
-
-tmcl::SimTime us(double seconds) { return static_cast<tmcl::SimTime>(std::ceil(seconds * 1e6 - 1e-3)); }
 
 }  // namespace
 

@@ -36,6 +36,10 @@ namespace srvtest {
 
 using Bytes = std::vector<std::uint8_t>;
 using Clock = std::chrono::steady_clock;
+// The operation bytes the tests send most.
+inline constexpr std::uint8_t kGgp = static_cast<std::uint8_t>(tmcl::Op::GGP);
+inline constexpr std::uint8_t kSgp = static_cast<std::uint8_t>(tmcl::Op::SGP);
+inline constexpr std::uint8_t kStgp = static_cast<std::uint8_t>(tmcl::Op::STGP);
 
 inline Bytes frame(std::uint8_t addr, std::uint8_t op, std::uint8_t type, std::uint8_t motor, std::int32_t value) {
   auto d = tmcl::datagram(addr, tmcl::Instruction{op, type, motor, value});

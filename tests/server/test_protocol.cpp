@@ -29,8 +29,6 @@ Bytes cat(std::initializer_list<Bytes> parts) {
   return r;
 }
 
-const std::uint8_t kGgp = static_cast<std::uint8_t>(Op::GGP);
-
 // The status byte of a reply, by value (a reference into a temporary would dangle).
 std::uint8_t st(const Bytes& b) { return b.size() >= 3 ? b[2] : 0; }
 

@@ -14,9 +14,6 @@ using tmcl::Transport;
 
 namespace {
 
-const std::uint8_t kGgp = static_cast<std::uint8_t>(Op::GGP), kSgp = static_cast<std::uint8_t>(Op::SGP),
-                   kStgp = static_cast<std::uint8_t>(Op::STGP);
-
 // The refused connection sees a reset (or end of stream) at once, never a reply.
 bool refused(Link& l) {
   if (!l.ok()) return true;
