@@ -257,6 +257,11 @@ AsmResult assemble(const std::vector<std::string>& files, const AsmOptions& opti
   if (exceeds_memory(profile, out.program.size()))
     out.diags.error(SourceLoc{}, exceeds_memory_message(profile, out.program.size(), appended, reloc));
 
+  if (options.symbols) {
+    std::size_t defined = 0;
+    for (const Unit& unit : units) defined += unit.defs.size();
+    out.symbols.reserve(defined);
+  }
   for (int u = 0; u < static_cast<int>(units.size()); ++u) {
     for (int d = 0; d < static_cast<int>(units[static_cast<std::size_t>(u)].defs.size()); ++d) {
       const SymDef& def = units[static_cast<std::size_t>(u)].defs[static_cast<std::size_t>(d)];

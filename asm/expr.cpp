@@ -29,22 +29,21 @@ void Resolver::link_exports() {
   for (int u = 0; u < static_cast<int>(units_.size()); ++u) {
     Unit& unit = units_[static_cast<std::size_t>(u)];
     for (const auto& [name, loc] : unit.exports) {
-      std::string key = upper(name);
-      auto it = unit.by_name.find(key);
-      if (it == unit.by_name.end()) {
+      const int def = unit.find_def(name);
+      if (def < 0) {
         diags_.error(loc, "exported symbol '" + name + "' is not defined in this file");
         continue;
       }
-      unit.defs[static_cast<std::size_t>(it->second)].exported = true;
-      auto [pos, fresh] = exported_.emplace(key, std::make_pair(u, it->second));
-      if (!fresh && pos->second != std::make_pair(u, it->second)) {
+      unit.defs[static_cast<std::size_t>(def)].exported = true;
+      auto [pos, fresh] = exported_.emplace(upper(name), std::make_pair(u, def));
+      if (!fresh && pos->second != std::make_pair(u, def)) {
         const Unit& other = units_[static_cast<std::size_t>(pos->second.first)];
         const SymDef& first = other.defs[static_cast<std::size_t>(pos->second.second)];
         // Objects carry no source text: name the inputs, so the user knows which files clash.
         std::string inputs = unit.object || other.object
                                  ? " (by " + unit.input_name + " and by " + other.input_name + ")"
                                  : std::string();
-        auto& d = diags_.error(unit.defs[static_cast<std::size_t>(it->second)].loc,
+        auto& d = diags_.error(unit.defs[static_cast<std::size_t>(def)].loc,
                                "duplicate export '" + name + "'" + inputs);
         diags_.note(d, first.loc, "also defined and exported here");
       }
@@ -52,11 +51,10 @@ void Resolver::link_exports() {
   }
   for (auto& unit : units_) {
     for (const auto& [key, loc] : unit.imports) {
-      auto local = unit.by_name.find(key);
-      if (local != unit.by_name.end()) {
-        auto& d = diags_.error(loc, "'" + unit.defs[static_cast<std::size_t>(local->second)].name +
+      if (const int local = unit.find_def(key); local >= 0) {
+        auto& d = diags_.error(loc, "'" + unit.defs[static_cast<std::size_t>(local)].name +
                                         "' is imported but also defined in this file");
-        diags_.note(d, unit.defs[static_cast<std::size_t>(local->second)].loc, "defined here");
+        diags_.note(d, unit.defs[static_cast<std::size_t>(local)].loc, "defined here");
         continue;
       }
       if (!exported_.count(key) && !relocatable_) {
@@ -102,8 +100,7 @@ bool Resolver::known(int unit, const std::string& key) {
 
 std::pair<int, int> Resolver::lookup(int unit, const std::string& key) {
   const Unit& u = units_[static_cast<std::size_t>(unit)];
-  auto it = u.by_name.find(key);
-  if (it != u.by_name.end()) return {unit, it->second};
+  if (const int def = u.find_def(key); def >= 0) return {unit, def};
   if (u.imports.count(key)) {
     auto ex = exported_.find(key);
     if (ex != exported_.end()) return ex->second;

@@ -1,6 +1,6 @@
 // The fast path's labels and constants (fast_path.cpp): recorded in definition order during
 // pass 1, then indexed in one sweep. Names are compared case-insensitively, as everywhere in
-// the assembler (docs/language.md).
+// the assembler (docs/language.md), with the assembler's name_hash and same_name (name_index.hpp).
 #pragma once
 
 #include <array>
@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "internal.hpp"
+#include "name_index.hpp"
 #include "tmcl/fileio.hpp"
 
 namespace tmcl::detail {
@@ -56,7 +57,7 @@ class FastSymbols {
     const std::size_t mask = size - 1;
     constexpr std::size_t kAhead = 16;
     std::array<std::uint64_t, kAhead> ahead{};
-    auto hash_of = [&](std::size_t k) { return hash(symbols_[k].name, symbols_[k].len); };
+    auto hash_of = [&](std::size_t k) { return name_hash(symbols_[k].name, symbols_[k].len); };
     for (std::size_t k = 0; k < n && k < kAhead; ++k) {
       ahead[k] = hash_of(k);
       __builtin_prefetch(&slots_[ahead[k] & mask]);
@@ -82,34 +83,9 @@ class FastSymbols {
   }
 
   // The index of `name`, or -1.
-  int find(std::string_view name) const { return find(name, hash(name.data(), name.size())); }
+  int find(std::string_view name) const { return find(name, name_hash(name)); }
 
  private:
-  // Identifier characters differ only in bit 5 between the cases, and no two other identifier
-  // characters differ only there, so masking it compares and hashes names case-insensitively.
-  static constexpr std::uint64_t kFold = 0xDFDFDFDFDFDFDFDFull;
-
-  static std::uint64_t hash(const char* s, std::size_t n) {
-    std::uint64_t h = n * 0x9E3779B97F4A7C15ull;
-    while (n > 0) {
-      std::uint64_t w = 0;
-      std::size_t k = n < 8 ? n : 8;
-      std::memcpy(&w, s, k);
-      h = (h ^ (w & kFold)) * 0xFF51AFD7ED558CCDull;
-      h ^= h >> 32;
-      s += k;
-      n -= k;
-    }
-    h *= 0xC4CEB9FE1A85EC53ull;  // the table indexes with the low bits: mix the high ones down
-    return h ^ (h >> 29);
-  }
-
-  static bool same_name(const char* a, const char* b, std::size_t n) {
-    for (std::size_t i = 0; i < n; ++i)
-      if ((a[i] ^ b[i]) & 0xDF) return false;
-    return true;
-  }
-
   // A slot holds the hash's high half and the index + 1, so a probe compares names only when
   // the hashes agree (each name compared is another cache miss).
   int find(std::string_view name, std::uint64_t h) const {

@@ -13,6 +13,7 @@
 #include <unordered_set>
 #include <vector>
 
+#include "name_index.hpp"
 #include "tmcl/asm/assembler.hpp"
 #include "tmcl/codec.hpp"
 #include "tmcl/asm/object.hpp"
@@ -153,7 +154,7 @@ struct Unit {
   std::vector<Stmt> stmts;
   std::vector<ExprNode> nodes;
   std::vector<SymDef> defs;
-  std::unordered_map<std::string, int> by_name;  // upper-cased name -> defs index
+  NameIndex def_index;  // defs by name (find_def, add_def)
   std::vector<Redefinition> redefinitions;
   std::vector<std::pair<std::string, SourceLoc>> exports;
   std::unordered_map<std::string, SourceLoc> imports;  // upper-cased name -> where imported
@@ -168,6 +169,15 @@ struct Unit {
   std::vector<int> object_files;  // the object's file table -> SourceSet index
   std::string input_name;         // "main.tmc", "homing.o", "libmotion.a(homing.o)"
   int size() const { return object ? static_cast<int>(object->code.size()) : static_cast<int>(stmts.size()); }
+  // The definition of `name` (in any case), or -1.
+  int find_def(std::string_view name) const {
+    return def_index.find(name, [this](int k) -> std::string_view { return defs[static_cast<std::size_t>(k)].name; });
+  }
+  // Adds the definition of a name that find_def does not find yet.
+  void add_def(SymDef d) {
+    def_index.add(d.name, static_cast<int>(defs.size()));
+    defs.push_back(std::move(d));
+  }
   // Where instruction `i` of an object came from (no column: objects carry no source text).
   SourceLoc object_loc(std::uint32_t file, std::uint32_t line) const {
     if (file == kNoIndex || file >= object_files.size()) return SourceLoc{};

@@ -62,8 +62,7 @@ void object_unit(const ObjectFile& obj, const std::string& input_name, SourceSet
     d.obj_symbol = static_cast<int>(i);
     if (d.kind == SymbolKind::Label) d.address = static_cast<int>(s.value);
     if (s.binding == ObjBinding::Export) unit.exports.emplace_back(s.name, loc);
-    unit.by_name.emplace(key, static_cast<int>(unit.defs.size()));
-    unit.defs.push_back(std::move(d));
+    unit.add_def(std::move(d));  // read_object refuses an object that names a symbol twice
   }
 }
 

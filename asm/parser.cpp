@@ -44,9 +44,8 @@ class Parser {
       diags_.error(loc(cur()), "unexpected " + describe(cur()) + " after the value of -D " + name);
       e = -1;
     }
-    std::string key = upper(name);
-    if (auto it = unit_.by_name.find(key); it != unit_.by_name.end()) {
-      if (e >= 0) unit_.redefinitions.push_back({it->second, e, SourceLoc{idx, 1, 1, static_cast<int>(value.size())}});
+    if (int first = unit_.find_def(name); first >= 0) {
+      if (e >= 0) unit_.redefinitions.push_back({first, e, SourceLoc{idx, 1, 1, static_cast<int>(value.size())}});
       return;
     }
     {
@@ -57,8 +56,7 @@ class Parser {
       d.loc = SourceLoc{idx, 1, 1, static_cast<int>(value.size())};
       d.from_command_line = true;
       if (e < 0) d.state = EvalState::Failed;  // reported once, here; its uses stay quiet
-      unit_.by_name[key] = static_cast<int>(unit_.defs.size());
-      unit_.defs.push_back(std::move(d));
+      unit_.add_def(std::move(d));
     }
   }
 
@@ -276,10 +274,8 @@ class Parser {
   }
 
   void define_label(const Token& t) {
-    std::string key = upper(t.text);
-    auto it = unit_.by_name.find(key);
-    if (it != unit_.by_name.end()) {
-      const SymDef& first = unit_.defs[static_cast<std::size_t>(it->second)];
+    if (int k = unit_.find_def(t.text); k >= 0) {
+      const SymDef& first = unit_.defs[static_cast<std::size_t>(k)];
       auto& d = diags_.error(loc(t), first.kind == SymbolKind::Label
                                          ? "duplicate label '" + std::string(t.text) + "'"
                                          : "'" + std::string(t.text) + "' is already defined as a constant");
@@ -292,8 +288,7 @@ class Parser {
     d.kind = SymbolKind::Label;
     d.address = static_cast<int>(unit_.stmts.size());
     d.loc = loc(t);
-    unit_.by_name.emplace(key, static_cast<int>(unit_.defs.size()));
-    unit_.defs.push_back(std::move(d));
+    unit_.add_def(std::move(d));
   }
 
   void constant() {
@@ -302,29 +297,27 @@ class Parser {
     advance();
     if (at_eol()) return fail("expected a value after '='");
     int e = expr(0);
-    std::string key = upper(name.text);
+    const int defined = unit_.find_def(name.text);
     if (e < 0) {
       // Define it anyway, poisoned, so that its uses do not report it as undefined.
-      if (!unit_.by_name.count(key)) {
+      if (defined < 0) {
         SymDef d;
         d.name = std::string(name.text);
         d.kind = SymbolKind::Constant;
         d.loc = loc(name);
         d.state = EvalState::Failed;
-        unit_.by_name.emplace(key, static_cast<int>(unit_.defs.size()));
-        unit_.defs.push_back(std::move(d));
+        unit_.add_def(std::move(d));
       }
       return skip_line();
     }
-    auto it = unit_.by_name.find(key);
-    if (it != unit_.by_name.end()) {
-      const SymDef& first = unit_.defs[static_cast<std::size_t>(it->second)];
+    if (defined >= 0) {
+      const SymDef& first = unit_.defs[static_cast<std::size_t>(defined)];
       if (first.kind == SymbolKind::Label) {
         auto& d = diags_.error(loc(name), "'" + std::string(name.text) + "' is already defined as a label");
         diags_.note(d, first.loc, "first defined here");
         return;
       }
-      unit_.redefinitions.push_back({it->second, e, loc(name)});
+      unit_.redefinitions.push_back({defined, e, loc(name)});
       return;
     }
     if (!room_for_symbol(loc(name))) return;
@@ -336,8 +329,7 @@ class Parser {
     d.kind = SymbolKind::Constant;
     d.expr = e;
     d.loc = loc(name);
-    unit_.by_name.emplace(key, static_cast<int>(unit_.defs.size()));
-    unit_.defs.push_back(std::move(d));
+    unit_.add_def(std::move(d));
   }
 
   // .raw OPCODE, TYPE, MOTOR, VALUE: any record, for what the mnemonic form cannot express.
