@@ -47,8 +47,20 @@ set(dotdot "..")
 # (`/work/shared` is where this project's reading material lives; other absolute paths, such as a
 # test's made-up file:// URI, are not reads of the disk.)
 set(patterns "${dotdot}/shared" "PROJECT_SOURCE_DIR}/${dotdot}" "CMAKE_SOURCE_DIR}/${dotdot}" "/work/shared")
+# The same as one regular expression: file(STRINGS ... REGEX) looks through a file far faster than
+# a loop over its lines, which only a file with a match needs (for the line numbers).
+set(any_pattern "")
+foreach(p IN LISTS patterns)
+  string(REPLACE "." "\\." quoted "${p}")  # the only special character they hold
+  list(APPEND any_pattern "${quoted}")
+endforeach()
+list(JOIN any_pattern "|" any_pattern)
 foreach(rel IN LISTS candidates)
   if(rel STREQUAL "tests/standalone/check_standalone.cmake" OR NOT EXISTS "${ROOT}/${rel}")
+    continue()
+  endif()
+  file(STRINGS "${ROOT}/${rel}" hits REGEX "${any_pattern}")
+  if(NOT hits)
     continue()
   endif()
   file(STRINGS "${ROOT}/${rel}" lines)
