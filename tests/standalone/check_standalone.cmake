@@ -7,7 +7,7 @@
 #    beside it, configures it, checks that the generated build names no file of the original
 #    tree, and builds one small target (tmcl_base) from the copy, whose Makefile output says
 #    which target was built and nothing per compiled file, and checks that tmclrun links neither
-#    the debugger nor the virtual module (the quick start). Configuring plus one library
+#    the debugger nor the virtual module (the quick start), with GNU gold where it is installed. Configuring plus one library
 #    keeps this a few seconds (docs/performance.md, "Build time"); the whole suite from a copy is
 #    what .ci/run does.
 cmake_minimum_required(VERSION 3.25)
@@ -140,6 +140,12 @@ else()
     file(READ "${link}" line)
     if(NOT line MATCHES "libtmcl_asm\\.a" OR line MATCHES "libtmcl_(debug|module)\\.a")
       message(SEND_ERROR "tmclrun should link tmcl_asm and neither tmcl_debug nor tmcl_module:\n${line}")
+      math(EXPR failures "${failures} + 1")
+    endif()
+    # ... with GNU gold where binutils has it (TMCL_GOLD, the top CMakeLists.txt).
+    find_program(gold ld.gold)
+    if(gold AND NOT line MATCHES "-fuse-ld=gold")
+      message(SEND_ERROR "${gold} is installed, but tmclrun does not link with it (-fuse-ld=gold):\n${line}")
       math(EXPR failures "${failures} + 1")
     endif()
   endif()
