@@ -7,9 +7,9 @@
 #    beside it, configures it, checks that the generated build names no file of the original
 #    tree, and builds one small target (tmcl_base) from the copy, whose Makefile output says
 #    which target was built and nothing per compiled file, and checks that tmclrun links neither
-#    the debugger nor the virtual module (the quick start), with GNU gold where it is installed. Configuring plus one library
-#    keeps this a few seconds (docs/performance.md, "Build time"); the whole suite from a copy is
-#    what .ci/run does.
+#    the debugger nor the virtual module (the quick start), with GNU gold where it is installed.
+#    Configuring plus one library keeps this a few seconds (docs/performance.md, "Build time");
+#    the whole suite from a copy is what .ci/run does.
 cmake_minimum_required(VERSION 3.25)
 if(NOT DEFINED ROOT)
   message(FATAL_ERROR "check_standalone.cmake needs -DROOT=<source dir>")
