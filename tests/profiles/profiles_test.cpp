@@ -6,7 +6,9 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cerrno>
 #include <cstdint>
+#include <cstdlib>
 #include <fstream>
 #include <iterator>
 #include <map>
@@ -77,11 +79,11 @@ std::vector<Def> read_include(const std::string& file) {
     long long v = 0;
     bool value_ok = !value.empty();
     if (value_ok) {
-      try {
-        v = std::stoll(value, &used, 10);
-      } catch (...) {
-        value_ok = false;
-      }
+      errno = 0;
+      char* end = nullptr;
+      v = std::strtoll(value.c_str(), &end, 10);
+      used = static_cast<std::size_t>(end - value.c_str());
+      value_ok = errno == 0 && used > 0;  // a number, in range
     }
     value_ok = value_ok && used == value.size();
     if (!name_ok || !value_ok) {
