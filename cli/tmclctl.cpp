@@ -765,6 +765,10 @@ int run(int argc, char** argv) {
   sa.sa_flags = 0;  // no SA_RESTART: a blocked poll returns and the flag is seen at once
   ::sigaction(SIGINT, &sa, nullptr);
   ::sigaction(SIGTERM, &sa, nullptr);
+  // A reader that goes away (`monitor ... | head`) is a failed write, which ends the command with
+  // status 74 once it has kept what it has (monitor's --csv and --plot), instead of a death by
+  // SIGPIPE that loses them.
+  ::signal(SIGPIPE, SIG_IGN);
   host::Port::set_cancel_flag(&g_stop);
 
   static const char* const kCommands[] = {"send", "get", "set", "store", "download", "upload", "run", "stop", "step",

@@ -220,6 +220,22 @@ TEST(monitor_plot_write_failure_is_74_and_leaves_no_file) {
   CHECK(!exists(temp_dir() + "/status.svg"));
 }
 
+TEST(monitor_into_a_closed_pipe_keeps_its_plot) {
+  // `| head -c 1` takes the first byte of the CSV and goes; the next row cannot be written. The
+  // monitor ends with status 74 and writes its --plot with the rows polled, instead of dying of
+  // SIGPIPE and losing it. The shell writes tmclctl's own status to a file.
+  Server server(kRun, {"--serve", "pty", "-t", "usb-2-sd"});
+  const std::string dir = temp_dir();
+  const std::string svg = dir + "/piped.svg", status = dir + "/piped.status";
+  const std::string cmd = "{ " + kCtl + " " + server.port() + " monitor ap:4 --every 20ms --for 20s --plot " + svg +
+                          "; echo $? > " + status + "; } | head -c 1 > /dev/null";
+  Output o = hosttest::run({"/bin/sh", "-c", cmd}, 30000);
+  CHECK_EQ(o.status, 0);
+  CHECK_EQ(slurp(status), std::string("74\n"));
+  CHECK(has(o.err, "tmclctl: error: cannot write standard output"));
+  CHECK(slurp(svg).rfind("<svg ", 0) == 0);
+}
+
 // A program of n instructions to download.
 std::string program_of(int n) {
   std::string s;
