@@ -4,20 +4,24 @@
 # include(${CMAKE_CURRENT_LIST_DIR}/../unit/checks.cmake), calls problem("...") (or expect,
 # expect_match) for each one found and tmcl_check_done("what was checked") at the end.
 set(failures 0)
-macro(problem text)
+# problem(TEXT): one problem found, TEXT shown as it is. Functions, not macros: a macro's
+# arguments are read a second time, so a `${NAME}` in TEXT (a line of a CMake file) would be
+# replaced, and a backslash lost. Each passes the count up to its caller.
+function(problem text)
   message(SEND_ERROR "${text}")
   math(EXPR failures "${failures} + 1")
-endmacro()
+  set(failures ${failures} PARENT_SCOPE)
+endfunction()
 
 # expect(WHAT WANT GOT): a problem when GOT is not WANT.
-macro(expect what want got)
+function(expect what want got)
   if(NOT "${got}" STREQUAL "${want}")
     problem("${what}: expected '${want}', got '${got}'")
+    set(failures ${failures} PARENT_SCOPE)
   endif()
-endmacro()
+endfunction()
 
-# expect_match(WHAT REGEX TEXT): a problem when TEXT does not match REGEX. A function, not a
-# macro: a macro would read the escapes of REGEX a second time.
+# expect_match(WHAT REGEX TEXT): a problem when TEXT does not match REGEX.
 function(expect_match what regex text)
   if(NOT "${text}" MATCHES "${regex}")
     problem("${what}: expected a match of '${regex}' in:\n${text}")
