@@ -203,7 +203,7 @@ int tmclrun::run_mode(Options& o, const tmcl::Profile& profile, std::unique_ptr<
   }
   if (o.trace)
     m.serve_opts.on_exchange = [log](const tmcl::TmclModule::Exchange& e) {
-      std::fputs(tmcl::exchange_text(e.at, e.module, e.request, e.status, e.value, e.sent).c_str(), log);
+      std::fputs(tmcl::exchange_text(e.at, e.module, e.request, e.reply, e.special, e.sent).c_str(), log);
       std::fflush(log);
     };
   std::vector<std::unique_ptr<tmcl::MotionCore>> bus_cores;

@@ -226,15 +226,50 @@ std::string status_text(int status) {
   }
 }
 
-std::string exchange_text(SimTime at, int module, const Instruction& request, int status, std::int32_t value, bool sent) {
+namespace {
+
+// Opcode 0 is no instruction: hosts send it at the end of a download (TMCL-IDE, go-tmcl's "NOP
+// sentinel"), and program memory past the program reads as it (errata S7).
+std::string word_text(const Instruction& ins) {
+  if (ins.op != 0) return instruction_text(ins);
+  std::string s = "end marker (NOP)";
+  if (ins.type != 0 || ins.motor != 0 || ins.value != 0)
+    s += ", type " + std::to_string(ins.type) + ", motor " + std::to_string(ins.motor) + ", value " + std::to_string(ins.value);
+  return s;
+}
+
+// The reply in words: a special reply (134 or 136 type 0) as what it carries, decoded with the
+// codec; any other as its status and value.
+std::string reply_text(const Instruction& request, const Frame& reply, bool special) {
+  if (special && request.op == static_cast<std::uint8_t>(Op::ReadProgramMemory)) return word_text(decode7(reply.data() + 1));
+  if (special) {  // 136 type 0: eight characters; anything unprintable as \xNN
+    std::string s = "\"";
+    for (std::size_t i = 1; i < reply.size(); ++i) {
+      const unsigned char c = reply[i];
+      if (c >= 0x20 && c < 0x7F && c != '"' && c != '\\') {
+        s += static_cast<char>(c);
+      } else {
+        char hex[8];
+        std::snprintf(hex, sizeof hex, "\\x%02X", c);
+        s += hex;
+      }
+    }
+    return s + "\"";
+  }
+  const Reply r = decode_reply(reply.data());
+  return std::to_string(r.status) + " " + status_text(r.status) + ", value " + std::to_string(r.value);
+}
+
+}  // namespace
+
+std::string exchange_text(SimTime at, int module, const Instruction& request, const Frame& reply, bool special, bool sent) {
   // A control command (128..138, 255) has no source form: its number, name and fields.
   const OpInfo* info = op_info(request.op);
   std::string what = info && info->control
                          ? std::to_string(request.op) + " " + std::string(info->id) + ", type " + std::to_string(request.type) +
                                ", motor " + std::to_string(request.motor) + ", value " + std::to_string(request.value)
-                         : instruction_text(request);
-  return format_time(at) + " module " + std::to_string(module) + ": " + what + " -> " +
-         std::to_string(status) + " " + status_text(status) + ", value " + std::to_string(value) +
+                         : word_text(request);
+  return format_time(at) + " module " + std::to_string(module) + ": " + what + " -> " + reply_text(request, reply, special) +
          (sent ? "" : " (reply suppressed)") + "\n";
 }
 

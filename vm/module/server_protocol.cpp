@@ -153,16 +153,14 @@ bool TmclModule::suppressed(std::uint8_t op) const {
 }
 
 void TmclModule::reply(std::uint8_t status, std::uint8_t op, std::int32_t value) {
-  exchange(status, value, !suppressed(op));
-  if (suppressed(op)) return;
   const Frame r = encode_reply(Reply{reply_host_, reply_module_, status, op, value});
+  exchange(r, false, !suppressed(op));
+  if (suppressed(op)) return;
   out_.insert(out_.end(), r.begin(), r.end());
 }
 
 void TmclModule::reply_raw(const std::array<std::uint8_t, 9>& bytes, std::uint8_t op) {
-  exchange(bytes[2], static_cast<std::int32_t>(static_cast<std::uint32_t>(bytes[4]) << 24 | static_cast<std::uint32_t>(bytes[5]) << 16 |
-                                               static_cast<std::uint32_t>(bytes[6]) << 8 | bytes[7]),
-           !suppressed(op));
+  exchange(bytes, true, !suppressed(op));
   if (suppressed(op)) return;
   out_.insert(out_.end(), bytes.begin(), bytes.end());
 }
@@ -172,14 +170,13 @@ void TmclModule::note(const std::string& text) {
 }
 
 // The first reply to a request is its answer; later ones (position-reached events) are not.
-void TmclModule::exchange(std::uint8_t status, std::int32_t value, bool sent) {
+void TmclModule::exchange(const Frame& reply, bool special, bool sent) {
   if (!request_pending_) return;
   request_pending_ = false;
   if (!on_exchange) return;
-  const auto& f = request_;
-  const auto v = static_cast<std::int32_t>(static_cast<std::uint32_t>(f[4]) << 24 | static_cast<std::uint32_t>(f[5]) << 16 |
-                                           static_cast<std::uint32_t>(f[6]) << 8 | f[7]);
-  on_exchange(Exchange{vm_.now, reply_module_, reply_host_, Instruction{f[1], f[2], f[3], v}, status, value, sent});
+  const tmcl::Reply r = decode_reply(reply.data());
+  on_exchange(Exchange{vm_.now, reply_module_, reply_host_, decode_request(request_.data()).ins,
+                       special ? kStatusOk : r.status, r.value, sent, reply, special});
 }
 
 // ---- ordinary commands ----

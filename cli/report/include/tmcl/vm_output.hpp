@@ -48,9 +48,13 @@ std::string state_summary(Vm& vm, const RunResult& result, const SourceMap* sour
 
 // tmclrun --serve --trace: one line per answered request, e.g.
 //   1.250000s module 1: MVP ABS, 0, 51200 -> 100 ok, value 51200
-// (the request as source text, the status as a number and in words; "(reply suppressed)" when
-// global 255 kept the reply back).
-std::string exchange_text(SimTime at, int module, const Instruction& request, int status, std::int32_t value, bool sent);
+// (the request as source text, the reply's status as a number and in words; "(reply
+// suppressed)" when global 255 kept the reply back). `reply` is the reply's nine bytes; when
+// `special` they have the layout of 134 or 136 type 0 and show as what they carry:
+//   0.000000s module 1: 134 ReadProgramMemory, type 0, motor 0, value 0 -> SAP 4, 0, 51200
+//   0.000000s module 1: 136 GetFirmwareVersion, type 0, motor 0, value 0 -> "0015V114"
+// An opcode-0 request or word is the end marker of a download: "end marker (NOP)".
+std::string exchange_text(SimTime at, int module, const Instruction& request, const Frame& reply, bool special, bool sent);
 // The reply status in words: 100 "ok", 4 "invalid value", ...; "status N" when unknown.
 std::string status_text(int status);
 

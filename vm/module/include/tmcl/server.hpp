@@ -83,6 +83,8 @@ class TmclModule {
   std::function<void(SimTime until)> run_program;
   // One answered request (tmclrun --serve --trace): when, the addresses, the request, the
   // reply's status and value, and whether the reply was sent (global 255 suppresses most).
+  // `reply` is the reply's nine bytes; `special` says they have the layout of 134 or 136 type 0
+  // (docs/virtual-module.md), which has no status byte: `status` is then 100.
   struct Exchange {
     SimTime at;
     std::uint8_t module, host;
@@ -90,6 +92,8 @@ class TmclModule {
     std::uint8_t status;
     std::int32_t value;
     bool sent;
+    Frame reply;
+    bool special;
   };
   std::function<void(const Exchange&)> on_exchange;  // nullptr: nothing is reported
 
@@ -117,7 +121,7 @@ class TmclModule {
   void reply_raw(const std::array<std::uint8_t, 9>& bytes, std::uint8_t op);
   void check_events();
   void note(const std::string& text);
-  void exchange(std::uint8_t status, std::int32_t value, bool sent);
+  void exchange(const Frame& reply, bool special, bool sent);
 
   Vm& vm_;
   ProtocolOptions options_;
