@@ -14,8 +14,12 @@
 #include <termios.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <cstring>
+#include <string_view>
+
+#include "tmcl/codec.hpp"
 
 namespace tmcl::host {
 namespace {
@@ -160,6 +164,10 @@ Port::~Port() {
 }
 
 bool Port::write_all(const std::uint8_t* data, std::size_t n, Clock::time_point deadline, std::string& error) {
+  if (!refusal_.empty()) {
+    error = refusal_;
+    return false;
+  }
   std::size_t done = 0;
   while (done < n) {
     const ssize_t w = serial_ ? ::write(fd_, data + done, n - done) : ::send(fd_, data + done, n - done, MSG_NOSIGNAL);
@@ -186,6 +194,49 @@ bool Port::write_all(const std::uint8_t* data, std::size_t n, Clock::time_point 
 }
 
 long Port::read_some(std::uint8_t* data, std::size_t n, Clock::time_point deadline, std::string& error) {
+  if (!refusal_.empty()) {
+    error = refusal_;
+    return -1;
+  }
+  long got = read_raw(data, n, deadline, error);
+  if (got <= 0 || serial_ || !first_read_) return got;
+  first_read_ = false;
+  if (!refused(data, got, n, deadline)) return got;
+  error = refusal_;
+  return -1;
+}
+
+// The first bytes of a TCP connection: the busy refusal, or the start of a reply. A refusal
+// split after fewer bytes than its prefix is completed first (a reply never starts like it: its
+// third byte, the status, would be 's'), then read to its end of line for the message.
+bool Port::refused(std::uint8_t* data, long& got, std::size_t n, Clock::time_point deadline) {
+  const std::string_view prefix = kBusyPrefix;
+  auto matches = [&] {
+    const std::size_t k = std::min(static_cast<std::size_t>(got), prefix.size());
+    return std::string_view(reinterpret_cast<const char*>(data), k) == prefix.substr(0, k);
+  };
+  const auto soon = std::min(deadline, Clock::now() + std::chrono::milliseconds(100));
+  std::string ignored;
+  while (matches() && static_cast<std::size_t>(got) < prefix.size() && static_cast<std::size_t>(got) < n) {
+    const long more = read_raw(data + got, n - static_cast<std::size_t>(got), soon, ignored);
+    if (more <= 0) break;
+    got += more;
+  }
+  if (!matches() || static_cast<std::size_t>(got) < prefix.size()) return false;
+  std::string line(reinterpret_cast<const char*>(data), static_cast<std::size_t>(got));
+  std::uint8_t buf[256];
+  for (long more; line.find('\n') == std::string::npos && line.size() < 512 &&
+                  (more = read_raw(buf, sizeof buf, soon, ignored)) > 0;)
+    line.append(reinterpret_cast<const char*>(buf), static_cast<std::size_t>(more));
+  line = line.substr(0, line.find('\n'));
+  for (char& c : line)
+    if (static_cast<unsigned char>(c) < 0x20 || static_cast<unsigned char>(c) > 0x7E) c = '?';
+  refusal_ = name_ + ": module busy with another client (the server said \"" + line +
+             "\"); try again when that client has disconnected";
+  return true;
+}
+
+long Port::read_raw(std::uint8_t* data, std::size_t n, Clock::time_point deadline, std::string& error) {
   bool hung_up = false;
   for (;;) {
     const ssize_t r = ::read(fd_, data, n);

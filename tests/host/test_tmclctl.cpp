@@ -11,6 +11,7 @@
 #include "tmclctl_test.hpp"
 #include "tmcl/asm/assembler.hpp"
 #include "tmcl/faults.hpp"
+#include "tmcl/host/client.hpp"
 #include "tmcl/host/port.hpp"
 #include "tmcl/image.hpp"
 
@@ -181,6 +182,39 @@ TEST(port_errors) {
   CHECK_EQ(ctl({"tcp:127.0.0.1:1", "status"}).status, 74);
   CHECK_EQ(ctl({"--baud", "1234", server.port(), "status"}).status, 64);
   CHECK_EQ(ctl({server.port(), "frobnicate"}).status, 64);
+}
+
+TEST(second_tcp_client_is_told_the_module_is_busy) {
+  Server server(kRun, {"--serve", "tcp:127.0.0.1:0", "-t", "usb-2-sd"});
+  std::string err;
+  auto first = tmcl::host::Port::open(server.port(), 9600, 5000, err);
+  CHECK(first != nullptr);
+  if (!first) return;
+  tmcl::host::ClientOptions opt;
+  opt.timeout_ms = 5000;
+  tmcl::host::Client one(*first, opt);
+  const tmcl::Instruction version{static_cast<std::uint8_t>(tmcl::Op::GetFirmwareVersion), 1, 0, 0};
+  CHECK(one.request(version).ok());  // served: the server has taken this client
+  // tmclctl as the second client says why, instead of "Connection reset by peer".
+  Output busy = ctl({server.port(), "status"});
+  CHECK_EQ(busy.status, 74);
+  CHECK(has(busy.err, "tmclctl: error: " + server.port() + ": module busy with another client (the server said \"busy: "));
+  CHECK(!has(busy.err, "reset"));
+  // The library's client: the request fails as a port error, and so does every later one.
+  auto second = tmcl::host::Port::open(server.port(), 9600, 5000, err);
+  CHECK(second != nullptr);
+  if (!second) return;
+  tmcl::host::Client two(*second, opt);
+  for (int i = 0; i < 2; ++i) {
+    const tmcl::host::Result r = two.request(version);
+    CHECK(r.fail == tmcl::host::Fail::Port);
+    CHECK(has(r.error, "module busy with another client"));
+  }
+  CHECK(one.request(version).ok());  // the first client is undisturbed
+  first.reset();
+  Output after = ctl({server.port(), "status"});  // and once it has gone, the next is served
+  show(after);
+  CHECK_EQ(after.status, 0);
 }
 
 TEST(scan_bus_of_three) {

@@ -5,8 +5,11 @@
 // program or the motors, the resynchronisation gap, or a stop request.
 //
 // One client at a time (errata S2): while a TCP client is connected, a second connection is
-// accepted and closed at once with a reset, so its connect or first read fails loudly instead of
-// hanging; the refusal is logged. A new connection after the first one closed is served.
+// accepted and answered with the refusal line (codec.hpp, kBusyRefusal), so its first read
+// fails loudly, with a reason, instead of hanging; the refusal is logged. Its side is closed at
+// once and what it sends is read and dropped until it closes (closing with unread data would
+// reset the connection and could destroy the refusal before the client reads it). A new
+// connection after the first one closed is served.
 #include <fcntl.h>
 #include <netdb.h>
 #include <netinet/in.h>
@@ -36,6 +39,8 @@ using Clock = std::chrono::steady_clock;
 
 constexpr std::size_t kMaxPendingOutput = 1 << 20;  // stop reading requests beyond this
 constexpr auto kPtyStall = std::chrono::milliseconds(1000);  // pty: nobody reads; drop the replies
+constexpr std::size_t kMaxRefused = 8;  // refused clients held open at once; beyond: a plain reset
+constexpr auto kRefusedHold = std::chrono::milliseconds(2000);  // a refused client's time to close
 
 // ---- signals: a self-pipe, so poll() wakes up ----
 std::atomic<int> g_signal_fd{-1};
@@ -243,6 +248,11 @@ struct ServeLoop::Impl {
   SignalGuard signals;
   Line module;  // one module, or a bus of them, with faults if asked (bus.hpp)
   Fd listener, client, pty_master, pty_slave;
+  struct Refused {  // a second client that was told it is refused, until it closes
+    int fd;
+    Clock::time_point until;
+  };
+  std::vector<Refused> refused;
   double scale = 1.0;
   Clock::time_point wall0, started, last_rx, last_write, spin_until;
   SimTime sim0 = 0;
@@ -260,6 +270,11 @@ struct ServeLoop::Impl {
         announce(o.announce ? *o.announce : (o.transport == Transport::Stdio ? std::cerr : std::cout)),
         module(v, o),
         spin(o.spin_us) {}
+  ~Impl() {
+    for (const Refused& r : refused) ::close(r.fd);
+  }
+  Impl(const Impl&) = delete;
+  Impl& operator=(const Impl&) = delete;
 
   void note(const std::string& s) {
     if (!opt.quiet) log << "tmclrun: " << s << std::endl;
@@ -292,6 +307,11 @@ struct ServeLoop::Impl {
     module.output().clear();
   }
   void flush();
+  void refuse(int fd, const sockaddr_storage& from);
+  void drop_refused(std::size_t i) {
+    ::close(refused[i].fd);
+    refused.erase(refused.begin() + static_cast<std::ptrdiff_t>(i));
+  }
   int open();
   bool poll_once(int max_wait_ms, int extra_fd);
   int close();
@@ -341,6 +361,20 @@ int ServeLoop::Impl::open() {
   in_fd = opt.transport == Transport::Stdio ? opt.in_fd : -1;
   out_fd = opt.transport == Transport::Stdio ? opt.out_fd : -1;
   return 0;
+}
+
+// A second client: the refusal line, then our side closed; kept open to drain until it closes.
+void ServeLoop::Impl::refuse(int fd, const sockaddr_storage& from) {
+  note("refused a second client from " + address_text(from) + ": one client at a time");
+  if (refused.size() >= kMaxRefused) {
+    linger lg{1, 0};  // a flood of them: a reset is all they get
+    ::setsockopt(fd, SOL_SOCKET, SO_LINGER, &lg, sizeof lg);
+    ::close(fd);
+    return;
+  }
+  [[maybe_unused]] ssize_t n = ::send(fd, kBusyRefusal.data(), kBusyRefusal.size(), MSG_NOSIGNAL | MSG_DONTWAIT);
+  ::shutdown(fd, SHUT_WR);
+  refused.push_back({fd, Clock::now() + kRefusedHold});
 }
 
 void ServeLoop::Impl::flush() {
@@ -425,8 +459,16 @@ bool ServeLoop::Impl::poll_once(int max_wait_ms, int extra_fd) {
     timeout_ms = std::max<std::int64_t>(0, std::min<std::int64_t>(timeout_ms, left + 1));
   }
   if (max_wait_ms >= 0) timeout_ms = std::min<std::int64_t>(timeout_ms, max_wait_ms);
+  for (std::size_t i = refused.size(); i-- > 0;) {
+    if (refused[i].until <= now) {
+      drop_refused(i);
+      continue;
+    }
+    const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(refused[i].until - now).count() + 1;
+    timeout_ms = std::min<std::int64_t>(timeout_ms, left);
+  }
 
-  pollfd fds[6];
+  pollfd fds[6 + kMaxRefused];
   nfds_t nfds = 0;
   int i_signal = -1, i_stop = -1, i_listen = -1, i_data = -1, i_out = -1, i_extra = -1;
   if (signals.active) {
@@ -456,6 +498,8 @@ bool ServeLoop::Impl::poll_once(int max_wait_ms, int extra_fd) {
     i_extra = static_cast<int>(nfds);
     fds[nfds++] = {extra_fd, POLLIN, 0};
   }
+  const int i_refused = static_cast<int>(nfds);
+  for (const Refused& r : refused) fds[nfds++] = {r.fd, POLLIN, 0};
 
   int rc = ::poll(fds, nfds, static_cast<int>(timeout_ms));
   if (rc < 0) {
@@ -478,6 +522,15 @@ bool ServeLoop::Impl::poll_once(int max_wait_ms, int extra_fd) {
   }
   if (i_stop >= 0 && fds[i_stop].revents) return false;
   if (i_extra >= 0 && fds[i_extra].revents) extra_ready = true;
+  // Refused clients: what they send is dropped; once they close (or fail), so do we.
+  for (std::size_t i = refused.size(); i-- > 0;) {
+    if (!fds[static_cast<std::size_t>(i_refused) + i].revents) continue;
+    char sink[512];
+    ssize_t n;
+    while ((n = ::read(refused[i].fd, sink, sizeof sink)) > 0) {
+    }
+    if (n == 0 || (errno != EAGAIN && errno != EWOULDBLOCK && errno != EINTR)) drop_refused(i);
+  }
 
   if (i_data >= 0 && fds[i_data].revents) {
     const short re = fds[i_data].revents;
@@ -512,10 +565,7 @@ bool ServeLoop::Impl::poll_once(int max_wait_ms, int extra_fd) {
         if (read_into(client.fd, module, buf) == ReadResult::Closed) close_client("");
       }
       if (client.fd >= 0) {
-        linger lg{1, 0};  // close with a reset: the refused client gets ECONNRESET at once
-        ::setsockopt(fd, SOL_SOCKET, SO_LINGER, &lg, sizeof lg);
-        ::close(fd);
-        note("refused a second client from " + address_text(ss) + ": one client at a time");
+        refuse(fd, ss);
       } else {
         int one = 1;
         ::setsockopt(fd, IPPROTO_TCP, TCP_NODELAY, &one, sizeof one);
@@ -532,6 +582,7 @@ int ServeLoop::Impl::close() {
   std::vector<std::uint8_t>& out = module.output();
   if (!out.empty() && write_fd() >= 0) flush_some(write_fd(), out, opt.transport == Transport::Tcp);
   client.reset();
+  while (!refused.empty()) drop_refused(refused.size() - 1);
   listener.reset();
   pty_master.reset();
   pty_slave.reset();

@@ -13,6 +13,7 @@
 #include <array>
 #include <cstddef>
 #include <cstdint>
+#include <string_view>
 
 namespace tmcl {
 
@@ -134,5 +135,26 @@ inline Frame encode_reply(const Reply& r) {
 inline Reply decode_reply(const std::uint8_t* frame) {
   return Reply{frame[0], frame[1], frame[2], frame[3], decode_be32(frame + 4), frame_checksum_ok(frame)};
 }
+
+// ---- the virtual module's refusal of a second TCP client (docs/virtual-module.md, errata S2) ----
+// While a client is connected, tmclrun --serve tcp accepts a second connection, sends this one
+// line of ASCII at once, closes its side and discards what the client sends; tmclctl recognises
+// it as the first bytes of a connection and says the module is busy. A TMCL host that does not
+// know it reads nine bytes of text as a reply with a wrong checksum (no nine bytes of it have a
+// right one, checked below), then the end of the connection: a failure, never a reply.
+inline constexpr std::string_view kBusyRefusal = "busy: this module is serving another client (one at a time)\n";
+inline constexpr std::string_view kBusyPrefix = "busy:";  // how a client tells the refusal from a reply
+
+namespace detail {
+constexpr bool refusal_has_no_frame() {
+  for (std::size_t i = 0; i + kFrameSize <= kBusyRefusal.size(); ++i) {
+    unsigned sum = 0;
+    for (std::size_t k = 0; k < 8; ++k) sum += static_cast<unsigned char>(kBusyRefusal[i + k]);
+    if ((sum & 0xFF) == static_cast<unsigned char>(kBusyRefusal[i + 8])) return false;
+  }
+  return true;
+}
+}  // namespace detail
+static_assert(detail::refusal_has_no_frame(), "a TMCL host must never read a frame in the busy refusal");
 
 }  // namespace tmcl

@@ -5,7 +5,9 @@
 //
 // Serial ports are opened the way pyserial does it (shared/reference/protocols.md 5.1): non-
 // blocking, exclusive (TIOCEXCL and flock, so a second program gets "port in use"), raw 8N1 at
-// the requested baud rate, modem lines ignored, stale input flushed.
+// the requested baud rate, modem lines ignored, stale input flushed. A TCP connection whose
+// first bytes are the virtual module's busy refusal (codec.hpp, kBusyRefusal) fails every read
+// and write from then on with "module busy with another client".
 #pragma once
 
 #include <chrono>
@@ -34,7 +36,7 @@ class Port {
   bool write_all(const std::uint8_t* data, std::size_t n, Clock::time_point deadline, std::string& error);
   // Waits until some bytes arrive or `deadline` passes. Returns the count read, 0 when the
   // deadline passed (or, with a zero deadline, nothing is buffered), -1 with `error` when the
-  // line is gone, -2 when cancelled.
+  // line is gone or the server refused us (busy), -2 when cancelled.
   long read_some(std::uint8_t* data, std::size_t n, Clock::time_point deadline, std::string& error);
 
   const std::string& name() const { return name_; }
@@ -45,9 +47,13 @@ class Port {
 
  private:
   Port(int fd, std::string name, bool serial) : fd_(fd), name_(std::move(name)), serial_(serial) {}
+  long read_raw(std::uint8_t* data, std::size_t n, Clock::time_point deadline, std::string& error);
+  bool refused(std::uint8_t* data, long& got, std::size_t n, Clock::time_point deadline);
   int fd_;
   std::string name_;
   bool serial_;
+  bool first_read_ = true;  // TCP: nothing received yet (the busy refusal comes first or never)
+  std::string refusal_;     // non-empty once the server refused us: every later call fails with it
 };
 
 }  // namespace tmcl::host
