@@ -25,6 +25,7 @@
 #include "tmcl/fileio.hpp"
 #include "tmcl/host/client.hpp"
 #include "tmcl/host/commands.hpp"
+#include "tmcl/host/console.hpp"
 #include "tmcl/host/port.hpp"
 #include "tmcl/host/transfer.hpp"
 #include "tmcl/image.hpp"
@@ -343,18 +344,23 @@ struct Session {
     return r.reply.status == host::kStatusOk || r.reply.status == host::kStatusLoaded ? kExitOk : kExitStatus;
   }
 
-  std::optional<Instruction> assemble(const std::string& text) {
-    std::string messages;
-    auto ins = host::assemble_one(text, *o.profile, o.include_dirs, messages);
-    std::fputs(messages.c_str(), stderr);
-    return ins;
+  // send and console: one line in the session's names (host/console.hpp), diagnostics shown.
+  std::optional<host::ConsoleSession> session = std::nullopt;
+  host::ConsoleSession::Entry enter(const std::string& text) {
+    if (!session) session.emplace(*o.profile, o.include_dirs);
+    auto e = session->enter(text);
+    std::fflush(stdout);  // in order with the output before it when both go to one file
+    std::fputs(e.messages.c_str(), stderr);
+    return e;
   }
 
   int cmd_send() {
     if (o.args.size() != 1) return usage_error("send takes one instruction in quotes, e.g. send 'SAP 4, 0, 51200'");
-    auto ins = assemble(o.args[0]);
-    if (!ins) return kExitInput;
-    return send_and_print(*ins);
+    const auto e = enter(o.args[0]);
+    if (e.kind == host::ConsoleSession::Entry::Send) return send_and_print(e.ins);
+    if (e.kind != host::ConsoleSession::Entry::Error)
+      std::fprintf(stderr, "tmclctl: error: '%s' is no instruction: send takes one\n", o.args[0].c_str());
+    return kExitInput;
   }
 
   int cmd_param(host::ParamAction action) {
@@ -675,6 +681,7 @@ struct Session {
       const auto b = line.find_first_not_of(" \t"), e = line.find_last_not_of(" \t\r");
       line = b == std::string::npos ? "" : line.substr(b, e - b + 1);
       if (line.empty()) continue;
+      if (!tty) std::printf("tmcl> %s\n", line.c_str());  // piped: each command before its reply
       if (line == "quit" || line == "exit") break;
       if (line == "!!") {
         if (history.empty()) {
@@ -685,23 +692,34 @@ struct Session {
         std::printf("%s\n", line.c_str());
       }
       if (line == "help") {
+        if (!session) enter("");
+        std::string files;
+        for (const auto& f : session->predefined()) files += (files.empty() ? "" : " and ") + f;
         std::printf(
             "Type an instruction in source syntax (SAP 4, 0, 51200; GAP 1, 0; MVP ABS, 0, 1000; .raw 136, 0, 0, 0);\n"
-            "constants and keywords work as in a program. 'history' lists this session's instructions, '!!' repeats\n"
-            "the last one, 'quit' (or end of input) leaves.\n");
+            "constants and keywords work as in a program: %s are included, and NAME = VALUE and #include lines\n"
+            "are kept for the session. 'history' lists this session's lines, '!!' repeats the last one, 'quit' (or\n"
+            "end of input) leaves.\n",
+            files.empty() ? "no names" : files.c_str());
         continue;
       }
       if (line == "history") {
         for (std::size_t i = 0; i < history.size(); ++i) std::printf("%4zu  %s\n", i + 1, history[i].c_str());
         continue;
       }
-      auto ins = assemble(line);
-      if (!ins) {
+      const auto entry = enter(line);
+      if (entry.kind == host::ConsoleSession::Entry::Error) {
         last = kExitInput;
         continue;
       }
-      history.push_back(line);
-      last = send_and_print(*ins);
+      if (entry.kind != host::ConsoleSession::Entry::Nothing) history.push_back(line);
+      if (entry.kind != host::ConsoleSession::Entry::Send) {  // names kept: a few shown, else how many
+        const auto& d = entry.defined;
+        for (std::size_t i = 0; d.size() <= 3 && i < d.size(); ++i) std::printf("%s\n", d[i].c_str());
+        if (d.size() > 3) std::printf("%zu names defined\n", d.size());
+        continue;
+      }
+      last = send_and_print(entry.ins);
       std::fflush(stdout);
       if (last == kExitPort) return last;  // the line is gone
     }

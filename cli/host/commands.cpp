@@ -1,5 +1,5 @@
-// tmclctl's words (commands.hpp): one-line instructions through the assembler, parameters by
-// number or name from the profile tables, and names for the status replies.
+// tmclctl's words (commands.hpp): parameters by number or name from the profile tables, and
+// names for the status replies.
 #include "tmcl/host/commands.hpp"
 
 #include <cctype>
@@ -37,34 +37,6 @@ std::vector<std::string> split(const std::string& s, char sep) {
 }
 
 }  // namespace
-
-std::optional<Instruction> assemble_one(const std::string& source, const Profile& profile,
-                                        const std::vector<std::string>& include_dirs, std::string& messages) {
-  MemoryReader reader;
-  reader.files["<command line>"] = source + "\n";
-  AsmOptions opt;
-  opt.profile = &profile;
-  opt.include_dirs = include_dirs;
-  opt.append_stop = false;
-  opt.symbols = false;
-  // Includes are read from disk too (with the bundled ones): a MemoryReader serves only the line.
-  struct Reader final : FileReader {
-    MemoryReader* mem;
-    DiskReader disk;
-    bool read(const std::string& path, std::string& out) override { return mem->read(path, out) || disk.read(path, out); }
-    std::string last_error() const override { return disk.last_error(); }
-  } both;
-  both.mem = &reader;
-  AsmResult r = assemble({"<command line>"}, opt, both);
-  messages = r.diags.render(r.sources);
-  if (!r.ok()) return std::nullopt;
-  if (r.program.size() != 1) {
-    messages += "<command line>: error: '" + source + "' is " + std::to_string(r.program.size()) +
-                " instructions; send takes exactly one\n";
-    return std::nullopt;
-  }
-  return r.program.front();
-}
 
 std::string ParamRef::label() const {
   static const char* kinds[] = {"axis parameter ", "global parameter ", "I/O port "};

@@ -390,14 +390,52 @@ TEST(ctrl_c_during_download_stops_cleanly) {
 TEST(console_session) {
   Server server(kRun, {"--serve", "pty", "-t", "usb-2-sd"});
   const std::string in = write_temp("console.txt", "help\nSAP 4, 0, 99\nGAP 4, 0\n!!\nSAP 4, 0\nhistory\nquit\n");
-  // Standard input from a file: no prompt.
+  // Standard input from a file: no prompt, each command echoed before its reply.
   Output o = hosttest::run({"/bin/sh", "-c", kCtl + " -t usb-2-sd " + server.port() + " console < " + in});
   CHECK_EQ(o.status, 0);
-  CHECK(has(o.out, "Type an instruction"));
-  CHECK(has(o.out, "100 success, value 99\n"));
-  CHECK(has(o.out, "GAP 4, 0\n100 success, value 99\n"));
+  CHECK(has(o.out, "tmcl> help\nType an instruction"));
+  CHECK(has(o.out, "TMCLParam.tmc and USB-2-SD.inc are included"));
+  CHECK(has(o.out, "tmcl> SAP 4, 0, 99\n100 success, value 0\ntmcl> GAP 4, 0\n100 success, value 99\n"));
+  CHECK(has(o.out, "tmcl> !!\nGAP 4, 0\n100 success, value 99\n"));
+  CHECK(has(o.out, "tmcl> SAP 4, 0\ntmcl> history\n"));  // the error went to standard error
   CHECK(has(o.out, "   1  SAP 4, 0, 99\n   2  GAP 4, 0\n   3  GAP 4, 0\n"));
+  CHECK(has(o.out, "tmcl> quit\n"));
   CHECK(has(o.err, "<command line>:1:"));
+}
+
+TEST(console_names_kept_for_the_session) {
+  Server server(kRun, {"--serve", "pty", "-t", "usb-2-sd"});
+  write_temp("limits.inc", "Fast = 2000\n");
+  const std::string in = write_temp("names.txt",
+                                    "Speed = 1000\n"
+                                    "SAP APMaxPositioningSpeed, Motor0, Speed\n"  // TMCLParam.tmc
+                                    "GAP AP_MaxPositioningSpeed, 0\n"             // USB-2-SD.inc
+                                    "#include limits.inc\n"
+                                    "SAP 4, 0, Fast / 4\n"
+                                    "GAP 4, 0\n");
+  // One stream for both outputs (2>&1), as a user saves a transcript: in order.
+  Output o = hosttest::run({"/bin/sh", "-c", kCtl + " -t usb-2-sd -I " + temp_dir() + " " + server.port() + " console < " + in + " 2>&1"});
+  show(o);
+  CHECK_EQ(o.status, 0);
+  CHECK_EQ(o.out,
+           "tmcl> Speed = 1000\n"
+           "Speed = 1000\n"
+           "tmcl> SAP APMaxPositioningSpeed, Motor0, Speed\n"
+           "100 success, value 0\n"
+           "tmcl> GAP AP_MaxPositioningSpeed, 0\n"
+           "100 success, value 1000\n"
+           "tmcl> #include limits.inc\n"
+           "Fast = 2000\n"
+           "tmcl> SAP 4, 0, Fast / 4\n"
+           "100 success, value 0\n"
+           "tmcl> GAP 4, 0\n"
+           "100 success, value 500\n");
+  // send knows the predefined names too.
+  Output s = ctl({"-t", "usb-2-sd", server.port(), "send", "GAP APMaxPositioningSpeed, Motor0"});
+  CHECK_EQ(s.out, "100 success, value 500\n");
+  Output d = ctl({"-t", "usb-2-sd", server.port(), "send", "Speed = 1"});
+  CHECK_EQ(d.status, 65);
+  CHECK(has(d.err, "'Speed = 1' is no instruction: send takes one"));
 }
 
 TEST(position_reached_events_are_routed) {
@@ -407,11 +445,16 @@ TEST(position_reached_events_are_routed) {
   Output o = hosttest::run({"/bin/sh", "-c", kCtl + " -t usb-2-sd " + server.port() + " console < " + in});
   CHECK_EQ(o.status, 0);
   CHECK_EQ(o.out,
+           "tmcl> .raw 138, 0, 0, 1\n"
            "100 success, value 1\n"
+           "tmcl> MVP ABS, 0, 100\n"
            "100 success, value 0\n"
            "event: position reached (motor mask 0x1)\n"
+           "tmcl> GAP 1, 0\n"
            "100 success, value 100\n"
+           "tmcl> MVP ABS, 0, 50\n"
            "100 success, value 0\n"  // not announced: no event, and no reply out of step
+           "tmcl> GAP 1, 0\n"
            "100 success, value 50\n");
 }
 

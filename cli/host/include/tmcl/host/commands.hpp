@@ -1,7 +1,6 @@
-// What tmclctl's words mean, kept out of the tool so that tests and embedders reach it: one
-// instruction from source syntax (through the assembler, so constants, keywords and #include
-// names work), parameters by number or by the profile's name, and the decoded forms of the
-// status replies (135, 136).
+// What tmclctl's words mean, kept out of the tool so that tests and embedders reach it:
+// parameters by number or by the profile's name, and the decoded forms of the status replies
+// (135, 136). Instructions from source syntax: console.hpp.
 #pragma once
 
 #include <cstdint>
@@ -13,12 +12,6 @@
 #include "tmcl/profile.hpp"
 
 namespace tmcl::host {
-
-// Assembles one line of source (several lines: the last instruction counts) for `profile`.
-// Nullopt with the rendered diagnostics in `messages` when it does not assemble to exactly one
-// instruction; `messages` may hold warnings on success too.
-std::optional<Instruction> assemble_one(const std::string& source, const Profile& profile,
-                                        const std::vector<std::string>& include_dirs, std::string& messages);
 
 // A parameter: axis (GAP/SAP/STAP), global (GGP/SGP/STGP) or I/O (GIO/SIO).
 struct ParamRef {
