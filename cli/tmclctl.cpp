@@ -27,6 +27,7 @@
 #include "tmcl/host/commands.hpp"
 #include "tmcl/host/console.hpp"
 #include "tmcl/host/port.hpp"
+#include "tmcl/host/scan.hpp"
 #include "tmcl/host/transfer.hpp"
 #include "tmcl/image.hpp"
 #include "tmcl/plot.hpp"
@@ -726,25 +727,29 @@ struct Session {
     return last == kExitInput || last == kExitStatus || last == kExitNoReply ? kExitOk : last;
   }
 
+  // The modules on the line, found by host::scan_bus; a bar on a terminal meanwhile, which each
+  // line of output first wipes (and is drawn again after).
   int scan_here(int& found) {
-    client.set_retries(0);
-    if (!o.timeout_given) client.set_timeout(50);
-    for (int a = o.range_lo; a <= o.range_hi && !g_stop; ++a) {
-      client.set_module(static_cast<std::uint8_t>(a));
-      host::Result r = client.request(Instruction{static_cast<std::uint8_t>(Op::GetFirmwareVersion), 1, 0, 0});
-      if (r.fail == host::Fail::Cancelled) break;
-      if (r.fail == host::Fail::Port) {
-        std::fprintf(stderr, "tmclctl: error: %s\n", r.error.c_str());
-        return kExitPort;
-      }
-      if (!r.ok()) continue;
-      host::Result v = client.request(Instruction{static_cast<std::uint8_t>(Op::GetFirmwareVersion), 0, 0, 0});
-      const std::string version = v.ok() ? v.reply.version : "?";
-      const tmcl::Profile* p = host::profile_by_firmware(version);
-      std::printf("address %3d: firmware %s (0x%08" PRIX32 "), %s\n", a, version.c_str(), static_cast<std::uint32_t>(r.reply.value),
-                  p ? std::string(p->title).c_str() : "unknown module type");
+    Bar bar{"Scanning ", !o.quiet && ::isatty(2)};
+    const auto wipe = [&bar] {
+      if (bar.on && bar.shown >= 0) std::fprintf(stderr, "\r%80s\r", "");
+      bar.shown = -1;
+    };
+    host::ScanOptions so{o.range_lo, o.range_hi, o.timeout_given ? o.client.timeout_ms : host::default_scan_timeout_ms(port),
+                         !o.timeout_given};
+    const host::ScanResult r = host::scan_bus(client, so, [&](const host::ScanFound& f) {
+      wipe();
+      if (f.late && !o.quiet)
+        std::fprintf(stderr, "tmclctl: note: module %d answered after the timeout; now %d ms per address\n", f.address, f.timeout_ms);
+      std::printf("address %3d: firmware %s (0x%08" PRIX32 "), %s\n", f.address, f.version.c_str(), static_cast<std::uint32_t>(f.binary),
+                  f.profile ? std::string(f.profile->title).c_str() : "unknown module type");
       std::fflush(stdout);
       ++found;
+    }, std::ref(bar));
+    bar.end();
+    if (r.fail == host::Fail::Port) {
+      std::fprintf(stderr, "tmclctl: error: %s\n", r.error.c_str());
+      return kExitPort;
     }
     return g_stop ? kExitInterrupted : kExitOk;
   }

@@ -77,6 +77,7 @@ Client::Scan Client::scan(const Instruction& ins, Reply& found) {
   Scan result = Scan::Need;
   std::size_t head = 0;
   auto frame_to_host = [&](const std::uint8_t* p) { return checksum_ok(p) && p[0] == opt_.host; };
+  auto ordinary_elsewhere = [&](const std::uint8_t* p) { return p[1] != opt_.module && known_status(p[2]); };
   while (rx_.size() - head >= kFrame) {
     const std::uint8_t* p = rx_.data() + head;
     if (special_136(ins) && p[0] == opt_.host) {
@@ -114,6 +115,12 @@ Client::Scan Client::scan(const Instruction& ins, Reply& found) {
         result = Scan::Found;
       } else {
         ++stats_.drained;  // another module, another command, or stale
+        if (ordinary_elsewhere(p)) {
+          if (strays_.size() >= 64) strays_.erase(strays_.begin());
+          const tmcl::Reply r = decode_reply(p);
+          strays_.push_back(Reply{r.status, r.op, r.value, {}, {}, {}});
+          std::copy(p, p + kFrame, strays_.back().bytes.begin());
+        }
       }
       head += kFrame;
       continue;
@@ -141,6 +148,24 @@ Client::Scan Client::scan(const Instruction& ins, Reply& found) {
   }
   rx_.erase(rx_.begin(), rx_.begin() + static_cast<std::ptrdiff_t>(head));
   return result;
+}
+
+std::vector<Reply> Client::take_strays() {
+  std::vector<Reply> s;
+  s.swap(strays_);
+  return s;
+}
+
+void Client::listen(Clock::time_point until) {
+  std::uint8_t buf[512];
+  std::string error;
+  long n;
+  Reply none;
+  while ((n = port_.read_some(buf, sizeof buf, until, error)) > 0) {
+    rx_.insert(rx_.end(), buf, buf + n);
+    scan(Instruction{0, 0, 0, 0}, none);
+  }
+  unclean_ = true;
 }
 
 void Client::drain_now() {

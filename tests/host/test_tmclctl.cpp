@@ -13,6 +13,7 @@
 #include "tmcl/faults.hpp"
 #include "tmcl/host/client.hpp"
 #include "tmcl/host/port.hpp"
+#include "tmcl/host/scan.hpp"
 #include "tmcl/image.hpp"
 
 using hosttest::Output;
@@ -238,6 +239,33 @@ TEST(scan_bus_of_three) {
   Output none = ctl({"--timeout", "50ms", server.port(), "scan", "--range", "10-12"});  // nobody there: no wait can help
   CHECK_EQ(none.status, 69);
   CHECK(has(none.out, "0 modules found"));
+}
+
+TEST(scan_waits_less_on_tcp_and_still_finds_a_slow_module) {
+  // The chosen defaults: 50 ms per address on a serial port, 10 ms on TCP.
+  Server tcp(kRun, {"--serve", "tcp:127.0.0.1:0", "-t", "usb-2-sd", "--faults", "delay=30ms"});
+  Server pty(kRun, {"--serve", "pty"});
+  std::string err;
+  auto t = tmcl::host::Port::open(tcp.port(), 9600, 5000, err);
+  auto p = tmcl::host::Port::open(pty.port(), 9600, 5000, err);
+  CHECK(t && p);
+  if (!t || !p) return;
+  CHECK_EQ(tmcl::host::default_scan_timeout_ms(*t), 10);
+  CHECK_EQ(tmcl::host::default_scan_timeout_ms(*p), 50);
+  t.reset();
+  p.reset();
+  // Every reply 30 ms late, beyond the 10 ms: the module is found by its late reply, asked
+  // again, and the wait per address doubles (said on standard error). No --timeout here.
+  Output s = run({kCtl, tcp.port(), "scan", "--range", "1-60"});
+  show(s);
+  CHECK_EQ(s.status, 0);
+  CHECK_EQ(s.out, "address   1: firmware 0015V114 (0x000F010E), USB-2-SD (firmware 1.14)\n1 module found\n");
+  CHECK(has(s.err, "tmclctl: note: module 1 answered after the timeout; now 20 ms per address"));
+  // With --timeout the wait stays as given; the late module is still found.
+  Output g = run({kCtl, "--timeout", "10ms", tcp.port(), "scan", "--range", "1-60"});
+  CHECK_EQ(g.status, 0);
+  CHECK(has(g.out, "address   1: "));
+  CHECK(has(g.err, "now 10 ms per address"));
 }
 
 // One request under each fault kind: recovered with retries, reported without.

@@ -1,6 +1,7 @@
 // What tmclctl writes, end to end against `tmclrun --serve pty`: monitor --plot (a well-formed SVG
 // with one panel and one line per parameter that reads back as the polled values, written
-// atomically), the progress bar and live table on a terminal and plain text through a pipe, and
+// atomically), the progress bars (download, scan) and live table on a terminal and plain text
+// through a pipe, and
 // standard output that cannot be written (/dev/full) giving exit status 74.
 #include <dirent.h>
 
@@ -270,6 +271,25 @@ TEST(progress_bar_and_live_table_on_a_terminal) {
   CHECK(has(m.out, "\n     0.040 "));
   CHECK(!has(m.out, "time_s"));
   if (m.status != 0 || !has(m.out, "  time (s)")) std::fprintf(stderr, "  pty: %s\n", m.out.c_str());
+}
+
+TEST(scan_progress_on_a_terminal_only) {
+  Server server(kRun, {"--serve", "tcp:127.0.0.1:0", "-t", "usb-2-sd"});
+  // The default wait per address (no --timeout): the scan of a range runs to its end.
+  Output t = run_on_pty({kCtl, server.port(), "scan", "--range", "1-30"});
+  if (t.status != 0) std::fprintf(stderr, "  pty: %s\n", t.out.c_str());
+  CHECK_EQ(t.status, 0);
+  CHECK(has(t.out, "\rScanning  | "));
+  CHECK(has(t.out, "##################################################" " | 100% "));
+  CHECK(has(t.out, "address   1: firmware 0015V114 (0x000F010E), USB-2-SD (firmware 1.14)\n"));
+  CHECK(has(t.out, "1 module found"));
+  Output q = run_on_pty({kCtl, "-q", server.port(), "scan", "--range", "1-3"});
+  CHECK_EQ(q.status, 0);
+  CHECK(!has(q.out, "Scanning"));
+  Output p = run({kCtl, server.port(), "scan", "--range", "1-3"});  // a pipe: the list alone
+  CHECK_EQ(p.status, 0);
+  CHECK_EQ(p.out, "address   1: firmware 0015V114 (0x000F010E), USB-2-SD (firmware 1.14)\n1 module found\n");
+  CHECK_EQ(p.err, std::string());
 }
 
 TEST(plain_text_through_a_pipe) {

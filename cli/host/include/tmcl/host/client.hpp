@@ -71,6 +71,13 @@ class Client {
   Result request(const Instruction& ins, bool retry = true);
   // 138 position-reached replies received so far (oldest first); taking them clears the list.
   std::vector<Reply> take_events();
+  // Replies from another module than the one asked, with a right checksum and a known status:
+  // late answers to an earlier request (a bus scan finds slow modules by them). Oldest first,
+  // the last 64 kept; taking them clears the list.
+  std::vector<Reply> take_strays();
+  // Reads what arrives until `until` without asking anything: events and strays are kept, the
+  // rest dropped.
+  void listen(Clock::time_point until);
 
   // "SAP 4, 0, 51200 [01 05 04 00 00 00 C8 00 D2] to module 1 on /dev/pts/3"
   std::string describe(const Instruction& ins) const;
@@ -96,6 +103,7 @@ class Client {
   ClientOptions opt_;
   std::vector<std::uint8_t> rx_;
   std::vector<Reply> events_;
+  std::vector<Reply> strays_;
   Stats stats_;
   bool unclean_ = true;  // the last request saw trouble (or there was none yet): drain first
 };
