@@ -697,10 +697,10 @@ struct Session {
         std::string files;
         for (const auto& f : session->predefined()) files += (files.empty() ? "" : " and ") + f;
         std::printf(
-            "Type an instruction in source syntax (SAP 4, 0, 51200; GAP 1, 0; MVP ABS, 0, 1000; .raw 136, 0, 0, 0);\n"
-            "constants and keywords work as in a program: %s are included, and NAME = VALUE and #include lines\n"
-            "are kept for the session. 'history' lists this session's lines, '!!' repeats the last one, 'quit' (or\n"
-            "end of input) leaves.\n",
+            "Type an instruction in source syntax (SAP 4, 0, 51200; GAP 1, 0; MVP ABS, 0, 1000; .raw 136, 0, 0, 0).\n"
+            "Names work as in a program: %s are included, and NAME = VALUE and\n"
+            "#include lines are kept for the session. 'history' lists this session's lines, '!!' repeats\n"
+            "the last one, 'quit' (or end of input) leaves.\n",
             files.empty() ? "no names" : files.c_str());
         continue;
       }

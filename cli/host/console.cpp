@@ -12,7 +12,7 @@
 namespace tmcl::host {
 namespace {
 
-std::string lower(std::string_view s) {
+std::string folded(std::string_view s) {
   std::string out(s);
   for (char& c : out) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
   return out;
@@ -20,9 +20,9 @@ std::string lower(std::string_view s) {
 
 // The bundled include named after the module: "USB-2-SD (firmware 1.14)" -> "USB-2-SD.inc".
 std::string named_include(const Profile& p) {
-  const std::string stem = lower(p.title.substr(0, p.title.find(' '))) + ".inc";
+  const std::string stem = folded(p.title.substr(0, p.title.find(' '))) + ".inc";
   for (const auto& [name, text] : bundled_includes())
-    if (lower(name) == stem) return name;
+    if (folded(name) == stem) return name;
   return "";
 }
 
@@ -162,7 +162,7 @@ ConsoleSession::Entry ConsoleSession::take(const std::string& line, const std::s
     origins_.push_back(origin);
     std::string text = s->name + " = " + std::to_string(s->value);
     for (const auto& [name, value] : replaced)
-      if (lower(name) == lower(s->name)) text += " (was " + value + ")";
+      if (folded(name) == folded(s->name)) text += " (was " + value + ")";
     e.defined.push_back(text);
   }
   e.kind = e.defined.empty() ? Entry::Nothing : Entry::Defined;
