@@ -199,6 +199,7 @@ std::string_view warning_kind_name(RuntimeWarning::Kind k) {
     case RuntimeWarning::ReturnWithoutCall: return "return-without-call";
     case RuntimeWarning::RetiOutsideHandler: return "reti-outside-handler";
     case RuntimeWarning::HandlerWithoutReti: return "handler-without-reti";
+    case RuntimeWarning::ValueOutOfRange: return "value-out-of-range";
   }
   return "unknown";
 }

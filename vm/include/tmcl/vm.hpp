@@ -110,6 +110,7 @@ struct RuntimeWarning {
     ReturnWithoutCall,   // RSUB with nothing to return to (E6)
     RetiOutsideHandler,  // RETI while no interrupt is being served (E13)
     HandlerWithoutReti,  // a handler that ends otherwise than with RETI (STOP, a jump out; E42, E43)
+    ValueOutOfRange,     // SAP/SGP/AAP/AGP/ROR/ROL with a value outside the parameter's range (E3)
   };
   SimTime at = 0;        // the instruction's start
   std::int32_t pc = 0;   // its address
@@ -301,6 +302,11 @@ struct Vm {
   std::uint8_t motor_stop(int motor);
   std::uint8_t rfs(int type, int motor, std::int32_t& value);
   bool motor_ok(int motor) const { return motor >= 0 && motor < profile->motors; }
+  // The profile row whose range refuses `value` for axis parameter `param`, or for a global
+  // parameter of bank 0 or 3 (axis: false): the active profile's, else, for a parameter the
+  // motion core owns, the row it checks against; nullptr when no range refuses it. For messages:
+  // the run-time warning `value-out-of-range` and the debugger's `set`.
+  const ParamInfo* range_refusing(bool axis, int bank, int param, std::int64_t value) const;
 
  private:
   // The run loop (vm_exec.cpp) and the instruction semantics (vm_ops.hpp) reach the internals
