@@ -4,7 +4,10 @@
 // tmclrun-full only (cli/tmclrun_modes.hpp). All semantics live in vm/; see docs/tmclrun.md. Exit
 // status: 0 STOP, 3 limit reached or blocked, 70 runtime fault, 65 bad input, 64 usage, 71
 // --serve transport failed or tmclrun-full missing, 74 an output file or standard output not
-// written. With --json every outcome is one JSON object on standard output.
+// written, 130/143 ended by SIGINT/SIGTERM (run_control.hpp). With --json every outcome is one
+// JSON object on standard output.
+#include <unistd.h>
+
 #include <algorithm>
 #include <cctype>
 #include <cerrno>
@@ -25,6 +28,7 @@
 #include "tmcl/motion_recording.hpp"
 #include "tmcl/numbers.hpp"
 #include "tmcl/program_image.hpp"
+#include "tmcl/run_control.hpp"
 #include "tmcl/scenario.hpp"
 #include "tmcl/version.hpp"
 #include "tmcl/vm.hpp"
@@ -100,7 +104,9 @@ examples:
 
 exit status: 0 STOP, 3 limit reached or blocked forever, 70 runtime fault, 65 bad input,
              64 usage error, 71 --serve transport failed or tmclrun-full missing, 74 an output
-             file (EEPROM, --csv, --plot) or standard output could not be written
+             file (EEPROM, --csv, --plot) or standard output could not be written (a --trace
+             into a closed pipe ends the run so), 130/143 ended by SIGINT (Ctrl-C)/SIGTERM after
+             writing the summary, --json, --csv, --plot and EEPROM
 )";
 
 std::string joined(const std::vector<std::string>& names) {
@@ -486,14 +492,18 @@ int run(int argc, char** argv) {
   vm.handler_code = handler_code(program);
   set_up_vm(vm, o, program, sources, o.eeprom.empty() ? nullptr : &image, std::move(inputs));
   vm.start(0);
-  tmcl::RunResult result = vm.run(o.limits);
+  // SIGINT, SIGTERM, a closed trace output and the note of an unbounded run (run_control.hpp).
+  const bool unbounded = o.limits.until == tmcl::kNever && o.limits.max_steps == UINT64_MAX;
+  tmcl::RunControl control(unbounded && ::isatty(2));
+  trace.write_failed = [&control] { control.output_closed(); };
+  tmcl::RunResult result = control.run(vm, o.limits);
 
   int status = kExitOk;
   switch (result.halt) {
     case tmcl::Halt::Stop:
     case tmcl::Halt::NotRunning: status = kExitOk; break;
     case tmcl::Halt::Fault: status = kExitFault; break;
-    default: status = kExitLimit; break;
+    default: status = control.output_was_closed() ? kExitIo : kExitLimit; break;
   }
   if (result.halt == tmcl::Halt::Fault) {
     std::int32_t at = vm.halt_pc;
@@ -546,5 +556,6 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "tmclrun: error: %s\n", err.c_str());
     return kExitIo;
   }
+  tmcl::RunControl::end_by_signal();  // SIGINT or SIGTERM ended the run: its status, 130 or 143
   return status;
 }

@@ -19,6 +19,7 @@ std::string_view halt_name(Halt h) {
     case Halt::Blocked: return "blocked";
     case Halt::NotRunning: return "not-running";
     case Halt::Break: return "break";
+    case Halt::Interrupted: return "interrupted";
   }
   return "?";
 }

@@ -64,6 +64,12 @@ std::string errors_text(std::uint8_t errors) {
 
 // ---------------------------------------------------------------- trace
 
+void TextTrace::written() {
+  if (failed_ || !std::ferror(out_)) return;
+  failed_ = true;
+  if (write_failed) write_failed();
+}
+
 std::string TextTrace::where(std::int32_t pc) const {
   if (sources_ && pc >= 0 && static_cast<std::size_t>(pc) < sources_->size() && !(*sources_)[static_cast<std::size_t>(pc)].empty())
     return (*sources_)[static_cast<std::size_t>(pc)];
@@ -74,30 +80,36 @@ void TextTrace::instruction(const Vm& vm, SimTime at, std::int32_t pc, const Ins
   std::fprintf(out_, "%s %5" PRId32 " %-16s %-28s A=%" PRId32 " X=%" PRId32 " F=%s E=%s\n", format_time(at).c_str(), pc,
                where(pc).c_str(), instruction_text(ins).c_str(), vm.acc, vm.x, flags_text(vm.flags).c_str(),
                errors_text(vm.errors).c_str());
+  written();
 }
 
 void TextTrace::interrupt_enter(const Vm& vm, int vector, std::int32_t from_pc) {
   const InterruptVector* v = vm.profile->vector(vector);
   std::fprintf(out_, "%s  --> interrupt %d%s%s%s from %" PRId32 " to %" PRId32 "\n", format_time(vm.now).c_str(), vector,
                v ? " (" : "", v ? std::string(v->name).c_str() : "", v ? ")" : "", from_pc, vm.pc);
+  written();
 }
 
 void TextTrace::interrupt_leave(const Vm& vm, std::int32_t to_pc) {
   std::fprintf(out_, "%s  <-- interrupt done, continue at %" PRId32 "\n", format_time(vm.now).c_str(), to_pc);
+  written();
 }
 
 void TextTrace::motion_event(const Vm& vm, const MotionEvent& ev) {
   (void)vm;
   std::fprintf(out_, "%s  motion: motor %d %s at position %" PRId32 "\n", format_time(ev.at).c_str(), ev.motor,
                std::string(motion_event_name(ev.kind)).c_str(), ev.position);
+  written();
 }
 
 void TextTrace::wait_end(const Vm& vm, std::int32_t pc, bool timeout) {
   std::fprintf(out_, "%s  wait at %" PRId32 " %s\n", format_time(vm.now).c_str(), pc, timeout ? "timed out (ETO set)" : "ended");
+  written();
 }
 
 void TextTrace::input_event(const Vm& vm, const std::string& what) {
   std::fprintf(out_, "%s  input: %s\n", format_time(vm.now).c_str(), what.c_str());
+  written();
 }
 
 // Same form as a wait line: the instant, then the address (and source line) it happened at.
@@ -105,6 +117,7 @@ void TextTrace::warning(const Vm& vm, const RuntimeWarning& w) {
   (void)vm;
   std::fprintf(out_, "%s  warning at %" PRId32 " %s: %s\n", format_time(w.at).c_str(), w.pc, where(w.pc).c_str(),
                w.message.c_str());
+  written();
 }
 
 // ---------------------------------------------------------------- JSON

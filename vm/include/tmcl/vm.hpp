@@ -17,6 +17,7 @@
 #pragma once
 
 #include <array>
+#include <csignal>
 #include <cstdint>
 #include <functional>
 #include <string>
@@ -52,6 +53,7 @@ enum class Halt : std::uint8_t {
   Blocked,    // waiting for an event that can never come (no timer, motion, input or timeout)
   NotRunning, // run() called while the program is stopped and no motion is pending
   Break,      // a debugger trap (Vm::set_trap) at pc: the instruction there has not executed
+  Interrupted,  // Limits::stop was set from outside (a signal, a closed output): between instructions
 };
 std::string_view halt_name(Halt h);
 
@@ -60,6 +62,12 @@ std::string_view halt_name(Halt h);
 struct Limits {
   std::uint64_t max_steps = UINT64_MAX;
   SimTime until = kNever;
+  // A request from outside to end the run, set asynchronously (a signal handler, a trace that can
+  // no longer write): once *stop is non-zero, run() returns Halt::Interrupted between two
+  // instructions, within kStopPollSteps instructions or at the next instant a WAIT sleeps to. A
+  // run() called again goes on exactly as if it had not returned. Null: nothing to ask.
+  const volatile std::sig_atomic_t* stop = nullptr;
+  static constexpr std::uint64_t kStopPollSteps = 1 << 16;
 };
 
 struct RunResult {

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <cstdio>
+#include <functional>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -31,10 +32,16 @@ class TextTrace final : public TraceSink {
   void input_event(const Vm& vm, const std::string& what) override;
   void warning(const Vm& vm, const RuntimeWarning& w) override;
 
+  // Called once, after the first line that could not be written (a closed pipe, a full disk):
+  // tmclrun ends the run then (RunControl::output_closed).
+  std::function<void()> write_failed;
+
  private:
   std::string where(std::int32_t pc) const;
+  void written();
   std::FILE* out_;
   const SourceMap* sources_;
+  bool failed_ = false;
 };
 
 // "ZE EQ" style flag names; "-" when none.
