@@ -491,6 +491,7 @@ int run(int argc, char** argv) {
   if (recording) vm.trace = &recording_trace;
   vm.handler_code = handler_code(program);
   set_up_vm(vm, o, program, sources, o.eeprom.empty() ? nullptr : &image, std::move(inputs));
+  const auto vars_at_start = vm.vars;  // the summary shows the variables that changed
   vm.start(0);
   // SIGINT, SIGTERM, a closed trace output and the note of an unbounded run (run_control.hpp).
   const bool unbounded = o.limits.until == tmcl::kNever && o.limits.max_steps == UINT64_MAX;
@@ -505,16 +506,17 @@ int run(int argc, char** argv) {
     case tmcl::Halt::Fault: status = kExitFault; break;
     default: status = control.output_was_closed() ? kExitIo : kExitLimit; break;
   }
+  // The halt is said once: a fault as an error here (the summary names its kind and place), any
+  // other halt in the summary or JSON only.
   if (result.halt == tmcl::Halt::Fault) {
     std::int32_t at = vm.halt_pc;
     std::string where = at >= 0 && static_cast<std::size_t>(at) < sources.size() ? sources[static_cast<std::size_t>(at)] : "";
     std::fprintf(stderr, "%s: error: runtime fault: %s\n", where.empty() ? "tmclrun" : where.c_str(), result.message.c_str());
-  } else if (status == kExitLimit) {
-    std::fprintf(stderr, "tmclrun: %s: %s\n", std::string(tmcl::halt_name(result.halt)).c_str(), result.message.c_str());
   }
 
   if (recording) {
     recording_core.finish(vm.now);
+    recorder.show_motors(tmcl::shown_motors(vm));
     std::ostringstream csv, svg;
     if (!o.csv.empty()) tmcl::write_csv(csv, recorder);
     if (!o.plot.empty()) {
@@ -538,7 +540,7 @@ int run(int argc, char** argv) {
   if (o.json)
     std::fputs(tmcl::state_json(vm, result).c_str(), stdout);
   else
-    std::fputs(tmcl::state_summary(vm, result, &sources).c_str(), stdout);
+    std::fputs(tmcl::state_summary(vm, result, &vars_at_start).c_str(), stdout);
   return status;
 }
 

@@ -2,6 +2,7 @@
 // Every format here is pinned by golden files in tests/vm/golden; change them deliberately.
 #include "tmcl/vm_output.hpp"
 
+#include <algorithm>
 #include <cinttypes>
 #include <set>
 
@@ -76,10 +77,22 @@ std::string TextTrace::where(std::int32_t pc) const {
   return "-";
 }
 
+// The widths of the source and instruction columns, from the whole program, once.
+void TextTrace::measure(const Vm& vm) {
+  std::size_t source = 16, text = 28;
+  if (sources_)
+    for (const auto& s : *sources_) source = std::max(source, s.size());
+  for (std::int32_t a = 0; a < vm.program_size; ++a)
+    text = std::max(text, instruction_text(vm.program[static_cast<std::size_t>(a)]).size());
+  source_width_ = static_cast<int>(source);
+  text_width_ = static_cast<int>(text);
+}
+
 void TextTrace::instruction(const Vm& vm, SimTime at, std::int32_t pc, const Instruction& ins) {
-  std::fprintf(out_, "%s %5" PRId32 " %-16s %-28s A=%" PRId32 " X=%" PRId32 " F=%s E=%s\n", format_time(at).c_str(), pc,
-               where(pc).c_str(), instruction_text(ins).c_str(), vm.acc, vm.x, flags_text(vm.flags).c_str(),
-               errors_text(vm.errors).c_str());
+  if (source_width_ == 0) measure(vm);
+  std::fprintf(out_, "%s %5" PRId32 " %-*s %-*s A=%" PRId32 " X=%" PRId32 " F=%s E=%s\n", format_time(at).c_str(), pc,
+               source_width_, where(pc).c_str(), text_width_, instruction_text(ins).c_str(), vm.acc, vm.x,
+               flags_text(vm.flags).c_str(), errors_text(vm.errors).c_str());
   written();
 }
 
@@ -271,14 +284,39 @@ std::string error_json(std::string_view kind, int exit_status, const std::vector
   return json::write_lines(s) + "\n";
 }
 
-std::string state_summary(Vm& vm, const RunResult& result, const SourceMap* sources) {
-  (void)sources;
+std::vector<int> shown_motors(Vm& vm) {
+  vm.sync_motion();
+  std::vector<int> motors;
+  if (!vm.profile->any_parameter) {
+    for (int m = 0; m < vm.profile->motors; ++m) motors.push_back(m);
+    return motors;
+  }
+  std::vector<bool> named(static_cast<std::size_t>(vm.profile->motors), false);
+  for (std::int32_t a = 0; a < vm.program_size; ++a) {
+    const Instruction& ins = vm.program[static_cast<std::size_t>(a)];
+    const OpInfo* info = op_info(ins.op);
+    if (!info || (ins.op == static_cast<std::uint8_t>(Op::WAIT) && ins.type == 0)) continue;  // WAIT TICKS: no motor
+    for (const auto& o : info->operands)
+      if (o.role == Role::Motor && ins.motor < named.size()) named[ins.motor] = true;
+  }
+  for (int m = 0; m < vm.profile->motors; ++m)
+    if (named[static_cast<std::size_t>(m)] || vm.motion->position(m) != 0) motors.push_back(m);
+  return motors;
+}
+
+std::string state_summary(Vm& vm, const RunResult& result, const std::array<std::int32_t, 256>* vars_at_start) {
   std::string s = "halted: " + std::string(halt_name(result.halt));
-  if (!result.message.empty()) s += " (" + result.message + ")";
+  if (result.halt == Halt::Fault)
+    s += " at " + vm.where(vm.halt_pc >= 0 ? vm.halt_pc : vm.pc);  // the message is tmclrun's error line
+  else if (!result.message.empty())
+    s += " (" + result.message + ")";
   s += "\nsimulated time: " + format_time(vm.now) + "\nsteps: " + std::to_string(vm.steps) + "\n";
-  for (int m = 0; m < vm.profile->motors; ++m) {
-    vm.sync_motion();
-    s += "motor " + std::to_string(m) + ": position " + std::to_string(vm.motion->position(m)) + "\n";
+  for (int m : shown_motors(vm)) s += "motor " + std::to_string(m) + ": position " + std::to_string(vm.motion->position(m)) + "\n";
+  for (std::size_t v = 0; v < vm.vars.size(); ++v) {
+    const std::int32_t start = vars_at_start ? (*vars_at_start)[v] : 0;
+    if (vm.vars[v] == start) continue;
+    s += "variable " + std::to_string(v) + ": " + std::to_string(vm.vars[v]);
+    s += start != 0 ? " (at start " + std::to_string(start) + ")\n" : "\n";
   }
   for (const auto& w : vm.warnings) s += "warning: " + format_time(w.at) + " at " + vm.where(w.pc) + ": " + w.message + "\n";
   if (vm.warnings_total > vm.warnings.size())

@@ -20,7 +20,9 @@ std::string instruction_text(const Instruction& ins);
 using SourceMap = std::vector<std::string>;
 
 // --trace: one line per executed instruction and per interrupt, motion event and wait end:
-//   0.000020s  3 prog.tmc:4  SAP 4, 0, 51200  A=0 X=0 F=-- E=-
+//   0.000020s     3 prog.tmc:4       SAP 4, 0, 51200              A=0 X=0 F=- E=-
+// The source and instruction columns are as wide as the program's longest (at least 16 and 28
+// characters), so the columns stay aligned whatever the paths.
 class TextTrace final : public TraceSink {
  public:
   TextTrace(std::FILE* out, const SourceMap* sources) : out_(out), sources_(sources) {}
@@ -39,9 +41,11 @@ class TextTrace final : public TraceSink {
  private:
   std::string where(std::int32_t pc) const;
   void written();
+  void measure(const Vm& vm);
   std::FILE* out_;
   const SourceMap* sources_;
   bool failed_ = false;
+  int source_width_ = 0, text_width_ = 0;  // 0: not measured yet
 };
 
 // "ZE EQ" style flag names; "-" when none.
@@ -50,8 +54,16 @@ std::string errors_text(std::uint8_t errors);
 
 // --json: one object (see docs/tmclrun.md for every key), ending in a newline.
 std::string state_json(Vm& vm, const RunResult& result);
-// The default exit summary.
-std::string state_summary(Vm& vm, const RunResult& result, const SourceMap* sources);
+
+// The motors a summary, CSV and plot show: every motor of the module; under a profile that
+// stands for any module (generic, with six), those the program names in a motor operand or that
+// moved, in order (none when there are none).
+std::vector<int> shown_motors(Vm& vm);
+
+// The default exit summary: the halt on one line (a fault by kind and place only: its message is
+// the error tmclrun prints), time, steps, the position of each shown motor, each user variable
+// whose value differs from `vars_at_start` (its value at power-on; null: 0), run-time warnings.
+std::string state_summary(Vm& vm, const RunResult& result, const std::array<std::int32_t, 256>* vars_at_start = nullptr);
 
 // tmclrun --serve --trace: one line per answered request, e.g.
 //   1.250000s module 1: MVP ABS, 0, 51200 -> 100 ok, value 51200
