@@ -21,6 +21,7 @@
 
 #include "tmcl/analysis.hpp"
 #include "tmcl/asm/assembler.hpp"
+#include "tmcl/asm/names.hpp"
 #include "tmcl/diag_text.hpp"
 #include "tmcl/duration.hpp"
 #include "tmcl/eeprom.hpp"
@@ -343,7 +344,7 @@ std::vector<std::uint8_t> handler_code(const std::vector<tmcl::Instruction>& pro
 }  // namespace
 
 int tmclrun::load_program(Options& o, const tmcl::Profile* profile, std::vector<tmcl::Instruction>& program,
-                 tmcl::SourceMap& sources) {
+                 tmcl::SourceMap& sources, tmcl::SourceNames* names) {
   std::vector<std::uint8_t> bytes;
   std::string err;
   if (!tmcl::read_file(o.program, bytes, err)) return input_error("", err);
@@ -388,6 +389,7 @@ int tmclrun::load_program(Options& o, const tmcl::Profile* profile, std::vector<
       return kExitInput;
     }
     program = res.program;
+    if (names) *names = tmcl::source_names(res);
     for (const auto& li : res.lines) {
       if (li.file >= 0 && static_cast<std::size_t>(li.file) < res.sources.files.size())
         sources.push_back(res.sources.files[static_cast<std::size_t>(li.file)].name + ":" + std::to_string(li.line));
@@ -449,9 +451,10 @@ int run(int argc, char** argv) {
   // ---- the program (optional with --serve: a host may download one) ----
   std::vector<tmcl::Instruction> program;
   tmcl::SourceMap sources;
+  tmcl::SourceNames names;  // --trace shows what the source named
   std::string err;
   if (!o.program.empty() && !o.debugging)
-    if (int r = load_program(o, profile, program, sources); r >= 0) return r;
+    if (int r = load_program(o, profile, program, sources, o.trace && !o.serving ? &names : nullptr); r >= 0) return r;
 
   // ---- scenario and EEPROM ----
   std::vector<tmcl::InputEvent> inputs;
@@ -485,7 +488,7 @@ int run(int argc, char** argv) {
   tmcl::MotionRecorder recorder(profile->motors, o.sample);
   tmcl::RecordingCore recording_core(*core, recorder);
   tmcl::Vm vm(*profile, recording ? static_cast<tmcl::MotionCore&>(recording_core) : *core);
-  tmcl::TextTrace trace(o.json ? stderr : stdout, &sources);
+  tmcl::TextTrace trace(o.json ? stderr : stdout, &sources, &names);
   if (o.trace) vm.trace = &trace;
   tmcl::RecordingTrace recording_trace(vm.trace, recorder);
   if (recording) vm.trace = &recording_trace;

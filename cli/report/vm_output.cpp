@@ -12,27 +12,7 @@
 
 namespace tmcl {
 
-std::string instruction_text(const Instruction& ins) {
-  const OpInfo* info = op_info(ins.op);
-  if (!info || info->control)
-    return "?? " + std::to_string(ins.op) + ", " + std::to_string(ins.type) + ", " + std::to_string(ins.motor) + ", " +
-           std::to_string(ins.value);
-  std::string s(info->mnemonic);
-  bool first = true;
-  for (const auto& o : info->operands) {
-    s += first ? " " : ", ";
-    first = false;
-    std::int64_t v = o.field == Field::Type ? ins.type : o.field == Field::Motor ? ins.motor : ins.value;
-    if (o.keywords != KwSet::None && v >= 0 && v <= 255) {
-      if (auto name = keyword_name(o.keywords, static_cast<std::uint8_t>(v))) {
-        s += *name;
-        continue;
-      }
-    }
-    s += std::to_string(v);
-  }
-  return s;
-}
+std::string instruction_text(const Instruction& ins) { return named_instruction_text(ins, 0, nullptr); }
 
 std::string flags_text(std::uint8_t flags) {
   std::string s;
@@ -83,16 +63,18 @@ void TextTrace::measure(const Vm& vm) {
   if (sources_)
     for (const auto& s : *sources_) source = std::max(source, s.size());
   for (std::int32_t a = 0; a < vm.program_size; ++a)
-    text = std::max(text, instruction_text(vm.program[static_cast<std::size_t>(a)]).size());
+    text = std::max(text, named_instruction_text(vm.program[static_cast<std::size_t>(a)], a, names_).size());
   source_width_ = static_cast<int>(source);
   text_width_ = static_cast<int>(text);
 }
 
 void TextTrace::instruction(const Vm& vm, SimTime at, std::int32_t pc, const Instruction& ins) {
   if (source_width_ == 0) measure(vm);
-  std::fprintf(out_, "%s %5" PRId32 " %-*s %-*s A=%" PRId32 " X=%" PRId32 " F=%s E=%s\n", format_time(at).c_str(), pc,
-               source_width_, where(pc).c_str(), text_width_, instruction_text(ins).c_str(), vm.acc, vm.x,
-               flags_text(vm.flags).c_str(), errors_text(vm.errors).c_str());
+  const std::string plain = instruction_text(ins);
+  const std::string named = names_ ? named_instruction_text(ins, pc, names_) : plain;
+  std::fprintf(out_, "%s %5" PRId32 " %-*s %-*s A=%" PRId32 " X=%" PRId32 " F=%s E=%s%s%s\n", format_time(at).c_str(), pc,
+               source_width_, where(pc).c_str(), text_width_, named.c_str(), vm.acc, vm.x, flags_text(vm.flags).c_str(),
+               errors_text(vm.errors).c_str(), named == plain ? "" : "  // ", named == plain ? "" : plain.c_str());
   written();
 }
 

@@ -8,6 +8,7 @@
 #include <string_view>
 #include <vector>
 
+#include "tmcl/source_names.hpp"
 #include "tmcl/vm.hpp"
 
 namespace tmcl {
@@ -22,10 +23,13 @@ using SourceMap = std::vector<std::string>;
 // --trace: one line per executed instruction and per interrupt, motion event and wait end:
 //   0.000020s     3 prog.tmc:4       SAP 4, 0, 51200              A=0 X=0 F=- E=-
 // The source and instruction columns are as wide as the program's longest (at least 16 and 28
-// characters), so the columns stay aligned whatever the paths.
+// characters), so the columns stay aligned whatever the paths. With `names` an instruction shows
+// the names its source gave (`JC LT, Loop`, source_names.hpp) and, where that differs from the
+// plain form, the plain form with its numbers in a comment at the end: `// JC LT, 3`.
 class TextTrace final : public TraceSink {
  public:
-  TextTrace(std::FILE* out, const SourceMap* sources) : out_(out), sources_(sources) {}
+  TextTrace(std::FILE* out, const SourceMap* sources, const SourceNames* names = nullptr)
+      : out_(out), sources_(sources), names_(names) {}
   void instruction(const Vm& vm, SimTime at, std::int32_t pc, const Instruction& ins) override;
   void interrupt_enter(const Vm& vm, int vector, std::int32_t from_pc) override;
   void interrupt_leave(const Vm& vm, std::int32_t to_pc) override;
@@ -44,6 +48,7 @@ class TextTrace final : public TraceSink {
   void measure(const Vm& vm);
   std::FILE* out_;
   const SourceMap* sources_;
+  const SourceNames* names_;
   bool failed_ = false;
   int source_width_ = 0, text_width_ = 0;  // 0: not measured yet
 };
