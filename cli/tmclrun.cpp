@@ -79,6 +79,8 @@ options:
                          at each --sample period, plus one row per event
   --sample DURATION      the sampling period of --csv and --plot (default 10ms)
   --plot FILE.svg        draw position, velocity and acceleration against time as an SVG
+  --plot-from DURATION   with --plot: draw from this simulated instant on (default 0)
+  --plot-to DURATION     with --plot: draw up to this simulated instant (default: the end)
   --debug                debug PROGRAM with gdb's commands (docs/debugger.md), read from
                          standard input: a terminal, or a pipe or file for scripts; with
                          --serve tcp:... or pty, while the module keeps answering its host
@@ -279,6 +281,10 @@ int parse_args(int argc, char** argv, Options& o) {
       if (!value(o.csv)) return usage_error("--csv needs a file");
     } else if (a == "--plot") {
       if (!value(o.plot)) return usage_error("--plot needs a file");
+    } else if (a == "--plot-from") {
+      if (int r = duration("--plot-from", o.plot_from); r >= 0) return r;
+    } else if (a == "--plot-to") {
+      if (int r = duration("--plot-to", o.plot_to); r >= 0) return r;
     } else if (a == "--log") {
       if (!value(o.log)) return usage_error("--log needs a file");
     } else if (a == "--sample") {
@@ -313,6 +319,9 @@ int parse_args(int argc, char** argv, Options& o) {
   }
   if (int r = check_mode_options(o, args, have_program); r >= 0) return r;
   if (!o.log.empty() && (!o.serving || !o.trace)) return usage_error("--log FILE goes with --serve --trace");
+  if ((o.plot_from != 0 || o.plot_to != tmcl::kNever) && o.plot.empty())
+    return usage_error("--plot-from and --plot-to go with --plot FILE.svg");
+  if (o.plot_to <= o.plot_from) return usage_error("--plot-to must be later than --plot-from");
   if (!o.eeprom_seal.empty()) {
     if (have_program || o.serving || !o.eeprom.empty())
       return usage_error("--eeprom-seal FILE goes alone (it seals FILE and runs nothing)");
@@ -526,6 +535,8 @@ int run(int argc, char** argv) {
       tmcl::PlotOptions plot;
       plot.title = (o.program == "-" ? std::string("<stdin>") : o.program) + " on " + o.target + " (" +
                    std::string(core->name()) + " motion)";
+      plot.from = o.plot_from;
+      plot.to = o.plot_to;
       tmcl::write_svg(svg, recorder, plot);
     }
     for (const auto& [file, text] : {std::pair{o.csv, csv.str()}, std::pair{o.plot, svg.str()}}) {

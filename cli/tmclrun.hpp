@@ -25,6 +25,7 @@ struct Options {
   bool trace = false, json = false;
   bool strict = false;  // a run-time warning (docs/tmclrun.md) is a runtime fault
   std::string csv, plot;
+  tmcl::SimTime plot_from = 0, plot_to = tmcl::kNever;  // --plot-from, --plot-to
   std::string log;  // --serve --trace: the request log (empty: standard error)
   tmcl::SimTime sample = 10 * tmcl::kUsPerMs;
   tmcl::AsmOptions asm_opts;
