@@ -3,13 +3,7 @@
 // the process ending by the signal (status 130, 143); a trace piped into `head` ends when head
 // has gone (status 74, the plot still written); and a run that no limit bounds says, after 2 s
 // of wall time on a terminal, how far simulated time got and how to bound it (through a pty).
-#include <fcntl.h>
-#include <poll.h>
 #include <signal.h>
-#include <stdlib.h>
-#include <sys/wait.h>
-#include <termios.h>
-#include <unistd.h>
 
 #include <chrono>
 #include <fstream>
@@ -66,52 +60,14 @@ std::function<bool(pid_t)> send(int sig) {
 
 void show(const Output& o) { std::fprintf(stderr, "  status %d\n  out: %s\n  err: %s\n", o.status, o.out.c_str(), o.err.c_str()); }
 
-// argv with standard output and standard error on one pty, as in a terminal; `until` seen in
-// the output (or `wait_ms` passed), SIGINT; then everything up to the end.
+// argv with standard output and standard error on one pty, as in a terminal; once `until` is
+// shown (or `wait_ms` have passed), SIGINT; then everything up to the end.
 Output run_on_pty_then_sigint(std::vector<std::string> argv, const std::string& until, int wait_ms) {
-  Output o;
-  const int master = ::posix_openpt(O_RDWR | O_NOCTTY);
-  if (master < 0 || ::grantpt(master) != 0 || ::unlockpt(master) != 0) return o;
-  const int slave = ::open(::ptsname(master), O_RDWR | O_NOCTTY);
-  termios t{};
-  ::tcgetattr(slave, &t);
-  ::cfmakeraw(&t);
-  ::tcsetattr(slave, TCSANOW, &t);
-  const pid_t pid = ::fork();
-  if (pid == 0) {
-    ::dup2(slave, 1);
-    ::dup2(slave, 2);
-    const int null = ::open("/dev/null", O_RDONLY);
-    ::dup2(null, 0);
-    ::close(master);
-    ::close(slave);
-    auto args = hosttest::c_args(argv);
-    ::execv(args[0], args.data());
-    ::_exit(127);
-  }
-  ::close(slave);
   const auto start = Clock::now();
-  bool sent = false;
-  for (;;) {
+  return hosttest::run_on_pty(std::move(argv), wait_ms + 30000, [&](pid_t pid, const std::string& shown) {
     const auto ms = std::chrono::duration_cast<std::chrono::milliseconds>(Clock::now() - start).count();
-    if (!sent && (has(o.out, until) || ms > wait_ms)) sent = ::kill(pid, SIGINT) == 0;
-    if (ms > wait_ms + 30000) {
-      ::kill(pid, SIGKILL);
-      o.out += "\n[test: killed]";
-      break;
-    }
-    pollfd p{master, POLLIN, 0};
-    if (::poll(&p, 1, 20) <= 0) continue;
-    char buf[4096];
-    const ssize_t n = ::read(master, buf, sizeof buf);
-    if (n <= 0) break;
-    o.out.append(buf, static_cast<std::size_t>(n));
-  }
-  ::close(master);
-  int st = 0;
-  ::waitpid(pid, &st, 0);
-  o.status = WIFEXITED(st) ? WEXITSTATUS(st) : 128 + WTERMSIG(st);
-  return o;
+    return (has(shown, until) || ms > wait_ms) && ::kill(pid, SIGINT) == 0;
+  });
 }
 
 }  // namespace
