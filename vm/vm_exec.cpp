@@ -22,7 +22,7 @@ std::string wait_text(const Vm& vm) {
 // VM loop forever at one instant; after this many rounds that is reported as a fault.
 constexpr int kMaxRoundsPerInstant = 1'000'000;
 
-bool stop_requested(const Limits& lim) { return lim.stop && *lim.stop; }
+bool stop_requested(const Limits& lim) { return lim.stop && lim.stop->load(std::memory_order_relaxed); }
 const char* const kInterrupted = "interrupted from outside";
 
 std::string stuck_core(const Vm& vm) {

@@ -4,6 +4,7 @@
 
 #include <sys/time.h>
 
+#include <atomic>
 #include <csignal>
 #include <string>
 #include <unistd.h>
@@ -13,7 +14,8 @@
 namespace tmcl {
 namespace {
 
-volatile std::sig_atomic_t g_stop = 0;      // what the VM polls (Limits::stop)
+std::atomic<bool> g_stop{false};            // what the VM polls (Limits::stop); lock-free
+static_assert(std::atomic<bool>::is_always_lock_free, "a signal handler sets it");
 volatile std::sig_atomic_t g_signal = 0;    // SIGINT or SIGTERM that asked for the end
 volatile std::sig_atomic_t g_note_due = 0;  // the wall-clock note's timer went off
 volatile std::sig_atomic_t g_closed = 0;    // a trace could not write
@@ -25,12 +27,12 @@ std::FILE* g_note_to = nullptr;
 
 extern "C" void on_signal(int sig) {
   g_signal = sig;
-  g_stop = 1;
+  g_stop = true;
 }
 
 extern "C" void on_alarm(int) {
   g_note_due = 1;
-  g_stop = 1;
+  g_stop = true;
 }
 
 void install(int sig, void (*handler)(int), struct sigaction* old) {
@@ -58,7 +60,7 @@ void set_timer(int ms) {
 }  // namespace
 
 RunControl::RunControl(bool note, std::FILE* note_to, int note_after_ms) {
-  g_stop = 0;
+  g_stop = false;
   g_signal = 0;
   g_note_due = 0;
   g_closed = 0;
@@ -106,8 +108,8 @@ RunResult RunControl::run(Vm& vm, Limits limits) {
     }
     if (g_note_due == 0) return r;  // not ours: nothing else sets the flag
     g_note_due = 0;
-    g_stop = 0;
-    if (g_signal != 0 || g_closed != 0) g_stop = 1;  // one that came in between is kept
+    g_stop = false;
+    if (g_signal != 0 || g_closed != 0) g_stop = true;  // one that came in between is kept
     if (g_note_to) {
       std::fprintf(g_note_to,
                    "tmclrun: note: still running after %g s, at simulated time %s (no --max-time or "
@@ -120,7 +122,7 @@ RunResult RunControl::run(Vm& vm, Limits limits) {
 
 void RunControl::output_closed() {
   g_closed = 1;
-  g_stop = 1;
+  g_stop = true;
 }
 
 bool RunControl::output_was_closed() const { return g_closed != 0; }

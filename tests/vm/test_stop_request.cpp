@@ -17,7 +17,7 @@ using tmcl::Op;
 
 namespace {
 
-volatile std::sig_atomic_t g_flag = 0;
+std::atomic<bool> g_flag{false};
 
 // A timer interrupt every 10 ms counting in v1, moves back and forth with WAIT POS, and a busy
 // loop counting in v0 meanwhile: every path of the run loop (fast, slow, WAIT, interrupts).
@@ -67,7 +67,7 @@ class Interrupter final : public tmcl::TraceSink {
 
  private:
   void tick() {
-    if (++count_ % n_ == 0) g_flag = 1;
+    if (++count_ % n_ == 0) g_flag = true;
   }
   tmcl::TraceSink& inner_;
   int n_, count_ = 0;
@@ -84,10 +84,10 @@ std::string slurp(std::FILE* f) {
 
 TEST(stop_request_ends_an_endless_loop_on_the_fast_path) {
   Machine m({I(Op::CALCV, 0, 0, 1), I(Op::JA, 0, 0, 0)}, test_profile(), 20);
-  g_flag = 0;
+  g_flag = false;
   std::thread signaller([] {
     std::this_thread::sleep_for(std::chrono::milliseconds(30));
-    g_flag = 1;
+    g_flag = true;
   });
   tmcl::Limits lim;
   lim.stop = &g_flag;
@@ -102,15 +102,15 @@ TEST(stop_request_ends_an_endless_loop_on_the_fast_path) {
 TEST(stop_request_in_a_wait_and_after_stop) {
   tmcl::Limits lim;
   lim.stop = &g_flag;
-  g_flag = 0;
+  g_flag = false;
   Machine w({I(Op::WAIT, 0, 0, 100000), I(Op::STOP)}, test_profile(), 20);
   lim.max_steps = 1;
   CHECK(w.vm.run(lim).halt == Halt::StepLimit);  // the WAIT of 1000 s has begun
   lim.max_steps = UINT64_MAX;
-  g_flag = 1;
+  g_flag = true;
   CHECK(w.vm.run(lim).halt == Halt::Interrupted);
   CHECK(w.vm.wait.active);
-  g_flag = 0;
+  g_flag = false;
   CHECK(w.vm.run(lim).halt == Halt::Stop);
   CHECK_EQ(w.vm.now, 100000 * 10000 + 20);  // as without the request
   // After STOP, while the motors settle, a request ends the settling too.
@@ -122,9 +122,9 @@ TEST(stop_request_in_a_wait_and_after_stop) {
   tmcl::Limits until;
   until.until = 1000;
   CHECK(s.run(until).halt == Halt::TimeLimit);  // stopped, the motor still moving
-  g_flag = 1;
+  g_flag = true;
   CHECK(s.run(lim).halt == Halt::Interrupted);
-  g_flag = 0;
+  g_flag = false;
   CHECK(s.run(lim).halt == Halt::Stop);
   CHECK_EQ(s.motion->position(0), 1000000);
 }
@@ -145,12 +145,12 @@ TEST(an_interrupted_traced_run_goes_on_as_if_uninterrupted) {
   Interrupter every7(tb, 7);
   b.vm.trace = &every7;
   lim.stop = &g_flag;
-  g_flag = 0;
+  g_flag = false;
   int interruptions = 0;
   tmcl::RunResult rb;
   while ((rb = b.vm.run(lim)).halt == Halt::Interrupted) {
     ++interruptions;
-    g_flag = 0;
+    g_flag = false;
   }
   CHECK(interruptions > 100);
   CHECK(ra.halt == rb.halt);
@@ -167,11 +167,11 @@ TEST(an_interrupted_fast_run_goes_on_as_if_uninterrupted) {
   auto ra = a.vm.run(lim);
   Run b;
   lim.stop = &g_flag;
-  g_flag = 1;  // at least once: before the first instruction
+  g_flag = true;  // at least once: before the first instruction
   std::atomic<bool> done{false};
   std::thread signaller([&] {
     while (!done) {
-      g_flag = 1;
+      g_flag = true;
       std::this_thread::sleep_for(std::chrono::microseconds(200));
     }
   });
@@ -179,7 +179,7 @@ TEST(an_interrupted_fast_run_goes_on_as_if_uninterrupted) {
   tmcl::RunResult rb;
   while ((rb = b.vm.run(lim)).halt == Halt::Interrupted) {
     ++interruptions;
-    g_flag = 0;
+    g_flag = false;
   }
   done = true;
   signaller.join();

@@ -17,7 +17,7 @@
 #pragma once
 
 #include <array>
-#include <csignal>
+#include <atomic>
 #include <cstdint>
 #include <functional>
 #include <string>
@@ -62,11 +62,12 @@ std::string_view halt_name(Halt h);
 struct Limits {
   std::uint64_t max_steps = UINT64_MAX;
   SimTime until = kNever;
-  // A request from outside to end the run, set asynchronously (a signal handler, a trace that can
-  // no longer write): once *stop is non-zero, run() returns Halt::Interrupted between two
-  // instructions, within kStopPollSteps instructions or at the next instant a WAIT sleeps to. A
-  // run() called again goes on exactly as if it had not returned. Null: nothing to ask.
-  const volatile std::sig_atomic_t* stop = nullptr;
+  // A request from outside to end the run, set asynchronously (a signal handler, another thread,
+  // a trace that can no longer write; lock-free, so a signal handler may set it): once *stop is
+  // true, run() returns Halt::Interrupted between two instructions, within kStopPollSteps
+  // instructions or at the next instant a WAIT sleeps to. A run() called again goes on exactly
+  // as if it had not returned. Null: nothing to ask.
+  const std::atomic<bool>* stop = nullptr;
   static constexpr std::uint64_t kStopPollSteps = 1 << 16;
 };
 
