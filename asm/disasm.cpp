@@ -1,8 +1,9 @@
 // The disassembler. The one rule: the source it writes reassembles with plain `tmclasm` (no
 // options, no warnings) to the identical records. So a record is written in mnemonic form only
 // when that form encodes to exactly these bytes without a warning — every field the mnemonic does
-// not take is 0, every keyword field holds a keyword, every jump target lies inside the program —
-// and as `.raw OP, TYPE, MOTOR, VALUE` with a comment saying why otherwise. A program that does
+// not take is 0, every keyword field holds a keyword, every jump target lies inside the program,
+// no value lies outside the range of the generic profile's tables — and as
+// `.raw OP, TYPE, MOTOR, VALUE` with a comment saying why otherwise. A program that does
 // not end in STOP gets `#no_append_stop`, so that reassembly does not add one.
 #include "tmcl/asm/disasm.hpp"
 
@@ -128,6 +129,14 @@ Form render(const std::vector<Instruction>& code, std::size_t i, const FieldText
         form.why = std::string(info->mnemonic) + " with " + field_name(static_cast<Field>(f)) + " " +
                    number(ins, static_cast<Field>(f)) + " (" + std::string(info->mnemonic) + " has no " +
                    field_name(static_cast<Field>(f)) + " operand)";
+    // A value plain tmclasm warns of (one outside the range of generic's tables) stays .raw too.
+    if (form.why.empty() && !sym(Field::Type) && !sym(Field::Motor) && !sym(Field::Value)) {
+      detail::Stmt probe;
+      probe.op = info;
+      Diagnostics warned;
+      detail::check_against_profile(generic_profile(), probe, ins, warned);
+      if (!warned.all().empty()) form.why = warned.all().front().message;
+    }
     if (form.why.empty()) {
       form.text = std::string(info->mnemonic) + ops;
       return form;

@@ -20,27 +20,11 @@ bool has_role(const OpInfo& op, Role r) {
   return false;
 }
 
-std::string range_text(const ParamInfo& p) {
-  return std::to_string(p.min) + " to " + std::to_string(p.max) + (p.unit.empty() ? "" : " " + std::string(p.unit));
-}
-
-std::string param_text(const char* kind, int number, const ParamInfo* p) {
-  std::string s = std::string(kind) + " " + std::to_string(number);
-  if (p && !p->name.empty()) s += " (" + std::string(p->name) + ")";
-  return s;
-}
-
 bool writes(Op op) {
   switch (op) {
     case Op::SAP: case Op::AAP: case Op::SAPX: case Op::AAPX: case Op::SGP: case Op::AGP: return true;
     default: return false;
   }
-}
-
-// A 32-bit field holds a signed or an unsigned number; either reading may be the meant one.
-bool in_range(std::int32_t v, std::int64_t min, std::int64_t max) {
-  auto u = static_cast<std::int64_t>(static_cast<std::uint32_t>(v));
-  return (v >= min && v <= max) || (u >= min && u <= max);
 }
 
 bool writes_immediate(Op op) { return op == Op::SAP || op == Op::SAPX || op == Op::SGP; }
@@ -54,8 +38,10 @@ class Checker {
       d_.error(s_.loc, std::string(s_.op->mnemonic) + " is not available on " + std::string(p_.title));
       return;
     }
-    if (p_.any_parameter) return;
     Op op = static_cast<Op>(ins_.op);
+    // Generic accepts every number and checks no access, but a value outside the range its
+    // tables give is refused by the VM and the debugger too, so it is said here as well.
+    if (p_.any_parameter) return generic_ranges(op);
     const OpInfo& info = *s_.op;
     bool coord_op = has_role(info, Role::Coord);
     if (has_role(info, Role::Motor) && ins_.motor >= p_.motors && !(coord_op && ins_.motor == 255))
@@ -80,14 +66,35 @@ class Checker {
         d_.warning(operand_loc(s_, spec.field),
                    "interrupt " + std::to_string(v) + " does not exist on " + std::string(p_.title), "target");
     }
-    if ((op == Op::ROR || op == Op::ROL))
-      if (const ParamInfo* speed = p_.axis_param(kApTargetSpeed); speed && !in_range(ins_.value, speed->min, speed->max))
-        d_.warning(operand_loc(s_, Field::Value), "velocity " + std::to_string(ins_.value) +
-                                                      " is outside the range of " + std::string(p_.title) + " (" +
-                                                      range_text(*speed) + ")", "target");
+    velocity(op);
   }
 
  private:
+  void velocity(Op op) {
+    if ((op == Op::ROR || op == Op::ROL))
+      if (const ParamInfo* speed = p_.axis_param(kApTargetSpeed); speed && !accepts(*speed, ins_.value))
+        generic_note(d_.warning(operand_loc(s_, Field::Value), "velocity " + std::to_string(ins_.value) +
+                                                                   " is outside the range of " + std::string(p_.title) +
+                                                                   " (" + range_text(*speed) + ")", "target"));
+  }
+
+  // The checks of a generic profile: values of the parameters its tables list.
+  void generic_ranges(Op op) {
+    velocity(op);
+    if (!writes_immediate(op)) return;
+    const bool axis = has_role(*s_.op, Role::AxisParam);
+    if (!axis && ins_.motor != 0 && ins_.motor != 3) return;  // user variables and other banks: any value
+    const ParamInfo* p = axis ? p_.axis_param(ins_.type) : p_.global_param(ins_.motor, ins_.type);
+    if (p) check_param(op, *p, param_text(axis ? "axis parameter" : "global parameter", ins_.type, p), operand_loc(s_, Field::Type));
+  }
+
+  // Under the generic profile a range is that of its tables (docs/profiles.md): say so.
+  void generic_note(Diagnostic& d) {
+    if (p_.any_parameter)
+      d_.note(d, SourceLoc{s_.loc.file, s_.loc.line, 0, 0}, "the generic profile checks values against its parameter tables, as tmclrun does; "
+                         "-t MODULE checks them against your module's");
+  }
+
   void axis(Op op) {
     const ParamInfo* p = p_.axis_param(ins_.type);
     SourceLoc at = operand_loc(s_, Field::Type);
@@ -126,12 +133,14 @@ class Checker {
   }
 
   void check_param(Op op, const ParamInfo& p, const std::string& what, SourceLoc at) {
-    if (writes(op) && !(p.access & kWrite)) d_.warning(at, what + " is read-only", "target");
-    if ((op == Op::GAP || op == Op::GGP || op == Op::GAPX) && !(p.access & kRead))
+    const bool generic = p_.any_parameter;  // no access checks
+    if (!generic && writes(op) && !(p.access & kWrite)) d_.warning(at, what + " is read-only", "target");
+    if (!generic && (op == Op::GAP || op == Op::GGP || op == Op::GAPX) && !(p.access & kRead))
       d_.warning(at, what + " cannot be read", "target");
-    if (writes_immediate(op) && (p.access & kWrite) && !in_range(ins_.value, p.min, p.max))
-      d_.warning(operand_loc(s_, Field::Value),
-                 "value " + std::to_string(ins_.value) + " is outside the range of " + what + ": " + range_text(p), "target");
+    if (writes_immediate(op) && ((p.access & kWrite) || generic) && !accepts(p, ins_.value))
+      generic_note(d_.warning(operand_loc(s_, Field::Value),
+                              "value " + std::to_string(ins_.value) + " is outside the range of " + what + ": " + range_text(p),
+                              "target"));
   }
 
   const Profile& p_;

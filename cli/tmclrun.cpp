@@ -4,7 +4,10 @@
 // tmclrun-full only (cli/tmclrun_modes.hpp). All semantics live in vm/; see docs/tmclrun.md. Exit
 // status: 0 STOP, 3 limit reached or blocked, 70 runtime fault, 65 bad input, 64 usage, 71
 // --serve transport failed or tmclrun-full missing, 74 an output file or standard output not
-// written. With --json every outcome is one JSON object on standard output.
+// written, 130/143 ended by SIGINT/SIGTERM (run_control.hpp). With --json every outcome is one
+// JSON object on standard output.
+#include <unistd.h>
+
 #include <algorithm>
 #include <cctype>
 #include <cerrno>
@@ -18,6 +21,7 @@
 
 #include "tmcl/analysis.hpp"
 #include "tmcl/asm/assembler.hpp"
+#include "tmcl/asm/names.hpp"
 #include "tmcl/diag_text.hpp"
 #include "tmcl/duration.hpp"
 #include "tmcl/eeprom.hpp"
@@ -25,6 +29,7 @@
 #include "tmcl/motion_recording.hpp"
 #include "tmcl/numbers.hpp"
 #include "tmcl/program_image.hpp"
+#include "tmcl/run_control.hpp"
 #include "tmcl/scenario.hpp"
 #include "tmcl/version.hpp"
 #include "tmcl/vm.hpp"
@@ -74,6 +79,8 @@ options:
                          at each --sample period, plus one row per event
   --sample DURATION      the sampling period of --csv and --plot (default 10ms)
   --plot FILE.svg        draw position, velocity and acceleration against time as an SVG
+  --plot-from DURATION   with --plot: draw from this simulated instant on (default 0)
+  --plot-to DURATION     with --plot: draw up to this simulated instant (default: the end)
   --debug                debug PROGRAM with gdb's commands (docs/debugger.md), read from
                          standard input: a terminal, or a pipe or file for scripts; with
                          --serve tcp:... or pty, while the module keeps answering its host
@@ -100,7 +107,9 @@ examples:
 
 exit status: 0 STOP, 3 limit reached or blocked forever, 70 runtime fault, 65 bad input,
              64 usage error, 71 --serve transport failed or tmclrun-full missing, 74 an output
-             file (EEPROM, --csv, --plot) or standard output could not be written
+             file (EEPROM, --csv, --plot) or standard output could not be written (a --trace
+             into a closed pipe ends the run so), 130/143 ended by SIGINT (Ctrl-C)/SIGTERM after
+             writing the summary, --json, --csv, --plot and EEPROM
 )";
 
 std::string joined(const std::vector<std::string>& names) {
@@ -272,6 +281,10 @@ int parse_args(int argc, char** argv, Options& o) {
       if (!value(o.csv)) return usage_error("--csv needs a file");
     } else if (a == "--plot") {
       if (!value(o.plot)) return usage_error("--plot needs a file");
+    } else if (a == "--plot-from") {
+      if (int r = duration("--plot-from", o.plot_from); r >= 0) return r;
+    } else if (a == "--plot-to") {
+      if (int r = duration("--plot-to", o.plot_to); r >= 0) return r;
     } else if (a == "--log") {
       if (!value(o.log)) return usage_error("--log needs a file");
     } else if (a == "--sample") {
@@ -306,6 +319,9 @@ int parse_args(int argc, char** argv, Options& o) {
   }
   if (int r = check_mode_options(o, args, have_program); r >= 0) return r;
   if (!o.log.empty() && (!o.serving || !o.trace)) return usage_error("--log FILE goes with --serve --trace");
+  if ((o.plot_from != 0 || o.plot_to != tmcl::kNever) && o.plot.empty())
+    return usage_error("--plot-from and --plot-to go with --plot FILE.svg");
+  if (o.plot_to <= o.plot_from) return usage_error("--plot-to must be later than --plot-from");
   if (!o.eeprom_seal.empty()) {
     if (have_program || o.serving || !o.eeprom.empty())
       return usage_error("--eeprom-seal FILE goes alone (it seals FILE and runs nothing)");
@@ -337,7 +353,7 @@ std::vector<std::uint8_t> handler_code(const std::vector<tmcl::Instruction>& pro
 }  // namespace
 
 int tmclrun::load_program(Options& o, const tmcl::Profile* profile, std::vector<tmcl::Instruction>& program,
-                 tmcl::SourceMap& sources) {
+                 tmcl::SourceMap& sources, tmcl::SourceNames* names) {
   std::vector<std::uint8_t> bytes;
   std::string err;
   if (!tmcl::read_file(o.program, bytes, err)) return input_error("", err);
@@ -382,6 +398,7 @@ int tmclrun::load_program(Options& o, const tmcl::Profile* profile, std::vector<
       return kExitInput;
     }
     program = res.program;
+    if (names) *names = tmcl::source_names(res);
     for (const auto& li : res.lines) {
       if (li.file >= 0 && static_cast<std::size_t>(li.file) < res.sources.files.size())
         sources.push_back(res.sources.files[static_cast<std::size_t>(li.file)].name + ":" + std::to_string(li.line));
@@ -443,9 +460,10 @@ int run(int argc, char** argv) {
   // ---- the program (optional with --serve: a host may download one) ----
   std::vector<tmcl::Instruction> program;
   tmcl::SourceMap sources;
+  tmcl::SourceNames names;  // --trace shows what the source named
   std::string err;
   if (!o.program.empty() && !o.debugging)
-    if (int r = load_program(o, profile, program, sources); r >= 0) return r;
+    if (int r = load_program(o, profile, program, sources, o.trace && !o.serving ? &names : nullptr); r >= 0) return r;
 
   // ---- scenario and EEPROM ----
   std::vector<tmcl::InputEvent> inputs;
@@ -479,38 +497,46 @@ int run(int argc, char** argv) {
   tmcl::MotionRecorder recorder(profile->motors, o.sample);
   tmcl::RecordingCore recording_core(*core, recorder);
   tmcl::Vm vm(*profile, recording ? static_cast<tmcl::MotionCore&>(recording_core) : *core);
-  tmcl::TextTrace trace(o.json ? stderr : stdout, &sources);
+  tmcl::TextTrace trace(o.json ? stderr : stdout, &sources, &names);
   if (o.trace) vm.trace = &trace;
   tmcl::RecordingTrace recording_trace(vm.trace, recorder);
   if (recording) vm.trace = &recording_trace;
   vm.handler_code = handler_code(program);
   set_up_vm(vm, o, program, sources, o.eeprom.empty() ? nullptr : &image, std::move(inputs));
+  const auto vars_at_start = vm.vars;  // the summary shows the variables that changed
   vm.start(0);
-  tmcl::RunResult result = vm.run(o.limits);
+  // SIGINT, SIGTERM, a closed trace output and the note of an unbounded run (run_control.hpp).
+  const bool unbounded = o.limits.until == tmcl::kNever && o.limits.max_steps == UINT64_MAX;
+  tmcl::RunControl control(unbounded && ::isatty(2));
+  trace.write_failed = [&control] { control.output_closed(); };
+  tmcl::RunResult result = control.run(vm, o.limits);
 
   int status = kExitOk;
   switch (result.halt) {
     case tmcl::Halt::Stop:
     case tmcl::Halt::NotRunning: status = kExitOk; break;
     case tmcl::Halt::Fault: status = kExitFault; break;
-    default: status = kExitLimit; break;
+    default: status = control.output_was_closed() ? kExitIo : kExitLimit; break;
   }
+  // The halt is said once: a fault as an error here (the summary names its kind and place), any
+  // other halt in the summary or JSON only.
   if (result.halt == tmcl::Halt::Fault) {
     std::int32_t at = vm.halt_pc;
     std::string where = at >= 0 && static_cast<std::size_t>(at) < sources.size() ? sources[static_cast<std::size_t>(at)] : "";
     std::fprintf(stderr, "%s: error: runtime fault: %s\n", where.empty() ? "tmclrun" : where.c_str(), result.message.c_str());
-  } else if (status == kExitLimit) {
-    std::fprintf(stderr, "tmclrun: %s: %s\n", std::string(tmcl::halt_name(result.halt)).c_str(), result.message.c_str());
   }
 
   if (recording) {
     recording_core.finish(vm.now);
+    recorder.show_motors(tmcl::shown_motors(vm));
     std::ostringstream csv, svg;
     if (!o.csv.empty()) tmcl::write_csv(csv, recorder);
     if (!o.plot.empty()) {
       tmcl::PlotOptions plot;
       plot.title = (o.program == "-" ? std::string("<stdin>") : o.program) + " on " + o.target + " (" +
                    std::string(core->name()) + " motion)";
+      plot.from = o.plot_from;
+      plot.to = o.plot_to;
       tmcl::write_svg(svg, recorder, plot);
     }
     for (const auto& [file, text] : {std::pair{o.csv, csv.str()}, std::pair{o.plot, svg.str()}}) {
@@ -528,7 +554,7 @@ int run(int argc, char** argv) {
   if (o.json)
     std::fputs(tmcl::state_json(vm, result).c_str(), stdout);
   else
-    std::fputs(tmcl::state_summary(vm, result, &sources).c_str(), stdout);
+    std::fputs(tmcl::state_summary(vm, result, &vars_at_start).c_str(), stdout);
   return status;
 }
 
@@ -546,5 +572,6 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "tmclrun: error: %s\n", err.c_str());
     return kExitIo;
   }
+  tmcl::RunControl::end_by_signal();  // SIGINT or SIGTERM ended the run: its status, 130 or 143
   return status;
 }

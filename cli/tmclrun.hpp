@@ -25,6 +25,7 @@ struct Options {
   bool trace = false, json = false;
   bool strict = false;  // a run-time warning (docs/tmclrun.md) is a runtime fault
   std::string csv, plot;
+  tmcl::SimTime plot_from = 0, plot_to = tmcl::kNever;  // --plot-from, --plot-to
   std::string log;  // --serve --trace: the request log (empty: standard error)
   tmcl::SimTime sample = 10 * tmcl::kUsPerMs;
   tmcl::AsmOptions asm_opts;
@@ -38,8 +39,9 @@ int input_error(const std::string& file, const std::string& msg, int status = kE
 // OPT DURATION into `out`: -1 when it parsed, else the status of the usage error reported.
 int duration_option(const char* opt, const ValueFn& value, tmcl::SimTime& out);
 // Reads o.program (.tmc assembled in-process, .bin, .dgm, or -): -1 on success, else a status.
+// With `names`, a source's labels and named operands (for --trace) go there.
 int load_program(Options& o, const tmcl::Profile* profile, std::vector<tmcl::Instruction>& program,
-                 tmcl::SourceMap& sources);
+                 tmcl::SourceMap& sources, tmcl::SourceNames* names = nullptr);
 // Gives `vm` the options' timing, the program with its source places, the EEPROM (null: blank)
 // and the scenario's inputs, and powers it on.
 void set_up_vm(tmcl::Vm& vm, const Options& o, const std::vector<tmcl::Instruction>& program,

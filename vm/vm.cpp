@@ -19,6 +19,7 @@ std::string_view halt_name(Halt h) {
     case Halt::Blocked: return "blocked";
     case Halt::NotRunning: return "not-running";
     case Halt::Break: return "break";
+    case Halt::Interrupted: return "interrupted";
   }
   return "?";
 }
@@ -199,6 +200,7 @@ std::string_view warning_kind_name(RuntimeWarning::Kind k) {
     case RuntimeWarning::ReturnWithoutCall: return "return-without-call";
     case RuntimeWarning::RetiOutsideHandler: return "reti-outside-handler";
     case RuntimeWarning::HandlerWithoutReti: return "handler-without-reti";
+    case RuntimeWarning::ValueOutOfRange: return "value-out-of-range";
   }
   return "unknown";
 }

@@ -22,6 +22,9 @@ std::string wait_text(const Vm& vm) {
 // VM loop forever at one instant; after this many rounds that is reported as a fault.
 constexpr int kMaxRoundsPerInstant = 1'000'000;
 
+bool stop_requested(const Limits& lim) { return lim.stop && lim.stop->load(std::memory_order_relaxed); }
+const char* const kInterrupted = "interrupted from outside";
+
 std::string stuck_core(const Vm& vm) {
   return "the motion core '" + std::string(vm.motion->name()) + "' keeps reporting an event at " + std::to_string(vm.now) +
          " us without getting past it (a bug in the core)";
@@ -47,6 +50,7 @@ RunResult Vm::Loop::settle(Vm& vm, const Limits& lim) {
   for (SimTime last = -1;; last = vm.now) {
     SimTime t = vm.motion->next_event();
     if (t == kNever) break;
+    if (stop_requested(lim)) return {Halt::Interrupted, kInterrupted};
     rounds = vm.now == last ? rounds + 1 : 0;
     if (rounds > kMaxRoundsPerInstant) return {Halt::Fault, stuck_core(vm)};
     if (t > lim.until) {
@@ -71,6 +75,8 @@ std::optional<RunResult> Vm::Loop::service(Vm& vm, const Limits& lim) {
   }
   int rounds = 0;
   for (SimTime last = -1;; last = vm.now) {
+    // Before anything changes at this instant, so that the next run() starts here again.
+    if (stop_requested(lim)) return RunResult{Halt::Interrupted, kInterrupted};
     rounds = vm.now == last ? rounds + 1 : 0;
     if (rounds > kMaxRoundsPerInstant) vm.fault(stuck_core(vm));
     if (vm.fault_set_) return settle(vm, lim);
@@ -139,7 +145,7 @@ inline void Vm::Loop::execute(Vm& vm, std::int32_t at) {
 // Traced execution: one instruction at a time, each reported after it ran.
 RunResult Vm::Loop::run_traced(Vm& vm, const Limits& lim) {
   for (;;) {
-    if (vm.now >= vm.next_check_ || vm.steps >= lim.max_steps) {
+    if (vm.now >= vm.next_check_ || vm.steps >= lim.max_steps || stop_requested(lim)) {
       if (auto r = service(vm, lim)) return *r;
       continue;
     }
@@ -162,9 +168,10 @@ RunResult Vm::Loop::run_traced(Vm& vm, const Limits& lim) {
 // instruction advances time by exactly instr_time, so the fast loop needs one counter instead of
 // two comparisons.
 std::uint64_t Vm::Loop::burst_length(const Vm& vm, const Limits& lim) {
-  if (vm.now >= vm.next_check_ || vm.steps >= lim.max_steps) return 0;
+  if (vm.now >= vm.next_check_ || vm.steps >= lim.max_steps || stop_requested(lim)) return 0;
   if (vm.in_handler && !vm.handler_code.empty()) return 1;  // check_handler_code() before each
   std::uint64_t n = lim.max_steps - vm.steps;
+  if (lim.stop) n = std::min(n, Limits::kStopPollSteps);  // service() looks at the request
   if (vm.next_check_ != kNever && vm.instr_time > 0) {
     auto by_time = static_cast<std::uint64_t>((vm.next_check_ - vm.now + vm.instr_time - 1) / vm.instr_time);
     n = std::min(n, by_time);

@@ -169,15 +169,47 @@ inline Instruction decode_for_run(const Instruction& ins, const Instruction& nex
 
 inline bool var_index(std::int32_t v) { return v >= 0 && v <= 255; }
 
+// E3: a write the module refuses for its value (status 4, the value outside the range the
+// profile gives the parameter) is ignored in standalone mode, as on the module, with a run-time
+// warning naming parameter, value and range; with --strict it is a fault (pc stays). Direct mode
+// replies status 4, as the module does.
+template <bool D>
+R refused_value(Vm& vm, std::uint8_t st, bool axis, int bank, int param, const char* what, std::int64_t value) {
+  if constexpr (!D) {
+    const ParamInfo* p = st == kStatusInvalidValue ? vm.range_refusing(axis, bank, param, value) : nullptr;
+    if (p && Internal::warn(vm, RuntimeWarning::ValueOutOfRange,
+                            std::string(what) + " " + std::to_string(value) + " is outside the range of " +
+                                param_text(axis ? "axis parameter" : "global parameter", param, p) +
+                                (axis ? "" : " of bank " + std::to_string(bank)) + ": " + range_text(*p)))
+      return ok();
+  }
+  return done<D>(vm, st);
+}
+template <bool D> R set_axis(Vm& vm, const Instruction& i, std::int32_t value) {
+  const std::uint8_t st = vm.set_axis(i.motor, i.type, value);
+  if (D || st == kStatusOk || !vm.motor_ok(i.motor)) return done<D>(vm, st);
+  return refused_value<D>(vm, st, true, 0, i.type, "value", value);
+}
+template <bool D> R set_global(Vm& vm, const Instruction& i, std::int32_t value) {
+  const std::uint8_t st = vm.set_global(i.motor, i.type, value);
+  if (D || st == kStatusOk) return done<D>(vm, st);
+  return refused_value<D>(vm, st, false, i.motor, i.type, "value", value);
+}
+template <bool D> R rotate(Vm& vm, const Instruction& i, std::int64_t velocity) {
+  const std::uint8_t st = vm.rotate(i.motor, velocity);
+  if (D || st == kStatusOk || !vm.motor_ok(i.motor)) return done<D>(vm, st);
+  return refused_value<D>(vm, st, true, 0, kApTargetSpeed, "velocity", velocity);
+}
+
 // ---------------------------------------------------------------- motion
-template <bool D> R op_ROR(Vm& vm, const Instruction& i) { return done<D>(vm, vm.rotate(i.motor, i.value)); }
-template <bool D> R op_ROL(Vm& vm, const Instruction& i) { return done<D>(vm, vm.rotate(i.motor, -static_cast<std::int64_t>(i.value))); }
+template <bool D> R op_ROR(Vm& vm, const Instruction& i) { return rotate<D>(vm, i, i.value); }
+template <bool D> R op_ROL(Vm& vm, const Instruction& i) { return rotate<D>(vm, i, -static_cast<std::int64_t>(i.value)); }
 template <bool D> R op_MST(Vm& vm, const Instruction& i) { return done<D>(vm, vm.motor_stop(i.motor)); }
 template <bool D> R op_MVP(Vm& vm, const Instruction& i) { return done<D>(vm, vm.move(i.type, i.motor, i.value)); }
 template <bool D> R op_MVPA(Vm& vm, const Instruction& i) { return done<D>(vm, vm.move(i.type, i.motor, vm.acc)); }
 template <bool D> R op_MVPXA(Vm& vm, const Instruction& i) { return op_MVPA<D>(vm, i); }
-template <bool D> R op_RORA(Vm& vm, const Instruction& i) { return done<D>(vm, vm.rotate(i.motor, vm.acc)); }
-template <bool D> R op_ROLA(Vm& vm, const Instruction& i) { return done<D>(vm, vm.rotate(i.motor, -static_cast<std::int64_t>(vm.acc))); }
+template <bool D> R op_RORA(Vm& vm, const Instruction& i) { return rotate<D>(vm, i, vm.acc); }
+template <bool D> R op_ROLA(Vm& vm, const Instruction& i) { return rotate<D>(vm, i, -static_cast<std::int64_t>(vm.acc)); }
 template <bool D> R op_RORXA(Vm& vm, const Instruction& i) { return op_RORA<D>(vm, i); }
 template <bool D> R op_ROLXA(Vm& vm, const Instruction& i) { return op_ROLA<D>(vm, i); }
 template <bool D> R op_MSTX(Vm& vm, const Instruction& i) { return op_MST<D>(vm, i); }
@@ -189,25 +221,25 @@ template <bool D> R op_RFS(Vm& vm, const Instruction& i) {
 }
 
 // ---------------------------------------------------------------- parameters
-template <bool D> R op_SAP(Vm& vm, const Instruction& i) { return done<D>(vm, vm.set_axis(i.motor, i.type, i.value)); }
+template <bool D> R op_SAP(Vm& vm, const Instruction& i) { return set_axis<D>(vm, i, i.value); }
 template <bool D> R op_GAP(Vm& vm, const Instruction& i) {
   std::int32_t v = 0;
   std::uint8_t st = vm.get_axis(i.motor, i.type, v);
   return load<D>(vm, st, v);
 }
-template <bool D> R op_AAP(Vm& vm, const Instruction& i) { return done<D>(vm, vm.set_axis(i.motor, i.type, vm.acc)); }
+template <bool D> R op_AAP(Vm& vm, const Instruction& i) { return set_axis<D>(vm, i, vm.acc); }
 template <bool D> R op_SAPX(Vm& vm, const Instruction& i) { return op_SAP<D>(vm, i); }
 template <bool D> R op_GAPX(Vm& vm, const Instruction& i) { return op_GAP<D>(vm, i); }
 template <bool D> R op_AAPX(Vm& vm, const Instruction& i) { return op_AAP<D>(vm, i); }
 template <bool D> R op_STAP(Vm& vm, const Instruction& i) { return done<D>(vm, vm.store_axis(i.motor, i.type)); }
 template <bool D> R op_RSAP(Vm& vm, const Instruction& i) { return done<D>(vm, vm.restore_axis(i.motor, i.type)); }
-template <bool D> R op_SGP(Vm& vm, const Instruction& i) { return done<D>(vm, vm.set_global(i.motor, i.type, i.value)); }
+template <bool D> R op_SGP(Vm& vm, const Instruction& i) { return set_global<D>(vm, i, i.value); }
 template <bool D> R op_GGP(Vm& vm, const Instruction& i) {
   std::int32_t v = 0;
   std::uint8_t st = vm.get_global(i.motor, i.type, v);
   return load<D>(vm, st, v);
 }
-template <bool D> R op_AGP(Vm& vm, const Instruction& i) { return done<D>(vm, vm.set_global(i.motor, i.type, vm.acc)); }
+template <bool D> R op_AGP(Vm& vm, const Instruction& i) { return set_global<D>(vm, i, vm.acc); }
 template <bool D> R op_STGP(Vm& vm, const Instruction& i) { return done<D>(vm, vm.store_global(i.motor, i.type)); }
 template <bool D> R op_RSGP(Vm& vm, const Instruction& i) { return done<D>(vm, vm.restore_global(i.motor, i.type)); }
 template <bool D> R op_SIO(Vm& vm, const Instruction& i) { return done<D>(vm, vm.set_io(i.type, i.motor, i.value)); }

@@ -7,8 +7,6 @@
 namespace tmcl {
 namespace {
 
-bool in_range(const ParamInfo& p, std::int64_t v) { return v >= p.min && v <= p.max; }
-
 std::uint8_t from_core(ParamWrite w) {
   switch (w) {
     case ParamWrite::Ok: return kStatusOk;
@@ -18,8 +16,9 @@ std::uint8_t from_core(ParamWrite w) {
   return kStatusInvalidValue;
 }
 
-// The profile's rules for a parameter: nullptr when the profile accepts every number without
-// checks (generic), so only a listed parameter of a real module is access- and range-checked.
+// The profile's access rules for a parameter: nullptr when the profile accepts every number
+// without access checks (generic), so only a listed parameter of a real module is access-checked.
+// Ranges apply under every profile where its tables list the parameter (accepts(), profile.hpp).
 const ParamInfo* rules(const Profile& profile, const ParamInfo* p) { return profile.any_parameter ? nullptr : p; }
 
 // Global parameters the VM computes itself, whatever the profile's table says about storage.
@@ -41,12 +40,19 @@ std::uint8_t eeprom_global_status(const Profile& profile, int param) {
 
 }  // namespace
 
+const ParamInfo* Vm::range_refusing(bool is_axis, int bank, int param, std::int64_t value) const {
+  const ParamInfo* p = is_axis ? profile->axis_param(param) : profile->global_param(bank, param);
+  if (p && !accepts(*p, value)) return p;
+  if (is_axis && motion->owns(param)) p = motion->range(param);
+  return p && !accepts(*p, value) ? p : nullptr;
+}
+
 std::uint8_t Vm::set_axis(int motor, int param, std::int32_t value) {
   if (!motor_ok(motor)) return kStatusInvalidValue;
   const ParamInfo* p = rules(*profile, profile->axis_param(param));
   if (!p && !profile->any_parameter) return kStatusWrongType;
   if (p && !(p->access & kWrite)) return kStatusWrongType;
-  if (p && !in_range(*p, value)) return kStatusInvalidValue;
+  if (const ParamInfo* r = profile->axis_param(param); r && !accepts(*r, value)) return kStatusInvalidValue;
   if (motion->owns(param)) {
     sync_motion();
     std::uint8_t st = from_core(motion->set_param(motor, param, value));
@@ -120,8 +126,7 @@ std::uint8_t Vm::set_global(int bank, int param, std::int32_t value) {
   const ParamInfo* p = rules(*profile, profile->global_param(bank, param));
   if (!p && !profile->any_parameter) return kStatusWrongType;
   if (p && !(p->access & kWrite)) return kStatusWrongType;
-  if (p && !in_range(*p, bank == 3 && param <= 2 ? static_cast<std::int64_t>(static_cast<std::uint32_t>(value)) : value))
-    return kStatusInvalidValue;
+  if (const ParamInfo* r = profile->global_param(bank, param); r && !accepts(*r, value)) return kStatusInvalidValue;
   if (bank == 3) {
     bank3[idx] = value;
     if (param < kTimers) set_timer(param, value);
@@ -295,8 +300,8 @@ std::uint8_t Vm::move(int type, int motor, std::int32_t value) {
 
 std::uint8_t Vm::rotate(int motor, std::int64_t velocity) {
   if (!motor_ok(motor)) return kStatusInvalidValue;
-  const ParamInfo* p = rules(*profile, profile->axis_param(kApTargetSpeed));
-  if (p ? !in_range(*p, velocity) : (velocity < INT32_MIN || velocity > INT32_MAX)) return kStatusInvalidValue;
+  const ParamInfo* p = profile->axis_param(kApTargetSpeed);
+  if (p ? !accepts(*p, velocity) : (velocity < INT32_MIN || velocity > INT32_MAX)) return kStatusInvalidValue;
   sync_motion();
   motion->rotate(motor, static_cast<std::int32_t>(velocity));
   next_check_ = 0;

@@ -18,6 +18,13 @@ void MotionRecorder::sample_until(const MotionCore& core, SimTime to) {
   }
 }
 
+std::vector<int> MotionRecorder::shown_motors() const {
+  if (shown_) return *shown_;
+  std::vector<int> all;
+  for (int m = 0; m < motors_; ++m) all.push_back(m);
+  return all;
+}
+
 void MotionRecorder::mark(SimTime at, int motor, Mark kind, std::string label, std::optional<std::int64_t> position) {
   marks_.push_back({at, motor, kind, std::move(label), position});
 }
@@ -70,7 +77,9 @@ void write_csv(std::ostream& out, const MotionRecorder& rec) {
           << csv_field(event_text(m)) << '\n';
     }
     if (i == times.size()) break;
-    for (std::size_t m = 0; m < motors; ++m) {
+    for (int shown : rec.shown_motors()) {
+      const auto m = static_cast<std::size_t>(shown);
+      if (m >= motors) continue;
       const MotionSample& s = rec.samples()[i * motors + m];
       out << seconds(times[i]) << ',' << m << ',' << s.position << ',' << fixed(s.velocity, 3) << ','
           << fixed(s.acceleration, 3) << ",\n";
@@ -90,19 +99,22 @@ void write_svg(std::ostream& out, const MotionRecorder& rec, const PlotOptions& 
   plot.times = rec.times();
   plot.marks = rec.marks();
   const auto motors = static_cast<std::size_t>(rec.motors());
+  std::vector<std::size_t> shown;
+  for (int m : rec.shown_motors())
+    if (m >= 0 && static_cast<std::size_t>(m) < motors) shown.push_back(static_cast<std::size_t>(m));
   const char* const title[3] = {"position", "velocity", "acceleration"};
   const char* const unit[3] = {"µsteps", "pps", "pps²"};
   for (int q = 0; q < 3; ++q) {
     PlotPanel panel{title[q], unit[q], std::string(plot_colour(static_cast<std::size_t>(q))), "", q > 0, {}};
-    panel.lines.assign(motors, std::vector<double>(rec.times().size()));
+    panel.lines.assign(shown.size(), std::vector<double>(rec.times().size()));
     for (std::size_t i = 0; i < rec.times().size(); ++i)
-      for (std::size_t m = 0; m < motors; ++m) {
-        const MotionSample& s = rec.samples()[i * motors + m];
-        panel.lines[m][i] = q == 0 ? static_cast<double>(s.position) : q == 1 ? s.velocity : s.acceleration;
+      for (std::size_t k = 0; k < shown.size(); ++k) {
+        const MotionSample& s = rec.samples()[i * motors + shown[k]];
+        panel.lines[k][i] = q == 0 ? static_cast<double>(s.position) : q == 1 ? s.velocity : s.acceleration;
       }
     plot.panels.push_back(std::move(panel));
   }
-  for (std::size_t m = 0; m < motors; ++m) plot.line_names.push_back("motor " + std::to_string(m));
+  for (std::size_t m : shown) plot.line_names.push_back("motor " + std::to_string(m));
   write_svg(out, plot, options);
 }
 

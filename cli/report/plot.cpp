@@ -9,6 +9,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <functional>
 
 #include "plot_text.hpp"
 
@@ -161,62 +162,160 @@ MarkStyle mark_style(Mark m) {
 }  // namespace
 
 
-void write_svg(std::ostream& out, const Plot& plot, const PlotOptions& opt) {
+namespace {
+
+// The plot within [from, to]: samples and marks outside it left out.
+Plot windowed(const Plot& plot, SimTime from, SimTime to) {
+  Plot w;
+  w.line_names = plot.line_names;
+  std::size_t first = 0;
+  while (first < plot.times.size() && plot.times[first] < from) ++first;
+  std::size_t last = first;
+  while (last < plot.times.size() && plot.times[last] <= to) ++last;
+  w.times.assign(plot.times.begin() + static_cast<std::ptrdiff_t>(first), plot.times.begin() + static_cast<std::ptrdiff_t>(last));
+  for (const auto& p : plot.panels) {
+    PlotPanel q = p;
+    for (auto& line : q.lines) {
+      const std::size_t b = std::min(first, line.size()), e = std::min(last, line.size());
+      line = std::vector<double>(line.begin() + static_cast<std::ptrdiff_t>(b), line.begin() + static_cast<std::ptrdiff_t>(e));
+    }
+    w.panels.push_back(std::move(q));
+  }
+  for (const auto& m : plot.marks)
+    if (m.at >= from && m.at <= to) w.marks.push_back(m);
+  return w;
+}
+
+// The interrupts of one kind (one label): a row of ticks, not a line over the panels each.
+struct TickRow {
+  std::string label;
+  std::vector<SimTime> at;
+};
+
+std::vector<TickRow> tick_rows(const std::vector<RecordedMark>& marks) {
+  std::vector<TickRow> rows;
+  for (const auto& m : marks) {
+    if (m.kind != Mark::Interrupt) continue;
+    auto it = std::find_if(rows.begin(), rows.end(), [&](const TickRow& r) { return r.label == m.label; });
+    if (it == rows.end()) it = rows.insert(rows.end(), TickRow{m.label, {}});
+    it->at.push_back(m.at);
+  }
+  return rows;
+}
+
+// One legend entry: its width in pixels and its SVG drawn at (x, baseline y).
+struct LegendItem {
+  double width;
+  std::function<void(std::ostream&, double, double)> draw;
+};
+
+}  // namespace
+
+void write_svg(std::ostream& out, const Plot& whole, const PlotOptions& opt) {
+  const bool window = opt.from > 0 || opt.to != kNever;
+  const Plot cut = window ? windowed(whole, opt.from, opt.to) : Plot{};
+  const Plot& plot = window ? cut : whole;
   const int W = opt.width, H = opt.height;
-  const int left = 96, right = 28, top = 104, bottom = 62, gap = 26;
+  const int left = 96, right = 28, bottom = 62, gap = 26;
   const int plot_w = W - left - right;
   const int panels = std::max(1, static_cast<int>(plot.panels.size()));
-  const int panel_h = (H - top - bottom - (panels - 1) * gap) / panels;
   const auto& times = plot.times;
-
-  double t_end = times.empty() ? 0 : static_cast<double>(times.back()) * 1e-6;
-  for (const auto& m : plot.marks) t_end = std::max(t_end, static_cast<double>(m.at) * 1e-6);
-  Ticks tx = nice_ticks(0, t_end > 0 ? t_end : 1, 10);
-  tx.lo = 0;
-  if (t_end > 0) tx.hi = t_end;  // the axis ends with the data; ticks stay on the nice grid
-  auto X = [&](double t) { return left + (t - tx.lo) / (tx.hi - tx.lo) * plot_w; };
   auto label = [](const PlotPanel& p) { return p.unit.empty() ? p.title : p.title + " [" + p.unit + "]"; };
-
-  const char* dashes[] = {"", "7,4", "2,3", "10,3,2,3"};
+  const char* dashes[] = {"", "7,4", "2,3", "10,3,2,3", "14,5", "6,3,1,3,1,3"};
   std::size_t lines = 0;
   for (const auto& p : plot.panels) lines = std::max(lines, p.lines.size());
+  const std::vector<TickRow> rows = tick_rows(plot.marks);
+
+  // The legend: quantities, lines (when more than one), marker kinds present; wrapped in rows
+  // of 20 px within the picture's width.
+  std::vector<LegendItem> legend;
+  for (const auto& p : plot.panels) {
+    const std::string text = label(p);
+    legend.push_back({28 + 6.8 * static_cast<double>(text.size()) + 14, [text, colour = p.colour](std::ostream& o, double x, double y) {
+                        o << "<line x1=\"" << x << "\" y1=\"" << y - 4 << "\" x2=\"" << x + 22 << "\" y2=\"" << y - 4
+                          << "\" stroke=\"" << colour << "\" stroke-width=\"2.5\"/>";
+                        o << "<text x=\"" << x + 28 << "\" y=\"" << y << "\" font-size=\"13\" fill=\"#333\">" << xml(text) << "</text>\n";
+                      }});
+  }
+  if (lines > 1)
+    for (std::size_t m = 0; m < lines; ++m) {
+      const std::string name = m < plot.line_names.size() ? plot.line_names[m] : "line " + std::to_string(m);
+      legend.push_back({90, [name, dash = dashes[m % std::size(dashes)]](std::ostream& o, double x, double y) {
+                          o << "<line x1=\"" << x << "\" y1=\"" << y - 4 << "\" x2=\"" << x + 22 << "\" y2=\"" << y - 4
+                            << "\" stroke=\"#444\" stroke-width=\"2\" stroke-dasharray=\"" << dash << "\"/>";
+                          o << "<text x=\"" << x + 28 << "\" y=\"" << y << "\" font-size=\"13\" fill=\"#333\">" << xml(name) << "</text>\n";
+                        }});
+    }
+  bool present[5] = {};
+  for (const auto& m : plot.marks) present[static_cast<int>(m.kind)] = true;
+  for (int k = 0; k < 5; ++k) {
+    if (!present[k]) continue;
+    const auto kind = static_cast<Mark>(k);
+    legend.push_back({16 + 6.8 * static_cast<double>(mark_name(kind).size()) + 14, [kind](std::ostream& o, double x, double y) {
+                        MarkStyle st = mark_style(kind);
+                        if (kind == Mark::Interrupt)  // a tick, as in the interrupt rows
+                          o << "<line x1=\"" << x + 6 << "\" y1=\"" << y - 9 << "\" x2=\"" << x + 6 << "\" y2=\"" << y + 1
+                            << "\" stroke=\"" << st.colour << "\" stroke-width=\"2\"/>";
+                        else
+                          o << "<path transform=\"translate(" << x + 6 << ',' << y - 4 << ")\" d=\"" << st.glyph << "\" fill=\""
+                            << st.colour << "\"/>";
+                        o << "<text x=\"" << x + 16 << "\" y=\"" << y << "\" font-size=\"13\" fill=\"#333\">" << mark_name(kind)
+                          << "</text>\n";
+                      }});
+  }
+  std::vector<std::pair<double, double>> placed_legend;  // x, baseline of each item
+  {
+    double lx = left, ly = 58;
+    for (const auto& item : legend) {
+      if (lx > left && lx + item.width - 14 > W - right) {
+        lx = left;
+        ly += 20;
+      }
+      placed_legend.emplace_back(lx, ly);
+      lx += item.width;
+    }
+  }
+  const int legend_rows = placed_legend.empty() ? 1 : static_cast<int>((placed_legend.back().second - 58) / 20) + 1;
+  // Below the legend: three levels of event glyphs, then one 14-px row per kind of interrupt.
+  const int row_h = 14;
+  const int top = 104 + 20 * (legend_rows - 1) + row_h * static_cast<int>(rows.size());
+  const int marks_base = top - row_h * static_cast<int>(rows.size());  // the glyphs sit above it
+  const int panel_h = (H - top - bottom - (panels - 1) * gap) / panels;
+
+  double t_lo = static_cast<double>(opt.from) * 1e-6;
+  double t_end = times.empty() ? t_lo : static_cast<double>(times.back()) * 1e-6;
+  for (const auto& m : plot.marks) t_end = std::max(t_end, static_cast<double>(m.at) * 1e-6);
+  Ticks tx = nice_ticks(t_lo, t_end > t_lo ? t_end : t_lo + 1, 10);
+  const double first_tick = std::ceil(t_lo / tx.step - 1e-9) * tx.step;  // on the nice grid
+  tx.lo = t_lo;
+  if (t_end > t_lo) tx.hi = t_end;  // the axis ends with the data
+  auto X = [&](double t) { return left + (t - tx.lo) / (tx.hi - tx.lo) * plot_w; };
 
   out << "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" << W << "\" height=\"" << H << "\" viewBox=\"0 0 " << W
       << ' ' << H << "\" font-family=\"Helvetica, Arial, sans-serif\">\n";
   out << "<rect width=\"100%\" height=\"100%\" fill=\"#ffffff\"/>\n";
   out << "<text x=\"" << left << "\" y=\"30\" font-size=\"19\" font-weight=\"bold\" fill=\"#222\">" << xml(opt.title)
       << "</text>\n";
+  for (std::size_t i = 0; i < legend.size(); ++i) legend[i].draw(out, placed_legend[i].first, placed_legend[i].second);
 
-  // legend: quantities, lines (when more than one), marker kinds present
-  {
-    double lx = left;
-    const double ly = 58;
-    for (const auto& p : plot.panels) {
-      const std::string text = label(p);
-      out << "<line x1=\"" << lx << "\" y1=\"" << ly - 4 << "\" x2=\"" << lx + 22 << "\" y2=\"" << ly - 4
-          << "\" stroke=\"" << p.colour << "\" stroke-width=\"2.5\"/>";
-      out << "<text x=\"" << lx + 28 << "\" y=\"" << ly << "\" font-size=\"13\" fill=\"#333\">" << xml(text) << "</text>\n";
-      lx += 28 + 6.8 * static_cast<double>(text.size()) + 14;
+  // interrupt rows: the label in the margin, one path of ticks, one hover title
+  for (std::size_t r = 0; r < rows.size(); ++r) {
+    const int y = marks_base + row_h * static_cast<int>(r) + 1;
+    const TickRow& row = rows[r];
+    const char* colour = mark_style(Mark::Interrupt).colour;
+    out << "<text x=\"" << left - 6 << "\" y=\"" << y + 9 << "\" font-size=\"11\" fill=\"" << colour
+        << "\" text-anchor=\"end\">" << xml(row.label) << "</text>";
+    out << "<path stroke=\"" << colour << "\" stroke-width=\"1.5\" d=\"";
+    std::string last;
+    for (SimTime t : row.at) {
+      char buf[48];
+      std::snprintf(buf, sizeof buf, "M%.1f,%dv10", X(static_cast<double>(t) * 1e-6), y);
+      if (buf != last) out << buf;  // ticks on one pixel are one
+      last = buf;
     }
-    if (lines > 1)
-      for (std::size_t m = 0; m < lines && m < 4; ++m) {
-        out << "<line x1=\"" << lx << "\" y1=\"" << ly - 4 << "\" x2=\"" << lx + 22 << "\" y2=\"" << ly - 4
-            << "\" stroke=\"#444\" stroke-width=\"2\" stroke-dasharray=\"" << dashes[m] << "\"/>";
-        out << "<text x=\"" << lx + 28 << "\" y=\"" << ly << "\" font-size=\"13\" fill=\"#333\">"
-            << xml(m < plot.line_names.size() ? plot.line_names[m] : "line " + std::to_string(m)) << "</text>\n";
-        lx += 90;
-      }
-    bool present[5] = {};
-    for (const auto& m : plot.marks) present[static_cast<int>(m.kind)] = true;
-    for (int k = 0; k < 5; ++k) {
-      if (!present[k]) continue;
-      MarkStyle st = mark_style(static_cast<Mark>(k));
-      out << "<path transform=\"translate(" << lx + 6 << ',' << ly - 4 << ")\" d=\"" << st.glyph << "\" fill=\""
-          << st.colour << "\"/>";
-      out << "<text x=\"" << lx + 16 << "\" y=\"" << ly << "\" font-size=\"13\" fill=\"#333\">"
-          << mark_name(static_cast<Mark>(k)) << "</text>\n";
-      lx += 16 + 6.8 * static_cast<double>(mark_name(static_cast<Mark>(k)).size()) + 14;
-    }
+    out << "\"><title>" << xml(row.label) << ": " << row.at.size() << (row.at.size() == 1 ? " interrupt at " : " interrupts, ")
+        << seconds(row.at.front()) << " s" << (row.at.size() == 1 ? "" : " to " + seconds(row.at.back()) + " s")
+        << "</title></path>\n";
   }
 
   std::vector<double> tsec(times.size());
@@ -251,7 +350,7 @@ void write_svg(std::ostream& out, const Plot& plot, const PlotOptions& opt) {
       out << "<text x=\"" << left - 8 << "\" y=\"" << y + 4 << "\" font-size=\"12\" fill=\"#444\" text-anchor=\"end\">"
           << tick_label(v, ty.step) << "</text>\n";
     }
-    for (double t = tx.lo; t <= tx.hi + tx.step * 1e-6; t += tx.step) {
+    for (double t = first_tick; t <= tx.hi + tx.step * 1e-6; t += tx.step) {
       double x = X(t);
       out << "<line x1=\"" << x << "\" y1=\"" << y0 << "\" x2=\"" << x << "\" y2=\"" << y0 + panel_h
           << "\" stroke=\"#e3e6e9\" stroke-width=\"1\"/>\n";
@@ -260,8 +359,9 @@ void write_svg(std::ostream& out, const Plot& plot, const PlotOptions& opt) {
     out << "<text transform=\"translate(" << 22 << ',' << y0 + panel_h / 2 << ") rotate(-90)\" font-size=\"14\" "
         << "font-weight=\"bold\" text-anchor=\"middle\" fill=\"" << panel.colour << "\">"
         << xml(panel.axis_title.empty() ? label(panel) : panel.axis_title) << "</text>\n";
-    // event lines
+    // event lines (interrupts have their rows above)
     for (const auto& m : plot.marks) {
+      if (m.kind == Mark::Interrupt) continue;
       double x = X(static_cast<double>(m.at) * 1e-6);
       out << "<line x1=\"" << x << "\" y1=\"" << y0 << "\" x2=\"" << x << "\" y2=\"" << y0 + panel_h << "\" stroke=\""
           << mark_style(m.kind).colour << "\" stroke-opacity=\"0.45\" stroke-dasharray=\"3,3\"/>\n";
@@ -271,7 +371,7 @@ void write_svg(std::ostream& out, const Plot& plot, const PlotOptions& opt) {
       Series s = decimate(tsec, panel.lines[m], tx.lo, tx.hi, plot_w);
       if (s.t.empty()) continue;
       out << "<polyline fill=\"none\" stroke=\"" << panel.colour << "\" stroke-width=\"2\" stroke-linejoin=\"round\"";
-      if (m > 0) out << " stroke-dasharray=\"" << dashes[m % 4] << "\"";
+      if (m > 0) out << " stroke-dasharray=\"" << dashes[m % std::size(dashes)] << "\"";
       out << " points=\"";
       char buf[64];
       for (std::size_t i = 0; i < s.t.size(); ++i) {
@@ -286,6 +386,7 @@ void write_svg(std::ostream& out, const Plot& plot, const PlotOptions& opt) {
   // markers on top of the first panel, with hover titles; markers closer than 9 px stack upward
   std::vector<std::pair<double, int>> placed;  // x and level of markers drawn so far
   for (const auto& m : plot.marks) {
+    if (m.kind == Mark::Interrupt) continue;
     MarkStyle st = mark_style(m.kind);
     double x = X(static_cast<double>(m.at) * 1e-6);
     int level = 0;
@@ -296,7 +397,7 @@ void write_svg(std::ostream& out, const Plot& plot, const PlotOptions& opt) {
       if (clash) ++level;
     }
     placed.emplace_back(x, level);
-    out << "<path transform=\"translate(" << x << ',' << top - 8 - 13 * level << ")\" d=\"" << st.glyph << "\" fill=\"" << st.colour
+    out << "<path transform=\"translate(" << x << ',' << marks_base - 8 - 13 * level << ")\" d=\"" << st.glyph << "\" fill=\"" << st.colour
         << "\"><title>" << seconds(m.at) << " s: " << xml(mark_name(m.kind))
         << (m.label.empty() ? "" : ": " + xml(m.label)) << (m.motor >= 0 ? " (motor " + std::to_string(m.motor) + ")" : "")
         << "</title></path>\n";
@@ -304,7 +405,7 @@ void write_svg(std::ostream& out, const Plot& plot, const PlotOptions& opt) {
 
   // time axis
   const int yb = top + panels * panel_h + (panels - 1) * gap;
-  for (double t = tx.lo; t <= tx.hi + tx.step * 1e-6; t += tx.step) {
+  for (double t = first_tick; t <= tx.hi + tx.step * 1e-6; t += tx.step) {
     double x = X(t);
     out << "<line x1=\"" << x << "\" y1=\"" << yb << "\" x2=\"" << x << "\" y2=\"" << yb + 5 << "\" stroke=\"#666\"/>";
     out << "<text x=\"" << x << "\" y=\"" << yb + 20 << "\" font-size=\"12\" fill=\"#444\" text-anchor=\"middle\">"

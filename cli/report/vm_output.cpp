@@ -2,6 +2,7 @@
 // Every format here is pinned by golden files in tests/vm/golden; change them deliberately.
 #include "tmcl/vm_output.hpp"
 
+#include <algorithm>
 #include <cinttypes>
 #include <set>
 
@@ -11,27 +12,7 @@
 
 namespace tmcl {
 
-std::string instruction_text(const Instruction& ins) {
-  const OpInfo* info = op_info(ins.op);
-  if (!info || info->control)
-    return "?? " + std::to_string(ins.op) + ", " + std::to_string(ins.type) + ", " + std::to_string(ins.motor) + ", " +
-           std::to_string(ins.value);
-  std::string s(info->mnemonic);
-  bool first = true;
-  for (const auto& o : info->operands) {
-    s += first ? " " : ", ";
-    first = false;
-    std::int64_t v = o.field == Field::Type ? ins.type : o.field == Field::Motor ? ins.motor : ins.value;
-    if (o.keywords != KwSet::None && v >= 0 && v <= 255) {
-      if (auto name = keyword_name(o.keywords, static_cast<std::uint8_t>(v))) {
-        s += *name;
-        continue;
-      }
-    }
-    s += std::to_string(v);
-  }
-  return s;
-}
+std::string instruction_text(const Instruction& ins) { return named_instruction_text(ins, 0, nullptr); }
 
 std::string flags_text(std::uint8_t flags) {
   std::string s;
@@ -64,40 +45,66 @@ std::string errors_text(std::uint8_t errors) {
 
 // ---------------------------------------------------------------- trace
 
+void TextTrace::written() {
+  if (failed_ || !std::ferror(out_)) return;
+  failed_ = true;
+  if (write_failed) write_failed();
+}
+
 std::string TextTrace::where(std::int32_t pc) const {
   if (sources_ && pc >= 0 && static_cast<std::size_t>(pc) < sources_->size() && !(*sources_)[static_cast<std::size_t>(pc)].empty())
     return (*sources_)[static_cast<std::size_t>(pc)];
   return "-";
 }
 
+// The widths of the source and instruction columns, from the whole program, once.
+void TextTrace::measure(const Vm& vm) {
+  std::size_t source = 16, text = 28;
+  if (sources_)
+    for (const auto& s : *sources_) source = std::max(source, s.size());
+  for (std::int32_t a = 0; a < vm.program_size; ++a)
+    text = std::max(text, named_instruction_text(vm.program[static_cast<std::size_t>(a)], a, names_).size());
+  source_width_ = static_cast<int>(source);
+  text_width_ = static_cast<int>(text);
+}
+
 void TextTrace::instruction(const Vm& vm, SimTime at, std::int32_t pc, const Instruction& ins) {
-  std::fprintf(out_, "%s %5" PRId32 " %-16s %-28s A=%" PRId32 " X=%" PRId32 " F=%s E=%s\n", format_time(at).c_str(), pc,
-               where(pc).c_str(), instruction_text(ins).c_str(), vm.acc, vm.x, flags_text(vm.flags).c_str(),
-               errors_text(vm.errors).c_str());
+  if (source_width_ == 0) measure(vm);
+  const std::string plain = instruction_text(ins);
+  const std::string named = names_ ? named_instruction_text(ins, pc, names_) : plain;
+  std::fprintf(out_, "%s %5" PRId32 " %-*s %-*s A=%" PRId32 " X=%" PRId32 " F=%s E=%s%s%s\n", format_time(at).c_str(), pc,
+               source_width_, where(pc).c_str(), text_width_, named.c_str(), vm.acc, vm.x, flags_text(vm.flags).c_str(),
+               errors_text(vm.errors).c_str(), named == plain ? "" : "  // ", named == plain ? "" : plain.c_str());
+  written();
 }
 
 void TextTrace::interrupt_enter(const Vm& vm, int vector, std::int32_t from_pc) {
   const InterruptVector* v = vm.profile->vector(vector);
   std::fprintf(out_, "%s  --> interrupt %d%s%s%s from %" PRId32 " to %" PRId32 "\n", format_time(vm.now).c_str(), vector,
                v ? " (" : "", v ? std::string(v->name).c_str() : "", v ? ")" : "", from_pc, vm.pc);
+  written();
 }
 
 void TextTrace::interrupt_leave(const Vm& vm, std::int32_t to_pc) {
   std::fprintf(out_, "%s  <-- interrupt done, continue at %" PRId32 "\n", format_time(vm.now).c_str(), to_pc);
+  written();
 }
 
 void TextTrace::motion_event(const Vm& vm, const MotionEvent& ev) {
   (void)vm;
   std::fprintf(out_, "%s  motion: motor %d %s at position %" PRId32 "\n", format_time(ev.at).c_str(), ev.motor,
                std::string(motion_event_name(ev.kind)).c_str(), ev.position);
+  written();
 }
 
 void TextTrace::wait_end(const Vm& vm, std::int32_t pc, bool timeout) {
   std::fprintf(out_, "%s  wait at %" PRId32 " %s\n", format_time(vm.now).c_str(), pc, timeout ? "timed out (ETO set)" : "ended");
+  written();
 }
 
 void TextTrace::input_event(const Vm& vm, const std::string& what) {
   std::fprintf(out_, "%s  input: %s\n", format_time(vm.now).c_str(), what.c_str());
+  written();
 }
 
 // Same form as a wait line: the instant, then the address (and source line) it happened at.
@@ -105,6 +112,7 @@ void TextTrace::warning(const Vm& vm, const RuntimeWarning& w) {
   (void)vm;
   std::fprintf(out_, "%s  warning at %" PRId32 " %s: %s\n", format_time(w.at).c_str(), w.pc, where(w.pc).c_str(),
                w.message.c_str());
+  written();
 }
 
 // ---------------------------------------------------------------- JSON
@@ -293,14 +301,39 @@ std::string error_json(std::string_view kind, int exit_status, const std::vector
   return json::write_lines(s) + "\n";
 }
 
-std::string state_summary(Vm& vm, const RunResult& result, const SourceMap* sources) {
-  (void)sources;
+std::vector<int> shown_motors(Vm& vm) {
+  vm.sync_motion();
+  std::vector<int> motors;
+  if (!vm.profile->any_parameter) {
+    for (int m = 0; m < vm.profile->motors; ++m) motors.push_back(m);
+    return motors;
+  }
+  std::vector<bool> named(static_cast<std::size_t>(vm.profile->motors), false);
+  for (std::int32_t a = 0; a < vm.program_size; ++a) {
+    const Instruction& ins = vm.program[static_cast<std::size_t>(a)];
+    const OpInfo* info = op_info(ins.op);
+    if (!info || (ins.op == static_cast<std::uint8_t>(Op::WAIT) && ins.type == 0)) continue;  // WAIT TICKS: no motor
+    for (const auto& o : info->operands)
+      if (o.role == Role::Motor && ins.motor < named.size()) named[ins.motor] = true;
+  }
+  for (int m = 0; m < vm.profile->motors; ++m)
+    if (named[static_cast<std::size_t>(m)] || vm.motion->position(m) != 0) motors.push_back(m);
+  return motors;
+}
+
+std::string state_summary(Vm& vm, const RunResult& result, const std::array<std::int32_t, 256>* vars_at_start) {
   std::string s = "halted: " + std::string(halt_name(result.halt));
-  if (!result.message.empty()) s += " (" + result.message + ")";
+  if (result.halt == Halt::Fault)
+    s += " at " + vm.where(vm.halt_pc >= 0 ? vm.halt_pc : vm.pc);  // the message is tmclrun's error line
+  else if (!result.message.empty())
+    s += " (" + result.message + ")";
   s += "\nsimulated time: " + format_time(vm.now) + "\nsteps: " + std::to_string(vm.steps) + "\n";
-  for (int m = 0; m < vm.profile->motors; ++m) {
-    vm.sync_motion();
-    s += "motor " + std::to_string(m) + ": position " + std::to_string(vm.motion->position(m)) + "\n";
+  for (int m : shown_motors(vm)) s += "motor " + std::to_string(m) + ": position " + std::to_string(vm.motion->position(m)) + "\n";
+  for (std::size_t v = 0; v < vm.vars.size(); ++v) {
+    const std::int32_t start = vars_at_start ? (*vars_at_start)[v] : 0;
+    if (vm.vars[v] == start) continue;
+    s += "variable " + std::to_string(v) + ": " + std::to_string(vm.vars[v]);
+    s += start != 0 ? " (at start " + std::to_string(start) + ")\n" : "\n";
   }
   for (const auto& w : vm.warnings) s += "warning: " + format_time(w.at) + " at " + vm.where(w.pc) + ": " + w.message + "\n";
   if (vm.warnings_total > vm.warnings.size())

@@ -92,8 +92,10 @@ inline Output run(std::vector<std::string> argv, int timeout_ms = 30000, int dur
 
 // Runs argv with standard output and standard error on one pty (raw, so the text arrives as
 // written), as in a terminal; standard input is /dev/null. Output::out holds what the pty
-// showed, Output::err is empty.
-inline Output run_on_pty(std::vector<std::string> argv, int timeout_ms = 30000) {
+// showed, Output::err is empty. `during(pid, shown so far)`, when given, is called every 20 ms
+// or so until it returns true (to send a signal once something has been shown, say).
+inline Output run_on_pty(std::vector<std::string> argv, int timeout_ms = 30000,
+                         const std::function<bool(pid_t, const std::string&)>& during = {}) {
   Output o;
   const int master = ::posix_openpt(O_RDWR | O_NOCTTY);
   if (master < 0 || ::grantpt(master) != 0 || ::unlockpt(master) != 0) return o;
@@ -120,7 +122,9 @@ inline Output run_on_pty(std::vector<std::string> argv, int timeout_ms = 30000) 
   }
   ::close(slave);
   const auto deadline = Clock::now() + std::chrono::milliseconds(timeout_ms);
+  bool fired = !during;
   for (;;) {
+    if (!fired) fired = during(pid, o.out);
     if (Clock::now() > deadline) {
       ::kill(pid, SIGKILL);
       o.out += "\n[test: killed after " + std::to_string(timeout_ms) + " ms]";

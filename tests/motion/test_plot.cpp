@@ -50,3 +50,96 @@ TEST(svg_many_motors_and_empty) {
   tmcl::write_svg(svg, empty);
   CHECK(svg.str().find("</svg>") != std::string::npos);
 }
+
+namespace {
+
+// A plot of six lines over 22 s with every kind of mark, and a 100 ms timer's interrupts.
+tmcl::Plot busy_plot() {
+  tmcl::Plot p;
+  for (tmcl::SimTime t = 0; t <= 21'900'000; t += 100'000) p.times.push_back(t);
+  for (const char* q : {"position", "velocity", "acceleration"}) {
+    tmcl::PlotPanel panel{q, "unit", std::string(tmcl::plot_colour(p.panels.size())), "", false, {}};
+    for (int m = 0; m < 6; ++m) {
+      std::vector<double> line;
+      for (std::size_t i = 0; i < p.times.size(); ++i) line.push_back(static_cast<double>(i * static_cast<std::size_t>(m + 1)));
+      panel.lines.push_back(line);
+    }
+    p.panels.push_back(panel);
+  }
+  for (int m = 0; m < 6; ++m) p.line_names.push_back("motor " + std::to_string(m));
+  for (tmcl::SimTime t = 100'000; t <= 21'900'000; t += 100'000) p.marks.push_back({t, -1, tmcl::Mark::Interrupt, "TI_TIMER0", {}});
+  p.marks.push_back({1'000'000, 0, tmcl::Mark::MoveIssued, "move to 5", 0});
+  p.marks.push_back({2'000'000, 0, tmcl::Mark::TargetReached, "target reached", 5});
+  p.marks.push_back({3'000'000, 0, tmcl::Mark::StopSwitch, "left switch on", 5});
+  p.marks.push_back({4'000'000, 0, tmcl::Mark::Other, "velocity reached", 5});
+  p.marks.push_back({6'000'000, -1, tmcl::Mark::Interrupt, "TI_STOPL0", {}});
+  return p;
+}
+
+// Every number of an attribute `name="..."` in the SVG.
+std::vector<double> attribute_values(const std::string& svg, const std::string& name) {
+  std::vector<double> v;
+  const std::string key = " " + name + "=\"";
+  for (std::size_t at = svg.find(key); at != std::string::npos; at = svg.find(key, at + 1))
+    v.push_back(std::strtod(svg.c_str() + at + key.size(), nullptr));
+  return v;
+}
+
+std::size_t count(const std::string& s, const std::string& part) {
+  std::size_t n = 0;
+  for (std::size_t at = s.find(part); at != std::string::npos; at = s.find(part, at + 1)) ++n;
+  return n;
+}
+
+}  // namespace
+
+// Issue 28 item 14: the legend stays inside the picture (it used to reach x = 1272 of 1100):
+// every text's start plus its length (13 px text, about 6.8 px a character) ends inside.
+TEST(svg_legend_wraps_within_the_picture) {
+  std::ostringstream svg;
+  tmcl::write_svg(svg, busy_plot(), {"six motors", 1100, 780});
+  const std::string s = svg.str();
+  int texts = 0;
+  for (std::size_t at = s.find("<text x=\""); at != std::string::npos; at = s.find("<text x=\"", at + 1)) {
+    const double x = std::strtod(s.c_str() + at + 9, nullptr);
+    const std::size_t open = s.find('>', at), close = s.find("</text>", at);
+    const std::string text = s.substr(open + 1, close - open - 1);
+    if (s.substr(at, close - at).find("text-anchor") != std::string::npos) continue;  // axes, row labels
+    ++texts;
+    CHECK(x + 6.8 * static_cast<double>(text.size()) <= 1100);
+    if (x + 6.8 * static_cast<double>(text.size()) > 1100) std::fprintf(stderr, "  outside: %s at %g\n", text.c_str(), x);
+  }
+  CHECK(texts > 12);
+  CHECK_EQ(count(s, ">motor 5</text>"), std::size_t{1});  // every motor is in the legend
+}
+
+// Periodic interrupts: one row of ticks per interrupt (with one title counting them), never a
+// dashed line over the panels each.
+TEST(svg_interrupts_are_a_row_of_ticks) {
+  std::ostringstream svg;
+  tmcl::write_svg(svg, busy_plot());
+  const std::string s = svg.str();
+  CHECK_EQ(count(s, "stroke=\"#e07b00\" stroke-opacity=\"0.45\""), std::size_t{0});  // no interrupt lines
+  CHECK_EQ(count(s, "stroke-dasharray=\"3,3\""), std::size_t{4 * 3});  // the four other marks, over three panels
+  CHECK_EQ(count(s, "<title>TI_TIMER0: 219 interrupts, 0.100000 s to 21.900000 s</title>"), std::size_t{1});
+  CHECK_EQ(count(s, "<title>TI_STOPL0: 1 interrupt at 6.000000 s</title>"), std::size_t{1});
+  CHECK_EQ(count(s, ">TI_TIMER0</text>"), std::size_t{1});
+  CHECK(count(s, "<path") < 12);  // 219 interrupts drew 219 glyphs and 3 x 219 lines
+}
+
+// --plot-from/--plot-to: only the window is drawn, the time axis spans it.
+TEST(svg_window_of_time) {
+  tmcl::PlotOptions o;
+  o.from = 5'000'000;
+  o.to = 10'000'000;
+  std::ostringstream svg;
+  tmcl::write_svg(svg, busy_plot(), o);
+  const std::string s = svg.str();
+  CHECK(s.find("text-anchor=\"middle\">5.0</text>") != std::string::npos);  // the first time tick
+  CHECK(s.find("text-anchor=\"middle\">10.0</text>") != std::string::npos);  // the last
+  CHECK(s.find("text-anchor=\"middle\">0</text>") == std::string::npos);
+  CHECK(s.find("TI_TIMER0: 51 interrupts, 5.000000 s to 10.000000 s") != std::string::npos);
+  CHECK(s.find("move to 5") == std::string::npos);   // at 1 s: outside
+  CHECK(s.find("TI_STOPL0") != std::string::npos);   // at 6 s: inside
+  for (double x : attribute_values(s, "x1")) CHECK(x >= 96 - 1e-9 && x <= 1100 - 28 + 1e-9);
+}

@@ -597,7 +597,8 @@ Stop Engine::from_result(const RunResult& r) {
     case Halt::Stop: running_ = false; return Stop{StopKind::Exited, 0, r.message, 0, 0};
     case Halt::Fault: running_ = false; return Stop{StopKind::Fault, 0, r.message, 0, 0};
     case Halt::StepLimit:
-    case Halt::TimeLimit: return Stop{StopKind::Limit, 0, r.message, 0, 0};
+    case Halt::TimeLimit:
+    case Halt::Interrupted: return Stop{StopKind::Limit, 0, r.message, 0, 0};
     case Halt::Blocked: return Stop{StopKind::Blocked, 0, r.message, 0, 0};
     case Halt::NotRunning: running_ = false; return Stop{StopKind::NotRunning, 0, r.message, 0, 0};
     case Halt::Break: return Stop{StopKind::Breakpoint, 0, r.message, 0, 0};

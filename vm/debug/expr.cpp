@@ -364,6 +364,11 @@ bool eval_expr(const Expr& e, Vm& vm, std::int64_t& value, std::string& error) {
   return eval_node(e, e.root, vm, value, error);
 }
 
+namespace {
+// Why the VM refused a value, when it is the range (the profile's, as for a program's SAP).
+std::string out_of(const ParamInfo* p) { return p ? ": outside its range, " + range_text(*p) : ""; }
+}  // namespace
+
 bool assign_expr(const Expr& e, Vm& vm, std::int64_t value, std::string& error) {
   if (!e.assignable()) {
     error = "'" + e.text + "' cannot be assigned (use A, X, flags, errors, v[n], ap(p, m), gp(bank, n) or out(n))";
@@ -392,7 +397,7 @@ bool assign_expr(const Expr& e, Vm& vm, std::int64_t value, std::string& error) 
       if (!index_arg(e, n.b, vm, 0, vm.profile->motors - 1, "motor", b, error)) return false;
       if (vm.set_axis(static_cast<int>(b), static_cast<int>(a), v32) != kStatusOk) {
         error = "axis parameter " + std::to_string(a) + " cannot be set to " + std::to_string(v32) + " on " +
-                std::string(vm.profile->name);
+                std::string(vm.profile->name) + out_of(vm.range_refusing(true, 0, static_cast<int>(a), v32));
         return false;
       }
       return true;
@@ -401,7 +406,8 @@ bool assign_expr(const Expr& e, Vm& vm, std::int64_t value, std::string& error) 
       if (!index_arg(e, n.b, vm, 0, 255, "global parameter", b, error)) return false;
       if (vm.set_global(static_cast<int>(a), static_cast<int>(b), v32) != kStatusOk) {
         error = "global parameter " + std::to_string(b) + " of bank " + std::to_string(a) + " cannot be set to " +
-                std::to_string(v32) + " on " + std::string(vm.profile->name);
+                std::to_string(v32) + " on " + std::string(vm.profile->name) +
+                out_of(vm.range_refusing(false, static_cast<int>(a), static_cast<int>(b), v32));
         return false;
       }
       return true;

@@ -1,6 +1,8 @@
 // Lookups over the module profile tables in vm/profiles/.
 #include "tmcl/profile.hpp"
 
+#include <cstdint>
+
 #include "profiles/profiles.hpp"
 
 namespace tmcl {
@@ -15,6 +17,23 @@ const ParamInfo* find_param(std::span<const ParamInfo> table, int number) {
 constexpr const Profile* kAll[] = {&profiles::kGeneric, &profiles::kUsb2Sd, &profiles::kTmc2300Eval};
 
 }  // namespace
+
+bool accepts(const ParamInfo& p, std::int64_t value) {
+  if (value >= p.min && value <= p.max) return true;
+  if (value < INT32_MIN || value > INT32_MAX) return false;
+  const auto u = static_cast<std::int64_t>(static_cast<std::uint32_t>(value));
+  return u >= p.min && u <= p.max;
+}
+
+std::string range_text(const ParamInfo& p) {
+  return std::to_string(p.min) + " to " + std::to_string(p.max) + (p.unit.empty() ? "" : " " + std::string(p.unit));
+}
+
+std::string param_text(std::string_view kind, int number, const ParamInfo* p) {
+  std::string s = std::string(kind) + " " + std::to_string(number);
+  if (p && !p->name.empty()) s += " (" + std::string(p->name) + ")";
+  return s;
+}
 
 const ParamInfo* Profile::axis_param(int number) const { return find_param(axis_params, number); }
 

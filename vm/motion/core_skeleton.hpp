@@ -35,8 +35,8 @@ class CoreSkeleton : public MotionCore {
       if (!info && home) info = home->axis_param(n);
       for (auto& m : motors_) m.p[static_cast<std::size_t>(n)] = info ? info->default_value : 0;
       // The VM checks a write against the active profile's range before the core sees it, except
-      // under a profile that checks nothing (generic): there the module the core models decides,
-      // from its own profile's row, so the core never holds a value its module would refuse.
+      // under a profile that stands for any module (generic): there the module the core models
+      // decides, from its own profile's row, so the core never holds a value its module would refuse.
       const ParamInfo* rule = profile.any_parameter ? nullptr : profile.axis_param(n);
       if (!rule && home) rule = home->axis_param(n);
       range_[static_cast<std::size_t>(n)] = rule;
@@ -45,6 +45,7 @@ class CoreSkeleton : public MotionCore {
     pending_.clear();
   }
   bool owns(int param) const override { return std::find(owned_.begin(), owned_.end(), param) != owned_.end(); }
+  const ParamInfo* range(int param) const override { return range_row(param); }
 
  protected:
   M& at(int motor) { return motors_[static_cast<std::size_t>(motor)]; }
@@ -53,7 +54,7 @@ class CoreSkeleton : public MotionCore {
   // a parameter no profile lists takes any value.
   bool in_range(int param, std::int32_t v) const {
     const ParamInfo* r = range_row(param);
-    return !r || (v >= r->min && v <= r->max);
+    return !r || accepts(*r, v);
   }
   const ParamInfo* range_row(int param) const {
     return param >= 0 && param < 256 ? range_[static_cast<std::size_t>(param)] : nullptr;

@@ -17,6 +17,7 @@
 #pragma once
 
 #include <array>
+#include <atomic>
 #include <cstdint>
 #include <functional>
 #include <string>
@@ -52,6 +53,7 @@ enum class Halt : std::uint8_t {
   Blocked,    // waiting for an event that can never come (no timer, motion, input or timeout)
   NotRunning, // run() called while the program is stopped and no motion is pending
   Break,      // a debugger trap (Vm::set_trap) at pc: the instruction there has not executed
+  Interrupted,  // Limits::stop was set from outside (a signal, a closed output): between instructions
 };
 std::string_view halt_name(Halt h);
 
@@ -60,6 +62,13 @@ std::string_view halt_name(Halt h);
 struct Limits {
   std::uint64_t max_steps = UINT64_MAX;
   SimTime until = kNever;
+  // A request from outside to end the run, set asynchronously (a signal handler, another thread,
+  // a trace that can no longer write; lock-free, so a signal handler may set it): once *stop is
+  // true, run() returns Halt::Interrupted between two instructions, within kStopPollSteps
+  // instructions or at the next instant a WAIT sleeps to. A run() called again goes on exactly
+  // as if it had not returned. Null: nothing to ask.
+  const std::atomic<bool>* stop = nullptr;
+  static constexpr std::uint64_t kStopPollSteps = 1 << 16;
 };
 
 struct RunResult {
@@ -110,6 +119,7 @@ struct RuntimeWarning {
     ReturnWithoutCall,   // RSUB with nothing to return to (E6)
     RetiOutsideHandler,  // RETI while no interrupt is being served (E13)
     HandlerWithoutReti,  // a handler that ends otherwise than with RETI (STOP, a jump out; E42, E43)
+    ValueOutOfRange,     // SAP/SGP/AAP/AGP/ROR/ROL with a value outside the parameter's range (E3)
   };
   SimTime at = 0;        // the instruction's start
   std::int32_t pc = 0;   // its address
@@ -301,6 +311,11 @@ struct Vm {
   std::uint8_t motor_stop(int motor);
   std::uint8_t rfs(int type, int motor, std::int32_t& value);
   bool motor_ok(int motor) const { return motor >= 0 && motor < profile->motors; }
+  // The profile row whose range refuses `value` for axis parameter `param`, or for a global
+  // parameter of bank 0 or 3 (axis: false): the active profile's, else, for a parameter the
+  // motion core owns, the row it checks against; nullptr when no range refuses it. For messages:
+  // the run-time warning `value-out-of-range` and the debugger's `set`.
+  const ParamInfo* range_refusing(bool axis, int bank, int param, std::int64_t value) const;
 
  private:
   // The run loop (vm_exec.cpp) and the instruction semantics (vm_ops.hpp) reach the internals

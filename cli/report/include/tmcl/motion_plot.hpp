@@ -14,6 +14,7 @@
 #pragma once
 
 #include <cstdint>
+#include <optional>
 #include <ostream>
 #include <string>
 #include <vector>
@@ -35,6 +36,11 @@ class MotionRecorder {
   // A core's event: target reached becomes a TargetReached mark, the others Other marks.
   void motion_event(const MotionEvent& ev);
 
+  // Which motors write_csv and write_svg show, in order (tmclrun: shown_motors, vm_output.hpp);
+  // every recorded one until it is called.
+  void show_motors(std::vector<int> motors) { shown_ = std::move(motors); }
+  std::vector<int> shown_motors() const;
+
   int motors() const { return motors_; }
   SimTime period() const { return period_; }
   const std::vector<SimTime>& times() const { return times_; }
@@ -49,6 +55,7 @@ class MotionRecorder {
   std::vector<SimTime> times_;
   std::vector<MotionSample> samples_;
   std::vector<RecordedMark> marks_;
+  std::optional<std::vector<int>> shown_;
 };
 
 // CSV: a comment line, a header, then rows in time order; sample rows have an empty event column,

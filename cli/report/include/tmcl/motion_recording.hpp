@@ -19,6 +19,7 @@ class RecordingCore final : public MotionCore {
   SimTime next_event() const override { return inner_.next_event(); }
   void advance(SimTime to, std::vector<MotionEvent>& events) override;
   bool owns(int param) const override { return inner_.owns(param); }
+  const ParamInfo* range(int param) const override { return inner_.range(param); }
   ParamWrite set_param(int motor, int param, std::int32_t value) override { return inner_.set_param(motor, param, value); }
   std::int32_t get_param(int motor, int param) override { return inner_.get_param(motor, param); }
   void move_absolute(int motor, std::int32_t target) override;

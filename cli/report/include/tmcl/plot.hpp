@@ -1,6 +1,8 @@
 // A self-contained SVG plot of sampled time series: stacked panels over one shared time axis,
 // each panel one quantity (its own scale, unit and colour) with one line per source (a motor),
-// and event markers. tmclrun --plot draws a motion recording with it (motion_plot.hpp), tmclctl
+// and event markers: a dashed line over the panels and a glyph on top for each move, target
+// reached, switch or other event; interrupts, which a timer raises every few milliseconds, as
+// one row of ticks per interrupt above the panels. The legend wraps within the picture. tmclrun --plot draws a motion recording with it (motion_plot.hpp), tmclctl
 // monitor --plot the parameters it polled; neither writes SVG itself.
 #pragma once
 
@@ -48,6 +50,10 @@ struct PlotOptions {
   std::string title = "Motion";
   int width = 1100;
   int height = 780;
+  // The window of time drawn (tmclrun --plot-from, --plot-to): samples and marks outside it are
+  // left out, the time axis spans it (up to the last sample or mark when `to` lies beyond).
+  SimTime from = 0;
+  SimTime to = kNever;
 };
 
 // Panel colours for plots of any number of quantities: the motion plot's three, then more that

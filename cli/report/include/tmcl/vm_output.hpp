@@ -3,10 +3,12 @@
 #pragma once
 
 #include <cstdio>
+#include <functional>
 #include <string>
 #include <string_view>
 #include <vector>
 
+#include "tmcl/source_names.hpp"
 #include "tmcl/vm.hpp"
 
 namespace tmcl {
@@ -19,10 +21,15 @@ std::string instruction_text(const Instruction& ins);
 using SourceMap = std::vector<std::string>;
 
 // --trace: one line per executed instruction and per interrupt, motion event and wait end:
-//   0.000020s  3 prog.tmc:4  SAP 4, 0, 51200  A=0 X=0 F=-- E=-
+//   0.000020s     3 prog.tmc:4       SAP 4, 0, 51200              A=0 X=0 F=- E=-
+// The source and instruction columns are as wide as the program's longest (at least 16 and 28
+// characters), so the columns stay aligned whatever the paths. With `names` an instruction shows
+// the names its source gave (`JC LT, Loop`, source_names.hpp) and, where that differs from the
+// plain form, the plain form with its numbers in a comment at the end: `// JC LT, 3`.
 class TextTrace final : public TraceSink {
  public:
-  TextTrace(std::FILE* out, const SourceMap* sources) : out_(out), sources_(sources) {}
+  TextTrace(std::FILE* out, const SourceMap* sources, const SourceNames* names = nullptr)
+      : out_(out), sources_(sources), names_(names) {}
   void instruction(const Vm& vm, SimTime at, std::int32_t pc, const Instruction& ins) override;
   void interrupt_enter(const Vm& vm, int vector, std::int32_t from_pc) override;
   void interrupt_leave(const Vm& vm, std::int32_t to_pc) override;
@@ -31,10 +38,19 @@ class TextTrace final : public TraceSink {
   void input_event(const Vm& vm, const std::string& what) override;
   void warning(const Vm& vm, const RuntimeWarning& w) override;
 
+  // Called once, after the first line that could not be written (a closed pipe, a full disk):
+  // tmclrun ends the run then (RunControl::output_closed).
+  std::function<void()> write_failed;
+
  private:
   std::string where(std::int32_t pc) const;
+  void written();
+  void measure(const Vm& vm);
   std::FILE* out_;
   const SourceMap* sources_;
+  const SourceNames* names_;
+  bool failed_ = false;
+  int source_width_ = 0, text_width_ = 0;  // 0: not measured yet
 };
 
 // "ZE EQ" style flag names; "-" when none.
@@ -43,8 +59,16 @@ std::string errors_text(std::uint8_t errors);
 
 // --json: one object (see docs/tmclrun.md for every key), ending in a newline.
 std::string state_json(Vm& vm, const RunResult& result);
-// The default exit summary.
-std::string state_summary(Vm& vm, const RunResult& result, const SourceMap* sources);
+
+// The motors a summary, CSV and plot show: every motor of the module; under a profile that
+// stands for any module (generic, with six), those the program names in a motor operand or that
+// moved, in order (none when there are none).
+std::vector<int> shown_motors(Vm& vm);
+
+// The default exit summary: the halt on one line (a fault by kind and place only: its message is
+// the error tmclrun prints), time, steps, the position of each shown motor, each user variable
+// whose value differs from `vars_at_start` (its value at power-on; null: 0), run-time warnings.
+std::string state_summary(Vm& vm, const RunResult& result, const std::array<std::int32_t, 256>* vars_at_start = nullptr);
 
 // tmclrun --serve --trace: one line per answered request, e.g.
 //   1.250000s module 1: MVP ABS, 0, 51200 -> 100 ok, value 51200

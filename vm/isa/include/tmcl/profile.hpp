@@ -6,6 +6,7 @@
 #include <bitset>
 #include <cstdint>
 #include <span>
+#include <string>
 #include <string_view>
 
 namespace tmcl {
@@ -29,6 +30,15 @@ struct ParamInfo {
   std::string_view unit;
 };
 
+// Whether a parameter takes `value`: within [min, max] read as signed, or (a value that fits 32
+// bits) read as unsigned, since a 32-bit field holds either and either may be the meant one. The
+// one range rule of the assembler's checks, the VM's writes and the debugger's `set`.
+bool accepts(const ParamInfo& p, std::int64_t value);
+// The range as diagnostics write it: "0 to 16777215 pps".
+std::string range_text(const ParamInfo& p);
+// "axis parameter 4 (Maximum positioning speed)"; `kind` is "axis parameter" or "global parameter".
+std::string param_text(std::string_view kind, int number, const ParamInfo* p);
+
 struct InterruptVector {
   std::uint8_t number;
   std::string_view name;  // e.g. "TI_TIMER0", the Interrupts.inc symbol
@@ -39,7 +49,8 @@ struct Profile {
   std::string_view name;      // -t NAME
   std::string_view title;     // "USB-2-SD (firmware 1.14)"
   std::bitset<256> commands;  // opcodes the module executes, control commands included
-  bool any_parameter;         // generic: every parameter number is accepted, no range checks
+  bool any_parameter;         // generic: every parameter number is accepted without access checks;
+                              // a value is range-checked where the tables list the parameter
   std::span<const ParamInfo> axis_params;
   std::span<const ParamInfo> bank0;  // global parameters, bank 0
   std::span<const ParamInfo> bank3;  // interrupt configuration, bank 3

@@ -78,6 +78,12 @@ class MotionCore {
   // forwards owned numbers here and keeps every other parameter in its own table.
   virtual bool owns(int param) const = 0;
   virtual ParamWrite set_param(int motor, int param, std::int32_t value) = 0;
+  // The profile row whose range set_param checks an owned parameter against (the active
+  // profile's, or that of the module the core models); nullptr: any value. For messages.
+  virtual const ParamInfo* range(int param) const {
+    (void)param;
+    return nullptr;
+  }
   // Reading may have effects (e.g. a flag cleared by reading), hence not const.
   virtual std::int32_t get_param(int motor, int param) = 0;
 
