@@ -1,10 +1,9 @@
 // tmclrun: runs a TMCL program on the virtual machine without hardware. Parses arguments, loads
 // the program (assembling .tmc in-process), scenario and EEPROM, runs the VM library, prints the
-// summary, trace, JSON, CSV or plot. Serving (--serve) and debugging are tmclrun_modes.cpp's, in
-// tmclrun-full only (cli/tmclrun_modes.hpp). All semantics live in vm/; see docs/tmclrun.md. Exit
-// status: 0 STOP, 3 limit reached or blocked, 70 runtime fault, 65 bad input, 64 usage, 71
-// --serve transport failed or tmclrun-full missing, 74 an output file or standard output not
-// written. With --json every outcome is one JSON object on standard output.
+// summary, trace, JSON, CSV or plot. Serving (--serve) and debugging are tmclrun_modes.cpp's. All
+// semantics live in vm/; see docs/tmclrun.md. Exit status: 0 STOP, 3 limit reached or blocked, 70
+// runtime fault, 65 bad input, 64 usage, 71 --serve transport failed, 74 an output file or
+// standard output not written. With --json every outcome is one JSON object on standard output.
 #include <algorithm>
 #include <cctype>
 #include <cerrno>
@@ -99,8 +98,8 @@ examples:
   tmclrun --serve tcp:127.0.0.1:2001 prog.tmc   a virtual module for PyTrinamic (Ctrl-C stops it)
 
 exit status: 0 STOP, 3 limit reached or blocked forever, 70 runtime fault, 65 bad input,
-             64 usage error, 71 --serve transport failed or tmclrun-full missing, 74 an output
-             file (EEPROM, --csv, --plot) or standard output could not be written
+             64 usage error, 71 --serve transport failed, 74 an output file (EEPROM, --csv,
+             --plot) or standard output could not be written
 )";
 
 std::string joined(const std::vector<std::string>& names) {
@@ -294,7 +293,7 @@ int parse_args(int argc, char** argv, Options& o) {
     } else if (a.rfind("-W", 0) == 0 && a.size() > 2) {
       std::string error;
       if (!o.asm_opts.warnings.parse(a, error)) return usage_error(error.empty() ? "unknown option '" + a + "'" : error);
-    } else if (int status = -1; mode_option(a, has_inline, value, argv, o, status)) {
+    } else if (int status = -1; mode_option(a, has_inline, value, o, status)) {
       if (status >= 0) return status;
     } else if (a != "-" && a.size() > 1 && a[0] == '-') {
       return usage_error("unknown option '" + args[i] + "'");
@@ -469,7 +468,7 @@ int run(int argc, char** argv) {
       return located_error(o.eeprom + ":2: error: EEPROM written for module '" + image.profile + "', not '" + o.target + "'");
   }
 
-  // --serve, --debug, --dap: tmclrun_modes.cpp (in tmclrun-full only).
+  // --serve, --debug, --dap: tmclrun_modes.cpp.
   if (o.serving || o.debugging)
     return run_mode(o, *profile, std::move(core), program, sources, std::move(inputs), o.eeprom.empty() ? nullptr : &image);
 

@@ -1,7 +1,9 @@
-// What tmclrun.cpp, the part of both programs (cli/tmclrun_modes.hpp), gives tmclrun_modes.cpp:
-// the options and the steps of a run that serving and debugging share.
+// What tmclrun.cpp (option parsing, loading, the run) and tmclrun_modes.cpp (serving with the
+// virtual module, debugging) share: the options, and the steps of a run that both take.
 #pragma once
 
+#include <functional>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -10,9 +12,13 @@
 #include "tmcl/scenario.hpp"
 #include "tmcl/vm.hpp"
 #include "tmcl/vm_output.hpp"
-#include "tmclrun_modes.hpp"
 
 namespace tmclrun {
+
+constexpr int kExitOk = 0, kExitLimit = 3, kExitUsage = 64, kExitInput = 65, kExitFault = 70, kExitOsErr = 71,
+              kExitIo = 74;
+
+using ValueFn = std::function<bool(std::string&)>;
 
 // The options of tmclrun.cpp; tmclrun_modes.cpp keeps its own and sets the three flags below.
 struct Options {
@@ -34,6 +40,8 @@ struct Options {
 };
 
 // ---- tmclrun.cpp ----
+// Reports the error on standard error (and for --json), returns the exit status.
+int usage_error(const std::string& msg);
 int input_error(const std::string& file, const std::string& msg, int status = kExitInput);
 // OPT DURATION into `out`: -1 when it parsed, else the status of the usage error reported.
 int duration_option(const char* opt, const ValueFn& value, tmcl::SimTime& out);
@@ -44,5 +52,17 @@ int load_program(Options& o, const tmcl::Profile* profile, std::vector<tmcl::Ins
 // and the scenario's inputs, and powers it on.
 void set_up_vm(tmcl::Vm& vm, const Options& o, const std::vector<tmcl::Instruction>& program,
                const tmcl::SourceMap& sources, const tmcl::EepromImage* image, std::vector<tmcl::InputEvent> inputs);
+
+// ---- tmclrun_modes.cpp ----
+// Called for every argument tmclrun.cpp does not know. True when it was a mode option; `status`
+// is then -1, or the exit status of an error already reported.
+bool mode_option(const std::string& arg, bool has_inline, const ValueFn& value, Options& o, int& status);
+// After all arguments: the checks that involve mode options (--module sets o.program and
+// o.target). -1 when the run goes on, else an exit status.
+int check_mode_options(Options& o, const std::vector<std::string>& args, bool have_program);
+// Serves or debugs (o.serving or o.debugging). Returns tmclrun's exit status.
+int run_mode(Options& o, const tmcl::Profile& profile, std::unique_ptr<tmcl::MotionCore> core,
+             const std::vector<tmcl::Instruction>& program, const std::vector<std::string>& sources,
+             std::vector<tmcl::InputEvent> inputs, tmcl::EepromImage* image);
 
 }  // namespace tmclrun

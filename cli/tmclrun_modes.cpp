@@ -1,6 +1,6 @@
-// tmclrun-full's part of tmclrun (cli/tmclrun_modes.hpp): the options of serving (--serve and its
-// companions, --module, --faults) and debugging (--debug, --dap), their checks, and the runs that
-// serve a host with the virtual module (vm/module) or debug with the debugger (vm/debug).
+// tmclrun's modes beside a plain run: the options of serving (--serve and its companions,
+// --module, --faults) and debugging (--debug, --dap), their checks, and the runs that serve a
+// host with the virtual module (vm/module) or debug with the debugger (vm/debug).
 #include <cerrno>
 #include <cstdio>
 #include <cstdlib>
@@ -89,7 +89,7 @@ int build_bus(Options& o, ModeOptions& m, std::vector<std::unique_ptr<tmcl::Moti
 
 }  // namespace
 
-bool tmclrun::mode_option(const std::string& a, bool has_inline, const ValueFn& value, char**, Options& o, int& status) {
+bool tmclrun::mode_option(const std::string& a, bool has_inline, const ValueFn& value, Options& o, int& status) {
   ModeOptions& m = g_modes;
   std::string v;
   status = -1;

@@ -1,7 +1,7 @@
 # Every tool (TMCL_TOOLS in cli/CMakeLists.txt) has a man page docs/man/TOOL.1 and a bash
 # completion cli/completion/TOOL, and every option its --help lists appears in both; every
-# executable cli/ builds is in TMCL_TOOLS or TMCL_HELPERS.
-# Run as: cmake -DROOT=<source dir> "-DTOOLS=name=path;..." "-DEXECUTABLES=name;..." "-DHELPERS=name;..."
+# executable cli/ builds is in TMCL_TOOLS.
+# Run as: cmake -DROOT=<source dir> "-DTOOLS=name=path;..." "-DEXECUTABLES=name;..."
 #               -P check_man_pages.cmake
 cmake_minimum_required(VERSION 3.25)
 include(${CMAKE_CURRENT_LIST_DIR}/../unit/checks.cmake)
@@ -70,11 +70,10 @@ foreach(tool IN LISTS names)
   endif()
 endforeach()
 
-# Every executable cli/ builds (EXECUTABLES, from the build's own target list) is a tool, or a
-# program a tool runs (HELPERS, installed to libexec/tmcl: no man page of its own).
+# Every executable cli/ builds (EXECUTABLES, from the build's own target list) is a tool.
 foreach(exe IN LISTS EXECUTABLES)
-  if(NOT exe IN_LIST names AND NOT exe IN_LIST HELPERS)
-    problem("cli/ builds the executable ${exe}, which is not in TMCL_TOOLS or TMCL_HELPERS")
+  if(NOT exe IN_LIST names)
+    problem("cli/ builds the executable ${exe}, which is not in TMCL_TOOLS")
   endif()
 endforeach()
 
