@@ -42,6 +42,8 @@ Tool sample(Seen& seen) {
       {"--secret", "", "", record("secret"), {}, {}, true},
       {"--bad", "N", "always refused", [](const std::string& v) { return "bad value '" + v + "'"; }, {}, {}, false,
        "group:"},
+      {"--also", "", "in the group too", record("also"), {}, {}, false, "group:"},
+      {"--other", "FILE", "in another group", record("other"), {}, {}, false, "grp2:"},
   };
   t.operands = [](const std::vector<std::string>& before, const std::vector<std::string>& given) {
     if (!given.empty() && given.back() == "--secret") return Values::dirs();
@@ -138,8 +140,9 @@ TEST(help_is_generated_from_the_table) {
            "  -I DIR             search DIR\n"
            "  -Werror, -Werror=NAME  warnings are errors\n"
            "  -Wno-NAME          do not report the warning NAME\n"
-           "group:\n"
-           "  --bad N            always refused\n"
+           "  group: --bad N     always refused\n"
+           "         --also      in the group too\n"
+           "  grp2:  --other FILE  in another group\n"
            "  --help             show this help\n"
            "  --version          show the version\n"
            "\n"
@@ -157,7 +160,7 @@ TEST(list_options) {
   Seen seen;
   CHECK_EQ(tmcl::cli::option_list(sample(seen)),
            "-o\tFILE\n-f, --format\tFMT\n--trace\t\n--checkpoint-memory\tMIB\n-I\tDIR\n-Werror\t\n-Werror=\tNAME\n"
-           "-Wno-\tNAME\n--bad\tN\n--help\t\n--version\t\n");
+           "-Wno-\tNAME\n--bad\tN\n--also\t\n--other\tFILE\n--help\t\n--version\t\n");
 }
 
 TEST(completion_of_names_and_values) {

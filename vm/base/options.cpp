@@ -174,12 +174,18 @@ bool Result::has(const std::string& name) const { return std::find(given.begin()
 
 std::string help_text(const Tool& tool) {
   std::string out = tool.usage;
-  std::string left;
+  std::size_t label = 0;  // the width of the groups' labels, and a blank
+  for (const Option& o : tool.options)
+    if (!o.hidden && !o.group.empty()) label = std::max(label, o.group.size() + 1);
+  std::string left, group;
   for (const auto* table : {&tool.options, &builtins()})
     for (const Option& o : *table) {
       if (o.hidden) continue;
-      if (!o.heading.empty() && left.empty()) out += o.heading + "\n";
-      left += (left.empty() ? "" : ", ") + shown(o);
+      if (left.empty() && !o.group.empty()) {
+        left = o.group == group ? std::string(label, ' ') : o.group + std::string(label - o.group.size(), ' ');
+      }
+      group = o.group;
+      left += (left.empty() || left.back() == ' ' ? "" : ", ") + shown(o);
       if (o.help.empty()) continue;  // shares the next option's line
       add_help_lines(out, left, o.help, tool.column);
       left.clear();

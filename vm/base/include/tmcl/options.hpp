@@ -50,8 +50,9 @@ struct Option {
   std::string needs = {};
   // Not in --help, nor offered by completion (an alias, or a form kept for old command lines).
   bool hidden = false;
-  // A line printed before this option in --help (a group: "download:").
-  std::string heading = {};
+  // The options of one command ("download:"): --help shows the label before the first of a run
+  // of options with the same group, and the others aligned under it.
+  std::string group = {};
 
   // The last spelling ("--target" of "-t, --target"): how results and checks name the option.
   std::string name() const;
