@@ -319,16 +319,10 @@ std::string set_mode(Settings& s, Mode m, const char* conflicts) {
   return {};
 }
 
-std::vector<std::string> warning_words() {
-  std::vector<std::string> names;
-  for (const auto& w : tmcl::warning_table()) names.emplace_back(w.name);
-  return names;
-}
-
 // The options, each declared once: --help, the errors, the man-page check and bash completion
 // follow from this table (tmcl/options.hpp).
 tmcl::cli::Tool command_line(Settings& s) {
-  using tmcl::cli::Values;
+  using tmcl::cli::flag, tmcl::cli::set, tmcl::cli::Values;
   auto ok = [](auto&& apply) {
     return [apply](const std::string& v) {
       apply(v);
@@ -343,8 +337,7 @@ tmcl::cli::Tool command_line(Settings& s) {
       return std::string();
     };
   };
-  std::vector<std::string> targets;
-  for (const auto* p : tmcl::all_profiles()) targets.emplace_back(p->name);
+  const Values warnings = Values::words(tmcl::warning_names());
   tmcl::cli::Tool t;
   t.name = "tmclasm";
   t.usage = kUsage;
@@ -368,11 +361,11 @@ tmcl::cli::Tool command_line(Settings& s) {
       {"-c", "", "assemble each source into a relocatable object (FILE.o)",
        [&s](const std::string&) { return set_mode(s, Mode::Compile, "-c cannot be combined with -d or --dump-object"); }},
       {"--map", "FILE", "also write a link map: input address ranges, every symbol's address",
-       ok([&s](const std::string& v) { s.map_file = v; }), Values::files({"map"}), "a file name"},
+       set(s.map_file), Values::files({"map"}), "a file name"},
       {"-d, --disassemble", "", "turn the FILE (.bin, .dgm datagrams, object) into .tmc source",
        [&s](const std::string&) { return set_mode(s, Mode::Disassemble, "-d cannot be combined with -c or --dump-object"); }},
       {"--symbols", "FILE", "with -d: label names and file:line comments from a symbols file\n(tmclasm -f symbols)",
-       ok([&s](const std::string& v) { s.symbols_file = v; }), Values::files({"sym"}), "a file name"},
+       set(s.symbols_file), Values::files({"sym"}), "a file name"},
       {"--from", "FMT", "with -d: read FILE as bin, datagrams or object (default: by its contents\nand extension)",
        [&s](const std::string& v) {
          if (v == "bin") s.dopts.kind = tmcl::ImageKind::Bin;
@@ -388,9 +381,9 @@ tmcl::cli::Tool command_line(Settings& s) {
        [&s](const std::string&) {
          return set_mode(s, Mode::Fmt, "--fmt cannot be combined with -c, -d, --analyze or --dump-object");
        }},
-      {"-i", "", "with --fmt: rewrite each FILE in place", ok([&s](const std::string&) { s.fmt_in_place = true; })},
+      {"-i", "", "with --fmt: rewrite each FILE in place", flag(s.fmt_in_place)},
       {"--check", "", "with --fmt: write nothing; exit 65 naming each FILE not in the layout",
-       ok([&s](const std::string&) { s.fmt_check = true; })},
+       flag(s.fmt_check)},
       {"--address", "N", "module address in datagrams (default 1)",
        [&s](const std::string& v) {
          char* end = nullptr;
@@ -404,9 +397,9 @@ tmcl::cli::Tool command_line(Settings& s) {
          s.opts.profile = tmcl::find_profile(v);
          return s.opts.profile ? std::string() : "unknown target '" + v + "' (usb-2-sd, tmc2300-eval, generic)";
        },
-       Values::words(targets), "a target name"},
+       Values::words(tmcl::profile_names()), "a target name"},
       {"-I", "DIR", "search DIR for #include files (after the including file's folder)",
-       ok([&s](const std::string& v) { s.opts.include_dirs.push_back(v); }), Values::dirs()},
+       tmcl::cli::append(s.opts.include_dirs), Values::dirs()},
       {"-D", "NAME=VALUE", "define a constant (VALUE is an expression)",
        [&s](const std::string& v) {
          const auto eq = v.find('=');
@@ -416,10 +409,9 @@ tmcl::cli::Tool command_line(Settings& s) {
          return std::string();
        }},
       {"-Werror", "", "treat warnings as errors", warning("-Werror")},
-      {"-Werror=", "NAME", "treat the warning NAME as an error", warning("-Werror="), Values::words(warning_words())},
-      {"-Wno-", "NAME", "do not report the warning NAME (names: docs/analysis.md)", warning("-Wno-"),
-       Values::words(warning_words())},
-      {"-W", "NAME", "", warning("-W"), Values::words(warning_words()), {}, true},
+      {"-Werror=", "NAME", "treat the warning NAME as an error", warning("-Werror="), warnings},
+      {"-Wno-", "NAME", "do not report the warning NAME (names: docs/analysis.md)", warning("-Wno-"), warnings},
+      {"-W", "NAME", "", warning("-W"), warnings, {}, true},
       {"--stack-usage", "",
        "write the call-stack report (per subroutine and handler: its maximum\n"
        "depth and deepest chain) instead of the program (.su)",

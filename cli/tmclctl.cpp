@@ -138,19 +138,7 @@ std::vector<std::string> port_words() {
 // The options, each declared once: --help, the errors, the man-page check and bash completion
 // follow from this table (tmcl/options.hpp).
 tmcl::cli::Tool command_line(Options& o) {
-  using tmcl::cli::Values;
-  auto set = [](std::string& field) {
-    return [&field](const std::string& v) {
-      field = v;
-      return std::string();
-    };
-  };
-  auto flag = [](bool& field) {
-    return [&field](const std::string&) {
-      field = true;
-      return std::string();
-    };
-  };
+  using tmcl::cli::flag, tmcl::cli::set, tmcl::cli::Values;
   auto address = [](const char* opt, std::uint8_t& field) {
     return [opt, &field](const std::string& v) {
       long n = 0;
@@ -171,8 +159,6 @@ tmcl::cli::Tool command_line(Options& o) {
   const std::vector<std::string> bauds{"9600",   "19200",  "38400",  "57600",  "115200", "230400",
                                        "460800", "500000", "576000", "921600", "1000000"};
   const std::vector<std::string> durations{"100ms", "500ms", "1s", "10s"};
-  std::vector<std::string> targets;
-  for (const auto* p : tmcl::all_profiles()) targets.emplace_back(p->name);
   tmcl::cli::Tool t;
   t.name = "tmclctl";
   t.usage = kUsage;
@@ -183,7 +169,7 @@ tmcl::cli::Tool command_line(Options& o) {
       {"--host-address", "N", "host address replies are sent to (default 2)", address("--host-address", o.client.host),
        {}, "an address from 0 to 255"},
       {"-t, --target", "NAME", "module profile for names, ranges and memory (default generic)", set(o.target),
-       Values::words(targets), "a module name"},
+       Values::words(tmcl::profile_names()), "a module name"},
       {"--baud", "N", "serial baud rate, 9600 to 1000000 (default 9600; raw 8N1)",
        [&o, kBauds](const std::string& v) {
          long n = 0;
@@ -212,11 +198,7 @@ tmcl::cli::Tool command_line(Options& o) {
        {}, "a number from 0 to 100"},
       {"--raw", "", "show every frame sent (>) and received (<) in hex", flag(o.raw)},
       {"-q, --quiet", "", "no progress bar or banners", flag(o.quiet)},
-      {"-I", "DIR", "search DIR for #include files (send, console, download)",
-       [&o](const std::string& v) {
-         o.include_dirs.push_back(v);
-         return std::string();
-       },
+      {"-I", "DIR", "search DIR for #include files (send, console, download)", tmcl::cli::append(o.include_dirs),
        Values::dirs(), "a directory"},
       {"--no-verify", "", "skip reading the program back with 134",
        [&o](const std::string&) {

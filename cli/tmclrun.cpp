@@ -168,28 +168,10 @@ std::string address_value(const char* opt, const std::string& v, std::optional<s
   return {};
 }
 
-std::vector<std::string> warning_words() {
-  std::vector<std::string> names;
-  for (const auto& w : tmcl::warning_table()) names.emplace_back(w.name);
-  return names;
-}
-
 // The options, each declared once: --help, the errors, the man-page check and bash completion
 // follow from this table (tmcl/options.hpp).
 tmcl::cli::Tool command_line(Options& o) {
-  using tmcl::cli::Values;
-  auto set = [](std::string& field) {
-    return [&field](const std::string& v) {
-      field = v;
-      return std::string();
-    };
-  };
-  auto flag = [](bool& field) {
-    return [&field](const std::string&) {
-      field = true;
-      return std::string();
-    };
-  };
+  using tmcl::cli::flag, tmcl::cli::set, tmcl::cli::Values;
   auto duration = [](const char* opt, tmcl::SimTime& field) {
     return [opt, &field](const std::string& v) { return duration_value(opt, v, field); };
   };
@@ -200,9 +182,8 @@ tmcl::cli::Tool command_line(Options& o) {
       return std::string();
     };
   };
-  std::vector<std::string> targets;
-  for (const auto* p : tmcl::all_profiles()) targets.emplace_back(p->name);
   const std::vector<std::string> durations{"20us", "10ms", "1s", "1min"};
+  const Values warnings = Values::words(tmcl::warning_names());
   tmcl::cli::Tool t;
   t.name = "tmclrun";
   t.usage = kUsage;
@@ -210,7 +191,7 @@ tmcl::cli::Tool command_line(Options& o) {
   t.column = 25;
   t.options = {
       {"-t, --target", "NAME", "usb-2-sd | tmc2300-eval | generic (default, as for tmclasm)", set(o.target),
-       Values::words(targets), "a module name"},
+       Values::words(tmcl::profile_names()), "a module name"},
       {"--motion", "NAME", "motion core (default: the module's; available: " + joined(tmcl::motion_core_names()) + ")",
        set(o.motion), Values::words(tmcl::motion_core_names()), "a core name"},
       {"--instr-time", "DURATION", "simulated time per instruction (default 20us)", duration("--instr-time", o.instr_time),
@@ -309,10 +290,7 @@ tmcl::cli::Tool command_line(Options& o) {
       {"--module", "ADDR[/TARGET][:FILE]",
        "with --serve, repeatable: modules on one bus, each its own VM,\n"
        "EEPROM and address (the first replaces PROGRAM and --module-address)",
-       [&o](const std::string& v) {
-         o.modules.push_back(v);
-         return std::string();
-       }},
+       tmcl::cli::append(o.modules)},
       {"--csv", "FILE",
        "write time, position, velocity, acceleration of every motor to FILE\n"
        "at each --sample period, plus one row per event",
@@ -362,12 +340,8 @@ tmcl::cli::Tool command_line(Options& o) {
          o.debug.enabled = o.debug.dap = true;
          return std::string();
        }},
-      {"-I", "DIR", "search DIR for #include files",
-       [&o](const std::string& v) {
-         o.asm_opts.include_dirs.push_back(v);
-         return std::string();
-       },
-       Values::dirs(), "a directory"},
+      {"-I", "DIR", "search DIR for #include files", tmcl::cli::append(o.asm_opts.include_dirs), Values::dirs(),
+       "a directory"},
       {"-D", "NAME=VALUE", "define an assembler constant",
        [&o](const std::string& v) {
          const auto eq = v.find('=');
@@ -376,10 +350,9 @@ tmcl::cli::Tool command_line(Options& o) {
          return std::string();
        }},
       {"-Werror", "", "", warning("-Werror")},
-      {"-Werror=", "NAME", "assembler warnings (all, or the one named) are errors", warning("-Werror="),
-       Values::words(warning_words())},
-      {"-Wno-", "NAME", "do not report the assembler warning NAME", warning("-Wno-"), Values::words(warning_words())},
-      {"-W", "NAME", "", warning("-W"), Values::words(warning_words()), {}, true},
+      {"-Werror=", "NAME", "assembler warnings (all, or the one named) are errors", warning("-Werror="), warnings},
+      {"-Wno-", "NAME", "do not report the assembler warning NAME", warning("-Wno-"), warnings},
+      {"-W", "NAME", "", warning("-W"), warnings, {}, true},
   };
   t.operands = [](const std::vector<std::string>&, const std::vector<std::string>&) {
     return Values::files({"tmc", "bin", "dgm"});
@@ -519,9 +492,7 @@ int run(int argc, char** argv) {
 
   const tmcl::Profile* profile = tmcl::find_profile(o.target);
   if (!profile) {
-    std::vector<std::string> names;
-    for (const auto* p : tmcl::all_profiles()) names.emplace_back(p->name);
-    return usage_error("unknown module '" + o.target + "' (available: " + joined(names) + ")");
+    return usage_error("unknown module '" + o.target + "' (available: " + joined(tmcl::profile_names()) + ")");
   }
   std::string core_name = o.motion.empty() ? std::string(profile->default_motion) : o.motion;
   auto core = tmcl::make_motion_core(core_name);

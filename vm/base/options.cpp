@@ -165,6 +165,27 @@ void add_help_lines(std::string& out, const std::string& left, const std::string
 
 }  // namespace
 
+Handler set(std::string& field) {
+  return [&field](const std::string& v) {
+    field = v;
+    return std::string();
+  };
+}
+
+Handler flag(bool& field) {
+  return [&field](const std::string&) {
+    field = true;
+    return std::string();
+  };
+}
+
+Handler append(std::vector<std::string>& list) {
+  return [&list](const std::string& v) {
+    list.push_back(v);
+    return std::string();
+  };
+}
+
 std::string Option::name() const {
   const std::size_t comma = names.rfind(", ");
   return comma == std::string::npos ? names : names.substr(comma + 2);

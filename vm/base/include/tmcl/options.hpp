@@ -30,6 +30,13 @@ struct Values {
   static Values dirs() { return {Kind::Dirs, {}}; }
 };
 
+// An option's handler: applies the value, returns the usage error or "".
+using Handler = std::function<std::string(const std::string& value)>;
+// The handlers most options need: the value into a field, a flag set, a value added to a list.
+Handler set(std::string& field);
+Handler flag(bool& field);
+Handler append(std::vector<std::string>& list);
+
 struct Option {
   // The spellings as --help shows them, separated by ", ": "-t, --target", "--trace", "-I".
   // A spelling that ends in '=' or '-' ("-Werror=", "-Wno-") is a prefix: the value follows it
@@ -42,7 +49,7 @@ struct Option {
   // Empty: the option shares the line of the next one ("-Werror, -Werror=NAME  ...").
   std::string help;
   // Applies the option (value: "" for a flag). Returns the usage error, or "" when it was fine.
-  std::function<std::string(const std::string& value)> set;
+  Handler set;
   // What completes the value in the shell.
   Values complete = {};
   // The missing-value error is "SPELLING needs " + needs; empty: derived from the placeholder
