@@ -276,9 +276,7 @@ std::string completion(const Tool& tool, const std::vector<std::string>& words) 
   } else {
     values = tool.operands ? tool.operands(operands, given) : Values::files();
   }
-  if (!pending && values.kind == Values::Kind::None) {
-    // Option names, or the words just offered.
-  } else if (values.kind == Values::Kind::Words) {
+  if (values.kind == Values::Kind::Words) {
     offer_words(values, "");
   } else if (values.kind == Values::Kind::Files) {
     std::string out = "files";
