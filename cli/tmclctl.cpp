@@ -241,7 +241,7 @@ tmcl::cli::Tool command_line(Options& o) {
          o.range_hi = static_cast<int>(hi);
          return std::string();
        },
-       {}, "A-B with 0 <= A <= B <= 255", false, "scan:"},
+       Values::words({"1-8", "1-16", "1-32", "1-255", "0-255"}), "A-B with 0 <= A <= B <= 255", false, "scan:"},
       {"--bauds", "LIST", "baud rates to try, comma-separated (serial ports only)",
        [&o](const std::string& v) {
          for (std::size_t p = 0; p <= v.size();) {
