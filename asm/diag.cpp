@@ -87,6 +87,12 @@ const std::vector<WarningInfo>& warning_table() {
   return table;
 }
 
+std::vector<std::string> warning_names() {
+  std::vector<std::string> names;
+  for (const auto& w : warning_table()) names.emplace_back(w.name);
+  return names;
+}
+
 const WarningInfo* find_warning(std::string_view name) {
   for (const auto& w : warning_table())
     if (w.name == name) return &w;

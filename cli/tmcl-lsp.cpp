@@ -1,5 +1,6 @@
 // tmcl-lsp: the TMCL language server on standard input and output (docs/lsp.md). Reads framed
 // JSON-RPC messages, hands each to tmcl::lsp::Server, writes its replies; all logic is in cli/lsp/.
+// Its one option is declared in a table like every tool's (tmcl/options.hpp).
 // Exit status: 0 after shutdown and exit, 1 on exit without shutdown or end of input, 64 usage.
 #include <unistd.h>
 
@@ -10,7 +11,7 @@
 #include <string>
 
 #include "tmcl/lsp/server.hpp"
-#include "tmcl/version.hpp"
+#include "tmcl/options.hpp"
 
 namespace {
 
@@ -21,13 +22,29 @@ workspace root and from initializationOptions, which win
 ({"target": "usb-2-sd", "includeDirs": ["lib"]}, docs/lsp.md).
 
 options:
-  --stdio    talk over standard input and output (the default and only transport)
-  --help     show this help
-  --version  show the version
+)";
 
+const char* kEpilogue = R"(
 exit status: 0 after shutdown and exit, 1 when the input ends or exit comes without shutdown,
              64 usage error, 74 standard output could not be written
 )";
+
+// The options, declared once (tmcl/options.hpp): --help, the man-page check and completion follow.
+tmcl::cli::Tool command_line() {
+  tmcl::cli::Tool t;
+  t.name = "tmcl-lsp";
+  t.usage = kUsage;
+  t.epilogue = kEpilogue;
+  t.column = 13;
+  t.options = {{"--stdio", "", "talk over standard input and output (the default and only transport)", {}}};
+  t.operands = [](const std::vector<std::string>&, const std::vector<std::string>&) { return tmcl::cli::Values(); };
+  return t;
+}
+
+int usage_error(const std::string& msg) {
+  std::fprintf(stderr, "tmcl-lsp: %s\n(see tmcl-lsp --help)\n", msg.c_str());
+  return 64;
+}
 
 bool write_all(const std::string& s) {
   std::size_t done = 0;
@@ -43,20 +60,10 @@ bool write_all(const std::string& s) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  for (int i = 1; i < argc; ++i) {
-    std::string a = argv[i];
-    if (a == "--help" || a == "-h") {
-      std::fputs(kUsage, stdout);
-      return 0;
-    }
-    if (a == "--version") {
-      std::puts(tmcl::version_line("tmcl-lsp").c_str());
-      return 0;
-    }
-    if (a == "--stdio") continue;
-    std::fprintf(stderr, "tmcl-lsp: unknown option '%s'\n(see tmcl-lsp --help)\n", a.c_str());
-    return 64;
-  }
+  const tmcl::cli::Result cl = tmcl::cli::parse(command_line(), argc, argv);
+  if (cl.status == tmcl::cli::Result::Status::Done) return 0;
+  if (cl.status == tmcl::cli::Result::Status::Error) return usage_error(cl.error);
+  if (!cl.operands.empty()) return usage_error("unexpected argument '" + cl.operands[0] + "' (editors start tmcl-lsp without any)");
   tmcl::lsp::Server server;
   tmcl::lsp::Reader reader(0);
   std::string body, error;

@@ -1,5 +1,5 @@
-// tmclasm: the command-line assembler, linker and disassembler. Parses arguments, calls the
-// assembler library, writes the output. Exit status: 0 success, 65 errors in the input, 64 usage
+// tmclasm: the command-line assembler, linker and disassembler. Declares its options (one table,
+// tmcl/options.hpp), calls the assembler library, writes the output. Exit status: 0 success, 65 errors in the input, 64 usage
 // errors, 74 output not written.
 #include <algorithm>
 #include <cerrno>
@@ -8,6 +8,8 @@
 #include <cstring>
 #include <string>
 #include <vector>
+
+#include <unistd.h>
 
 #if defined(__GLIBC__)
 #include <malloc.h>
@@ -21,7 +23,7 @@
 #include "tmcl/asm/output.hpp"
 #include "tmcl/fileio.hpp"
 #include "tmcl/numbers.hpp"
-#include "tmcl/version.hpp"
+#include "tmcl/options.hpp"
 
 namespace {
 
@@ -44,43 +46,9 @@ address 0 in command-line order; of a library only the members that export a nam
 unit imports are linked, at the library's place.
 
 options:
-  -o FILE            output file; -o - writes to standard output
-                     (default: the first input with the format's extension, beside it;
-                      standard output when reading standard input, for -d and --dump-object)
-  -f, --format FMT   bin (default)  TMCL-IDE .bin, 8 bytes per instruction
-                     datagrams      one 9-byte TMCL request per instruction (.dgm)
-                     listing        addresses, bytes, source lines (.lst)
-                     symbols        labels, constants and line table, tab-separated (.sym)
-                     dot            the control-flow graph for Graphviz (.dot; docs/analysis.md)
-                     lib            a library of the inputs (needs -o)
-  -c                 assemble each source into a relocatable object (FILE.o)
-  --map FILE         also write a link map: input address ranges, every symbol's address
-  -d, --disassemble  turn the FILE (.bin, .dgm datagrams, object) into .tmc source
-  --symbols FILE     with -d: label names and file:line comments from a symbols file
-                     (tmclasm -f symbols)
-  --from FMT         with -d: read FILE as bin, datagrams or object (default: by its contents
-                     and extension)
-  --dump-object      show an object or a library (every member) as text
-  --fmt              write the sources in the canonical layout (to standard output, or -o FILE)
-  -i                 with --fmt: rewrite each FILE in place
-  --check            with --fmt: write nothing; exit 65 naming each FILE not in the layout
-  --address N        module address in datagrams (default 1)
-  -t, --target NAME  usb-2-sd | tmc2300-eval | generic (default)
-  -I DIR             search DIR for #include files (after the including file's folder)
-  -D NAME=VALUE      define a constant (VALUE is an expression)
-  -Werror            treat warnings as errors
-  -Werror=NAME       treat the warning NAME as an error
-  -Wno-NAME          do not report the warning NAME (names: docs/analysis.md, tmclasm.md)
-  --stack-usage      write the call-stack report (per subroutine and handler: its maximum
-                     depth and deepest chain) instead of the program (.su)
-  --analyze          FILE is a .bin or datagrams image: disassemble it and check its control
-                     flow (positions are lines of tmclasm -d FILE; --symbols names labels)
-  --no-analysis      do not analyse the control flow after linking (docs/analysis.md)
-  --no-append-stop   do not append STOP when the program does not end in one
-  --error-limit N    show at most N errors (default 20, 0 = all), then how many more there were
-  --help             show this help
-  --version          show the version
+)";
 
+const char* kEpilogue = R"(
 examples:
   tmclasm prog.tmc                       writes prog.bin
   tmclasm -t usb-2-sd -f listing -o - prog.tmc
@@ -304,9 +272,9 @@ int format_sources(const std::vector<std::string>& files, bool in_place, bool ch
   return status;
 }
 
-int run(int argc, char** argv) {
+// Everything the command line sets.
+struct Settings {
   tmcl::AsmOptions opts;
-  std::vector<std::string> files;
   std::string output, map_file, symbols_file;
   bool have_output = false, have_format = false;
   tmcl::OutputFormat format = tmcl::OutputFormat::Bin;
@@ -317,199 +285,209 @@ int run(int argc, char** argv) {
   bool fmt_in_place = false, fmt_check = false;
   tmcl::DisasmOptions dopts;
   int address = 1;
-  std::vector<std::string> args(argv + 1, argv + argc);
+};
 
-  auto set_mode = [&](Mode m, const char* name) {
-    if (mode != Mode::Link && mode != m) return false;
-    (void)name;
-    mode = m;
-    return true;
-  };
-  for (std::size_t i = 0; i < args.size(); ++i) {
-    const std::string& a = args[i];
-    auto value = [&](const std::string& opt, std::string& out) -> bool {
-      if (a.size() > opt.size() && a.rfind(opt, 0) == 0 && opt.size() == 2) {  // -IDIR, -DX=1, -oFILE
-        out = a.substr(2);
-        return true;
-      }
-      if (i + 1 >= args.size()) return false;
-      out = args[++i];
-      return true;
+bool ends_with(const std::string& s, const char* suffix) {
+  const std::size_t n = std::strlen(suffix);
+  return s.size() >= n && s.compare(s.size() - n, n, suffix) == 0;
+}
+
+// -f FMT. A source file where a format belongs (`--format prog.tmc`) most likely meant --fmt.
+std::string set_format(Settings& s, const std::string& v) {
+  s.have_format = true;
+  s.make_lib = false;
+  if (v == "bin") s.format = tmcl::OutputFormat::Bin;
+  else if (v == "datagrams") s.format = tmcl::OutputFormat::Datagrams;
+  else if (v == "listing") s.format = tmcl::OutputFormat::Listing;
+  else if (v == "symbols") s.format = tmcl::OutputFormat::Symbols;
+  else if (v == "dot") s.extra = Extra::Dot;
+  else if (v == "lib") s.make_lib = true;
+  else {
+    std::string error = "unknown format '" + v + "' (bin, datagrams, listing, symbols, dot, lib)";
+    if (ends_with(v, ".tmc") || ends_with(v, ".inc") || ::access(v.c_str(), F_OK) == 0)
+      error += "; did you mean '--fmt " + v + "', which lays out a source?";
+    return error;
+  }
+  if (v != "dot" && s.extra == Extra::Dot) s.extra = Extra::None;
+  return {};
+}
+
+// -c, -d, --fmt, --dump-object, --analyze: one of them at most.
+std::string set_mode(Settings& s, Mode m, const char* conflicts) {
+  if (s.mode != Mode::Link && s.mode != m) return conflicts;
+  s.mode = m;
+  return {};
+}
+
+// The options, each declared once: --help, the errors, the man-page check and bash completion
+// follow from this table (tmcl/options.hpp).
+tmcl::cli::Tool command_line(Settings& s) {
+  using tmcl::cli::flag, tmcl::cli::set, tmcl::cli::Values;
+  auto ok = [](auto&& apply) {
+    return [apply](const std::string& v) {
+      apply(v);
+      return std::string();
     };
-    std::string v;
-    if (a == "--help" || a == "-h") {
-      std::fputs(kUsage, stdout);
-      return 0;
-    } else if (a == "--version") {
-      std::puts(tmcl::version_line("tmclasm").c_str());
-      return 0;
-    } else if (a == "-o" || (a.rfind("-o", 0) == 0 && a.size() > 2 && a[2] != '-')) {
-      if (!value("-o", v)) return usage_error("-o needs a file name");
-      output = v;
-      have_output = true;
-    } else if (a == "-f" || a == "--format") {
-      if (!value(a, v)) return usage_error(a + " needs a format");
-      have_format = true;
-      make_lib = false;
-      if (v == "bin") format = tmcl::OutputFormat::Bin;
-      else if (v == "datagrams") format = tmcl::OutputFormat::Datagrams;
-      else if (v == "listing") format = tmcl::OutputFormat::Listing;
-      else if (v == "symbols") format = tmcl::OutputFormat::Symbols;
-      else if (v == "dot") extra = Extra::Dot;
-      else if (v == "lib") make_lib = true;
-      else return usage_error("unknown format '" + v + "' (bin, datagrams, listing, symbols, dot, lib)");
-      if (v != "dot" && extra == Extra::Dot) extra = Extra::None;
-    } else if (a == "-c") {
-      if (!set_mode(Mode::Compile, "-c")) return usage_error("-c cannot be combined with -d or --dump-object");
-    } else if (a == "-d" || a == "--disassemble") {
-      if (!set_mode(Mode::Disassemble, "-d")) return usage_error("-d cannot be combined with -c or --dump-object");
-    } else if (a == "--fmt") {
-      if (!set_mode(Mode::Fmt, "--fmt")) return usage_error("--fmt cannot be combined with -c, -d, --analyze or --dump-object");
-    } else if (a == "-i") {
-      fmt_in_place = true;
-    } else if (a == "--check") {
-      fmt_check = true;
-    } else if (a == "--dump-object") {
-      if (!set_mode(Mode::Dump, "--dump-object")) return usage_error("--dump-object cannot be combined with -c or -d");
-    } else if (a == "--stack-usage") {
-      extra = Extra::StackUsage;
-    } else if (a == "--no-analysis") {
-      analysis = false;
-    } else if (a == "--analyze") {
-      if (!set_mode(Mode::Analyze, "--analyze")) return usage_error("--analyze cannot be combined with -c, -d or --dump-object");
-    } else if (a == "--map") {
-      if (!value(a, v)) return usage_error("--map needs a file name");
-      map_file = v;
-    } else if (a == "--symbols") {
-      if (!value(a, v)) return usage_error("--symbols needs a file name");
-      symbols_file = v;
-    } else if (a == "--from") {
-      if (!value(a, v)) return usage_error("--from needs a format");
-      if (v == "bin") dopts.kind = tmcl::ImageKind::Bin;
-      else if (v == "datagrams") dopts.kind = tmcl::ImageKind::Datagrams;
-      else if (v == "object") dopts.kind = tmcl::ImageKind::Object;
-      else return usage_error("unknown input format '" + v + "' for --from (bin, datagrams, object)");
-    } else if (a == "-t" || a == "--target") {
-      if (!value(a, v)) return usage_error(a + " needs a target name");
-      opts.profile = tmcl::find_profile(v);
-      if (!opts.profile) return usage_error("unknown target '" + v + "' (usb-2-sd, tmc2300-eval, generic)");
-    } else if (a == "--address") {
-      if (!value(a, v)) return usage_error("--address needs a number");
-      char* end = nullptr;
-      long n = std::strtol(v.c_str(), &end, 0);
-      if (v.empty() || *end || n < 0 || n > 255) return usage_error("--address must be a number from 0 to 255");
-      address = static_cast<int>(n);
-    } else if (a.rfind("-I", 0) == 0) {
-      if (!value("-I", v)) return usage_error("-I needs a folder");
-      opts.include_dirs.push_back(v);
-    } else if (a.rfind("-D", 0) == 0) {
-      if (!value("-D", v)) return usage_error("-D needs NAME=VALUE");
-      auto eq = v.find('=');
-      std::string name = v.substr(0, eq);
-      if (!tmcl::is_valid_name(name)) return usage_error("-D " + v + ": '" + name + "' is not a valid name");
-      opts.defines.emplace_back(name, eq == std::string::npos ? "1" : v.substr(eq + 1));
-    } else if (a.rfind("-W", 0) == 0) {
-      std::string error;
-      if (!opts.warnings.parse(a, error))
-        return usage_error(error.empty() ? "unknown option '" + a + "'" : error);
-      if (a == "-Werror") dopts.warnings_are_errors = true;
-    } else if (a == "--no-append-stop") {
-      opts.append_stop = false;
-    } else if (a == "--error-limit") {
-      if (!value(a, v)) return usage_error("--error-limit needs a number");
-      std::int64_t n = 0;
-      if (!tmcl::parse_int(v, 0, 1'000'000'000, n))
-        return usage_error("bad error limit '" + v + "' for --error-limit (a number, 0 for no limit)");
-      opts.error_limit = static_cast<int>(n);
-    } else if (a == "-") {
-      files.push_back(a);
-    } else if (a.size() > 1 && a[0] == '-') {
-      return usage_error("unknown option '" + a + "'");
-    } else {
-      files.push_back(a);
+  };
+  auto warning = [&s](const char* prefix) {
+    return [&s, prefix](const std::string& v) {
+      std::string error, arg = prefix + v;
+      if (!s.opts.warnings.parse(arg, error)) return error.empty() ? "unknown option '" + arg + "'" : error;
+      if (arg == "-Werror") s.dopts.warnings_are_errors = true;
+      return std::string();
+    };
+  };
+  const Values warnings = Values::words(tmcl::warning_names());
+  tmcl::cli::Tool t;
+  t.name = "tmclasm";
+  t.usage = kUsage;
+  t.epilogue = kEpilogue;
+  t.column = 21;
+  t.options = {
+      {"-o", "FILE",
+       "output file; -o - writes to standard output\n"
+       "(default: the first input with the format's extension, beside it;\n"
+       " standard output when reading standard input, for -d and --dump-object)",
+       ok([&s](const std::string& v) { s.output = v, s.have_output = true; }), Values::files(), "a file name"},
+      {"-f, --format", "FMT",
+       "bin (default)  TMCL-IDE .bin, 8 bytes per instruction\n"
+       "datagrams      one 9-byte TMCL request per instruction (.dgm)\n"
+       "listing        addresses, bytes, source lines (.lst)\n"
+       "symbols        labels, constants and line table, tab-separated (.sym)\n"
+       "dot            the control-flow graph for Graphviz (.dot; docs/analysis.md)\n"
+       "lib            a library of the inputs (needs -o)",
+       [&s](const std::string& v) { return set_format(s, v); },
+       Values::words({"bin", "datagrams", "listing", "symbols", "dot", "lib"}), "a format"},
+      {"-c", "", "assemble each source into a relocatable object (FILE.o)",
+       [&s](const std::string&) { return set_mode(s, Mode::Compile, "-c cannot be combined with -d or --dump-object"); }},
+      {"--map", "FILE", "also write a link map: input address ranges, every symbol's address",
+       set(s.map_file), Values::files({"map"}), "a file name"},
+      {"-d, --disassemble", "", "turn the FILE (.bin, .dgm datagrams, object) into .tmc source",
+       [&s](const std::string&) { return set_mode(s, Mode::Disassemble, "-d cannot be combined with -c or --dump-object"); }},
+      {"--symbols", "FILE", "with -d: label names and file:line comments from a symbols file\n(tmclasm -f symbols)",
+       set(s.symbols_file), Values::files({"sym"}), "a file name"},
+      {"--from", "FMT", "with -d: read FILE as bin, datagrams or object (default: by its contents\nand extension)",
+       [&s](const std::string& v) {
+         if (v == "bin") s.dopts.kind = tmcl::ImageKind::Bin;
+         else if (v == "datagrams") s.dopts.kind = tmcl::ImageKind::Datagrams;
+         else if (v == "object") s.dopts.kind = tmcl::ImageKind::Object;
+         else return "unknown input format '" + v + "' for --from (bin, datagrams, object)";
+         return std::string();
+       },
+       Values::words({"bin", "datagrams", "object"}), "a format"},
+      {"--dump-object", "", "show an object or a library (every member) as text",
+       [&s](const std::string&) { return set_mode(s, Mode::Dump, "--dump-object cannot be combined with -c or -d"); }},
+      {"--fmt", "", "write the sources in the canonical layout (to standard output, or -o FILE)",
+       [&s](const std::string&) {
+         return set_mode(s, Mode::Fmt, "--fmt cannot be combined with -c, -d, --analyze or --dump-object");
+       }},
+      {"-i", "", "with --fmt: rewrite each FILE in place", flag(s.fmt_in_place)},
+      {"--check", "", "with --fmt: write nothing; exit 65 naming each FILE not in the layout",
+       flag(s.fmt_check)},
+      {"--address", "N", "module address in datagrams (default 1)",
+       [&s](const std::string& v) {
+         char* end = nullptr;
+         const long n = std::strtol(v.c_str(), &end, 0);
+         if (v.empty() || *end || n < 0 || n > 255) return std::string("--address must be a number from 0 to 255");
+         s.address = static_cast<int>(n);
+         return std::string();
+       }},
+      {"-t, --target", "NAME", "usb-2-sd | tmc2300-eval | generic (default)",
+       [&s](const std::string& v) {
+         s.opts.profile = tmcl::find_profile(v);
+         return s.opts.profile ? std::string() : "unknown target '" + v + "' (usb-2-sd, tmc2300-eval, generic)";
+       },
+       Values::words(tmcl::profile_names()), "a target name"},
+      {"-I", "DIR", "search DIR for #include files (after the including file's folder)",
+       tmcl::cli::append(s.opts.include_dirs), Values::dirs()},
+      {"-D", "NAME=VALUE", "define a constant (VALUE is an expression)",
+       [&s](const std::string& v) {
+         const auto eq = v.find('=');
+         const std::string name = v.substr(0, eq);
+         if (!tmcl::is_valid_name(name)) return "-D " + v + ": '" + name + "' is not a valid name";
+         s.opts.defines.emplace_back(name, eq == std::string::npos ? "1" : v.substr(eq + 1));
+         return std::string();
+       }},
+      {"-Werror", "", "treat warnings as errors", warning("-Werror")},
+      {"-Werror=", "NAME", "treat the warning NAME as an error", warning("-Werror="), warnings},
+      {"-Wno-", "NAME", "do not report the warning NAME (names: docs/analysis.md)", warning("-Wno-"), warnings},
+      {"-W", "NAME", "", warning("-W"), warnings, {}, true},
+      {"--stack-usage", "",
+       "write the call-stack report (per subroutine and handler: its maximum\n"
+       "depth and deepest chain) instead of the program (.su)",
+       ok([&s](const std::string&) { s.extra = Extra::StackUsage; })},
+      {"--analyze", "",
+       "FILE is a .bin or datagrams image: disassemble it and check its control\n"
+       "flow (positions are lines of tmclasm -d FILE; --symbols names labels)",
+       [&s](const std::string&) {
+         return set_mode(s, Mode::Analyze, "--analyze cannot be combined with -c, -d or --dump-object");
+       }},
+      {"--no-analysis", "", "do not analyse the control flow after linking (docs/analysis.md)",
+       ok([&s](const std::string&) { s.analysis = false; })},
+      {"--no-append-stop", "", "do not append STOP when the program does not end in one",
+       ok([&s](const std::string&) { s.opts.append_stop = false; })},
+      {"--error-limit", "N", "show at most N errors (default 20, 0 = all), then how many more there were",
+       [&s](const std::string& v) {
+         std::int64_t n = 0;
+         if (!tmcl::parse_int(v, 0, 1'000'000'000, n))
+           return "bad error limit '" + v + "' for --error-limit (a number, 0 for no limit)";
+         s.opts.error_limit = static_cast<int>(n);
+         return std::string();
+       }},
+  };
+  t.operands = [](const std::vector<std::string>&, const std::vector<std::string>& given) {
+    for (const auto& g : given) {
+      if (g == "--disassemble" || g == "--analyze") return Values::files({"bin", "dgm", "o"});
+      if (g == "--dump-object") return Values::files({"o", "a"});
     }
-  }
-  if (files.empty()) return usage_error("no input files");
-  if ((fmt_in_place || fmt_check) && mode != Mode::Fmt) return usage_error("-i and --check go with --fmt");
-  if (mode == Mode::Fmt) {
-    if (fmt_in_place && fmt_check) return usage_error("--fmt takes -i or --check, not both");
-    if (have_output && (fmt_in_place || fmt_check || files.size() != 1))
-      return usage_error("-o with --fmt names the output of one source (not with -i or --check)");
-    return format_sources(files, fmt_in_place, fmt_check, have_output ? output : "-");
-  }
-  if (make_lib && mode != Mode::Link) return usage_error("-f lib cannot be combined with -c, -d or --dump-object");
-  if (!map_file.empty() && (mode != Mode::Link || make_lib)) return usage_error("--map needs a link (not -c, -d, -f lib)");
-  if ((!symbols_file.empty() || dopts.kind != tmcl::ImageKind::Auto) && mode != Mode::Disassemble && mode != Mode::Analyze)
-    return usage_error("--symbols and --from need -d or --analyze");
-  if (extra != Extra::None && (mode == Mode::Compile || make_lib || !analysis))
-    return usage_error("-f dot and --stack-usage need a linked program and the analysis (not -c, -f lib, --no-analysis)");
-  if (mode == Mode::Analyze) {
-    if (files.size() != 1) return usage_error("--analyze takes one image file");
-    std::string out = have_output ? output : "-";
-    return analyze_image(files[0], opts, dopts, symbols_file, extra, out);
-  }
-  if (mode == Mode::Disassemble || mode == Mode::Dump) {
-    if (files.size() != 1)
-      return usage_error(std::string(mode == Mode::Dump ? "--dump-object" : "-d") + " takes one input file");
-    if (have_format) return usage_error("-f does not apply to -d or --dump-object (they write text)");
-    std::string out = have_output ? output : "-";
-    return mode == Mode::Dump ? dump(files[0], out) : disassemble(files[0], out, dopts, symbols_file);
-  }
+    return Values::files({"tmc", "inc", "o", "a"});
+  };
+  return t;
+}
 
-  tmcl::DiskReader reader;
-  if (make_lib) {
-    if (!have_output) return usage_error("-f lib needs -o LIBRARY");
-    tmcl::LibraryResult lib = tmcl::make_library(files, opts, reader);
-    std::fputs(lib.messages.c_str(), stderr);
-    if (!lib.ok()) {
-      print_failure(lib.errors, lib.warnings);
-      return kExitInput;
-    }
-    return write_output(output, tmcl::write_library(lib.library)) ? 0 : kExitOutput;
+// -c: every source is assembled and reported; objects are written only when all succeed.
+int compile(const std::vector<std::string>& files, Settings& s, tmcl::FileReader& reader) {
+  if (s.have_format) return usage_error("-c writes objects; -f does not apply");
+  if (s.have_output && files.size() > 1) return usage_error("-o with -c names one object; give one source file");
+  std::vector<std::pair<std::string, std::vector<std::uint8_t>>> objects;
+  int errors = 0, warnings = 0;
+  s.opts.relocatable = true;
+  for (const auto& file : files) {
+    tmcl::AsmResult r = tmcl::assemble({file}, s.opts, reader);
+    std::fputs(r.diags.render(r.sources, s.opts.error_limit).c_str(), stderr);
+    errors += r.diags.error_count();
+    warnings += r.diags.warning_count();
+    if (!r.ok() || !r.object) continue;
+    std::string out = s.have_output ? s.output : file == "-" ? std::string("-") : with_extension(file, ".o");
+    objects.emplace_back(out, tmcl::write_object(*r.object));
   }
-
-  if (mode == Mode::Compile) {
-    if (have_format) return usage_error("-c writes objects; -f does not apply");
-    if (have_output && files.size() > 1) return usage_error("-o with -c names one object; give one source file");
-    // Every source is assembled and reported; objects are written only when all succeed.
-    std::vector<std::pair<std::string, std::vector<std::uint8_t>>> objects;
-    int errors = 0, warnings = 0;
-    opts.relocatable = true;
-    for (const auto& file : files) {
-      tmcl::AsmResult r = tmcl::assemble({file}, opts, reader);
-      std::fputs(r.diags.render(r.sources, opts.error_limit).c_str(), stderr);
-      errors += r.diags.error_count();
-      warnings += r.diags.warning_count();
-      if (!r.ok() || !r.object) continue;
-      std::string out = have_output ? output
-                        : file == "-" ? std::string("-")
-                                      : with_extension(file, ".o");
-      objects.emplace_back(out, tmcl::write_object(*r.object));
-    }
-    if (errors > 0) {
-      print_failure(errors, warnings);
-      return kExitInput;
-    }
-    for (const auto& [path, bytes] : objects)
-      if (!write_output(path, bytes)) return kExitOutput;
-    return 0;
+  if (errors > 0) {
+    print_failure(errors, warnings);
+    return kExitInput;
   }
+  for (const auto& [path, bytes] : objects)
+    if (!write_output(path, bytes)) return kExitOutput;
+  return 0;
+}
 
+// A link into one program (or its analysis' dot graph or stack report).
+int link(const std::vector<std::string>& files, Settings& s, tmcl::FileReader& reader) {
   // Label names: for the symbols format, the map, the analysis' pictures and its messages. A
   // million-line program has a hundred thousand labels, and collecting them costs more than the
   // whole analysis (docs/performance.md), so a plain link first analyses without them and
   // assembles again with them only when the analysis has something to say. Standard input
   // cannot be read twice: names up front then.
-  opts.symbols = format == tmcl::OutputFormat::Symbols || !map_file.empty() || extra != Extra::None ||
-                 (analysis && std::find(files.begin(), files.end(), "-") != files.end());
+  tmcl::AsmOptions& opts = s.opts;
+  opts.symbols = s.format == tmcl::OutputFormat::Symbols || !s.map_file.empty() || s.extra != Extra::None ||
+                 (s.analysis && std::find(files.begin(), files.end(), "-") != files.end());
   tmcl::AsmResult result = tmcl::assemble(files, opts, reader);
   std::string extra_text;
-  if (analysis && result.ok() && !(!opts.symbols && analysis_is_silent(result))) {
+  if (s.analysis && result.ok() && !(!opts.symbols && analysis_is_silent(result))) {
     if (!opts.symbols) {
       opts.symbols = true;
       result = tmcl::assemble(files, opts, reader);
     }
-    if (result.ok()) extra_text = analyze_program(result, extra, true);
+    if (result.ok()) extra_text = analyze_program(result, s.extra, true);
   }
   std::string text = result.diags.render(result.sources, opts.error_limit);
   std::fputs(text.c_str(), stderr);
@@ -518,22 +496,71 @@ int run(int argc, char** argv) {
     return kExitInput;
   }
 
-  if (!have_output) {
+  std::string output = s.output;
+  if (!s.have_output) {
     if (files[0] == "-") {
       output = "-";
     } else {
       static const char* ext[] = {".bin", ".dgm", ".lst", ".sym"};
-      output = with_extension(files[0], extra == Extra::Dot          ? ".dot"
-                                        : extra == Extra::StackUsage ? ".su"
-                                                                     : ext[static_cast<int>(format)]);
+      output = with_extension(files[0], s.extra == Extra::Dot          ? ".dot"
+                                        : s.extra == Extra::StackUsage ? ".su"
+                                                                       : ext[static_cast<int>(s.format)]);
     }
   }
-  if (extra != Extra::None) return write_output(output, bytes_of(extra_text)) ? 0 : kExitOutput;
+  if (s.extra != Extra::None) return write_output(output, bytes_of(extra_text)) ? 0 : kExitOutput;
   const tmcl::Profile& profile = result.profile ? *result.profile : tmcl::generic_profile();
-  auto bytes = tmcl::format_output(format, result, profile, static_cast<std::uint8_t>(address));
-  if (!map_file.empty() && !write_output(map_file, bytes_of(tmcl::format_map(result)))) return kExitOutput;
+  auto bytes = tmcl::format_output(s.format, result, profile, static_cast<std::uint8_t>(s.address));
+  if (!s.map_file.empty() && !write_output(s.map_file, bytes_of(tmcl::format_map(result)))) return kExitOutput;
   if (!write_output(output, bytes)) return kExitOutput;
   return 0;
+}
+
+int run(int argc, char** argv) {
+  Settings s;
+  const tmcl::cli::Result cl = tmcl::cli::parse(command_line(s), argc, argv);
+  if (cl.status == tmcl::cli::Result::Status::Done) return 0;
+  if (cl.status == tmcl::cli::Result::Status::Error) return usage_error(cl.error);
+  const std::vector<std::string>& files = cl.operands;
+  const Mode mode = s.mode;
+  const std::string out = s.have_output ? s.output : "-";
+  if (files.empty()) return usage_error("no input files");
+  if ((s.fmt_in_place || s.fmt_check) && mode != Mode::Fmt) return usage_error("-i and --check go with --fmt");
+  if (mode == Mode::Fmt) {
+    if (s.fmt_in_place && s.fmt_check) return usage_error("--fmt takes -i or --check, not both");
+    if (s.have_output && (s.fmt_in_place || s.fmt_check || files.size() != 1))
+      return usage_error("-o with --fmt names the output of one source (not with -i or --check)");
+    return format_sources(files, s.fmt_in_place, s.fmt_check, out);
+  }
+  if (s.make_lib && mode != Mode::Link) return usage_error("-f lib cannot be combined with -c, -d or --dump-object");
+  if (!s.map_file.empty() && (mode != Mode::Link || s.make_lib)) return usage_error("--map needs a link (not -c, -d, -f lib)");
+  if ((!s.symbols_file.empty() || s.dopts.kind != tmcl::ImageKind::Auto) && mode != Mode::Disassemble &&
+      mode != Mode::Analyze)
+    return usage_error("--symbols and --from need -d or --analyze");
+  if (s.extra != Extra::None && (mode == Mode::Compile || s.make_lib || !s.analysis))
+    return usage_error("-f dot and --stack-usage need a linked program and the analysis (not -c, -f lib, --no-analysis)");
+  if (mode == Mode::Analyze) {
+    if (files.size() != 1) return usage_error("--analyze takes one image file");
+    return analyze_image(files[0], s.opts, s.dopts, s.symbols_file, s.extra, out);
+  }
+  if (mode == Mode::Disassemble || mode == Mode::Dump) {
+    if (files.size() != 1)
+      return usage_error(std::string(mode == Mode::Dump ? "--dump-object" : "-d") + " takes one input file");
+    if (s.have_format) return usage_error("-f does not apply to -d or --dump-object (they write text)");
+    return mode == Mode::Dump ? dump(files[0], out) : disassemble(files[0], out, s.dopts, s.symbols_file);
+  }
+
+  tmcl::DiskReader reader;
+  if (s.make_lib) {
+    if (!s.have_output) return usage_error("-f lib needs -o LIBRARY");
+    tmcl::LibraryResult lib = tmcl::make_library(files, s.opts, reader);
+    std::fputs(lib.messages.c_str(), stderr);
+    if (!lib.ok()) {
+      print_failure(lib.errors, lib.warnings);
+      return kExitInput;
+    }
+    return write_output(s.output, tmcl::write_library(lib.library)) ? 0 : kExitOutput;
+  }
+  return mode == Mode::Compile ? compile(files, s, reader) : link(files, s, reader);
 }
 
 }  // namespace

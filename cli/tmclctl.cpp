@@ -4,9 +4,11 @@
 // and parameter names live in cli/host/ (tmcl_host); see docs/tmclctl.md for every command.
 // Exit status: 0 ok, 1 verify mismatch, 2 error status from the module, 64 usage, 65 bad input,
 // 69 no reply, 74 port, output file or standard output error, 130 interrupted.
+#include <dirent.h>
 #include <signal.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <cinttypes>
 #include <csignal>
@@ -30,9 +32,9 @@
 #include "tmcl/host/scan.hpp"
 #include "tmcl/host/transfer.hpp"
 #include "tmcl/image.hpp"
+#include "tmcl/options.hpp"
 #include "tmcl/plot.hpp"
 #include "tmcl/program_image.hpp"
-#include "tmcl/version.hpp"
 
 namespace {
 
@@ -63,27 +65,9 @@ commands:
   scan                        find the modules on a bus: address, firmware, module type
 
 options:
-  -a N                   module address (default 1)
-  --host-address N       host address replies are sent to (default 2)
-  -t, --target NAME      module profile for names, ranges and memory (default generic)
-  --baud N               serial baud rate, 9600 to 1000000 (default 9600; raw 8N1)
-  --timeout DURATION     wait this long for each reply (default 1s)
-  --retries N            resend a request this often when no reply comes (default 2)
-  --raw                  show every frame sent (>) and received (<) in hex
-  -q, --quiet            no progress bar or banners
-  -I DIR                 search DIR for #include files (send, console, download)
-  download: --no-verify  skip reading the program back with 134
-            --run        reset and start the program afterwards
-            --autostart  set global parameter 77 and store it: the program starts at power-on
-            --from N     resume an interrupted download at address N
-  upload:   -o FILE      the .bin to write (atomically)
-  monitor:  --every DURATION (default 100ms)  --for DURATION (default: until Ctrl-C)
-            --csv FILE   write the rows to FILE instead of standard output
-            --plot FILE  also draw the polled values against time as an SVG (one panel each)
-  scan:     --range A-B  addresses to try (default 1-255)
-            --bauds LIST baud rates to try, comma-separated (serial ports only)
-  --help, --version
-DURATION: an integer with us, ms, s or min (500ms, 2s).
+)";
+
+const char* kEpilogue = R"(DURATION: an integer with us, ms, s or min (500ms, 2s).
 
 examples:
   tmclctl /dev/ttyACM0 download --run prog.tmc
@@ -95,6 +79,9 @@ exit status: 0 ok, 1 verify mismatch, 2 the module answered with an error status
              65 bad input file, 69 no reply from the module, 74 port error, output file or
              standard output not written, 130 interrupted (Ctrl-C)
 )";
+
+const char* const kCommands[] = {"send", "get", "set", "store", "download", "upload", "run", "stop", "step",
+                                 "reset", "status", "monitor", "console", "scan"};
 
 volatile std::sig_atomic_t g_stop = 0;
 extern "C" void on_sigint(int) { g_stop = 1; }
@@ -134,93 +121,161 @@ bool parse_long(const std::string& s, long lo, long hi, long& out) {
   return true;
 }
 
-int parse_args(int argc, char** argv, Options& o) {
-  std::vector<std::string> args(argv + 1, argv + argc);
-  o.argv = args;
-  std::vector<std::string> words;
-  for (std::size_t i = 0; i < args.size(); ++i) {
-    std::string a = args[i];
-    auto value = [&](std::string& out) {
-      if (i + 1 >= args.size()) return false;
-      out = args[++i];
-      return true;
-    };
-    std::string v;
-    long n = 0;
-    if (a == "--help" || a == "-h") {
-      std::fputs(kUsage, stdout);
-      return kExitOk;
-    } else if (a == "--version") {
-      std::puts(tmcl::version_line("tmclctl").c_str());
-      return kExitOk;
-    } else if (a == "-a" || a == "--host-address") {
-      if (!value(v) || !parse_long(v, 0, 255, n)) return usage_error(a + " needs an address from 0 to 255");
-      (a == "-a" ? o.client.module : o.client.host) = static_cast<std::uint8_t>(n);
-    } else if (a == "-t" || a == "--target") {
-      if (!value(o.target)) return usage_error("-t needs a module name");
-    } else if (a == "--baud") {
-      if (!value(v) || !parse_long(v, 1, 100000000, n) || !host::valid_baud(n))
-        return usage_error("--baud takes 9600, 19200, 38400, 57600, 115200, 230400, 460800, 500000, 576000, 921600 or 1000000");
-      o.baud = n;
-    } else if (a == "--timeout" || a == "--every" || a == "--for") {
-      auto d = value(v) ? tmcl::parse_duration(v) : std::nullopt;
-      if (!d || *d <= 0) return usage_error(a + " needs a duration greater than 0 (e.g. 500ms, 2s)");
-      if (a == "--timeout") {
-        o.client.timeout_ms = static_cast<int>(std::min<tmcl::SimTime>(*d / 1000 + (*d % 1000 ? 1 : 0), 600000));
-        o.timeout_given = true;
-      } else {
-        (a == "--every" ? o.every : o.for_time) = *d;
-        if (a == "--every") o.every_text = v;
-      }
-    } else if (a == "--retries") {
-      if (!value(v) || !parse_long(v, 0, 100, n)) return usage_error("--retries needs a number from 0 to 100");
-      o.client.retries = static_cast<int>(n);
-    } else if (a == "--raw") {
-      o.raw = true;
-    } else if (a == "-q" || a == "--quiet") {
-      o.quiet = true;
-    } else if (a == "-I") {
-      if (!value(v)) return usage_error("-I needs a directory");
-      o.include_dirs.push_back(v);
-    } else if (a == "--no-verify") {
-      o.verify = false;
-    } else if (a == "--run") {
-      o.run = true;
-    } else if (a == "--autostart") {
-      o.autostart = true;
-    } else if (a == "--from") {
-      if (!value(v) || !parse_long(v, 0, 1 << 20, n)) return usage_error("--from needs an address");
-      o.from = static_cast<int>(n);
-    } else if (a == "-o") {
-      if (!value(o.output)) return usage_error("-o needs a file");
-    } else if (a == "--csv") {
-      if (!value(o.csv)) return usage_error("--csv needs a file");
-    } else if (a == "--plot") {
-      if (!value(o.plot)) return usage_error("--plot needs a file");
-    } else if (a == "--range") {
-      long lo = 0, hi = 0;
-      const auto dash = value(v) ? v.find('-') : std::string::npos;
-      if (dash == std::string::npos || !parse_long(v.substr(0, dash), 0, 255, lo) || !parse_long(v.substr(dash + 1), lo, 255, hi))
-        return usage_error("--range needs A-B with 0 <= A <= B <= 255");
-      o.range_lo = static_cast<int>(lo);
-      o.range_hi = static_cast<int>(hi);
-    } else if (a == "--bauds") {
-      if (!value(v)) return usage_error("--bauds needs a list such as 9600,115200");
-      for (std::size_t p = 0; p <= v.size();) {
-        const std::size_t q = std::min(v.find(',', p), v.size());
-        if (!parse_long(v.substr(p, q - p), 1, 100000000, n) || !host::valid_baud(n))
-          return usage_error("--bauds: '" + v.substr(p, q - p) + "' is not a supported baud rate");
-        o.bauds.push_back(n);
-        p = q + 1;
-      }
-    } else if (a.size() > 1 && a[0] == '-' && !(words.size() >= 2 && (a[1] == '-' || std::isdigit(static_cast<unsigned char>(a[1]))))) {
-      return usage_error("unknown option '" + a + "'");
-    } else if (a.size() > 2 && a[0] == '-' && a[1] == '-') {
-      return usage_error("unknown option '" + a + "'");
-    } else {
-      words.push_back(a);  // negative numbers after the command are values
+// The serial devices a module may be on, and a TCP address (tmclrun --serve's example): what
+// completes PORT.
+std::vector<std::string> port_words() {
+  std::vector<std::string> ports;
+  if (DIR* dev = ::opendir("/dev")) {
+    while (const dirent* e = ::readdir(dev)) {
+      const std::string name = e->d_name;
+      if (name.rfind("ttyACM", 0) == 0 || name.rfind("ttyUSB", 0) == 0) ports.push_back("/dev/" + name);
     }
+    ::closedir(dev);
   }
+  std::sort(ports.begin(), ports.end());
+  ports.push_back("tcp:127.0.0.1:2001");
+  return ports;
+}
+
+// The options, each declared once: --help, the errors, the man-page check and bash completion
+// follow from this table (tmcl/options.hpp).
+tmcl::cli::Tool command_line(Options& o) {
+  using tmcl::cli::flag, tmcl::cli::set, tmcl::cli::Values;
+  auto address = [](const char* opt, std::uint8_t& field) {
+    return [opt, &field](const std::string& v) {
+      long n = 0;
+      if (!parse_long(v, 0, 255, n)) return std::string(opt) + " needs an address from 0 to 255";
+      field = static_cast<std::uint8_t>(n);
+      return std::string();
+    };
+  };
+  auto duration = [](const char* opt, tmcl::SimTime& field) {
+    return [opt, &field](const std::string& v) {
+      auto d = tmcl::parse_duration(v);
+      if (!d || *d <= 0) return std::string(opt) + " needs a duration greater than 0 (e.g. 500ms, 2s)";
+      field = *d;
+      return std::string();
+    };
+  };
+  const char* kBauds = "9600, 19200, 38400, 57600, 115200, 230400, 460800, 500000, 576000, 921600 or 1000000";
+  const std::vector<std::string> bauds{"9600",   "19200",  "38400",  "57600",  "115200", "230400",
+                                       "460800", "500000", "576000", "921600", "1000000"};
+  const std::vector<std::string> durations{"100ms", "500ms", "1s", "10s"};
+  tmcl::cli::Tool t;
+  t.name = "tmclctl";
+  t.usage = kUsage;
+  t.epilogue = kEpilogue;
+  t.column = 25;
+  t.options = {
+      {"-a", "N", "module address (default 1)", address("-a", o.client.module), {}, "an address from 0 to 255"},
+      {"--host-address", "N", "host address replies are sent to (default 2)", address("--host-address", o.client.host),
+       {}, "an address from 0 to 255"},
+      {"-t, --target", "NAME", "module profile for names, ranges and memory (default generic)", set(o.target),
+       Values::words(tmcl::profile_names()), "a module name"},
+      {"--baud", "N", "serial baud rate, 9600 to 1000000 (default 9600; raw 8N1)",
+       [&o, kBauds](const std::string& v) {
+         long n = 0;
+         if (!parse_long(v, 1, 100000000, n) || !host::valid_baud(n)) return std::string("--baud takes ") + kBauds;
+         o.baud = n;
+         return std::string();
+       },
+       Values::words(bauds), std::string("a baud rate: ") + kBauds},
+      {"--timeout", "DURATION", "wait this long for each reply (default 1s)",
+       [&o, duration](const std::string& v) {
+         tmcl::SimTime d = 0;
+         std::string error = duration("--timeout", d)(v);
+         if (!error.empty()) return error;
+         o.client.timeout_ms = static_cast<int>(std::min<tmcl::SimTime>(d / 1000 + (d % 1000 ? 1 : 0), 600000));
+         o.timeout_given = true;
+         return std::string();
+       },
+       Values::words(durations), "a duration greater than 0 (e.g. 500ms, 2s)"},
+      {"--retries", "N", "resend a request this often when no reply comes (default 2)",
+       [&o](const std::string& v) {
+         long n = 0;
+         if (!parse_long(v, 0, 100, n)) return std::string("--retries needs a number from 0 to 100");
+         o.client.retries = static_cast<int>(n);
+         return std::string();
+       },
+       {}, "a number from 0 to 100"},
+      {"--raw", "", "show every frame sent (>) and received (<) in hex", flag(o.raw)},
+      {"-q, --quiet", "", "no progress bar or banners", flag(o.quiet)},
+      {"-I", "DIR", "search DIR for #include files (send, console, download)", tmcl::cli::append(o.include_dirs),
+       Values::dirs(), "a directory"},
+      {"--no-verify", "", "skip reading the program back with 134",
+       [&o](const std::string&) {
+         o.verify = false;
+         return std::string();
+       },
+       {}, {}, false, "download:"},
+      {"--run", "", "reset and start the program afterwards", flag(o.run), {}, {}, false, "download:"},
+      {"--autostart", "", "set global parameter 77 and store it: the program starts at power-on", flag(o.autostart),
+       {}, {}, false, "download:"},
+      {"--from", "N", "resume an interrupted download at address N",
+       [&o](const std::string& v) {
+         long n = 0;
+         if (!parse_long(v, 0, 1 << 20, n)) return std::string("--from needs an address");
+         o.from = static_cast<int>(n);
+         return std::string();
+       },
+       {}, "an address", false, "download:"},
+      {"-o", "FILE", "the .bin to write (atomically)", set(o.output), Values::files({"bin"}), {}, false, "upload:"},
+      {"--every", "DURATION", "poll every DURATION (default 100ms)",
+       [&o, duration](const std::string& v) {
+         o.every_text = v;
+         return duration("--every", o.every)(v);
+       },
+       Values::words(durations), "a duration greater than 0 (e.g. 500ms, 2s)", false, "monitor:"},
+      {"--for", "DURATION", "stop after DURATION (default: until Ctrl-C)", duration("--for", o.for_time),
+       Values::words(durations), "a duration greater than 0 (e.g. 500ms, 2s)", false, "monitor:"},
+      {"--csv", "FILE", "write the rows to FILE instead of standard output", set(o.csv), Values::files({"csv"}), {},
+       false, "monitor:"},
+      {"--plot", "FILE", "also draw the polled values against time as an SVG (one panel each)", set(o.plot),
+       Values::files({"svg"}), {}, false, "monitor:"},
+      {"--range", "A-B", "addresses to try (default 1-255)",
+       [&o](const std::string& v) {
+         long lo = 0, hi = 0;
+         const auto dash = v.find('-');
+         if (dash == std::string::npos || !parse_long(v.substr(0, dash), 0, 255, lo) ||
+             !parse_long(v.substr(dash + 1), lo, 255, hi))
+           return std::string("--range needs A-B with 0 <= A <= B <= 255");
+         o.range_lo = static_cast<int>(lo);
+         o.range_hi = static_cast<int>(hi);
+         return std::string();
+       },
+       Values::words({"1-8", "1-16", "1-32", "1-255", "0-255"}), "A-B with 0 <= A <= B <= 255", false, "scan:"},
+      {"--bauds", "LIST", "baud rates to try, comma-separated (serial ports only)",
+       [&o](const std::string& v) {
+         for (std::size_t p = 0; p <= v.size();) {
+           const std::size_t q = std::min(v.find(',', p), v.size());
+           long n = 0;
+           if (!parse_long(v.substr(p, q - p), 1, 100000000, n) || !host::valid_baud(n))
+             return "--bauds: '" + v.substr(p, q - p) + "' is not a supported baud rate";
+           o.bauds.push_back(n);
+           p = q + 1;
+         }
+         return std::string();
+       },
+       {}, "a list such as 9600,115200", false, "scan:"},
+  };
+  t.operands = [](const std::vector<std::string>& before, const std::vector<std::string>&) {
+    if (before.empty()) return Values::words(port_words());
+    if (before.size() == 1) return Values::words({std::begin(kCommands), std::end(kCommands)});
+    const std::string& command = before[1];
+    if (command == "download") return Values::files({"tmc", "bin", "dgm", "o", "a"});
+    if ((command == "get" || command == "set" || command == "store" || command == "monitor") && before.size() == 2)
+      return Values::words({"ap", "gp", "io"});
+    return Values();
+  };
+  return t;
+}
+
+int parse_args(int argc, char** argv, Options& o) {
+  o.argv.assign(argv + 1, argv + argc);
+  const tmcl::cli::Result cl = tmcl::cli::parse(command_line(o), argc, argv);
+  if (cl.status == tmcl::cli::Result::Status::Done) return kExitOk;
+  if (cl.status == tmcl::cli::Result::Status::Error) return usage_error(cl.error);
+  const std::vector<std::string>& words = cl.operands;
   if (words.empty()) return usage_error("no PORT given");
   if (words.size() < 2) return usage_error("no COMMAND given after " + words[0]);
   o.port = words[0];
@@ -447,6 +502,7 @@ struct Session {
         ++i;
         continue;
       }
+      if (o.argv[i].rfind("--from=", 0) == 0) continue;
       const std::string& a = o.argv[i];
       const bool plain = a.find_first_of(" '\"\\$`*?;&|<>()") == std::string::npos && !a.empty();
       line += " " + (plain ? a : "'" + a + "'");
@@ -794,8 +850,6 @@ int run(int argc, char** argv) {
   ::signal(SIGPIPE, SIG_IGN);
   host::Port::set_cancel_flag(&g_stop);
 
-  static const char* const kCommands[] = {"send", "get", "set", "store", "download", "upload", "run", "stop", "step",
-                                          "reset", "status", "monitor", "console", "scan"};
   bool known = false;
   for (const char* c : kCommands) known = known || o.command == c;
   if (!known) return usage_error("unknown command '" + o.command + "'");

@@ -1,11 +1,10 @@
 // tmclrun: runs a TMCL program on the virtual machine without hardware. Parses arguments, loads
 // the program (assembling .tmc in-process), scenario and EEPROM, runs the VM library, prints the
-// summary, trace, JSON, CSV or plot. Serving (--serve) and debugging are tmclrun_modes.cpp's, in
-// tmclrun-full only (cli/tmclrun_modes.hpp). All semantics live in vm/; see docs/tmclrun.md. Exit
-// status: 0 STOP, 3 limit reached or blocked, 70 runtime fault, 65 bad input, 64 usage, 71
-// --serve transport failed or tmclrun-full missing, 74 an output file or standard output not
-// written, 130/143 ended by SIGINT/SIGTERM (run_control.hpp). With --json every outcome is one
-// JSON object on standard output.
+// summary, trace, JSON, CSV or plot. Serving (--serve) and debugging are tmclrun_modes.cpp's. All
+// semantics live in vm/; see docs/tmclrun.md. Exit status: 0 STOP, 3 limit reached or blocked, 70
+// runtime fault, 65 bad input, 64 usage, 71 --serve transport failed, 74 an output file or
+// standard output not written, 130/143 ended by SIGINT/SIGTERM (run_control.hpp). With --json
+// every outcome is one JSON object on standard output.
 #include <unistd.h>
 
 #include <algorithm>
@@ -28,10 +27,10 @@
 #include "tmcl/fileio.hpp"
 #include "tmcl/motion_recording.hpp"
 #include "tmcl/numbers.hpp"
+#include "tmcl/options.hpp"
 #include "tmcl/program_image.hpp"
 #include "tmcl/run_control.hpp"
 #include "tmcl/scenario.hpp"
-#include "tmcl/version.hpp"
 #include "tmcl/vm.hpp"
 #include "tmcl/vm_output.hpp"
 #include "tmclrun.hpp"
@@ -45,57 +44,9 @@ const char* kUsage = R"(usage: tmclrun [options] PROGRAM        PROGRAM: .tmc so
 Runs a TMCL program on a deterministic virtual module. Simulated time: nothing waits for real.
 
 options:
-  -t, --target NAME      usb-2-sd | tmc2300-eval | generic (default, as for tmclasm)
-  --motion NAME          motion core (default: the module's; available: %s)
-  --instr-time DURATION  simulated time per instruction (default 20us)
-  --max-time DURATION    stop when simulated time reaches DURATION
-  --max-steps N          stop after N instructions
-  --scenario FILE        timed inputs, switches and encoder slip (docs/tmclrun.md)
-  --eeprom FILE          load the EEPROM from FILE at start, save it there at exit
-  --eeprom-seal FILE     after editing an EEPROM file by hand: check it, write a new checksum
-  --trace                print a line per instruction, interrupt, wait and motion event
-                         (to standard error when --json is given); with --serve, a line per
-                         request and reply, decoded, to standard error or --log FILE
-  --log FILE             with --serve --trace: write the request log to FILE
-  --json                 print the final state as one JSON object instead of the summary;
-                         when there is no run (bad option or input), the errors as one object
-  --strict               a run-time warning (full call stack, RSUB or RETI with nothing to
-                         return to, a handler left without RETI) is a runtime fault (70)
-  --error-limit N        show at most N errors of the source or scenario (default 20, 0 = all)
-  --serve SPEC           act as a virtual module: tcp:HOST:PORT (loopback unless told
-                         otherwise; [::1]:PORT for IPv6), pty, or stdio (docs/virtual-module.md).
-                         PROGRAM is then optional (a host can download one)
-  --autostart            with --serve: start the program at once (also: global 77 = 1)
-  --time-scale X         with --serve: simulated seconds per real second (default 1)
-  --module-address N     with --serve: answer requests to address N (default: global 66, 1)
-  --host-address N       with --serve: address replies to N (default: global 76, 2)
-  --eeprom-locked        with --serve: refuse commands that write the EEPROM (status 5)
-  --max-wall-time DURATION  with --serve: stop by itself after this much real time
-  --faults SPEC          with --serve: drop, corrupt, delay, split, silence or stale replies, by
-                         count, command or seeded chance (docs/virtual-module.md, "Faults")
-  --module ADDR[/TARGET][:FILE]  with --serve, repeatable: modules on one bus, each its own VM,
-                         EEPROM and address (the first replaces PROGRAM and --module-address)
-  --csv FILE             write time, position, velocity, acceleration of every motor to FILE
-                         at each --sample period, plus one row per event
-  --sample DURATION      the sampling period of --csv and --plot (default 10ms)
-  --plot FILE.svg        draw position, velocity and acceleration against time as an SVG
-  --plot-from DURATION   with --plot: draw from this simulated instant on (default 0)
-  --plot-to DURATION     with --plot: draw up to this simulated instant (default: the end)
-  --debug                debug PROGRAM with gdb's commands (docs/debugger.md), read from
-                         standard input: a terminal, or a pipe or file for scripts; with
-                         --serve tcp:... or pty, while the module keeps answering its host
-  --debug-commands FILE  debug PROGRAM with the commands in FILE, then quit (gdb -batch -x)
-  --symbols FILE         with --debug: the labels and source lines of a .bin (tmclasm -f symbols)
-  --source-dir DIR       with --debug or --dap: look for the sources of a .bin in DIR too
-  --checkpoint-memory MIB  with --debug: memory for reverse execution (default 64)
-  --dap                  the debugger over the Debug Adapter Protocol on stdin/stdout
-  -I DIR                 search DIR for #include files
-  -D NAME=VALUE          define an assembler constant
-  -Werror, -Werror=NAME  assembler warnings (all, or the one named) are errors
-  -Wno-NAME              do not report the assembler warning NAME
-  --help                 show this help
-  --version              show the version
-DURATION: a number with us, ms, s, min or h (50us, 0.25ms, 1.5s, 2min, 1h); 0 needs no unit.
+)";
+
+const char* kEpilogue = R"(DURATION: a number with us, ms, s, min or h (50us, 0.25ms, 1.5s, 2min, 1h); 0 needs no unit.
 
 examples:
   tmclrun prog.tmc                              run until STOP, print a summary
@@ -106,10 +57,10 @@ examples:
   tmclrun --serve tcp:127.0.0.1:2001 prog.tmc   a virtual module for PyTrinamic (Ctrl-C stops it)
 
 exit status: 0 STOP, 3 limit reached or blocked forever, 70 runtime fault, 65 bad input,
-             64 usage error, 71 --serve transport failed or tmclrun-full missing, 74 an output
-             file (EEPROM, --csv, --plot) or standard output could not be written (a --trace
-             into a closed pipe ends the run so), 130/143 ended by SIGINT (Ctrl-C)/SIGTERM after
-             writing the summary, --json, --csv, --plot and EEPROM
+             64 usage error, 71 --serve transport failed, 74 an output file (EEPROM, --csv,
+             --plot) or standard output could not be written (a --trace into a closed pipe
+             ends the run so), 130/143 ended by SIGINT (Ctrl-C)/SIGTERM after writing the
+             summary, --json, --csv, --plot and EEPROM
 )";
 
 std::string joined(const std::vector<std::string>& names) {
@@ -144,16 +95,6 @@ int tmclrun::usage_error(const std::string& msg) {
 int tmclrun::input_error(const std::string& file, const std::string& msg, int status) {
   std::fprintf(stderr, "%s: error: %s\n", file.empty() ? "tmclrun" : file.c_str(), msg.c_str());
   return fail(status == kExitIo ? "io" : "input", status, {file, 0, 0, "error", "", msg});
-}
-
-int tmclrun::duration_option(const char* opt, const ValueFn& value, tmcl::SimTime& out) {
-  std::string v;
-  if (!value(v)) return usage_error(std::string(opt) + " needs a duration");
-  std::string why;
-  auto d = tmcl::parse_duration(v, why);
-  if (!d) return usage_error("bad duration for " + std::string(opt) + ": " + why);
-  out = *d;
-  return -1;
 }
 
 namespace {
@@ -216,108 +157,231 @@ class StdinFirstReader final : public tmcl::FileReader {
   tmcl::DiskReader disk_;
 };
 
+// DURATION for OPT into `out`: "" when it parsed, else the usage error.
+std::string duration_value(const char* opt, const std::string& v, tmcl::SimTime& out) {
+  std::string why;
+  auto d = tmcl::parse_duration(v, why);
+  if (!d) return "bad duration for " + std::string(opt) + ": " + why;
+  out = *d;
+  return {};
+}
+
+// A number from 0 to 255 (--module-address, --host-address): "" when it parsed.
+std::string address_value(const char* opt, const std::string& v, std::optional<std::uint8_t>& out) {
+  char* end = nullptr;
+  const long n = std::strtol(v.c_str(), &end, 0);
+  if (v.empty() || *end || n < 0 || n > 255) return std::string(opt) + " needs a number from 0 to 255";
+  out = static_cast<std::uint8_t>(n);
+  return {};
+}
+
+// The options, each declared once: --help, the errors, the man-page check and bash completion
+// follow from this table (tmcl/options.hpp).
+tmcl::cli::Tool command_line(Options& o) {
+  using tmcl::cli::flag, tmcl::cli::set, tmcl::cli::Values;
+  auto duration = [](const char* opt, tmcl::SimTime& field) {
+    return [opt, &field](const std::string& v) { return duration_value(opt, v, field); };
+  };
+  auto warning = [&o](const char* prefix) {
+    return [&o, prefix](const std::string& v) {
+      std::string error, arg = prefix + v;
+      if (!o.asm_opts.warnings.parse(arg, error)) return error.empty() ? "unknown option '" + arg + "'" : error;
+      return std::string();
+    };
+  };
+  const std::vector<std::string> durations{"20us", "10ms", "1s", "1min"};
+  const Values warnings = Values::words(tmcl::warning_names());
+  tmcl::cli::Tool t;
+  t.name = "tmclrun";
+  t.usage = kUsage;
+  t.epilogue = kEpilogue;
+  t.column = 25;
+  t.options = {
+      {"-t, --target", "NAME", "usb-2-sd | tmc2300-eval | generic (default, as for tmclasm)", set(o.target),
+       Values::words(tmcl::profile_names()), "a module name"},
+      {"--motion", "NAME", "motion core (default: the module's; available: " + joined(tmcl::motion_core_names()) + ")",
+       set(o.motion), Values::words(tmcl::motion_core_names()), "a core name"},
+      {"--instr-time", "DURATION", "simulated time per instruction (default 20us)", duration("--instr-time", o.instr_time),
+       Values::words(durations)},
+      {"--max-time", "DURATION", "stop when simulated time reaches DURATION", duration("--max-time", o.limits.until),
+       Values::words(durations)},
+      {"--max-steps", "N", "stop after N instructions",
+       [&o](const std::string& v) {
+         char* end = nullptr;
+         errno = 0;
+         const unsigned long long n = std::strtoull(v.c_str(), &end, 10);
+         if (v.empty() || *end || v[0] == '-' || errno) return "bad step count '" + v + "' for --max-steps";
+         o.limits.max_steps = n;
+         return std::string();
+       }},
+      {"--scenario", "FILE", "timed inputs, switches and encoder slip (docs/tmclrun.md)", set(o.scenario), Values::files()},
+      {"--eeprom", "FILE", "load the EEPROM from FILE at start, save it there at exit", set(o.eeprom),
+       Values::files({"eeprom"})},
+      {"--eeprom-seal", "FILE", "after editing an EEPROM file by hand: check it, write a new checksum",
+       set(o.eeprom_seal), Values::files({"eeprom"})},
+      {"--trace", "",
+       "print a line per instruction, interrupt, wait and motion event\n"
+       "(to standard error when --json is given); with --serve, a line per\n"
+       "request and reply, decoded, to standard error or --log FILE",
+       flag(o.trace)},
+      {"--log", "FILE", "with --serve --trace: write the request log to FILE", set(o.log), Values::files()},
+      {"--json", "",
+       "print the final state as one JSON object instead of the summary;\n"
+       "when there is no run (bad option or input), the errors as one object",
+       flag(o.json)},
+      {"--strict", "",
+       "a run-time warning (full call stack, RSUB or RETI with nothing to\n"
+       "return to, a handler left without RETI) is a runtime fault (70)",
+       flag(o.strict)},
+      {"--error-limit", "N", "show at most N errors of the source or scenario (default 20, 0 = all)",
+       [](const std::string& v) {
+         std::int64_t n = 0;
+         if (!tmcl::parse_int(v, 0, 1'000'000'000, n))
+           return "bad error limit '" + v + "' for --error-limit (a number, 0 for no limit)";
+         g_failure.error_limit = static_cast<int>(n);
+         return std::string();
+       }},
+      {"--serve", "SPEC",
+       "act as a virtual module: tcp:HOST:PORT (loopback unless told\n"
+       "otherwise; [::1]:PORT for IPv6), pty, or stdio (docs/virtual-module.md).\n"
+       "PROGRAM is then optional (a host can download one)",
+       [&o](const std::string& v) {
+         o.serving = true;
+         std::string error;
+         tmcl::parse_serve_spec(v, o.serve_opts, error);
+         return error;
+       },
+       Values::words({"tcp:127.0.0.1:2001", "pty", "stdio"}), "tcp:HOST:PORT, pty or stdio"},
+      {"--autostart", "", "with --serve: start the program at once (also: global 77 = 1)",
+       flag(o.serve_opts.autostart)},
+      {"--time-scale", "X", "with --serve: simulated seconds per real second (default 1)",
+       [&o](const std::string& v) {
+         char* end = nullptr;
+         errno = 0;
+         const double x = std::strtod(v.c_str(), &end);
+         if (v.empty() || *end || errno || !(x > 0) || x > 1e9) return std::string("--time-scale needs a number greater than 0");
+         o.serve_opts.time_scale = x;
+         return std::string();
+       },
+       {}, "a number"},
+      {"--module-address", "N", "with --serve: answer requests to address N (default: global 66, 1)",
+       [&o](const std::string& v) { return address_value("--module-address", v, o.serve_opts.protocol.module_address); },
+       {}, "a number from 0 to 255"},
+      {"--host-address", "N", "with --serve: address replies to N (default: global 76, 2)",
+       [&o](const std::string& v) {
+         std::optional<std::uint8_t> n;
+         std::string error = address_value("--host-address", v, n);
+         if (n) o.serve_opts.protocol.host_address = *n;
+         return error;
+       },
+       {}, "a number from 0 to 255"},
+      {"--eeprom-locked", "", "with --serve: refuse commands that write the EEPROM (status 5)",
+       flag(o.serve_opts.protocol.eeprom_locked)},
+      {"--max-wall-time", "DURATION", "with --serve: stop by itself after this much real time",
+       [&o](const std::string& v) {
+         tmcl::SimTime wall = 0;
+         std::string error = duration_value("--max-wall-time", v, wall);
+         o.serve_opts.max_wall_ms = wall / tmcl::kUsPerMs + (wall % tmcl::kUsPerMs ? 1 : 0);
+         return error;
+       },
+       Values::words(durations)},
+      {"--faults", "SPEC",
+       "with --serve: drop, corrupt, delay, split, silence or stale replies, by\n"
+       "count, command or seeded chance (docs/virtual-module.md, \"Faults\")",
+       [&o](const std::string& v) {
+         std::string error;
+         tmcl::parse_faults(v, o.serve_opts.faults, error);
+         return error;
+       },
+       {}, "a SPEC (e.g. drop@3,corrupt@p=0.1,seed=7)"},
+      {"--module", "ADDR[/TARGET][:FILE]",
+       "with --serve, repeatable: modules on one bus, each its own VM,\n"
+       "EEPROM and address (the first replaces PROGRAM and --module-address)",
+       tmcl::cli::append(o.modules)},
+      {"--csv", "FILE",
+       "write time, position, velocity, acceleration of every motor to FILE\n"
+       "at each --sample period, plus one row per event",
+       set(o.csv), Values::files({"csv"})},
+      {"--sample", "DURATION", "the sampling period of --csv and --plot (default 10ms)",
+       [&o](const std::string& v) {
+         std::string error = duration_value("--sample", v, o.sample);
+         if (error.empty() && o.sample <= 0) error = "--sample needs a duration greater than 0";
+         return error;
+       },
+       Values::words(durations)},
+      {"--plot", "FILE.svg", "draw position, velocity and acceleration against time as an SVG", set(o.plot),
+       Values::files({"svg"})},
+      {"--plot-from", "DURATION", "with --plot: draw from this simulated instant on (default 0)",
+       duration("--plot-from", o.plot_from), Values::words(durations)},
+      {"--plot-to", "DURATION", "with --plot: draw up to this simulated instant (default: the end)",
+       duration("--plot-to", o.plot_to), Values::words(durations)},
+      {"--debug", "",
+       "debug PROGRAM with gdb's commands (docs/debugger.md), read from\n"
+       "standard input: a terminal, or a pipe or file for scripts; with\n"
+       "--serve tcp:... or pty, while the module keeps answering its host",
+       flag(o.debug.enabled)},
+      {"--debug-commands", "FILE", "debug PROGRAM with the commands in FILE, then quit (gdb -batch -x)",
+       [&o](const std::string& v) {
+         o.debug.commands_file = v;
+         o.debug.enabled = true;
+         return std::string();
+       },
+       Values::files()},
+      {"--symbols", "FILE", "with --debug: the labels and source lines of a .bin (tmclasm -f symbols)",
+       set(o.debug.symbols), Values::files({"sym"}), "a file (tmclasm -f symbols)"},
+      {"--source-dir", "DIR", "with --debug or --dap: look for the sources of a .bin in DIR too",
+       [&o](const std::string& v) {
+         if (v.empty()) return std::string("--source-dir needs a folder");
+         o.debug.source_dirs.push_back(v);
+         return std::string();
+       },
+       Values::dirs()},
+      {"--checkpoint-memory", "MIB", "with --debug: memory for reverse execution (default 64)",
+       [&o](const std::string& v) {
+         char* end = nullptr;
+         const long long n = std::strtoll(v.c_str(), &end, 10);
+         if (v.empty() || *end || n < 1 || n > 1 << 20)
+           return std::string("--checkpoint-memory needs a size in MiB from 1 to 1048576");
+         o.debug.checkpoint_bytes = static_cast<std::size_t>(n) << 20;
+         return std::string();
+       },
+       {}, "a size in MiB"},
+      {"--dap", "", "the debugger over the Debug Adapter Protocol on stdin/stdout",
+       [&o](const std::string&) {
+         o.debug.enabled = o.debug.dap = true;
+         return std::string();
+       }},
+      {"-I", "DIR", "search DIR for #include files", tmcl::cli::append(o.asm_opts.include_dirs), Values::dirs(),
+       "a directory"},
+      {"-D", "NAME=VALUE", "define an assembler constant",
+       [&o](const std::string& v) {
+         const auto eq = v.find('=');
+         if (eq == std::string::npos || eq == 0) return "bad -D '" + v + "' (expected NAME=VALUE)";
+         o.asm_opts.defines.emplace_back(v.substr(0, eq), v.substr(eq + 1));
+         return std::string();
+       }},
+      {"-Werror", "", "", warning("-Werror")},
+      {"-Werror=", "NAME", "assembler warnings (all, or the one named) are errors", warning("-Werror="), warnings},
+      {"-Wno-", "NAME", "do not report the assembler warning NAME", warning("-Wno-"), warnings},
+      {"-W", "NAME", "", warning("-W"), warnings, {}, true},
+  };
+  t.operands = [](const std::vector<std::string>&, const std::vector<std::string>&) {
+    return Values::files({"tmc", "bin", "dgm"});
+  };
+  return t;
+}
+
 // Returns -1 when the run should go on, otherwise an exit status.
 int parse_args(int argc, char** argv, Options& o) {
-  std::vector<std::string> args(argv + 1, argv + argc);
-  bool have_program = false;
-  for (std::size_t i = 0; i < args.size(); ++i) {
-    std::string a = args[i];
-    std::string inline_value;
-    bool has_inline = false;
-    if (a.rfind("--", 0) == 0 && a.find('=') != std::string::npos) {
-      inline_value = a.substr(a.find('=') + 1);
-      a = a.substr(0, a.find('='));
-      has_inline = true;
-    } else if (a.size() > 2 && a[0] == '-' && a[1] != '-' && (a[1] == 't' || a[1] == 'I' || a[1] == 'D')) {
-      inline_value = a.substr(2);
-      a = a.substr(0, 2);
-      has_inline = true;
-    }
-    auto value = [&](std::string& out) -> bool {
-      if (has_inline) {
-        out = inline_value;
-        return true;
-      }
-      if (i + 1 >= args.size()) return false;
-      out = args[++i];
-      return true;
-    };
-    auto duration = [&](const char* opt, tmcl::SimTime& out) { return duration_option(opt, value, out); };
-    std::string v;
-    if (a == "--help" || a == "-h") {
-      std::printf(kUsage, joined(tmcl::motion_core_names()).c_str());
-      return kExitOk;
-    } else if (a == "--version") {
-      std::puts(tmcl::version_line("tmclrun").c_str());
-      return kExitOk;
-    } else if (a == "-t" || a == "--target") {
-      if (!value(o.target)) return usage_error("-t needs a module name");
-    } else if (a == "--motion") {
-      if (!value(o.motion)) return usage_error("--motion needs a core name");
-    } else if (a == "--instr-time") {
-      if (int r = duration("--instr-time", o.instr_time); r >= 0) return r;
-    } else if (a == "--max-time") {
-      if (int r = duration("--max-time", o.limits.until); r >= 0) return r;
-    } else if (a == "--max-steps") {
-      if (!value(v)) return usage_error("--max-steps needs a number");
-      char* end = nullptr;
-      errno = 0;
-      unsigned long long n = std::strtoull(v.c_str(), &end, 10);
-      if (v.empty() || *end || v[0] == '-' || errno) return usage_error("bad step count '" + v + "' for --max-steps");
-      o.limits.max_steps = n;
-    } else if (a == "--scenario") {
-      if (!value(o.scenario)) return usage_error("--scenario needs a file");
-    } else if (a == "--eeprom") {
-      if (!value(o.eeprom)) return usage_error("--eeprom needs a file");
-    } else if (a == "--eeprom-seal") {
-      if (!value(o.eeprom_seal)) return usage_error("--eeprom-seal needs a file");
-    } else if (a == "--error-limit") {
-      if (!value(v)) return usage_error("--error-limit needs a number");
-      std::int64_t n = 0;
-      if (!tmcl::parse_int(v, 0, 1'000'000'000, n))
-        return usage_error("bad error limit '" + v + "' for --error-limit (a number, 0 for no limit)");
-      g_failure.error_limit = static_cast<int>(n);
-    } else if (a == "--csv") {
-      if (!value(o.csv)) return usage_error("--csv needs a file");
-    } else if (a == "--plot") {
-      if (!value(o.plot)) return usage_error("--plot needs a file");
-    } else if (a == "--plot-from") {
-      if (int r = duration("--plot-from", o.plot_from); r >= 0) return r;
-    } else if (a == "--plot-to") {
-      if (int r = duration("--plot-to", o.plot_to); r >= 0) return r;
-    } else if (a == "--log") {
-      if (!value(o.log)) return usage_error("--log needs a file");
-    } else if (a == "--sample") {
-      if (int r = duration("--sample", o.sample); r >= 0) return r;
-      if (o.sample <= 0) return usage_error("--sample needs a duration greater than 0");
-    } else if (a == "--trace" && !has_inline) {
-      o.trace = true;
-    } else if (a == "--json" && !has_inline) {
-      o.json = true;
-    } else if (a == "--strict" && !has_inline) {
-      o.strict = true;
-    } else if (a == "-I") {
-      if (!value(v)) return usage_error("-I needs a directory");
-      o.asm_opts.include_dirs.push_back(v);
-    } else if (a == "-D") {
-      if (!value(v)) return usage_error("-D needs NAME=VALUE");
-      auto eq = v.find('=');
-      if (eq == std::string::npos || eq == 0) return usage_error("bad -D '" + v + "' (expected NAME=VALUE)");
-      o.asm_opts.defines.emplace_back(v.substr(0, eq), v.substr(eq + 1));
-    } else if (a.rfind("-W", 0) == 0 && a.size() > 2) {
-      std::string error;
-      if (!o.asm_opts.warnings.parse(a, error)) return usage_error(error.empty() ? "unknown option '" + a + "'" : error);
-    } else if (int status = -1; mode_option(a, has_inline, value, argv, o, status)) {
-      if (status >= 0) return status;
-    } else if (a != "-" && a.size() > 1 && a[0] == '-') {
-      return usage_error("unknown option '" + args[i] + "'");
-    } else {
-      if (have_program) return usage_error("only one PROGRAM can be run (got '" + o.program + "' and '" + a + "')");
-      o.program = a;
-      have_program = true;
-    }
-  }
-  if (int r = check_mode_options(o, args, have_program); r >= 0) return r;
+  const tmcl::cli::Result cl = tmcl::cli::parse(command_line(o), argc, argv);
+  if (cl.status == tmcl::cli::Result::Status::Done) return kExitOk;
+  if (cl.status == tmcl::cli::Result::Status::Error) return usage_error(cl.error);
+  o.given = cl.given;
+  if (cl.operands.size() > 1)
+    return usage_error("only one PROGRAM can be run (got '" + cl.operands[0] + "' and '" + cl.operands[1] + "')");
+  const bool have_program = !cl.operands.empty();
+  if (have_program) o.program = cl.operands[0];
+  if (int r = check_mode_options(o, have_program); r >= 0) return r;
   if (!o.log.empty() && (!o.serving || !o.trace)) return usage_error("--log FILE goes with --serve --trace");
   if ((o.plot_from != 0 || o.plot_to != tmcl::kNever) && o.plot.empty())
     return usage_error("--plot-from and --plot-to go with --plot FILE.svg");
@@ -327,7 +391,7 @@ int parse_args(int argc, char** argv, Options& o) {
       return usage_error("--eeprom-seal FILE goes alone (it seals FILE and runs nothing)");
     return -1;
   }
-  if (!have_program && !o.serving && !o.dap) return usage_error("no PROGRAM given");
+  if (!have_program && !o.serving && !o.debug.dap) return usage_error("no PROGRAM given");
   return -1;
 }
 
@@ -443,9 +507,7 @@ int run(int argc, char** argv) {
 
   const tmcl::Profile* profile = tmcl::find_profile(o.target);
   if (!profile) {
-    std::vector<std::string> names;
-    for (const auto* p : tmcl::all_profiles()) names.emplace_back(p->name);
-    return usage_error("unknown module '" + o.target + "' (available: " + joined(names) + ")");
+    return usage_error("unknown module '" + o.target + "' (available: " + joined(tmcl::profile_names()) + ")");
   }
   std::string core_name = o.motion.empty() ? std::string(profile->default_motion) : o.motion;
   auto core = tmcl::make_motion_core(core_name);
@@ -462,7 +524,7 @@ int run(int argc, char** argv) {
   tmcl::SourceMap sources;
   tmcl::SourceNames names;  // --trace shows what the source named
   std::string err;
-  if (!o.program.empty() && !o.debugging)
+  if (!o.program.empty() && !o.debug.enabled)
     if (int r = load_program(o, profile, program, sources, o.trace && !o.serving ? &names : nullptr); r >= 0) return r;
 
   // ---- scenario and EEPROM ----
@@ -487,8 +549,8 @@ int run(int argc, char** argv) {
       return located_error(o.eeprom + ":2: error: EEPROM written for module '" + image.profile + "', not '" + o.target + "'");
   }
 
-  // --serve, --debug, --dap: tmclrun_modes.cpp (in tmclrun-full only).
-  if (o.serving || o.debugging)
+  // --serve, --debug, --dap: tmclrun_modes.cpp.
+  if (o.serving || o.debug.enabled)
     return run_mode(o, *profile, std::move(core), program, sources, std::move(inputs), o.eeprom.empty() ? nullptr : &image);
 
   // ---- run ----

@@ -1,20 +1,25 @@
-// What tmclrun.cpp, the part of both programs (cli/tmclrun_modes.hpp), gives tmclrun_modes.cpp:
-// the options and the steps of a run that serving and debugging share.
+// What tmclrun.cpp (the options, loading, the run) and tmclrun_modes.cpp (serving with the
+// virtual module, debugging) share: the options, and the steps of a run that both take.
 #pragma once
 
+#include <memory>
 #include <string>
 #include <vector>
 
 #include "tmcl/asm/assembler.hpp"
+#include "tmcl/debug_cli.hpp"
 #include "tmcl/eeprom.hpp"
 #include "tmcl/scenario.hpp"
+#include "tmcl/server.hpp"
 #include "tmcl/vm.hpp"
 #include "tmcl/vm_output.hpp"
-#include "tmclrun_modes.hpp"
 
 namespace tmclrun {
 
-// The options of tmclrun.cpp; tmclrun_modes.cpp keeps its own and sets the three flags below.
+constexpr int kExitOk = 0, kExitLimit = 3, kExitUsage = 64, kExitInput = 65, kExitFault = 70, kExitOsErr = 71,
+              kExitIo = 74;
+
+// Everything the command line sets (tmclrun.cpp's option table).
 struct Options {
   std::string target = "generic";  // one default for every tool (docs/errata.md)
   std::string motion;
@@ -29,15 +34,17 @@ struct Options {
   std::string log;  // --serve --trace: the request log (empty: standard error)
   tmcl::SimTime sample = 10 * tmcl::kUsPerMs;
   tmcl::AsmOptions asm_opts;
-  bool serving = false;    // --serve
-  bool debugging = false;  // --debug, --debug-commands or --dap
-  bool dap = false;        // --dap
+  bool serving = false;                // --serve SPEC
+  tmcl::ServeOptions serve_opts;       // --serve and its companions
+  std::vector<std::string> modules;    // --module ADDR[/TARGET][:FILE], in order
+  tmcl::debug::FrontEnd debug;         // --debug, --debug-commands, --symbols, --checkpoint-memory, --dap
+  std::vector<std::string> given;      // the options given, by name (tmcl::cli::Result::given)
 };
 
 // ---- tmclrun.cpp ----
+// Reports the error on standard error (and for --json), returns the exit status.
+int usage_error(const std::string& msg);
 int input_error(const std::string& file, const std::string& msg, int status = kExitInput);
-// OPT DURATION into `out`: -1 when it parsed, else the status of the usage error reported.
-int duration_option(const char* opt, const ValueFn& value, tmcl::SimTime& out);
 // Reads o.program (.tmc assembled in-process, .bin, .dgm, or -): -1 on success, else a status.
 // With `names`, a source's labels and named operands (for --trace) go there.
 int load_program(Options& o, const tmcl::Profile* profile, std::vector<tmcl::Instruction>& program,
@@ -46,5 +53,14 @@ int load_program(Options& o, const tmcl::Profile* profile, std::vector<tmcl::Ins
 // and the scenario's inputs, and powers it on.
 void set_up_vm(tmcl::Vm& vm, const Options& o, const std::vector<tmcl::Instruction>& program,
                const tmcl::SourceMap& sources, const tmcl::EepromImage* image, std::vector<tmcl::InputEvent> inputs);
+
+// ---- tmclrun_modes.cpp ----
+// After all arguments: the checks that involve serving and debugging (--module sets o.program
+// and o.target). -1 when the run goes on, else an exit status.
+int check_mode_options(Options& o, bool have_program);
+// Serves or debugs (o.serving or o.debug.enabled). Returns tmclrun's exit status.
+int run_mode(Options& o, const tmcl::Profile& profile, std::unique_ptr<tmcl::MotionCore> core,
+             const std::vector<tmcl::Instruction>& program, const std::vector<std::string>& sources,
+             std::vector<tmcl::InputEvent> inputs, tmcl::EepromImage* image);
 
 }  // namespace tmclrun

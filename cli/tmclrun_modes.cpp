@@ -1,6 +1,7 @@
-// tmclrun-full's part of tmclrun (cli/tmclrun_modes.hpp): the options of serving (--serve and its
-// companions, --module, --faults) and debugging (--debug, --dap), their checks, and the runs that
-// serve a host with the virtual module (vm/module) or debug with the debugger (vm/debug).
+// tmclrun's modes beside a plain run: the checks of the options of serving (--serve and its
+// companions, --module, --faults) and debugging (--debug, --dap), and the runs that serve a host
+// with the virtual module (vm/module) or debug with the debugger (vm/debug).
+#include <algorithm>
 #include <cerrno>
 #include <cstdio>
 #include <cstdlib>
@@ -17,16 +18,6 @@
 using namespace tmclrun;
 
 namespace {
-
-// The options only this part reads.
-struct ModeOptions {
-  std::string serve;  // --serve SPEC
-  tmcl::ServeOptions serve_opts;
-  std::vector<std::string> modules;  // --module ADDR[/TARGET][:FILE], in order
-  tmcl::debug::FrontEnd debug;       // --debug, --debug-commands, --symbols, --checkpoint-memory, --dap
-};
-// One command line per process: main() parses it once, and the run reads it back.
-ModeOptions g_modes;
 
 // --module ADDR[/TARGET][:FILE]: one module of a bus.
 struct BusSpec {
@@ -53,17 +44,17 @@ bool parse_bus_spec(const std::string& spec, BusSpec& out, std::string& error) {
 
 // The second and later --module: each its own profile, motion core, VM (program, EEPROM image
 // in memory) and address on the primary's line. Returns -1 on success, else an exit status.
-int build_bus(Options& o, ModeOptions& m, std::vector<std::unique_ptr<tmcl::MotionCore>>& cores,
+int build_bus(Options& o, std::vector<std::unique_ptr<tmcl::MotionCore>>& cores,
               std::vector<std::unique_ptr<tmcl::Vm>>& vms) {
-  std::vector<int> seen{m.serve_opts.protocol.module_address.value_or(1)};
-  for (std::size_t i = 1; i < m.modules.size(); ++i) {
+  std::vector<int> seen{o.serve_opts.protocol.module_address.value_or(1)};
+  for (std::size_t i = 1; i < o.modules.size(); ++i) {
     BusSpec b;
-    if (std::string err; !parse_bus_spec(m.modules[i], b, err)) return usage_error(err);
+    if (std::string err; !parse_bus_spec(o.modules[i], b, err)) return usage_error(err);
     for (int a : seen)
       if (a == b.address) return usage_error("--module: two modules with address " + std::to_string(a));
     seen.push_back(b.address);
     const tmcl::Profile* profile = tmcl::find_profile(b.target.empty() ? o.target : b.target);
-    if (!profile) return usage_error("--module " + m.modules[i] + ": unknown module '" + b.target + "'");
+    if (!profile) return usage_error("--module " + o.modules[i] + ": unknown module '" + b.target + "'");
     auto core = tmcl::make_motion_core(std::string(profile->default_motion));
     if (!core) core = tmcl::make_ideal_motion_core();
     std::vector<tmcl::Instruction> program;
@@ -78,9 +69,9 @@ int build_bus(Options& o, ModeOptions& m, std::vector<std::unique_ptr<tmcl::Moti
     set_up_vm(*vm, o, program, sources, nullptr, {});
     tmcl::BusModule member{vm.get(), {}};
     member.protocol.module_address = b.address;
-    member.protocol.host_address = m.serve_opts.protocol.host_address;
-    member.protocol.eeprom_locked = m.serve_opts.protocol.eeprom_locked;
-    m.serve_opts.bus.push_back(member);
+    member.protocol.host_address = o.serve_opts.protocol.host_address;
+    member.protocol.eeprom_locked = o.serve_opts.protocol.eeprom_locked;
+    o.serve_opts.bus.push_back(member);
     cores.push_back(std::move(core));
     vms.push_back(std::move(vm));
   }
@@ -89,90 +80,23 @@ int build_bus(Options& o, ModeOptions& m, std::vector<std::unique_ptr<tmcl::Moti
 
 }  // namespace
 
-bool tmclrun::mode_option(const std::string& a, bool has_inline, const ValueFn& value, char**, Options& o, int& status) {
-  ModeOptions& m = g_modes;
-  std::string v;
-  status = -1;
-  if (a == "--serve") {
-    if (!value(m.serve)) {
-      status = usage_error("--serve needs tcp:HOST:PORT, pty or stdio");
-      return true;
-    }
-    std::string err;
-    if (!tmcl::parse_serve_spec(m.serve, m.serve_opts, err)) status = usage_error(err);
-    o.serving = true;
-  } else if (a == "--autostart" && !has_inline) {
-    m.serve_opts.autostart = true;
-  } else if (a == "--eeprom-locked" && !has_inline) {
-    m.serve_opts.protocol.eeprom_locked = true;
-  } else if (a == "--time-scale") {
-    if (!value(v)) {
-      status = usage_error("--time-scale needs a number");
-      return true;
-    }
-    char* end = nullptr;
-    errno = 0;
-    double x = std::strtod(v.c_str(), &end);
-    if (v.empty() || *end || errno || !(x > 0) || x > 1e9)
-      status = usage_error("--time-scale needs a number greater than 0");
-    else
-      m.serve_opts.time_scale = x;
-  } else if (a == "--module-address" || a == "--host-address") {
-    if (!value(v)) {
-      status = usage_error(a + " needs a number from 0 to 255");
-      return true;
-    }
-    char* end = nullptr;
-    long n = std::strtol(v.c_str(), &end, 0);
-    if (v.empty() || *end || n < 0 || n > 255)
-      status = usage_error(a + " needs a number from 0 to 255");
-    else
-      (a == "--module-address" ? m.serve_opts.protocol.module_address : m.serve_opts.protocol.host_address) =
-          static_cast<std::uint8_t>(n);
-  } else if (a == "--faults") {
-    std::string err;
-    if (!value(v))
-      status = usage_error("--faults needs a SPEC (e.g. drop@3,corrupt@p=0.1,seed=7)");
-    else if (!tmcl::parse_faults(v, m.serve_opts.faults, err))
-      status = usage_error(err);
-  } else if (a == "--module") {
-    if (!value(v))
-      status = usage_error("--module needs ADDR[/TARGET][:FILE]");
-    else
-      m.modules.push_back(v);
-  } else if (a == "--max-wall-time") {
-    tmcl::SimTime wall = 0;
-    status = duration_option("--max-wall-time", value, wall);
-    if (status < 0) m.serve_opts.max_wall_ms = wall / tmcl::kUsPerMs + (wall % tmcl::kUsPerMs ? 1 : 0);
-  } else if (int r = tmcl::debug::parse_option(a, has_inline, value, m.debug); r != 0) {
-    if (r < 0) status = usage_error(m.debug.error);
-    o.debugging = m.debug.enabled;
-    o.dap = m.debug.dap;
-  } else {
-    return false;
-  }
-  return true;
-}
-
-int tmclrun::check_mode_options(Options& o, const std::vector<std::string>& args, bool have_program) {
-  ModeOptions& m = g_modes;
+int tmclrun::check_mode_options(Options& o, bool have_program) {
   if (!o.serving) {
     for (const char* opt : {"--autostart", "--time-scale", "--module-address", "--host-address", "--eeprom-locked",
                             "--max-wall-time", "--faults", "--module"})
-      for (const auto& arg : args)
-        if (arg == opt || arg.rfind(std::string(opt) + "=", 0) == 0)
-          return usage_error(std::string(opt) + " goes with --serve");
+      if (std::find(o.given.begin(), o.given.end(), opt) != o.given.end())
+        return usage_error(std::string(opt) + " goes with --serve");
   } else if (o.json || !o.csv.empty() || !o.plot.empty() || o.limits.until != tmcl::kNever ||
              o.limits.max_steps != UINT64_MAX) {
     return usage_error("--serve runs until stopped: --json, --csv, --plot, --max-time and --max-steps do not go with it");
   }
-  if (!m.modules.empty() && o.eeprom_seal.empty()) {  // the first --module is the primary module: its program and address
+  if (!o.modules.empty() && o.eeprom_seal.empty()) {  // the first --module is the primary module: its program and address
     if (have_program) return usage_error("with --module, give each module's program there, not as PROGRAM");
     BusSpec first;
-    if (std::string err; !parse_bus_spec(m.modules.front(), first, err)) return usage_error(err);
+    if (std::string err; !parse_bus_spec(o.modules.front(), first, err)) return usage_error(err);
     if (!first.target.empty()) o.target = first.target;
     o.program = first.file;
-    m.serve_opts.protocol.module_address = first.address;
+    o.serve_opts.protocol.module_address = first.address;
   }
   return -1;
 }
@@ -180,20 +104,19 @@ int tmclrun::check_mode_options(Options& o, const std::vector<std::string>& args
 int tmclrun::run_mode(Options& o, const tmcl::Profile& profile, std::unique_ptr<tmcl::MotionCore> core,
                       const std::vector<tmcl::Instruction>& program, const tmcl::SourceMap& sources,
                       std::vector<tmcl::InputEvent> inputs, tmcl::EepromImage* image) {
-  ModeOptions& m = g_modes;
-  if (o.debugging && o.serving) {  // debugging while serving: tcp or pty, one module
-    if (o.dap || m.serve_opts.transport == tmcl::Transport::Stdio || !m.modules.empty() || o.trace)
+  if (o.debug.enabled && o.serving) {  // debugging while serving: tcp or pty, one module
+    if (o.debug.dap || o.serve_opts.transport == tmcl::Transport::Stdio || !o.modules.empty() || o.trace)
       return usage_error("--serve with --debug takes tcp:HOST:PORT or pty, one module, no --dap and no --trace");
-    m.serve_opts.eeprom_path = o.eeprom;
+    o.serve_opts.eeprom_path = o.eeprom;
   }
-  if (o.debugging)  // the debugger loads and runs the program (vm/debug, docs/debugger.md)
-    return tmcl::debug::main(m.debug, profile, std::move(core), o.program, o.asm_opts, o.instr_time, o.limits,
-                             std::move(inputs), image, o.serving ? &m.serve_opts : nullptr);
+  if (o.debug.enabled)  // the debugger loads and runs the program (vm/debug, docs/debugger.md)
+    return tmcl::debug::main(o.debug, profile, std::move(core), o.program, o.asm_opts, o.instr_time, o.limits,
+                             std::move(inputs), image, o.serving ? &o.serve_opts : nullptr);
 
   // The virtual module runs until SIGINT/SIGTERM (or --max-wall-time) and saves the EEPROM.
   tmcl::Vm vm(profile, *core);
   set_up_vm(vm, o, program, sources, image, std::move(inputs));
-  m.serve_opts.eeprom_path = o.eeprom;
+  o.serve_opts.eeprom_path = o.eeprom;
   // --trace: every request and its reply, decoded, as it is answered (flushed: a user watches
   // the traffic live, and a killed server loses nothing).
   std::FILE* log = stderr;
@@ -202,14 +125,14 @@ int tmclrun::run_mode(Options& o, const tmcl::Profile& profile, std::unique_ptr<
     if (!log) return input_error("", "cannot open log file '" + o.log + "': " + std::strerror(errno), kExitIo);
   }
   if (o.trace)
-    m.serve_opts.on_exchange = [log](const tmcl::TmclModule::Exchange& e) {
+    o.serve_opts.on_exchange = [log](const tmcl::TmclModule::Exchange& e) {
       std::fputs(tmcl::exchange_text(e.at, e.module, e.request, e.reply, e.special, e.sent).c_str(), log);
       std::fflush(log);
     };
   std::vector<std::unique_ptr<tmcl::MotionCore>> bus_cores;
   std::vector<std::unique_ptr<tmcl::Vm>> bus_vms;
-  if (int r = build_bus(o, m, bus_cores, bus_vms); r >= 0) return r;
-  int served = tmcl::serve(vm, m.serve_opts);
+  if (int r = build_bus(o, bus_cores, bus_vms); r >= 0) return r;
+  int served = tmcl::serve(vm, o.serve_opts);
   if (log != stderr && std::fclose(log) != 0)
     return input_error("", "cannot write log file '" + o.log + "': " + std::strerror(errno), kExitIo);
   return served;

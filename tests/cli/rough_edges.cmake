@@ -1,5 +1,5 @@
 # What the golden runner cannot show (issue 11, section 4): standard output that cannot be
-# written, and an EEPROM file edited by hand, sealed, and run with.
+# written, an EEPROM file edited by hand, sealed, and run with, and a copy of tmclrun alone.
 # Run as: cmake -DTMCLRUN=... -DTMCLASM=... -DSRC=<source dir> -DWORK=<scratch dir> -P rough_edges.cmake
 include(${CMAKE_CURRENT_LIST_DIR}/../unit/checks.cmake)
 
@@ -73,5 +73,23 @@ if(NOT EXISTS "${WORK}/v1.2/prog.dot")
   problem("tmclasm -f dot v1.2/prog did not write v1.2/prog.dot (exit ${rc}): ${err}")
 endif()
 
+# tmclrun is one program (issue 28, item 18): a copy with nothing beside it serves, debugs, and
+# answers a misspelt option as such.
+file(MAKE_DIRECTORY "${WORK}/alone")
+file(COPY "${TMCLRUN}" DESTINATION "${WORK}/alone")
+get_filename_component(name "${TMCLRUN}" NAME)
+set(alone "${WORK}/alone/${name}")
+execute_process(COMMAND "${alone}" --serve bogus RESULT_VARIABLE rc ERROR_VARIABLE err)
+expect("lone tmclrun --serve bogus: exit status" 64 "${rc}")
+expect_match("lone tmclrun --serve bogus" "^tmclrun: --serve takes tcp:HOST:PORT, pty or stdio, not 'bogus'\n" "${err}")
+execute_process(COMMAND "${alone}" --frobnicate "${prog}" RESULT_VARIABLE rc ERROR_VARIABLE err)
+expect("lone tmclrun --frobnicate: exit status" 64 "${rc}")
+expect_match("lone tmclrun --frobnicate" "^tmclrun: unknown option '--frobnicate'" "${err}")
+file(WRITE "${WORK}/session.gdb" "break 3\nrun\ninfo registers\ncontinue\n")
+execute_process(COMMAND "${alone}" --debug-commands "${WORK}/session.gdb" "${prog}" RESULT_VARIABLE rc
+  OUTPUT_VARIABLE out ERROR_VARIABLE err)
+expect("lone tmclrun --debug-commands: exit status (${err})" 0 "${rc}")
+expect_match("lone tmclrun --debug-commands" "Breakpoint 1" "${out}")
+
 file(REMOVE_RECURSE "${WORK}")
-tmcl_check_done("standard output on a full disk, and a hand-edited EEPROM")
+tmcl_check_done("standard output on a full disk, a hand-edited EEPROM, and a lone tmclrun")

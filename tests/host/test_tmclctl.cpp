@@ -166,6 +166,19 @@ TEST(silent_module_is_named) {
   CHECK(!exists(out));  // never a half-written output file
 }
 
+// One option parser for every tool (issue 28, item 12): --opt=value and -oVALUE like everywhere.
+TEST(every_form_of_an_option_value) {
+  Server server(kRun, {"--serve", "pty", "-t", "usb-2-sd"});
+  const std::string csv = temp_dir() + "/forms.csv";
+  Output m = ctl({"-tusb-2-sd", server.port(), "monitor", "ap:4", "--every=50ms", "--for=100ms", "--csv=" + csv});
+  show(m);
+  CHECK_EQ(m.status, 0);
+  CHECK(slurp(csv).rfind("time_s,Maximum positioning speed [0]\n", 0) == 0);
+  Output o = ctl({"-a9", "--timeout=100ms", "--retries=0", server.port(), "get", "ap", "1", "0"}, 5000);
+  CHECK_EQ(o.status, 69);
+  CHECK(has(o.err, "no reply within 100 ms to GAP 1, 0 [09 06 01 00 00 00 00 00 10] to module 9 on " + server.port() + "\n"));
+}
+
 TEST(port_errors) {
   Output o = ctl({"/nonexistent/tty", "status"});
   CHECK_EQ(o.status, 74);

@@ -1,10 +1,10 @@
 # Installs the build into a fresh prefix, checks that everything a user needs landed where
 # GNUInstallDirs puts it, then configures, builds and runs examples/consumer against it through
 # find_package(tmcl 0.1) (assemble a program with tmcl::asm, run it on tmcl::vm).
-# Run as: cmake -DBUILD=<build dir> -DROOT=<source dir> -DWORK=<scratch dir> -DLIBDIR=<libdir> -DLIBEXECDIR=<libexecdir>
-#               [-DGENERATOR=<generator>] -DTOOLS=<tool;...> -DHELPERS=<program;...> -P check_install.cmake
+# Run as: cmake -DBUILD=<build dir> -DROOT=<source dir> -DWORK=<scratch dir> -DLIBDIR=<libdir>
+#               [-DGENERATOR=<generator>] -DTOOLS=<tool;...> -P check_install.cmake
 cmake_minimum_required(VERSION 3.25)
-foreach(v BUILD ROOT WORK LIBDIR LIBEXECDIR TOOLS HELPERS)
+foreach(v BUILD ROOT WORK LIBDIR TOOLS)
   if(NOT DEFINED ${v})
     message(FATAL_ERROR "check_install.cmake needs -D${v}=...")
   endif()
@@ -46,19 +46,19 @@ endforeach()
 foreach(tool IN LISTS TOOLS)
   list(APPEND expect bin/${tool} share/man/man1/${tool}.1 share/bash-completion/completions/${tool})
 endforeach()
-foreach(helper IN LISTS HELPERS)
-  list(APPEND expect ${LIBEXECDIR}/tmcl/${helper})
-endforeach()
 foreach(f IN LISTS expect)
   if(NOT EXISTS "${prefix}/${f}")
     problem("not installed: ${f} (every library needs its tmcl_install_library line in CMakeLists.txt)")
   endif()
 endforeach()
 
-# The installed tmclrun finds the installed tmclrun-full: --serve's value is its to check.
+# tmclrun is one program: it serves and debugs itself, and nothing else is installed to run.
 execute_process(COMMAND "${prefix}/bin/tmclrun" --serve bogus RESULT_VARIABLE rc ERROR_VARIABLE err)
 if(NOT rc EQUAL 64 OR NOT err MATCHES "^tmclrun: --serve takes tcp:HOST:PORT, pty or stdio, not 'bogus'")
-  problem("installed tmclrun --serve bogus (tmclrun-full's error expected): exit ${rc}, '${err}'")
+  problem("installed tmclrun --serve bogus: exit ${rc}, '${err}'")
+endif()
+if(EXISTS "${prefix}/libexec")
+  problem("installed into libexec/: tmclrun is one program")
 endif()
 
 # The installed tools run on their own, and say the one version.

@@ -1,81 +1,99 @@
-# Every tool (TMCL_TOOLS in cli/CMakeLists.txt) has a man page docs/man/TOOL.1 and a bash
-# completion cli/completion/TOOL, and every option its --help lists appears in both; every
-# executable cli/ builds is in TMCL_TOOLS or TMCL_HELPERS.
-# Run as: cmake -DROOT=<source dir> "-DTOOLS=name=path;..." "-DEXECUTABLES=name;..." "-DHELPERS=name;..."
-#               -P check_man_pages.cmake
+# Every tool (TMCL_TOOLS in cli/CMakeLists.txt) has a man page docs/man/TOOL.1 whose OPTIONS list
+# every option of the tool's table (`TOOL --list-options`, what --help shows) and no option the
+# tool does not have, and which names documentation files as installed (share/doc/tmcl/), not
+# as docs/... of the sources; the bash completion cli/completion/tmcl is set up for it (the completion
+# asks the tool itself, tests/install/check_completion.sh); and every executable cli/ builds is in
+# TMCL_TOOLS.
+# Run as: cmake -DROOT=<source dir> "-DTOOLS=name=path;..." "-DEXECUTABLES=name;..." -P check_man_pages.cmake
 cmake_minimum_required(VERSION 3.25)
 include(${CMAKE_CURRENT_LIST_DIR}/../unit/checks.cmake)
 
+file(READ "${ROOT}/cli/completion/tmcl" completion_text)
+string(REGEX MATCH "\ncomplete -F _tmcl_complete [^\n]*" complete_line "${completion_text}")
 tmcl_read_tools(TOOLS names)
 foreach(tool IN LISTS names)
   set(path "${path_${tool}}")
   set(man "${ROOT}/docs/man/${tool}.1")
-  set(completion "${ROOT}/cli/completion/${tool}")
+  if(NOT complete_line MATCHES " ${tool}( |$)")
+    problem("cli/completion/tmcl does not set up ${tool} (its last line: ${complete_line})")
+  endif()
   if(NOT EXISTS "${man}")
     problem("${tool} has no man page docs/man/${tool}.1")
-  endif()
-  if(NOT EXISTS "${completion}")
-    problem("${tool} has no bash completion cli/completion/${tool}")
-  endif()
-  if(NOT EXISTS "${man}" OR NOT EXISTS "${completion}")
     continue()
   endif()
+  # An installed reader has no docs/ folder: the pages name the files of share/doc/tmcl/.
+  file(STRINGS "${man}" source_paths REGEX "^[^.].*docs/|^\\.[^\\].*docs/")
+  foreach(line IN LISTS source_paths)
+    problem("docs/man/${tool}.1 sends an installed reader to the source tree: ${line}")
+  endforeach()
   # The man page as plain text: roff's \- is a hyphen; font changes go.
   file(READ "${man}" man_text)
   string(REPLACE "\\-" "-" man_text "${man_text}")
   string(REGEX REPLACE "\\\\f[BIRP]" "" man_text "${man_text}")
-  file(READ "${completion}" completion_text)
 
-  execute_process(COMMAND "${path}" --help RESULT_VARIABLE rc OUTPUT_VARIABLE help)
+  execute_process(COMMAND "${path}" --list-options RESULT_VARIABLE rc OUTPUT_VARIABLE list)
   if(NOT rc EQUAL 0)
-    problem("${tool} --help exited with ${rc}")
+    problem("${tool} --list-options exited with ${rc}")
     continue()
   endif()
-  # Option lines start with two spaces and a dash; several spellings are separated by ", ".
-  # An option is its first word; `-Werror=NAME` and `-Wno-NAME` keep their stems `-Werror=`
-  # and `-Wno-` (a placeholder is two or more capitals).
-  string(REPLACE ";" "," help "${help}")
-  string(REPLACE "\n" ";" lines "${help}")
+  # A line per option: its spellings (", " between them), a tab, its value.
+  string(REPLACE ";" "," list "${list}")
+  string(REPLACE "\n" ";" lines "${list}")
   set(options "")
   foreach(line IN LISTS lines)
-    if(NOT line MATCHES "^  -")
-      continue()
-    endif()
-    string(REGEX REPLACE "^  (-[^ ,]*( [A-Z][^ ,]*)?(, -[^ ,]*( [A-Z][^ ,]*)?)*).*$" "\\1" spellings "${line}")
+    string(REGEX REPLACE "\t.*$" "" spellings "${line}")
     string(REPLACE ", " ";" spellings "${spellings}")
-    foreach(s IN LISTS spellings)
-      string(REGEX REPLACE " .*$" "" s "${s}")
-      string(REGEX REPLACE "^(-.*[-=])[A-Z][A-Z]+$" "\\1" s "${s}")
-      list(APPEND options "${s}")
-    endforeach()
+    list(APPEND options ${spellings})
   endforeach()
   list(REMOVE_DUPLICATES options)
-  set(before ${failures})
   list(LENGTH options n)
   if(n LESS 3)
-    problem("${tool} --help: found only ${n} options (${options}); has its layout changed?")
+    problem("${tool} --list-options: found only ${n} options (${options})")
   endif()
+  set(before ${failures})
   foreach(o IN LISTS options)
     string(FIND "${man_text}" "${o}" at)
     if(at EQUAL -1)
-      problem("${tool}: option ${o} of --help is missing from docs/man/${tool}.1")
+      problem("${tool}: option ${o} is missing from docs/man/${tool}.1")
     endif()
-    string(FIND "${completion_text}" "${o}" at)
-    if(at EQUAL -1)
-      problem("${tool}: option ${o} of --help is missing from cli/completion/${tool}")
+  endforeach()
+  # ... and the page's OPTIONS name only options the tool has: each item's tag (the line after
+  # .TP) is read for words that start with a dash. -h is --help's hidden alias.
+  string(REGEX MATCH "\n\\.SH OPTIONS\n.*" section "${man_text}")
+  string(REGEX REPLACE "^\n\\.SH OPTIONS\n" "" section "${section}")
+  string(REGEX REPLACE "\n\\.SH .*$" "" section "${section}")
+  string(REPLACE ";" "," section "${section}")
+  string(REPLACE "\n" ";" section_lines "${section}")
+  set(tag_next FALSE)
+  foreach(line IN LISTS section_lines)
+    if(line STREQUAL ".TP")
+      set(tag_next TRUE)
+      continue()
+    endif()
+    if(tag_next)
+      set(tag_next FALSE)
+      string(REGEX REPLACE "^\\.[A-Z]+ " "" tag "${line}")
+      string(REGEX REPLACE "[\",]" " " tag "${tag}")
+      string(REGEX MATCHALL "(^| )-[^ ]+" words "${tag}")
+      foreach(w IN LISTS words)
+        string(STRIP "${w}" w)
+        string(REGEX REPLACE "^(-[^=]*=?).*$" "\\1" w "${w}")
+        if(NOT w IN_LIST options AND NOT w STREQUAL "-h")
+          problem("${tool}: docs/man/${tool}.1 documents ${w}, which ${tool} --list-options does not list")
+        endif()
+      endforeach()
     endif()
   endforeach()
   if(failures EQUAL before)
-    message(STATUS "${tool}: ${n} options, all in its man page and completion")
+    message(STATUS "${tool}: ${n} options, all in its man page, which names no other")
   endif()
 endforeach()
 
-# Every executable cli/ builds (EXECUTABLES, from the build's own target list) is a tool, or a
-# program a tool runs (HELPERS, installed to libexec/tmcl: no man page of its own).
+# Every executable cli/ builds (EXECUTABLES, from the build's own target list) is a tool.
 foreach(exe IN LISTS EXECUTABLES)
-  if(NOT exe IN_LIST names AND NOT exe IN_LIST HELPERS)
-    problem("cli/ builds the executable ${exe}, which is not in TMCL_TOOLS or TMCL_HELPERS")
+  if(NOT exe IN_LIST names)
+    problem("cli/ builds the executable ${exe}, which is not in TMCL_TOOLS")
   endif()
 endforeach()
 
-tmcl_check_done("man pages and completions")
+tmcl_check_done("man pages and completion")

@@ -29,6 +29,9 @@ foreach(row IN LISTS LAYERS)
   endforeach()
 endforeach()
 
+# ... and the generated ones (made in the build folder from a template in the library's folder).
+set(owner_tmcl/version.hpp base)  # vm/base/version.hpp.in
+
 # Which library a source file belongs to: the longest folder of the table that holds it.
 set(failures 0)
 foreach(row IN LISTS LAYERS)

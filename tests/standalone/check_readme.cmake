@@ -1,10 +1,9 @@
 # The README's two commands, which a new user copies first, work on this tree as written:
 # - the first two ```sh blocks are one line each, both start by configuring into build/;
 # - the second is the test command, and .ci/run runs exactly that line;
-# - the first builds targets that exist (--target NAME is QUICKSTART or a tool), and every
+# - the first builds targets that exist (--target NAME is a tool), and every
 #   build/PATH it runs is a tool among those targets; every other file it names is in the tree.
-# Run as: cmake -DROOT=<source dir> -DBUILD=<build dir> "-DQUICKSTART=<target;...>"
-#               "-DTOOLS=<name=path;...>" -P check_readme.cmake
+# Run as: cmake -DROOT=<source dir> -DBUILD=<build dir> "-DTOOLS=<name=path;...>" -P check_readme.cmake
 cmake_minimum_required(VERSION 3.25)
 include(${CMAKE_CURRENT_LIST_DIR}/../unit/checks.cmake)
 
@@ -42,12 +41,10 @@ string(REGEX MATCHALL "--target [^ ]+" targets "${first}")
 set(built "")
 foreach(t IN LISTS targets)
   string(REPLACE "--target " "" t "${t}")
-  if(t STREQUAL "quickstart")
-    list(APPEND built ${QUICKSTART})
-  elseif(t IN_LIST tool_names)
+  if(t IN_LIST tool_names)
     list(APPEND built ${t})
   else()
-    problem("README.md: the first command builds `${t}`, which is neither quickstart nor a tool")
+    problem("README.md: the first command builds `${t}`, which is not a tool")
   endif()
 endforeach()
 string(REGEX MATCHALL "(^| )build/[^ ]+" runs "${first}")

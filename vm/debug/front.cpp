@@ -1,5 +1,5 @@
-// tmclrun's debugger entry: its options and the set-up of an engine from tmclrun's loaded
-// inputs, so that tmclrun itself only forwards (one branch and one option hook).
+// tmclrun's debugger entry: the set-up of an engine from tmclrun's loaded inputs and options, so
+// that tmclrun itself only forwards (one branch).
 #include <unistd.h>
 
 #include <cstdlib>
@@ -7,42 +7,6 @@
 #include "tmcl/debug_cli.hpp"
 
 namespace tmcl::debug {
-
-int parse_option(const std::string& a, bool has_inline, const std::function<bool(std::string&)>& value, FrontEnd& fe) {
-  if (a == "--debug" && !has_inline) {
-    fe.enabled = true;
-    return 1;
-  }
-  if (a == "--dap" && !has_inline) {
-    fe.enabled = fe.dap = true;
-    return 1;
-  }
-  if (a == "--debug-commands") {
-    if (!value(fe.commands_file)) return fe.error = "--debug-commands needs a file", -1;
-    fe.enabled = true;
-    return 1;
-  }
-  if (a == "--symbols") {
-    if (!value(fe.symbols)) return fe.error = "--symbols needs a file (tmclasm -f symbols)", -1;
-    return 1;
-  }
-  if (a == "--source-dir") {
-    std::string dir;
-    if (!value(dir) || dir.empty()) return fe.error = "--source-dir needs a folder", -1;
-    fe.source_dirs.push_back(dir);
-    return 1;
-  }
-  if (a == "--checkpoint-memory") {
-    std::string v;
-    if (!value(v)) return fe.error = "--checkpoint-memory needs a size in MiB", -1;
-    char* end = nullptr;
-    long long n = std::strtoll(v.c_str(), &end, 10);
-    if (v.empty() || *end || n < 1 || n > 1 << 20) return fe.error = "--checkpoint-memory needs a size in MiB from 1 to 1048576", -1;
-    fe.checkpoint_bytes = static_cast<std::size_t>(n) << 20;
-    return 1;
-  }
-  return 0;
-}
 
 int main(const FrontEnd& fe, const Profile& profile, std::unique_ptr<MotionCore> core, const std::string& program,
          const AsmOptions& asm_options, SimTime instr_time, const Limits& limits, std::vector<InputEvent> inputs,

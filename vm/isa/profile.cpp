@@ -51,6 +51,12 @@ const InterruptVector* Profile::vector(int number) const {
 
 std::span<const Profile* const> all_profiles() { return kAll; }
 
+std::vector<std::string> profile_names() {
+  std::vector<std::string> names;
+  for (const Profile* p : kAll) names.emplace_back(p->name);
+  return names;
+}
+
 const Profile* find_profile(std::string_view name) {
   for (const Profile* p : kAll)
     if (p->name == name) return p;

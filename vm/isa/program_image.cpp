@@ -15,6 +15,8 @@ struct ChecksumCount {
   std::size_t records = 0, right = 0;
   bool all_right() const { return records > 0 && right == records; }
   bool all_wrong() const { return records > 0 && right == 0; }
+  // More than half wrong, of two records or more (one wrong record of one is damage).
+  bool mostly_wrong() const { return records >= 2 && right * 2 < records; }
 };
 ChecksumCount count_checksums(const std::uint8_t* p, std::size_t n, std::size_t size) {
   ChecksumCount c;
@@ -67,21 +69,26 @@ ImageReadResult read_image(const std::vector<std::uint8_t>& bytes, ImageFormat e
   const bool dgm = expected == ImageFormat::Datagrams;
   const ChecksumCount mine = count_checksums(bytes.data(), bytes.size(), dgm ? 9 : 8);
   const bool mine_fits = bytes.size() % (dgm ? 9 : 8) == 0;
-  // One wrong checksum in a one-record image is damage, not another format: a warning as always.
-  if (mine_fits && !(mine.all_wrong() && mine.records >= 2)) return dgm ? read_datagrams(bytes) : read_bin(bytes);
-  // Every checksum of the expected format is wrong, or the size does not fit it: the contents decide.
+  // A few wrong checksums are damage, not another format: a warning for each, as always.
+  if (mine_fits && !mine.mostly_wrong()) return dgm ? read_datagrams(bytes) : read_bin(bytes);
+  // Most checksums of the expected format are wrong (a right one can be chance: one in 256), or
+  // the size does not fit it: the contents decide.
   const ChecksumCount other = count_checksums(bytes.data(), bytes.size(), dgm ? 8 : 9);
   const char* mine_name = dgm ? "a datagram file" : "a TMCL-IDE .bin";
   if (other.all_right()) {
     ImageReadResult r = dgm ? read_bin(bytes) : read_datagrams(bytes);
+    std::string also;  // how the expected reading fared, when not every checksum was wrong
+    if (mine.right > 0)
+      also = "; as " + std::string(dgm ? "datagrams" : "a .bin") + ", " + std::to_string(mine.records - mine.right) + " of " +
+             std::to_string(mine.records) + " checksums are wrong";
     r.issues.insert(r.issues.begin(),
                     ImageIssue{0, false,
                                std::string("not ") + mine_name + " but " + (dgm ? "a TMCL-IDE .bin" : "datagrams") + " (" +
-                                   plural(other.records, dgm ? "record" : "request") +
-                                   ", every checksum right): read as " + (dgm ? ".bin" : "datagrams")});
+                                   plural(other.records, dgm ? "record" : "request") + ", every checksum right" + also +
+                                   "): read as " + (dgm ? ".bin" : "datagrams")});
     return r;
   }
-  if (!mine_fits) return dgm ? read_datagrams(bytes) : read_bin(bytes);  // the size error
+  if (!mine_fits || !mine.all_wrong()) return dgm ? read_datagrams(bytes) : read_bin(bytes);  // size error, or damage
   ImageReadResult r;
   r.format_datagrams = dgm;
   r.issues.push_back({0, true,

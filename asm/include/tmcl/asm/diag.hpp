@@ -66,6 +66,8 @@ struct WarningInfo {
   std::string_view what;
 };
 const std::vector<WarningInfo>& warning_table();
+// The names of warning_table(), in its order (-Wno-NAME's completion).
+std::vector<std::string> warning_names();
 const WarningInfo* find_warning(std::string_view name);
 
 // The -W options of a run: which named warnings are shown and which are errors.

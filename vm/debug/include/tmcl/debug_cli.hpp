@@ -72,7 +72,7 @@ struct DapSetup {
 };
 int run_dap(const DapSetup& setup, std::FILE* in, std::FILE* out);
 
-// tmclrun's debugger options, parsed by parse_option so tmclrun stays thin.
+// tmclrun's debugger options (its option table sets them, cli/tmclrun.cpp).
 struct FrontEnd {
   bool enabled = false;         // --debug, --debug-commands or --dap
   bool dap = false;             // --dap
@@ -80,11 +80,7 @@ struct FrontEnd {
   std::string symbols;          // --symbols FILE (labels and line table for a .bin)
   std::vector<std::string> source_dirs;  // --source-dir DIR (repeatable): sources of a .bin
   std::size_t checkpoint_bytes = std::size_t{64} << 20;  // --checkpoint-memory MiB
-  std::string error;            // when parse_option returns -1
 };
-// 1: `arg` was one of the options above (its value taken through `value`), 0: not one of
-// them, -1: a bad value (FrontEnd::error says why).
-int parse_option(const std::string& arg, bool has_inline, const std::function<bool(std::string&)>& value, FrontEnd& fe);
 
 // Loads PROGRAM and runs the command line (or DAP) on it; with `serve`, while serving a host
 // (serve_debug). Returns tmclrun's exit status.

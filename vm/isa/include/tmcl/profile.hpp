@@ -8,6 +8,7 @@
 #include <span>
 #include <string>
 #include <string_view>
+#include <vector>
 
 namespace tmcl {
 
@@ -72,6 +73,8 @@ struct Profile {
 
 // All built-in profiles, generic first.
 std::span<const Profile* const> all_profiles();
+// Their -t names, in the same order (the tools' completion and messages).
+std::vector<std::string> profile_names();
 // Profile by -t name, or nullptr.
 const Profile* find_profile(std::string_view name);
 const Profile& generic_profile();

@@ -1,7 +1,7 @@
 // The one reader of program images for every tool (tmclasm -d, tmclrun, tmclctl, the debugger):
 // a TMCL-IDE .bin (8-byte records) or a datagram file as tmclasm -f datagrams writes it (one
 // 9-byte request per instruction). The name says which format is expected; the contents decide
-// when every checksum of that format is wrong (docs/tmclrun.md, "Program images").
+// when most checksums of that format are wrong (docs/tmclrun.md, "Program images").
 //
 // The rule for opcode 0 (docs/errata.md E40): a datagram file is a
 // download stream, read as a module in download mode stores it into empty memory: an opcode-0
@@ -24,10 +24,12 @@ enum class ImageFormat : std::uint8_t { Bin, Datagrams };
 // warning; opcode-0 end markers are left out of the program (ImageReadResult::end_markers).
 ImageReadResult read_datagrams(const std::vector<std::uint8_t>& bytes);
 
-// Reads an image expected in `expected` format (from its name or an option). When every record
-// checksum of that format is wrong (two records or more), the contents decide: an image whose every checksum of the
-// other format is right is read as that format, with a warning saying so; otherwise it is
-// refused with an error saying what it is not and what to try.
+// Reads an image expected in `expected` format (from its name or an option). When most record
+// checksums of that format are wrong (more than half, of two records or more), the contents
+// decide: an image whose every checksum of the other format is right is read as that format,
+// with one warning saying so. Otherwise an image whose every checksum is wrong is refused with
+// an error saying what it is not and what to try, and one with some right is read as expected,
+// a warning for each wrong record.
 ImageReadResult read_image(const std::vector<std::uint8_t>& bytes, ImageFormat expected);
 
 // The format a file name asks for: .dgm (any case) datagrams, anything else .bin.

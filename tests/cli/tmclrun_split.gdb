@@ -1,7 +1,0 @@
-break Trip
-run
-info registers
-continue
-delete
-continue
-quit
