@@ -60,6 +60,10 @@ std::string_view halt_name(Halt h);
 struct Limits {
   std::uint64_t max_steps = UINT64_MAX;
   SimTime until = kNever;
+  // With max_steps: StepLimit only once the next thing to happen is an instruction. A WAIT in
+  // progress goes on to its end and a due interrupt is entered first, so pc is the instruction
+  // that runs next (a debugger's step stops there: docs/debugger.md, "Stepping").
+  bool to_instruction = false;
 };
 
 struct RunResult {
