@@ -14,6 +14,7 @@
 #include "tmcl/fileio.hpp"
 #include "tmcl/program_image.hpp"
 #include "source.hpp"
+#include "terminal.hpp"
 
 namespace tmcl::debug {
 namespace {
@@ -71,6 +72,7 @@ class Cli {
 
   // Returns false on quit.
   bool command(const std::string& line);
+  std::vector<std::string> completions(const std::string& line, std::size_t start) const;
   int status() const { return status_; }
   void report(const Stop& s);
   void println(const std::string& s) { print(s + "\n"); }
@@ -836,14 +838,71 @@ bool Cli::command(const std::string& raw) {
     println("Running: run/r, start, continue/c [N], step/s [N], next/n [N], finish, until/u LOC, advance DURATION|LOC,");
     println("         jump LOC, kill, quit/q");
     println("Reverse: reverse-step/rs [N], reverse-next/rn, reverse-finish, reverse-continue/rc");
-    println("Looking: info registers|frame|interrupts|timers|motors|display|checkpoints, backtrace/bt, list/l,");
-    println("         disassemble, x/N ADDRESS, print/p[/x] EXPR, display EXPR, undisplay, set var LV = EXPR");
+    println("Looking: info registers|frame|interrupts|timers|motors|display|checkpoints, backtrace/bt, up, down,");
+    println("         frame N, list/l, disassemble, x/N[i] ADDRESS, print/p[/x] EXPR, display EXPR, undisplay");
+    println("Changing: set var LV = EXPR (in(n) and ain(n) too), set var switch left|right|home MOTOR = VALUE");
     println("Locations: LABEL, LINE, FILE:LINE, *ADDRESS.  Expressions: A X flags errors pc sp time steps v[n]");
-    println("         ap(param, motor) gp(bank, n) in(n) ain(n) out(n) labels constants, C operators, 2s = 2000000.");
+    println("         ap(param, motor) gp(bank, n) in(n) ain(n) out(n) labels constants, C operators, 2s = 2000000,");
+    println("         $pc $sp $acc $x, the value history $ $$ $N $$N, hexadecimal 0x1F.");
     return true;
   }
   error("Undefined command: \"" + word + "\".  Try \"help\".");
   return true;
+}
+
+// Tab completion: a command's name as the first word; after `info` what it shows, after `set`
+// `var`, after `set var switch` the switches; anywhere else labels, constants (the parameter names
+// the program defines, e.g. AP_ActualPosition of USB-2-SD.inc), source files, registers ($pc
+// too) and the expression functions.
+std::vector<std::string> Cli::completions(const std::string& line, std::size_t start) const {
+  static const char* kCommands[] = {
+      "advance", "backtrace", "break", "condition", "continue", "delete", "disable", "disassemble", "display", "down",
+      "enable", "finish", "frame", "help", "ignore", "info", "jump", "kill", "list", "next", "nexti", "print", "quit",
+      "reverse-continue", "reverse-finish", "reverse-next", "reverse-step", "run", "set", "start", "step", "stepi",
+      "tbreak", "undisplay", "until", "up", "watch", "where", "x"};
+  static const char* kInfo[] = {"breakpoints", "checkpoints", "display", "frame", "interrupts", "motors", "registers", "stack",
+                                "timers", "watchpoints"};
+  static const char* kWords[] = {"A", "X", "acc", "flags", "errors", "pc", "sp", "time", "steps", "v[", "ap(", "gp(", "in(", "ain(", "out("};
+  static const char* kRegisters[] = {"$pc", "$sp", "$acc", "$x", "$a", "$flags", "$errors", "$time", "$steps"};
+  const std::string word = line.substr(start);
+  std::istringstream before(line.substr(0, start));
+  std::vector<std::string> words;
+  for (std::string w; before >> w;) words.push_back(w);
+  std::vector<std::string> out;
+  auto offer = [&](const std::string& name) {
+    if (name.size() < word.size()) return;
+    for (std::size_t i = 0; i < word.size(); ++i)
+      if (std::tolower(static_cast<unsigned char>(name[i])) != std::tolower(static_cast<unsigned char>(word[i]))) return;
+    out.push_back(name);
+  };
+  if (words.empty()) {
+    for (const char* c : kCommands) offer(c);
+    return out;
+  }
+  if (words.size() == 1 && (words[0] == "info" || words[0] == "i")) {
+    for (const char* c : kInfo) offer(c);
+    return out;
+  }
+  if (words.size() == 1 && words[0] == "set") {
+    offer("var");
+    offer("variable");
+    return out;
+  }
+  if (words.size() == 2 && words[0] == "set" && words[1].rfind("var", 0) == 0) offer("switch");
+  if (words.size() == 3 && words[0] == "set" && words[2] == "switch") {
+    for (const char* c : {"left", "right", "home"}) offer(c);
+    return out;
+  }
+  if (!word.empty() && word[0] == '$') {
+    for (const char* r : kRegisters) offer(r);
+    return out;
+  }
+  const ProgramInfo& info = e_.info();
+  for (const auto& l : info.labels) offer(l.first);
+  for (const auto& c : info.constants) offer(c.first);
+  for (const auto& f : info.files) offer(f.name + ":");
+  for (const char* w : kWords) offer(w);
+  return out;
 }
 
 }  // namespace gdb
@@ -885,6 +944,10 @@ void CommandLine::note(const std::string& text) {
 
 int CommandLine::status() const { return impl_->cli.status(); }
 
+std::vector<std::string> CommandLine::completions(const std::string& line, std::size_t start) const {
+  return impl_->cli.completions(line, start);
+}
+
 int run_cli(Engine& engine, const CliOptions& options, std::FILE* in, std::FILE* out) {
   std::FILE* src = in;
   bool from_file = !options.commands_file.empty();
@@ -902,6 +965,11 @@ int run_cli(Engine& engine, const CliOptions& options, std::FILE* in, std::FILE*
   }
   const bool tty = !from_file && ::isatty(::fileno(src));
   CommandLine cli(engine, out, !tty, !from_file);
+  // On a terminal (both ways) the line editor reads the commands: history, keys, completion.
+  std::unique_ptr<TerminalPrompt> editor;
+  if (tty && TerminalPrompt::usable(::fileno(src), ::fileno(out)))
+    editor = std::make_unique<TerminalPrompt>(::fileno(src), ::fileno(out), "(tmdb) ",
+                                              [&cli](const std::string& l, std::size_t at) { return cli.completions(l, at); });
   g_engine = &engine;
   struct sigaction sa {};
   sa.sa_handler = on_sigint;
@@ -914,6 +982,14 @@ int run_cli(Engine& engine, const CliOptions& options, std::FILE* in, std::FILE*
     if (from_file) {
       if (next_line >= script.size()) break;
       line = script[next_line++];
+    } else if (editor) {
+      std::fflush(out);
+      std::optional<std::string> typed = editor->read_line();
+      if (!typed) {
+        std::fputs("quit\n", out);  // Ctrl-D, as gdb
+        break;
+      }
+      line = *typed;
     } else {
       if (tty) {
         std::fputs("(tmdb) ", out);
