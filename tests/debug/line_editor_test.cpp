@@ -196,3 +196,10 @@ TEST(a_note_above_the_prompt_erases_the_line_and_draws_it_again) {
   e.begin(true);  // a new prompt that keeps the line (the program ran meanwhile)
   CHECK_EQ(e.buffer(), std::string("print 1"));
 }
+
+TEST(a_line_stops_growing_at_64_kib) {
+  LineEditor e = fresh();
+  type(e, std::string(70000, 'x'));
+  CHECK_EQ(e.buffer().size(), std::size_t{64 << 10});
+  CHECK(e.take_output().ends_with("\a"));
+}

@@ -10,6 +10,7 @@ namespace tmcl::debug {
 namespace {
 
 constexpr char kEsc = 27;
+constexpr std::size_t kMaxLine = 64 << 10;  // as the piped command line's bound (serve.cpp)
 
 bool word_char(char c) {
   return !std::isspace(static_cast<unsigned char>(c)) && std::string("(),[]=<>!+-*%&|^~").find(c) == std::string::npos;
@@ -190,6 +191,10 @@ LineEditor::Event LineEditor::escape_end(char final, const std::string& params) 
 }
 
 void LineEditor::insert(const std::string& text) {
+  if (buf_.size() + text.size() > kMaxLine) {  // a paste without an end: not a command line
+    out_ += '\a';
+    return;
+  }
   buf_.insert(pos_, text);
   pos_ += text.size();
   refresh();
@@ -319,21 +324,29 @@ void LineEditor::end_search(bool accept) {
 }
 
 void LineEditor::refresh() {
-  std::string shown, before;  // the whole text, and the part left of the cursor
+  // The text drawn is `head` + `tail` (prompt and line, or the search's), the cursor `at` columns in.
+  std::string head;
+  const std::string* tail = &buf_;
+  std::size_t at = 0;
   if (search_) {
     const bool failed = !found_ && !query_.empty();
-    shown = std::string(failed ? "(failed reverse-i-search)`" : "(reverse-i-search)`") + query_ + "': " +
-            (match_ < history_.size() ? history_[match_] : "");
-    before = shown;
+    head = std::string(failed ? "(failed reverse-i-search)`" : "(reverse-i-search)`") + query_ + "': ";
+    static const std::string kNone;
+    tail = match_ < history_.size() ? &history_[match_] : &kNone;
+    at = head.size() + tail->size();
   } else {
-    shown = prompt_ + buf_;
-    before = prompt_ + buf_.substr(0, pos_);
+    head = prompt_;
+    at = head.size() + pos_;
   }
   // Keep the cursor on the screen: scroll the line left when it would pass the last column.
   const std::size_t avail = static_cast<std::size_t>(std::max(width_ - 1, 10));
-  std::size_t offset = before.size() > avail ? before.size() - avail : 0;
-  out_ += "\r" + shown.substr(offset, avail) + "\x1b[K\r";
-  if (std::size_t col = before.size() - offset; col > 0) out_ += "\x1b[" + std::to_string(col) + "C";
+  const std::size_t offset = at > avail ? at - avail : 0;
+  std::string shown;
+  if (offset >= head.size()) shown = tail->substr(offset - head.size(), avail);
+  else if (head.size() - offset >= avail) shown = head.substr(offset, avail);
+  else shown = head.substr(offset) + tail->substr(0, avail - (head.size() - offset));
+  out_ += "\r" + shown + "\x1b[K\r";
+  if (std::size_t col = at - offset; col > 0) out_ += "\x1b[" + std::to_string(col) + "C";
 }
 
 }  // namespace tmcl::debug
