@@ -353,8 +353,11 @@ TEST(dap_steps_stop_where_the_command_line_steps_stop) {
     requests.push_back(R"("command":"evaluate","arguments":{"expression":"time"})");
     cli_moves.push_back(cli);
   }
+  requests.push_back(R"("command":"disassemble","arguments":{"memoryReference":"9","instructionOffset":0,"instructionCount":1})");
   requests.push_back(R"("command":"disconnect")");
   Session s = run(requests);
+  const Value* dis = s.response("disassemble");
+  CHECK(dis && (*dis)["body"]["instructions"].at(0)["instruction"].as_string() == "CSUB Count");  // the target by its label
   std::vector<Place> dap;
   for (std::size_t i = 0; i < moves.size(); ++i) {
     const Value* trace = s.response("stackTrace", static_cast<int>(i));

@@ -14,7 +14,6 @@
 #include <map>
 #include <sstream>
 
-#include "tmcl/asm/disasm.hpp"
 #include "tmcl/debug_cli.hpp"
 #include "tmcl/duration.hpp"
 #include "tmcl/json.hpp"
@@ -515,7 +514,8 @@ bool Dap::handle(const Value& req) {
         ins.set("instruction", "");
         ins.set("presentationHint", "invalid");
       } else {
-        ins.set("instruction", format_instruction(vm.program[static_cast<std::size_t>(at)]));
+        // Targets by label and the constants the source named, as disassemble shows them.
+        ins.set("instruction", e.info().named(vm.program[static_cast<std::size_t>(at)], static_cast<std::int32_t>(at), vm));
         std::string fn = e.info().function_of(static_cast<std::int32_t>(at));
         if (!fn.empty()) ins.set("symbol", fn);
         if (int l = line_of(static_cast<std::int32_t>(at))) {
