@@ -20,6 +20,7 @@
 #include <vector>
 
 #include "client.hpp"
+#include "read_until.hpp"
 
 using namespace srvtest;
 
@@ -55,22 +56,7 @@ struct OnPty {
     keys(bytes);
   }
   // Reads until `what` occurs `count` times on the screen (or the deadline passes, or the end).
-  bool wait_for(const std::string& what, int count = 1) {
-    const auto end = Clock::now() + std::chrono::milliseconds(kDeadlineMs);
-    for (;;) {
-      int seen = 0;
-      for (std::size_t at = 0; (at = screen.find(what, at)) != std::string::npos; at += what.size()) ++seen;
-      if (seen >= count) return true;
-      auto left = std::chrono::duration_cast<std::chrono::milliseconds>(end - Clock::now()).count();
-      if (left <= 0) return false;
-      pollfd p{master, POLLIN, 0};
-      if (::poll(&p, 1, static_cast<int>(left)) <= 0) continue;
-      char buf[4096];
-      ssize_t n = ::read(master, buf, sizeof buf);
-      if (n <= 0) return false;  // EIO: the process closed the terminal
-      screen.append(buf, static_cast<std::size_t>(n));
-    }
-  }
+  bool wait_for(const std::string& what, int count = 1) { return dbgtest::read_until(master, screen, what, count, kDeadlineMs); }
   // Waits until the terminal is in the mode a command runs in (its own: Ctrl-C a signal), or in
   // the editor's raw mode (keys typed before it would be taken by the terminal's line
   // discipline): read from the pseudo-terminal's settings.
@@ -151,28 +137,25 @@ TEST(the_prompt_edits_completes_and_keeps_history_on_a_terminal) {
   CHECK(t.screen.find("(tmdb) break bump ") != std::string::npos);
   t.type("run\r");
   CHECK(t.wait_for("Breakpoint 1, bump (address 3)"));
-  // Home and Right arrows, then a character inserted in the middle.
-  t.type("prin v[1]\x1b[H\x1b[C\x1b[C\x1b[C\x1b[Ct\r");
-  CHECK(t.wait_for("$1 = 0"));
-  // Up through this session's lines and the earlier session's (read from the history file).
-  t.type("\x1b[A\x1b[A\x1b[A\x1b[A\r");
-  CHECK(t.wait_for("$2 = 42"));
-  // Ctrl-R finds the newest line with "brea"; Enter runs it.
-  t.type("\x12" "brea\r");
-  CHECK(t.wait_for("Breakpoint 2 at bump (address 3)"));
+  // Each line typed and what it shows: the editing keys as a terminal sends them.
+  const struct {
+    const char* keys;
+    const char* shows;
+  } kTyped[] = {
+      {"prin v[1]\x1b[H\x1b[C\x1b[C\x1b[C\x1b[Ct\r", "$1 = 0"},  // Home, Right; a character inserted
+      {"\x1b[A\x1b[A\x1b[A\x1b[A\r", "$2 = 42"},                // Up into the earlier session's history
+      {"\x12" "brea\r", "Breakpoint 2 at bump (address 3)"},        // Ctrl-R: the newest "brea"; Enter runs it
+      {"p 7 junk\x17\r", "$3 = 7"},                                  // Ctrl-W
+      {"nonsense\x15p 8\r", "$4 = 8"},                               // Ctrl-U
+      {"p 9\x01\x0bp 10\r", "$5 = 10"},                               // Ctrl-A, Ctrl-K
+      {"p 1\x01\x05 + 10\x1bOH\x1bOF * 2\r", "$6 = 21"},              // Ctrl-E, Home and End (ESC O H, ESC O F)
+      {"i\t\t", "ignore  info"},                                     // a second Tab lists the candidates
+  };
+  for (const auto& k : kTyped) {
+    t.type(k.keys);
+    CHECK(t.wait_for(k.shows));
+  }
   CHECK(t.screen.find("(reverse-i-search)`brea': break bump") != std::string::npos);
-  // Ctrl-W, Ctrl-U, Ctrl-A with Ctrl-K, Ctrl-E, End (ESC O F).
-  t.type("p 7 junk\x17\r");
-  CHECK(t.wait_for("$3 = 7"));
-  t.type("nonsense\x15p 8\r");
-  CHECK(t.wait_for("$4 = 8"));
-  t.type("p 9\x01\x0bp 10\r");
-  CHECK(t.wait_for("$5 = 10"));
-  t.type("p 1\x01\x05 + 10\x1bOH\x1bOF * 2\r");
-  CHECK(t.wait_for("$6 = 21"));
-  // A second Tab lists the candidates.
-  t.type("i\t\t");
-  CHECK(t.wait_for("ignore  info"));
   // Ctrl-C at the prompt drops the line; the next one runs.
   t.type("\x03p 3\r");
   CHECK(t.wait_for("^C"));
