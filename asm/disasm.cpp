@@ -208,6 +208,14 @@ std::string format_instruction(const Instruction& ins) {
   return f.text;
 }
 
+std::string format_instruction(const Instruction& ins, const std::map<Field, std::string>& names) {
+  std::vector<Instruction> one{ins};
+  Labels labels(1);
+  FieldText symbolic;
+  for (const auto& [field, text] : names) symbolic[{0, static_cast<int>(field)}] = text;
+  return render(one, 0, symbolic, true, false, labels).text;
+}
+
 std::string disassemble_program(const std::vector<Instruction>& program, const LabelNames* names,
                                 const std::vector<std::string>& header, const std::vector<std::string>& notes) {
   Labels labels(program.size());

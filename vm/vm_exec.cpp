@@ -18,6 +18,10 @@ std::string wait_text(const Vm& vm) {
   return std::string("WAIT ") + kNames[ins.type <= 4 ? ins.type : 0] + " at " + vm.where(at);
 }
 
+RunResult step_limit(const Vm& vm) {
+  return RunResult{Halt::StepLimit, "stopped after " + std::to_string(vm.steps) + " instructions (--max-steps)"};
+}
+
 // A motion core that keeps announcing an event at an instant it never gets past would make the
 // VM loop forever at one instant; after this many rounds that is reported as a fault.
 constexpr int kMaxRoundsPerInstant = 1'000'000;
@@ -86,8 +90,8 @@ std::optional<RunResult> Vm::Loop::service(Vm& vm, const Limits& lim) {
       vm.apply_input(vm.inputs_queue[vm.input_next++]);
     vm.fire_due_timers();
     if (vm.status != AppStatus::Running) return settle(vm, lim);
-    if (vm.steps >= lim.max_steps)
-      return RunResult{Halt::StepLimit, "stopped after " + std::to_string(vm.steps) + " instructions (--max-steps)"};
+    const bool at_limit = vm.steps >= lim.max_steps;
+    if (at_limit && !lim.to_instruction) return step_limit(vm);
     if (vm.wait.active) {
       int w = vm.wait_check();
       if (w != 0) {
@@ -97,6 +101,7 @@ std::optional<RunResult> Vm::Loop::service(Vm& vm, const Limits& lim) {
       }
     }
     vm.try_enter_interrupt();
+    if (at_limit && !vm.wait.active) return step_limit(vm);  // to_instruction: pc runs next
     if (vm.now >= lim.until) return RunResult{Halt::TimeLimit, "simulated time limit reached (--max-time)"};
     SimTime wake = vm.next_wakeup();
     if (!vm.wait.active) {

@@ -261,3 +261,119 @@ TEST(terminate_while_running_ends_the_program) {
   CHECK(disc && (*disc)["success"].as_bool());
   std::remove(path.c_str());
 }
+
+// The stepping rules (docs/debugger.md, "Stepping") hold over DAP as on the command line: the
+// same engine behind stepIn/next/stepOut/stepBack as behind step/next/finish/reverse-step. A timer
+// fires during a WAIT; its handler calls a subroutine. Each stop's line and instant over DAP
+// equal the command line's, and both are the stops the rules give (a step from the WAIT enters
+// the handler at its first instruction; a next from the RETI ends after the WAIT, the later
+// interrupts stepped over; stepBack retraces them). Before the rules, DAP's stepIn from the WAIT
+// landed on the handler's second instruction and its next skipped both CALCV lines.
+namespace {
+const char* kStepProgram = R"(        VECT 0, Tick
+        SGP 0, 3, 100
+        EI 0
+        EI 255
+        MVP ABS, 0, 10000
+        WAIT POS, 0, 0
+        CALCV ADD, 5, 1
+        CALCV ADD, 5, 1
+        STOP
+Tick:   CSUB Count
+        RETI
+Count:  GGP 6, 2
+        CALC ADD, 1
+        AGP 6, 2
+        RSUB
+)";
+
+struct Place {
+  std::int64_t line;
+  std::string time;
+  bool operator==(const Place&) const = default;
+};
+std::string text_of(const std::vector<Place>& ps) {
+  std::string s;
+  for (const auto& p : ps) s += std::to_string(p.line) + "@" + p.time + " ";
+  return s;
+}
+
+// The command line's stops for the same moves: `p time` and the line of `p pc` after each.
+std::vector<Place> cli_places(const std::string& path, const std::vector<std::string>& moves) {
+  const Profile& profile = *find_profile("usb-2-sd");
+  debug::ProgramInfo info;
+  std::string messages;
+  CHECK(debug::load_program_info(path, profile, AsmOptions{}, "", info, messages));
+  debug::Setup setup;
+  setup.profile = &profile;
+  setup.core_name = std::string(profile.default_motion);
+  debug::ProgramInfo copy = info;
+  debug::Engine engine(setup, std::move(copy), make_motion_core(setup.core_name));
+  std::FILE* out = std::tmpfile();
+  debug::CommandLine cli(engine, out, false, false);
+  std::vector<Place> places;
+  auto value = [&](const std::string& expr) {
+    std::fflush(out);
+    long at = std::ftell(out);
+    cli.line("p " + expr);
+    std::fflush(out);
+    std::fseek(out, at, SEEK_SET);
+    char buf[256] = {};
+    std::string got = std::fgets(buf, sizeof buf, out) ? buf : "";
+    std::fseek(out, 0, SEEK_END);
+    return got.substr(got.find('=') + 2, got.find('\n') - got.find('=') - 2);
+  };
+  cli.line("break 6");
+  cli.line("run");
+  for (const auto& m : moves) {
+    cli.line(m);
+    std::size_t pc = std::stoul(value("pc"));
+    places.push_back({pc < info.lines.size() ? info.lines[pc].line : -1, value("time")});
+  }
+  std::fclose(out);
+  return places;
+}
+}  // namespace
+
+TEST(dap_steps_stop_where_the_command_line_steps_stop) {
+  std::string path = "dap_test_steps.tmc";
+  std::ofstream(path) << kStepProgram;
+  const std::vector<std::pair<std::string, std::string>> moves = {
+      {"stepIn", "step"}, {"stepIn", "step"},          {"stepOut", "finish"},         {"stepIn", "step"},
+      {"next", "next"},   {"next", "next"},            {"next", "next"},              {"stepBack", "reverse-step"},
+      {"stepBack", "reverse-step"}, {"stepBack", "reverse-step"}};
+  std::vector<std::string> requests = {
+      R"("command":"initialize","arguments":{})", R"("command":"launch","arguments":{"program":")" + path + R"("})",
+      R"("command":"setBreakpoints","arguments":{"source":{"path":")" + path + R"("},"breakpoints":[{"line":6}]})",
+      R"("command":"configurationDone")"};
+  std::vector<std::string> cli_moves;
+  for (const auto& [dap, cli] : moves) {
+    requests.push_back(R"("command":")" + dap + R"(","arguments":{"threadId":1})");
+    requests.push_back(R"("command":"stackTrace","arguments":{"threadId":1})");
+    requests.push_back(R"("command":"evaluate","arguments":{"expression":"time"})");
+    cli_moves.push_back(cli);
+  }
+  requests.push_back(R"("command":"disassemble","arguments":{"memoryReference":"9","instructionOffset":0,"instructionCount":1})");
+  requests.push_back(R"("command":"disconnect")");
+  Session s = run(requests);
+  const Value* dis = s.response("disassemble");
+  CHECK(dis && (*dis)["body"]["instructions"].at(0)["instruction"].as_string() == "CSUB Count");  // the target by its label
+  std::vector<Place> dap;
+  for (std::size_t i = 0; i < moves.size(); ++i) {
+    const Value* trace = s.response("stackTrace", static_cast<int>(i));
+    const Value* time = s.response("evaluate", static_cast<int>(i));
+    CHECK(trace && time);
+    if (!trace || !time) break;
+    dap.push_back({(*trace)["body"]["stackFrames"].at(0)["line"].as_int(), (*time)["body"]["result"].as_string()});
+  }
+  // Every stop is a step's: no breakpoint hit twice, nothing ran to the end.
+  for (const Value* st : s.events("stopped")) {
+    std::string reason = (*st)["body"]["reason"].as_string();
+    CHECK(reason == "step" || reason == "breakpoint");
+  }
+  const std::vector<Place> expected = {{10, "100040"}, {12, "100060"}, {11, "100140"}, {10, "200040"}, {11, "200140"},
+                                       {7, "883984"},  {8, "884004"},  {7, "883984"},  {11, "800140"}, {15, "800120"}};
+  CHECK_EQ(text_of(dap), text_of(expected));
+  CHECK_EQ(text_of(cli_places(path, cli_moves)), text_of(expected));
+  std::remove(path.c_str());
+}

@@ -309,3 +309,48 @@ TEST(a_breakpoint_set_during_finish_keeps_its_temporary_stop) {
   CHECK(s.kind == StopKind::Step);
   CHECK_EQ(f.vm().pc, back);
 }
+
+// The first stepping rule against the trace itself: the stops of one `step` after another are
+// the instructions a traced run lists, each at its address and start instant (a WAIT counts once;
+// a handler entered in a WAIT or between two instructions is stopped at its first instruction),
+// and reverse-step from the end visits the same stops backwards.
+namespace {
+struct Listing final : TraceSink {
+  std::vector<std::pair<std::int32_t, SimTime>> at;  // each instruction's address and start
+  void instruction(const Vm&, SimTime t, std::int32_t pc, const Instruction&) override { at.emplace_back(pc, t); }
+  void interrupt_enter(const Vm&, int, std::int32_t) override {}
+  void interrupt_leave(const Vm&, std::int32_t) override {}
+  void motion_event(const Vm&, const MotionEvent&) override {}
+  void wait_end(const Vm&, std::int32_t, bool) override {}
+  void input_event(const Vm&, const std::string&) override {}
+};
+}  // namespace
+
+TEST(each_step_stops_before_the_next_instruction_the_trace_lists) {
+  Fixture traced, stepped(50);
+  Listing listing;
+  traced.vm().trace = &listing;
+  CHECK(traced.engine->start(false).kind == StopKind::Exited);
+  CHECK(listing.at.size() > 500);
+  stepped.engine->start(true);
+  std::vector<std::pair<std::int32_t, SimTime>> stops{{stepped.vm().pc, stepped.vm().now}};
+  for (std::size_t i = 1; i < listing.at.size(); ++i) {
+    Stop s = stepped.engine->step(1);
+    CHECK(s.kind == StopKind::Step);
+    if (s.kind != StopKind::Step) break;
+    stops.emplace_back(stepped.vm().pc, stepped.vm().now);
+  }
+  CHECK(stops == listing.at);
+  std::size_t differ = 0;
+  while (differ < stops.size() && differ < listing.at.size() && stops[differ] == listing.at[differ]) ++differ;
+  CHECK_EQ(differ, listing.at.size());
+  // Backwards: the same stops in reverse order, down to the first instruction.
+  for (std::size_t i = stops.size() - 1; i-- > 0;) {
+    CHECK(stepped.engine->reverse_step(1).kind == StopKind::Step);
+    if (stepped.vm().pc != stops[i].first || stepped.vm().now != stops[i].second) {
+      CHECK_EQ(i, std::size_t{0});  // reports the first mismatch only
+      break;
+    }
+  }
+  CHECK_EQ(stepped.vm().steps, std::uint64_t{0});
+}

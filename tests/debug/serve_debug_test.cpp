@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "client.hpp"
+#include "read_until.hpp"
 
 using namespace srvtest;
 using tmcl::Op;
@@ -45,22 +46,7 @@ struct Debuggee {
     CHECK(::write(in, commands.data(), commands.size()) == static_cast<ssize_t>(commands.size()));
   }
   // Reads until `what` occurs `count` times in the output (or the deadline passes).
-  bool wait_for(const std::string& what, int count = 1) {
-    const auto end = Clock::now() + std::chrono::milliseconds(kDeadlineMs);
-    for (;;) {
-      int seen = 0;
-      for (std::size_t at = 0; (at = text.find(what, at)) != std::string::npos; at += what.size()) ++seen;
-      if (seen >= count) return true;
-      auto left = std::chrono::duration_cast<std::chrono::milliseconds>(end - Clock::now()).count();
-      if (left <= 0) return false;
-      pollfd p{out, POLLIN, 0};
-      if (::poll(&p, 1, static_cast<int>(left)) <= 0) continue;
-      char buf[4096];
-      ssize_t n = ::read(out, buf, sizeof buf);
-      if (n <= 0) return false;
-      text.append(buf, static_cast<std::size_t>(n));
-    }
-  }
+  bool wait_for(const std::string& what, int count = 1) { return dbgtest::read_until(out, text, what, count, kDeadlineMs); }
   int finish() {
     ::close(in);
     in = -1;

@@ -14,6 +14,7 @@
 #include "tmcl/fileio.hpp"
 #include "tmcl/program_image.hpp"
 #include "source.hpp"
+#include "terminal.hpp"
 
 namespace tmcl::debug {
 namespace {
@@ -71,6 +72,7 @@ class Cli {
 
   // Returns false on quit.
   bool command(const std::string& line);
+  std::vector<std::string> completions(const std::string& line, std::size_t start) const;
   int status() const { return status_; }
   void report(const Stop& s);
   void println(const std::string& s) { print(s + "\n"); }
@@ -123,6 +125,12 @@ class Cli {
   void cmd_break(const std::string& arg, bool temporary);
   void cmd_info(const std::string& arg);
   void cmd_backtrace();
+  std::string frame_text(const std::vector<Engine::Frame>& frames, std::size_t n);
+  void cmd_frame(const std::string& word, const std::string& arg);
+  void info_frame();
+  std::int32_t selected_pc();
+  bool expand_history(std::string& line);
+  bool set_switch(const std::string& arg);
   void cmd_list(const std::string& arg);
   void cmd_disassemble(const std::string& arg);
   void cmd_x(const std::string& fmt, const std::string& arg);
@@ -137,7 +145,8 @@ class Cli {
   Engine& e_;
   std::FILE* out_;
   int status_ = 0;
-  int history_ = 0;  // $N of print
+  std::vector<std::int64_t> values_;  // print's value history: $1 is values_[0]
+  std::size_t frame_ = 0;  // the selected frame (up, down, frame N): 0 is the innermost
   std::vector<Display> displays_;
   int next_display_ = 1;
   int list_next_ = -1;  // line after the last `list`, -1: around pc
@@ -190,6 +199,7 @@ void Cli::report(const Stop& s) {
     case StopKind::HistoryStart: println("\nNo more reverse-execution history."); break;
   }
   list_next_ = -1;
+  frame_ = 0;
   where_now();
   show_displays();
 }
@@ -285,23 +295,84 @@ void Cli::info_registers() {
   println("steps    " + std::to_string(vm.steps));
 }
 
+// One line of backtrace: "#1  loop (address 5) at prog.tmc:9", or the interrupted code's
+// frame with what the interrupt saved.
+std::string Cli::frame_text(const std::vector<Engine::Frame>& frames, std::size_t n) {
+  const Engine::Frame& f = frames[n];
+  std::string head = "#" + std::to_string(n) + "  ";
+  if (!f.interrupted) return head + frame_line(f.pc);
+  const auto& s = e_.vm().saved;
+  const InterruptVector* v = e_.vm().profile->vector(s.vector);
+  std::string name = v ? " " + std::string(v->name) : "";
+  return head + "<interrupt " + std::to_string(s.vector) + name + "> saved A=" + std::to_string(s.acc) + " X=" + std::to_string(s.x) +
+         " flags=" + flags_text(s.flags) + (s.wait.active ? " (in WAIT)" : "") + ", resumes " + frame_line(f.pc);
+}
+
 void Cli::cmd_backtrace() {
-  Vm& vm = e_.vm();
-  int n = 0;
-  auto frame = [&](std::int32_t at) { println("#" + std::to_string(n++) + "  " + frame_line(at)); };
-  frame(vm.faulted() && vm.halt_pc >= 0 ? vm.halt_pc : vm.pc);
-  int bottom = 0;
-  if (vm.in_handler) bottom = vm.saved.stack_depth;
-  for (int i = vm.sp - 1; i >= bottom; --i) frame(vm.stack[static_cast<std::size_t>(i)]);
-  if (vm.in_handler) {
-    const auto& s = vm.saved;
-    const InterruptVector* v = vm.profile->vector(s.vector);
-    std::string name = v ? " " + std::string(v->name) : "";
-    println("#" + std::to_string(n++) + "  <interrupt " + std::to_string(s.vector) + name + "> saved A=" + std::to_string(s.acc) +
-            " X=" + std::to_string(s.x) + " flags=" + flags_text(s.flags) + (s.wait.active ? " (in WAIT)" : "") +
-            ", resumes " + frame_line(s.pc));
-    for (int i = bottom - 1; i >= 0; --i) frame(vm.stack[static_cast<std::size_t>(i)]);
+  auto frames = e_.frames();
+  for (std::size_t n = 0; n < frames.size(); ++n) println(frame_text(frames, n));
+}
+
+std::int32_t Cli::selected_pc() {
+  auto frames = e_.frames();
+  return frames[std::min(frame_, frames.size() - 1)].pc;
+}
+
+// up [N], down [N], frame [N] (f): select a frame of the backtrace and show it, as gdb does.
+void Cli::cmd_frame(const std::string& word, const std::string& arg) {
+  if (!e_.running()) return error("No stack.");
+  auto frames = e_.frames();
+  frame_ = std::min(frame_, frames.size() - 1);
+  std::uint64_t n = 1;
+  if (word == "frame" || word == "f") {
+    if (!arg.empty()) {
+      Expr x;
+      std::int64_t level = 0;
+      std::string err;
+      if (!parse_expr(arg, e_.info(), x, err) || !eval_expr(x, e_.vm(), level, err)) return error(err);
+      if (level < 0 || static_cast<std::uint64_t>(level) >= frames.size()) return error("No frame at level " + arg + ".");
+      frame_ = static_cast<std::size_t>(level);
+    }
+  } else if (!parse_count(arg, n)) {
+    return;
+  } else if (word == "up") {
+    if (frame_ + 1 >= frames.size()) return error("Initial frame selected; you cannot go up.");
+    frame_ = static_cast<std::size_t>(std::min<std::uint64_t>(frame_ + n, frames.size() - 1));
+  } else {
+    if (frame_ == 0) return error("Bottom (innermost) frame selected; you cannot go down.");
+    frame_ = n >= frame_ ? 0 : frame_ - static_cast<std::size_t>(n);
   }
+  list_next_ = -1;
+  println(frame_text(frames, frame_));
+  println(code_line(frames[frame_].pc));
+}
+
+// info frame: where the selected frame is, how it was entered and where it goes back to.
+void Cli::info_frame() {
+  if (!e_.running()) return error("No stack.");
+  Vm& vm = e_.vm();
+  auto frames = e_.frames();
+  const std::size_t n = std::min(frame_, frames.size() - 1);
+  const Engine::Frame& f = frames[n];
+  println("Stack level " + std::to_string(n) + ", " + frame_line(f.pc) + ":");
+  if (f.interrupted) {
+    const InterruptVector* v = vm.profile->vector(vm.saved.vector);
+    println(" interrupted by interrupt " + std::to_string(vm.saved.vector) + (v ? " (" + std::string(v->name) + ")" : "") +
+            (vm.saved.wait.active ? " in its WAIT" : " before this instruction") + "; RETI resumes here");
+    println(" saved A=" + std::to_string(vm.saved.acc) + " X=" + std::to_string(vm.saved.x) + " flags=" + flags_text(vm.saved.flags));
+  } else if (n == 0) {
+    println(" pc " + std::to_string(f.pc) + (vm.wait.active ? ", in its WAIT" : ", the instruction that runs next"));
+  } else {
+    println(" pc " + std::to_string(f.pc) + ", the call; it returns to " + frame_line(f.pc + 1));
+  }
+  if (n + 1 < frames.size()) {
+    const Engine::Frame& up = frames[n + 1];
+    println(up.interrupted ? " an interrupt handler, entered from frame " + std::to_string(n + 1)
+                           : " a subroutine, called by frame " + std::to_string(n + 1) + " at " + frame_line(up.pc));
+  } else {
+    println(" the outermost frame");
+  }
+  if (n > 0) println(" caller of frame " + std::to_string(n - 1));
 }
 
 void Cli::info_interrupts() {
@@ -351,6 +422,11 @@ void Cli::info_motors() {
     std::string line = buf;
     if (has_target) line += ", target " + std::to_string(target);
     if (vm.motion->target_reached(m)) line += ", target reached";
+    if (static_cast<std::size_t>(m) < vm.switches.size()) {
+      const MotorSwitches& sw = vm.switches[static_cast<std::size_t>(m)];
+      std::string on = std::string(sw.left ? " left" : "") + (sw.right ? " right" : "") + (sw.home ? " home" : "");
+      if (!on.empty()) line += ", switches on:" + on;
+    }
     println(line);
   }
 }
@@ -368,7 +444,7 @@ void Cli::cmd_list(const std::string& arg) {
     center = info.lines[static_cast<std::size_t>(a)].line;
     list_next_ = std::max(1, center - 5);
   } else if (list_next_ < 0) {
-    std::int32_t a = e_.vm().pc;
+    std::int32_t a = e_.running() ? selected_pc() : e_.vm().pc;
     if (static_cast<std::size_t>(a) >= info.lines.size() || info.lines[static_cast<std::size_t>(a)].file < 0)
       return cmd_disassemble("");
     file = info.lines[static_cast<std::size_t>(a)].file;
@@ -397,7 +473,7 @@ void Cli::cmd_disassemble(const std::string& arg) {
   if (auto comma = arg.find(','); comma != std::string::npos) {
     if (!e_.resolve(arg.substr(0, comma), from, err) || !e_.resolve(arg.substr(comma + 1), to, err)) return error(err);
   } else {
-    std::int32_t at = vm.pc;
+    std::int32_t at = selected_pc();
     if (!arg.empty() && !e_.resolve(arg, at, err)) return error(err);
     // The "function" around `at`: from its label to the next label.
     std::int64_t lo = 0, hi = vm.program_size;
@@ -410,13 +486,15 @@ void Cli::cmd_disassemble(const std::string& arg) {
   }
   std::string fn = info.function_of(from);
   println("Dump of program memory " + std::to_string(from) + ".." + std::to_string(to) + (fn.empty() ? "" : " (" + fn + ")") + ":");
+  const std::int32_t mark = e_.running() ? selected_pc() : -1;
   for (std::int32_t a = from; a <= to && a < vm.program_size; ++a) {
-    std::string f = info.function_of(a), place = info.place(a);
+    std::string f = info.function_of(a), place = info.place(a), numbers;
+    std::string text = info.named(vm.program[static_cast<std::size_t>(a)], a, vm, &numbers);
     char buf[512];
-    std::snprintf(buf, sizeof buf, "%s%5d %-16s %-32s %s", a == vm.pc && e_.running() ? "=> " : "   ", a,
-                  f.empty() ? "" : ("<" + f + ">").c_str(), format_instruction(vm.program[static_cast<std::size_t>(a)]).c_str(),
-                  place.c_str());
+    std::snprintf(buf, sizeof buf, "%s%5d %-16s %-32s %-16s", a == mark ? "=> " : "   ", a, f.empty() ? "" : ("<" + f + ">").c_str(),
+                  text.c_str(), place.c_str());
     std::string row = buf;
+    if (!numbers.empty()) row += " // " + numbers;  // the numbers behind the names
     row.erase(row.find_last_not_of(' ') + 1);
     println(row);
   }
@@ -432,16 +510,23 @@ void Cli::cmd_x(const std::string& fmt, const std::string& arg) {
     if (!digits.empty() && digits.size() < 6) n = std::stoul(digits);
   }
   Vm& vm = e_.vm();
-  std::int32_t at = vm.pc;
+  std::int32_t at = e_.running() ? selected_pc() : vm.pc;
   std::string err;
   if (!arg.empty() && !e_.resolve(arg[0] == '*' ? arg : "*" + arg, at, err)) return error(err);
+  // x/Ni: instructions as gdb shows them, `=>` at pc; otherwise their bytes too.
+  const bool insns = fmt.find('i') != std::string::npos;
+  const std::int32_t mark = e_.running() ? vm.pc : -1;
   for (std::uint64_t i = 0; i < n && at < vm.program_size; ++i, ++at) {
     const Instruction& ins = vm.program[static_cast<std::size_t>(at)];
-    std::string f = e_.info().function_of(at);
+    std::string f = e_.info().function_of(at), numbers;
+    std::string text = e_.info().named(ins, at, vm, &numbers);
     char buf[256];
-    std::snprintf(buf, sizeof buf, "%d%s:\t%02X %02X %02X %08X\t%s", at, f.empty() ? "" : (" <" + f + ">").c_str(), ins.op, ins.type,
-                  ins.motor, static_cast<std::uint32_t>(ins.value), format_instruction(ins).c_str());
-    println(buf);
+    if (insns)
+      std::snprintf(buf, sizeof buf, "%s%d%s:\t%s", at == mark ? "=> " : "   ", at, f.empty() ? "" : (" <" + f + ">").c_str(), text.c_str());
+    else
+      std::snprintf(buf, sizeof buf, "%d%s:\t%02X %02X %02X %08X\t%s", at, f.empty() ? "" : (" <" + f + ">").c_str(), ins.op, ins.type,
+                    ins.motor, static_cast<std::uint32_t>(ins.value), text.c_str());
+    println(std::string(buf) + (numbers.empty() ? "" : "\t// " + numbers));
   }
 }
 
@@ -466,12 +551,83 @@ void Cli::cmd_print(const std::string& fmt, const std::string& arg) {
     for (int b = 31; b >= 0; --b)
       if (!text.empty() || ((u >> b) & 1) || b == 0) text += ((u >> b) & 1) ? '1' : '0';
   }
-  println("$" + std::to_string(++history_) + " = " + text);
+  values_.push_back(v);
+  println("$" + std::to_string(values_.size()) + " = " + text);
+}
+
+// $, $$, $N and $$N (gdb's value history) become the values they name, in parentheses; $NAME
+// (a register: $pc, $sp, $acc, $x) is left to the expression parser.
+bool Cli::expand_history(std::string& line) {
+  std::string out;
+  for (std::size_t i = 0; i < line.size(); ++i) {
+    if (line[i] != '$' || (i + 1 < line.size() && (std::isalpha(static_cast<unsigned char>(line[i + 1])) || line[i + 1] == '_'))) {
+      out += line[i];
+      continue;
+    }
+    std::size_t j = i + 1;
+    const bool back = j < line.size() && line[j] == '$';
+    if (back) ++j;
+    const std::size_t digits = j;
+    while (j < line.size() && j - digits < 9 && std::isdigit(static_cast<unsigned char>(line[j]))) ++j;
+    const std::string num = line.substr(digits, j - digits);
+    if (j < line.size() && (std::isalnum(static_cast<unsigned char>(line[j])) || line[j] == '_')) {
+      std::size_t end = j;
+      while (end < line.size() && std::isalnum(static_cast<unsigned char>(line[end]))) ++end;
+      error("'" + line.substr(i, end - i) + "': $N is the value history; hexadecimal is written 0x" + line.substr(i + 1, end - i - 1) + ".");
+      return false;
+    }
+    const std::size_t k = num.empty() ? (back ? 1 : 0) : std::stoul(num);
+    const std::string name = line.substr(i, j - i);
+    std::size_t index = 0;  // into values_
+    if (values_.empty()) {
+      error("History is empty: " + name + " names no value yet (print makes $1, $2, ...).");
+      return false;
+    }
+    if (back || num.empty()) {  // counted back from the last value: $ is $$0, $$ is $$1
+      if (k >= values_.size()) return error("History has not yet reached " + name + "."), false;
+      index = values_.size() - 1 - k;
+    } else {
+      if (k == 0 || k > values_.size()) return error("History has not yet reached " + name + "."), false;
+      index = k - 1;
+    }
+    out += "(" + std::to_string(values_[index]) + ")";
+    i = j - 1;
+  }
+  line = out;
+  return true;
+}
+
+// set var switch left|right|home MOTOR = VALUE: a stop or home switch, as a scenario line.
+bool Cli::set_switch(const std::string& arg) {
+  static const char* kUsage = "usage: set var switch left|right|home MOTOR = VALUE";
+  const std::string which = arg.substr(0, arg.find_first_of(" \t"));
+  const std::string rest = trim(arg.substr(which.size()));
+  const auto eq = rest.find('=');
+  InputEvent ev;
+  if (which == "left") ev.kind = InputEvent::StopLeft;
+  else if (which == "right") ev.kind = InputEvent::StopRight;
+  else if (which == "home") ev.kind = InputEvent::Home;
+  else return error(kUsage), false;
+  if (eq == std::string::npos || trim(rest.substr(0, eq)).empty()) return error(kUsage), false;
+  Expr m, v;
+  std::string err;
+  std::int64_t motor = 0, value = 0;
+  if (!parse_expr(trim(rest.substr(0, eq)), e_.info(), m, err) || !eval_expr(m, e_.vm(), motor, err) ||
+      !parse_expr(trim(rest.substr(eq + 1)), e_.info(), v, err) || !eval_expr(v, e_.vm(), value, err))
+    return error(err), false;
+  const int motors = e_.vm().profile->motors;
+  if (motor < 0 || motor >= motors)
+    return error("motor " + std::to_string(motor) + " is out of range (0.." + std::to_string(motors - 1) + ")"), false;
+  ev.index = static_cast<int>(motor);
+  ev.value = value != 0;
+  if (!e_.set_input(ev, err)) return error(err), false;
+  return true;
 }
 
 void Cli::cmd_set(const std::string& arg) {
   std::string a = trim(arg);
   if (a.rfind("var ", 0) == 0 || a.rfind("variable ", 0) == 0) a = trim(a.substr(a.find(' ')));
+  if (a.rfind("switch ", 0) == 0) return static_cast<void>(set_switch(trim(a.substr(7))));
   auto eq = a.find('=');
   if (eq == std::string::npos) return error("usage: set var LVALUE = EXPRESSION");
   Expr lhs, rhs;
@@ -480,8 +636,7 @@ void Cli::cmd_set(const std::string& arg) {
   if (!parse_expr(trim(a.substr(0, eq)), e_.info(), lhs, err)) return error(err);
   if (!parse_expr(trim(a.substr(eq + 1)), e_.info(), rhs, err)) return error(err);
   if (!eval_expr(rhs, e_.vm(), v, err)) return error(err);
-  if (!assign_expr(lhs, e_.vm(), v, err)) return error(err);
-  e_.state_changed();
+  if (!e_.assign(lhs, v, err)) return error(err);
 }
 
 void Cli::cmd_info(const std::string& arg) {
@@ -496,7 +651,7 @@ void Cli::cmd_info(const std::string& arg) {
   if (is({"interrupts", "int"})) return info_interrupts();
   if (is({"timers"})) return info_timers();
   if (is({"motors", "motor"})) return info_motors();
-  if (is({"frame", "f"})) return where_now();
+  if (is({"frame", "f"})) return info_frame();
   if (is({"stack", "s"})) return cmd_backtrace();
   if (is({"display"})) {
     if (displays_.empty()) return println("There are no auto-display expressions now.");
@@ -514,6 +669,7 @@ void Cli::cmd_info(const std::string& arg) {
 bool Cli::command(const std::string& raw) {
   std::string line = trim(raw);
   if (line.empty() || line[0] == '#') return true;
+  if (line.find('$') != std::string::npos && !expand_history(line)) return true;
   std::string word = line.substr(0, line.find_first_of(" \t/"));
   std::string fmt;
   std::string rest = trim(line.substr(word.size()));
@@ -636,8 +792,13 @@ bool Cli::command(const std::string& raw) {
     if (!parse_count(rest, n)) return true;
     Stop s;
     if (word == "reverse-finish") {
+      Vm& vm = e_.vm();
+      const bool handler = vm.in_handler && vm.sp == vm.saved.stack_depth;
+      const int vector = vm.saved.vector;
       s = e_.reverse_finish();
-      if (s.kind == StopKind::Step) println("Run back to call of " + frame_line(e_.vm().pc));
+      if (s.kind == StopKind::Step)
+        println(handler ? "Run back to before interrupt " + std::to_string(vector) + " was entered"
+                        : "Run back to call of " + frame_line(e_.vm().pc));
     } else if (word == "reverse-continue" || word == "rc") {
       s = e_.reverse_continue();
     } else if (word.find("next") != std::string::npos || word == "rn" || word == "rni") {
@@ -650,6 +811,7 @@ bool Cli::command(const std::string& raw) {
     return report(s), true;
   }
   if (is({"backtrace", "bt", "where"})) return cmd_backtrace(), true;
+  if (is({"up", "down", "frame", "f"})) return cmd_frame(word, rest), true;
   if (is({"info", "i"})) return cmd_info(rest), true;
   if (is({"list", "l"})) return cmd_list(rest), true;
   if (is({"disassemble", "disas"})) return cmd_disassemble(rest), true;
@@ -676,14 +838,71 @@ bool Cli::command(const std::string& raw) {
     println("Running: run/r, start, continue/c [N], step/s [N], next/n [N], finish, until/u LOC, advance DURATION|LOC,");
     println("         jump LOC, kill, quit/q");
     println("Reverse: reverse-step/rs [N], reverse-next/rn, reverse-finish, reverse-continue/rc");
-    println("Looking: info registers|frame|interrupts|timers|motors|display|checkpoints, backtrace/bt, list/l,");
-    println("         disassemble, x/N ADDRESS, print/p[/x] EXPR, display EXPR, undisplay, set var LV = EXPR");
+    println("Looking: info registers|frame|interrupts|timers|motors|display|checkpoints, backtrace/bt, up, down,");
+    println("         frame N, list/l, disassemble, x/N[i] ADDRESS, print/p[/x] EXPR, display EXPR, undisplay");
+    println("Changing: set var LV = EXPR (in(n) and ain(n) too), set var switch left|right|home MOTOR = VALUE");
     println("Locations: LABEL, LINE, FILE:LINE, *ADDRESS.  Expressions: A X flags errors pc sp time steps v[n]");
-    println("         ap(param, motor) gp(bank, n) in(n) ain(n) out(n) labels constants, C operators, 2s = 2000000.");
+    println("         ap(param, motor) gp(bank, n) in(n) ain(n) out(n) labels constants, C operators, 2s = 2000000,");
+    println("         $pc $sp $acc $x, the value history $ $$ $N $$N, hexadecimal 0x1F.");
     return true;
   }
   error("Undefined command: \"" + word + "\".  Try \"help\".");
   return true;
+}
+
+// Tab completion: a command's name as the first word; after `info` what it shows, after `set`
+// `var`, after `set var switch` the switches; anywhere else labels, constants (the parameter names
+// the program defines, e.g. AP_ActualPosition of USB-2-SD.inc), source files, registers ($pc
+// too) and the expression functions.
+std::vector<std::string> Cli::completions(const std::string& line, std::size_t start) const {
+  static const char* kCommands[] = {
+      "advance", "backtrace", "break", "condition", "continue", "delete", "disable", "disassemble", "display", "down",
+      "enable", "finish", "frame", "help", "ignore", "info", "jump", "kill", "list", "next", "nexti", "print", "quit",
+      "reverse-continue", "reverse-finish", "reverse-next", "reverse-step", "run", "set", "start", "step", "stepi",
+      "tbreak", "undisplay", "until", "up", "watch", "where", "x"};
+  static const char* kInfo[] = {"breakpoints", "checkpoints", "display", "frame", "interrupts", "motors", "registers", "stack",
+                                "timers", "watchpoints"};
+  static const char* kWords[] = {"A", "X", "acc", "flags", "errors", "pc", "sp", "time", "steps", "v[", "ap(", "gp(", "in(", "ain(", "out("};
+  static const char* kRegisters[] = {"$pc", "$sp", "$acc", "$x", "$a", "$flags", "$errors", "$time", "$steps"};
+  const std::string word = line.substr(start);
+  std::istringstream before(line.substr(0, start));
+  std::vector<std::string> words;
+  for (std::string w; before >> w;) words.push_back(w);
+  std::vector<std::string> out;
+  auto offer = [&](const std::string& name) {
+    if (name.size() < word.size()) return;
+    for (std::size_t i = 0; i < word.size(); ++i)
+      if (std::tolower(static_cast<unsigned char>(name[i])) != std::tolower(static_cast<unsigned char>(word[i]))) return;
+    out.push_back(name);
+  };
+  if (words.empty()) {
+    for (const char* c : kCommands) offer(c);
+    return out;
+  }
+  if (words.size() == 1 && (words[0] == "info" || words[0] == "i")) {
+    for (const char* c : kInfo) offer(c);
+    return out;
+  }
+  if (words.size() == 1 && words[0] == "set") {
+    offer("var");
+    offer("variable");
+    return out;
+  }
+  if (words.size() == 2 && words[0] == "set" && words[1].rfind("var", 0) == 0) offer("switch");
+  if (words.size() == 3 && words[0] == "set" && words[2] == "switch") {
+    for (const char* c : {"left", "right", "home"}) offer(c);
+    return out;
+  }
+  if (!word.empty() && word[0] == '$') {
+    for (const char* r : kRegisters) offer(r);
+    return out;
+  }
+  const ProgramInfo& info = e_.info();
+  for (const auto& l : info.labels) offer(l.first);
+  for (const auto& c : info.constants) offer(c.first);
+  for (const auto& f : info.files) offer(f.name + ":");
+  for (const char* w : kWords) offer(w);
+  return out;
 }
 
 }  // namespace gdb
@@ -725,6 +944,10 @@ void CommandLine::note(const std::string& text) {
 
 int CommandLine::status() const { return impl_->cli.status(); }
 
+std::vector<std::string> CommandLine::completions(const std::string& line, std::size_t start) const {
+  return impl_->cli.completions(line, start);
+}
+
 int run_cli(Engine& engine, const CliOptions& options, std::FILE* in, std::FILE* out) {
   std::FILE* src = in;
   bool from_file = !options.commands_file.empty();
@@ -742,6 +965,11 @@ int run_cli(Engine& engine, const CliOptions& options, std::FILE* in, std::FILE*
   }
   const bool tty = !from_file && ::isatty(::fileno(src));
   CommandLine cli(engine, out, !tty, !from_file);
+  // On a terminal (both ways) the line editor reads the commands: history, keys, completion.
+  std::unique_ptr<TerminalPrompt> editor;
+  if (tty && TerminalPrompt::usable(::fileno(src), ::fileno(out)))
+    editor = std::make_unique<TerminalPrompt>(::fileno(src), ::fileno(out), "(tmdb) ",
+                                              [&cli](const std::string& l, std::size_t at) { return cli.completions(l, at); });
   g_engine = &engine;
   struct sigaction sa {};
   sa.sa_handler = on_sigint;
@@ -754,6 +982,14 @@ int run_cli(Engine& engine, const CliOptions& options, std::FILE* in, std::FILE*
     if (from_file) {
       if (next_line >= script.size()) break;
       line = script[next_line++];
+    } else if (editor) {
+      std::fflush(out);
+      std::optional<std::string> typed = editor->read_line();
+      if (!typed) {
+        std::fputs("quit\n", out);  // Ctrl-D, as gdb
+        break;
+      }
+      line = *typed;
     } else {
       if (tty) {
         std::fputs("(tmdb) ", out);

@@ -14,7 +14,6 @@
 #include <map>
 #include <sstream>
 
-#include "tmcl/asm/disasm.hpp"
 #include "tmcl/debug_cli.hpp"
 #include "tmcl/duration.hpp"
 #include "tmcl/json.hpp"
@@ -454,13 +453,7 @@ bool Dap::handle(const Value& req) {
       if (Value s = source_of(at); !s.is_null()) f.set("source", s);
       frames.push(std::move(f));
     };
-    frame(vm.faulted() && vm.halt_pc >= 0 ? vm.halt_pc : vm.pc, "");
-    int bottom = vm.in_handler ? vm.saved.stack_depth : 0;
-    for (int i = vm.sp - 1; i >= bottom; --i) frame(vm.stack[static_cast<std::size_t>(i)], "");
-    if (vm.in_handler) {
-      frame(vm.saved.pc, "<interrupt " + std::to_string(vm.saved.vector) + ">");
-      for (int i = bottom - 1; i >= 0; --i) frame(vm.stack[static_cast<std::size_t>(i)], "");
-    }
+    for (const auto& f : e.frames()) frame(f.pc, f.interrupted ? "<interrupt " + std::to_string(vm.saved.vector) + ">" : "");
     return respond(req, true, obj({{"stackFrames", frames}, {"totalFrames", static_cast<std::int64_t>(frames.size())}})), true;
   }
   if (cmd == "scopes") {
@@ -477,9 +470,8 @@ bool Dap::handle(const Value& req) {
     std::int64_t v = 0;
     if (!parse_expr(lhs, e.info(), x, err)) return fail(req, err), true;
     if (set) {
-      if (!parse_expr(a["value"].as_string(), e.info(), rhs, err) || !eval_expr(rhs, vm, v, err) || !assign_expr(x, vm, v, err))
+      if (!parse_expr(a["value"].as_string(), e.info(), rhs, err) || !eval_expr(rhs, vm, v, err) || !e.assign(x, v, err))
         return fail(req, err), true;
-      e.state_changed();
     }
     if (!eval_expr(x, vm, v, err)) return fail(req, err), true;
     return respond(req, true, obj({{set ? "value" : "result", std::to_string(v)}, {"variablesReference", 0}})), true;
@@ -522,7 +514,8 @@ bool Dap::handle(const Value& req) {
         ins.set("instruction", "");
         ins.set("presentationHint", "invalid");
       } else {
-        ins.set("instruction", format_instruction(vm.program[static_cast<std::size_t>(at)]));
+        // Targets by label and the constants the source named, as disassemble shows them.
+        ins.set("instruction", e.info().named(vm.program[static_cast<std::size_t>(at)], static_cast<std::int32_t>(at), vm));
         std::string fn = e.info().function_of(static_cast<std::int32_t>(at));
         if (!fn.empty()) ins.set("symbol", fn);
         if (int l = line_of(static_cast<std::int32_t>(at))) {

@@ -83,6 +83,74 @@ Engine::Engine(Setup setup, ProgramInfo info, std::unique_ptr<MotionCore> core)
 
 int Engine::depth() const { return vm_->sp + (vm_->in_handler ? 1 : 0); }
 
+bool Engine::at_instruction() const {
+  const Vm& vm = *vm_;
+  if (vm.wait.active || vm.next_wakeup() <= vm.now) return false;
+  if (!vm.global_enable || vm.in_handler || vm.status != AppStatus::Running) return true;
+  for (std::size_t w = 0; w < vm.pending.size(); ++w)
+    if (vm.pending[w] & vm.enabled[w]) return false;
+  return true;
+}
+
+std::vector<Engine::Frame> Engine::frames() const {
+  const Vm& vm = *vm_;
+  std::vector<Frame> out;
+  out.push_back({vm.faulted() && vm.halt_pc >= 0 ? vm.halt_pc : vm.pc, false});
+  // A return address is the instruction after its CSUB (or CALL): the caller is at the call.
+  auto caller = [&](int i) { out.push_back({vm.stack[static_cast<std::size_t>(i)] - 1, false}); };
+  const int bottom = vm.in_handler ? std::clamp(vm.saved.stack_depth, 0, vm.sp) : 0;
+  for (int i = vm.sp - 1; i >= bottom; --i) caller(i);
+  if (vm.in_handler) {
+    out.push_back({vm.saved.pc, true});
+    for (int i = bottom - 1; i >= 0; --i) caller(i);
+  }
+  return out;
+}
+
+bool Engine::set_input(InputEvent ev, std::string& error) {
+  if (!running_) {
+    error = "The program is not being run.";
+    return false;
+  }
+  Vm& vm = *vm_;
+  ev.at = vm.now;
+  ev.line = 0;
+  vm.add_inputs({ev});
+  // Applied now, as the run loop applies a scenario's event that is due: no instruction runs
+  // (the step limit is where it is), a WAIT in progress and a latched interrupt stay as they are.
+  if (vm.status == AppStatus::Running) vm.run(Limits{vm.steps, vm.now, false});
+  state_changed();
+  return true;
+}
+
+bool Engine::assign(const Expr& lhs, std::int64_t value, std::string& error) {
+  if (lhs.root >= 0) {
+    const Expr::Node& n = lhs.nodes[static_cast<std::size_t>(lhs.root)];
+    if (n.kind == Expr::Node::In || n.kind == Expr::Node::Ain) {
+      Expr index = lhs;
+      index.root = n.a;
+      std::int64_t port = 0;
+      if (!eval_expr(index, *vm_, port, error)) return false;
+      if (port < 0 || port >= Vm::kPorts) {
+        error = "port " + std::to_string(port) + " is out of range (0.." + std::to_string(Vm::kPorts - 1) + ")";
+        return false;
+      }
+      if (value < INT32_MIN || value > INT32_MAX) {
+        error = std::to_string(value) + " does not fit 32 bits";
+        return false;
+      }
+      InputEvent ev;
+      ev.kind = n.kind == Expr::Node::In ? InputEvent::Digital : InputEvent::Analog;
+      ev.index = static_cast<int>(port);
+      ev.value = static_cast<std::int32_t>(value);
+      return set_input(ev, error);
+    }
+  }
+  if (!assign_expr(lhs, *vm_, value, error)) return false;
+  state_changed();
+  return true;
+}
+
 bool Engine::resolve(const std::string& location, std::int32_t& address, std::string& error) const {
   std::string loc = location;
   while (!loc.empty() && std::isspace(static_cast<unsigned char>(loc.back()))) loc.pop_back();
@@ -175,6 +243,8 @@ void Engine::set_traps() {
     for (std::size_t a = 0; a < want.size(); ++a)
       if (writes_var(vm_->program[a], vars)) want[a] = 1;
   if (temp_trap_ >= 0 && static_cast<std::size_t>(temp_trap_) < want.size()) want[static_cast<std::size_t>(temp_trap_)] = 1;
+  for (std::int32_t a : exit_traps_)
+    if (a >= 0 && static_cast<std::size_t>(a) < want.size()) want[static_cast<std::size_t>(a)] = 1;
   for (std::size_t a = 0; a < want.size(); ++a)
     if (vm_->trapped(static_cast<std::int32_t>(a)) != (want[a] != 0)) vm_->set_trap(static_cast<std::int32_t>(a), want[a] != 0);
 }
@@ -290,8 +360,11 @@ Stop Engine::start(bool stop_at_entry) {
   next_checkpoint_ = 0;
   for (auto& b : breaks_) b.hits = 0;
   refresh_watches();
+  checked_steps_ = UINT64_MAX;  // a breakpoint at address 0 stops `run`
   if (stop_at_entry) {
     if (reversible_) take_checkpoint();
+    checked_steps_ = vm_->steps;  // ... and `start`, which stops there: continue goes on
+    checked_pc_ = vm_->pc;
     return Stop{StopKind::Entry, 0, "", 0, 0};
   }
   return cont();
@@ -318,7 +391,8 @@ void Engine::set_pc(std::int32_t address) {
 }
 
 RunResult Engine::exec(std::uint64_t max_steps, SimTime until) {
-  max_steps = std::min(max_steps, setup_.limits.max_steps);
+  const std::uint64_t user_steps = setup_.limits.max_steps;
+  max_steps = std::min(max_steps, user_steps);
   until = std::min(until, setup_.limits.until);
   const bool slicing = on_slice && !no_slice_ && !in_slice_;
   for (;;) {
@@ -337,7 +411,10 @@ RunResult Engine::exec(std::uint64_t max_steps, SimTime until) {
     std::uint64_t mark = (vm_->steps / interval + 1) * interval;
     if (slicing) mark = std::min(mark, next_slice_);
     const SimTime bound = slicing ? std::min(until, std::max(slice_bound_, vm_->now)) : until;
-    RunResult r = vm_->run(Limits{std::min(max_steps, mark), bound});
+    // Every step limit of the debugger's own stops before an instruction (Limits::to_instruction);
+    // the user's --max-steps stops where a plain run stops.
+    const std::uint64_t limit = std::min(max_steps, mark);
+    RunResult r = vm_->run(Limits{limit, bound, limit < user_steps});
     if (r.halt == Halt::StepLimit && vm_->steps < max_steps) continue;  // a checkpoint or slice mark
     if (r.halt == Halt::TimeLimit && vm_->now < until) continue;        // the slice's time bound
     return r;
@@ -356,6 +433,8 @@ RunResult Engine::exec_over_trap(std::uint64_t max_steps, SimTime until) {
 }
 
 bool Engine::check_break(Stop& stop) {
+  checked_steps_ = vm_->steps;
+  checked_pc_ = vm_->pc;
   bool hit = false;
   for (std::size_t i = 0; i < breaks_.size(); ++i) {
     Breakpoint& b = breaks_[i];
@@ -490,32 +569,37 @@ Stop Engine::go(const Goal& g) {
   next_slice_ = vm_->steps + std::max<std::uint64_t>(setup_.slice_steps, 1);
   if (setup_.serving) slice_bound_ = vm_->now;
   std::int32_t temp = g.temp_addr;
-  bool temp_set = false;
-  if (temp >= 0 && temp < vm_->program_size && !vm_->trapped(temp)) {
-    temp_trap_ = temp;  // set_traps() keeps it while points change during the run (on_slice)
-    vm_->set_trap(temp, true);
-    temp_set = true;
+  if (temp >= 0 && temp < vm_->program_size) temp_trap_ = temp;  // set_traps() keeps it while points change (on_slice)
+  if (g.below >= 0) {
+    // Where the frames above `below` can be left: their return addresses (reached after RSUB),
+    // RETI when in a handler and RST (executed one at a time, then the depth is looked at).
+    for (int i = 0; i < vm_->sp; ++i) exit_traps_.push_back(vm_->stack[static_cast<std::size_t>(i)]);
+    for (std::int32_t a = 0; a < vm_->program_size; ++a) {
+      auto op = static_cast<Op>(vm_->program[static_cast<std::size_t>(a)].op);
+      if (op == Op::RST || (op == Op::RETI && vm_->in_handler)) exit_traps_.push_back(a);
+    }
   }
+  set_traps();
   struct Untrap {
     Engine& e;
-    bool on;
     ~Untrap() {
-      if (!on) return;
       e.temp_trap_ = -1;
+      e.exit_traps_.clear();
       e.set_traps();
     }
-  } untrap{*this, temp_set};
+  } untrap{*this};
   // Watchpoints on user variables trap the instructions that may write them (set_traps), so
   // the run stays on the fast path; any other watchpoint needs one instruction at a time.
   const bool single = watching() && !watch_by_traps();
-  bool resume = true;  // the instruction at pc is where the last stop was: not reported again
-  for (;;) {
-    if (!resume && vm_->trapped(vm_->pc)) {
-      if (vm_->pc == temp && depth() <= g.depth) return Stop{StopKind::Step, 0, "", 0, 0};
+  for (bool first = true;; first = false) {
+    // Here the machine is before an instruction (a trap, or one instruction stepped), except
+    // on the first round, which may start in a WAIT or with an interrupt due.
+    if (!first && g.below >= 0 && depth() <= g.below) return landed();
+    if (vm_->trapped(vm_->pc) && (!first || (!counted() && at_instruction()))) {
+      if (!first && vm_->pc == temp && depth() <= g.depth) return landed();
       Stop s;
       if (check_break(s)) return s;
     }
-    resume = false;
     RunResult r;
     if (single || vm_->trapped(vm_->pc)) {
       // One instruction (a breakpoint's, a variable writer's, or every one), then watchpoints.
@@ -537,10 +621,16 @@ Stop Engine::go(const Goal& g) {
     }
     if (r.halt == Halt::Break) continue;  // reported at the top of the loop
     bool user_steps = vm_->steps >= setup_.limits.max_steps, user_time = vm_->now >= setup_.limits.until;
-    if (r.halt == Halt::StepLimit && vm_->steps >= g.max_steps && !user_steps) return Stop{StopKind::Step, 0, "", 0, 0};
+    if (r.halt == Halt::StepLimit && vm_->steps >= g.max_steps && !user_steps) return landed();
     if (r.halt == Halt::TimeLimit && vm_->now >= g.until && !user_time) return Stop{StopKind::Step, 0, "", 0, 0};
     return from_result(r);
   }
+}
+
+Stop Engine::landed() {
+  Stop s;
+  if (vm_->trapped(vm_->pc) && at_instruction() && check_break(s)) return s;
+  return Stop{StopKind::Step, 0, "", 0, 0};
 }
 
 // The user variables the enabled watchpoints read, when they read nothing else (constants and
@@ -609,17 +699,22 @@ Stop Engine::from_result(const RunResult& r) {
 Stop Engine::cont() { return go(Goal{}); }
 
 Stop Engine::step(std::uint64_t n) {
+  if (!running_) return Stop{StopKind::NotRunning, 0, "the program is not being run", 0, 0};
+  if (n == 0) return Stop{StopKind::Step, 0, "", 0, 0};
+  if (!at_instruction()) {
+    // A WAIT in progress ends, or a due interrupt is entered: no instruction runs, and that is
+    // the first step when it moved the program (not when only an event was due).
+    const std::int32_t pc = vm_->pc;
+    const bool handler = vm_->in_handler, waiting = vm_->wait.active;
+    Goal settle;
+    settle.max_steps = vm_->steps;
+    Stop s = go(settle);
+    if (s.kind != StopKind::Step) return s;
+    if ((vm_->pc != pc || vm_->in_handler != handler || waiting) && --n == 0) return s;
+  }
   Goal g;
   g.max_steps = vm_->steps + n;
   return go(g);
-}
-
-// The address the frame at the current depth returns to: the interrupted instruction for a
-// handler's own frame, else the top of the call stack.
-std::int32_t Engine::return_address() const {
-  if (vm_->in_handler && vm_->sp == vm_->saved.stack_depth) return vm_->saved.pc;
-  if (vm_->sp <= 0) return -1;
-  return vm_->stack[static_cast<std::size_t>(vm_->sp - 1)];
 }
 
 Stop Engine::finish() {
@@ -627,32 +722,32 @@ Stop Engine::finish() {
   int d = depth();
   if (d == 0) return Stop{StopKind::NotRunning, 0, "\"finish\" not meaningful in the outermost frame", 0, 0};
   Goal g;
-  g.temp_addr = return_address();
-  g.depth = d - 1;
+  g.below = d - 1;
   return go(g);
 }
 
 Stop Engine::next() {
   if (!running_) return Stop{StopKind::NotRunning, 0, "the program is not being run", 0, 0};
-  const int d = depth();
-  for (int round = 0; round < 1000; ++round) {
-    const std::int32_t pc0 = vm_->pc;
-    const bool handler0 = vm_->in_handler;
-    Stop s = step(1);
-    if (s.kind != StopKind::Step) return s;
-    // An interrupt entered before the instruction ran: run the handler out, then the
-    // instruction at pc0 is still to do.
-    bool preempted = !handler0 && vm_->in_handler && vm_->saved.pc == pc0;
-    while (depth() > d) {
-      Goal g;
-      g.temp_addr = return_address();
-      g.depth = depth() - 1;
-      s = go(g);
-      if (s.kind != StopKind::Step) return s;
+  // The frame whose next instruction is the goal: this one, or the caller's when the
+  // instruction leaves this frame.
+  int goal = depth();
+  if (at_instruction()) {
+    switch (static_cast<Op>(vm_->program[static_cast<std::size_t>(vm_->pc)].op)) {
+      case Op::RSUB:
+        if (vm_->sp > (vm_->in_handler ? vm_->saved.stack_depth : 0)) goal = depth() - 1;
+        break;
+      case Op::RETI:
+        if (vm_->in_handler) goal = vm_->saved.stack_depth;
+        break;
+      case Op::RST: goal = 0; break;
+      default: break;
     }
-    if (!(preempted && vm_->pc == pc0)) return s;
   }
-  return Stop{StopKind::Step, 0, "", 0, 0};
+  Stop s = step(1);
+  if (s.kind != StopKind::Step || depth() <= goal) return s;
+  Goal g;
+  g.below = goal;  // out of the CSUB or the handler entered meanwhile
+  return go(g);
 }
 
 Stop Engine::until(std::int32_t address) {

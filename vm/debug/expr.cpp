@@ -136,7 +136,20 @@ class Parser {
       if (!eat(")")) fail("missing ')'");
       return inner;
     }
-    if (std::isdigit(static_cast<unsigned char>(c)) || c == '$') return number();
+    if (std::isdigit(static_cast<unsigned char>(c))) return number();
+    if (c == '$') {
+      // $pc, $sp, $acc, $x ... name registers, as gdb's do. $N is the command line's value
+      // history (expanded before the expression gets here); hexadecimal is written 0x1F.
+      std::size_t start = ++pos_;
+      while (pos_ < s_.size() && (std::isalnum(static_cast<unsigned char>(s_[pos_])) || s_[pos_] == '_')) ++pos_;
+      std::string name = lower(s_.substr(start, pos_ - start));
+      for (const auto& r : kRegs)
+        if (name == r.name) return node({Expr::Node::Reg, r.reg, -1, -1});
+      fail(name.empty() || std::isdigit(static_cast<unsigned char>(name[0]))
+               ? "'$" + name + "' is no register (the value history $, $N is print's; hexadecimal is written 0x...)"
+               : "no register named '$" + name + "' ($pc, $sp, $acc, $x, $flags, $errors, $time, $steps)");
+      return -1;
+    }
     if (std::isalpha(static_cast<unsigned char>(c)) || c == '_') {
       std::size_t start = pos_;
       while (pos_ < s_.size() && (std::isalnum(static_cast<unsigned char>(s_[pos_])) || s_[pos_] == '_')) ++pos_;
@@ -178,10 +191,7 @@ class Parser {
     std::size_t start = pos_;
     std::int64_t v = 0;
     int base = 10;
-    if (s_[pos_] == '$') {
-      base = 16;
-      ++pos_;
-    } else if (s_.compare(pos_, 2, "0x") == 0 || s_.compare(pos_, 2, "0X") == 0) {
+    if (s_.compare(pos_, 2, "0x") == 0 || s_.compare(pos_, 2, "0X") == 0) {
       base = 16;
       pos_ += 2;
     } else if (s_.compare(pos_, 2, "0b") == 0 || s_.compare(pos_, 2, "0B") == 0) {
@@ -371,7 +381,7 @@ std::string out_of(const ParamInfo* p) { return p ? ": outside its range, " + ra
 
 bool assign_expr(const Expr& e, Vm& vm, std::int64_t value, std::string& error) {
   if (!e.assignable()) {
-    error = "'" + e.text + "' cannot be assigned (use A, X, flags, errors, v[n], ap(p, m), gp(bank, n) or out(n))";
+    error = "'" + e.text + "' cannot be assigned (use A, X, flags, errors, v[n], ap(p, m), gp(bank, n), out(n), in(n) or ain(n))";
     return false;
   }
   if (value < INT32_MIN || value > UINT32_MAX) {

@@ -5,6 +5,11 @@
 // older half is thinned (every second one dropped), so recent history stays dense and the cost
 // of a reverse step stays one interval of re-execution. A change of state by the user (set var,
 // jump) starts history again at that point: states before it cannot be re-executed.
+//
+// The states a reverse command lands on are those a step forward lands on: before the
+// instruction that runs next (Limits::to_instruction), one per instruction executed. "Before
+// instruction n+1" is the state n instructions after the start with any WAIT ended and any due
+// interrupt entered, so each is named by its instruction count and found again by re-execution.
 #include <algorithm>
 
 #include "tmcl/debugger.hpp"
@@ -64,8 +69,8 @@ const Engine::Checkpoint* Engine::checkpoint_before(std::uint64_t steps) const {
   return best;
 }
 
-// Restores the last checkpoint at or before `steps` and re-executes to exactly `steps`
-// instructions, traps off (a breakpoint on the way must not stop a replay).
+// Restores the last checkpoint at or before `steps` and re-executes to the stop before
+// instruction steps + 1, traps off (a breakpoint on the way must not stop a replay).
 void Engine::replay_to(std::uint64_t steps) {
   const Checkpoint* cp = checkpoint_before(steps);
   if (!cp) return;
@@ -76,13 +81,16 @@ void Engine::replay_to(std::uint64_t steps) {
       trapped.push_back(a);
       vm_->set_trap(a, false);
     }
-  while (vm_->steps < steps) {
-    RunResult r = vm_->run(Limits{steps, kNever});
-    if (r.halt != Halt::StepLimit) break;
+  for (;;) {
+    RunResult r = vm_->run(Limits{steps, kNever, true});
+    if (r.halt != Halt::StepLimit || vm_->steps >= steps) break;
   }
   for (auto a : trapped) vm_->set_trap(a, true);
   running_ = true;
   refresh_watches();
+  // Going forward from here runs the instruction at pc: a breakpoint there does not stop it.
+  checked_steps_ = vm_->steps;
+  checked_pc_ = vm_->pc;
 }
 
 Stop Engine::reverse_step(std::uint64_t n) {
@@ -97,16 +105,12 @@ Stop Engine::reverse_step(std::uint64_t n) {
               at_start && target < oldest ? "no more reverse-execution history" : "", 0, 0};
 }
 
-namespace {
-struct Record {
-  std::uint64_t steps;  // before the instruction
-  std::int32_t pc;
-  int depth;
-};
-}  // namespace
 // reverse-next (kind 0), reverse-finish (1), reverse-continue (2): re-executes history one
 // checkpoint interval at a time, newest first, one instruction at a time, and replays to the
-// last instruction before the present that the kind accepts.
+// last stop before the present that the kind accepts: reverse-next the last at this depth or
+// less (the mirror of next), reverse-finish the last at a lower depth (the CSUB, or before the
+// handler was entered), reverse-continue the last at an enabled breakpoint whose condition
+// holds, or the last where a watched value had just changed.
 Stop Engine::reverse_scan(int kind) {
   std::string why;
   if (!can_reverse(why)) return Stop{StopKind::NotRunning, 0, why, 0, 0};
@@ -126,6 +130,9 @@ Stop Engine::reverse_scan(int kind) {
     const Checkpoint* cp = checkpoint_before(start);
     restore_checkpoint(*cp);
     for (auto a : trapped) vm_->set_trap(a, false);
+    // The first stop of the segment: before instruction start + 1.
+    RunResult r = vm_->run(Limits{start, kNever, true});
+    bool ended = r.halt != Halt::StepLimit;
     std::optional<std::uint64_t> hit;
     int hit_id = 0;
     std::int64_t old_v = 0, new_v = 0;
@@ -136,26 +143,27 @@ Stop Engine::reverse_scan(int kind) {
         w.valid = eval_expr(w.expr, *vm_, w.old_value, err);
       }
     }
-    while (vm_->steps < seg_end) {
-      Record rec{vm_->steps, vm_->pc, depth()};
-      if (kind == 0 && rec.depth <= d) hit = rec.steps;
-      if (kind == 1 && rec.depth < d) hit = rec.steps;
+    while (!ended && vm_->steps < seg_end) {
+      const std::uint64_t at = vm_->steps;
+      if (kind == 0 && depth() <= d) hit = at;
+      if (kind == 1 && depth() < d) hit = at;
       if (kind == 2) {
         // Breakpoints: an enabled one at pc whose condition holds, before the instruction.
         for (auto& b : breaks_) {
           // A logpoint never stops, going forwards or backwards.
-          if (!b.enabled || !b.log_message.empty() || b.address != vm_->pc || rec.steps == end) continue;
+          if (!b.enabled || !b.log_message.empty() || b.address != vm_->pc) continue;
           std::int64_t v = 1;
           std::string err;
           if (b.cond.root >= 0 && !eval_expr(b.cond, *vm_, v, err)) v = 1;
           if (v) {
-            hit = rec.steps;
+            hit = at;
             hit_id = b.id;
             break;
           }
         }
       }
-      RunResult r = vm_->run(Limits{vm_->steps + 1, kNever});
+      r = vm_->run(Limits{at + 1, kNever, true});
+      ended = r.halt != Halt::StepLimit;
       if (kind == 2 && !watches_.empty()) {
         for (auto& w : watches_) {
           if (!w.enabled) continue;
@@ -172,7 +180,6 @@ Stop Engine::reverse_scan(int kind) {
           w.valid = true;
         }
       }
-      if (r.halt != Halt::StepLimit) break;
     }
     if (hit) {
       for (auto a : trapped) vm_->set_trap(a, true);

@@ -9,8 +9,11 @@
 
 #include <algorithm>
 #include <cerrno>
+#include <iostream>
+#include <streambuf>
 #include <utility>
 
+#include "terminal.hpp"
 #include "tmcl/debug_cli.hpp"
 
 namespace tmcl::debug {
@@ -31,10 +34,44 @@ bool reads_only(std::uint8_t op) {
   }
 }
 
+// The server's notes ("client connected from ...") a line at a time, so that each can be printed
+// above the prompt instead of inside the line being typed.
+class LineSink final : public std::streambuf {
+ public:
+  explicit LineSink(std::function<void(const std::string&)> emit) : emit_(std::move(emit)) {}
+
+ protected:
+  int_type overflow(int_type c) override {
+    if (c == traits_type::eof()) return traits_type::not_eof(c);
+    if (c == '\n') {
+      emit_(std::exchange(line_, std::string()));
+    } else {
+      line_ += static_cast<char>(c);
+    }
+    return c;
+  }
+
+ private:
+  std::function<void(const std::string&)> emit_;
+  std::string line_;
+};
+
 class Served {
  public:
   Served(Engine& engine, const ServeOptions& options, std::FILE* in, std::FILE* out)
       : e_(engine), opt_(options), in_fd_(::fileno(in)), tty_(::isatty(in_fd_) != 0), out_(out), cli_(engine, out, !tty_, true) {
+    if (tty_ && TerminalPrompt::usable(in_fd_, ::fileno(out))) {
+      editor_ = std::make_unique<TerminalPrompt>(in_fd_, ::fileno(out), "(tmdb) ", [this](const std::string& l, std::size_t at) {
+        return cli_.completions(l, at);
+      });
+      std::ostream* log = opt_.log ? opt_.log : &std::cerr;
+      notes_ = std::make_unique<LineSink>([this, log](const std::string& line) {
+        std::fflush(out_);
+        editor_->above([&] { *log << line << std::endl; });
+      });
+      notes_stream_ = std::make_unique<std::ostream>(notes_.get());
+      opt_.log = notes_stream_.get();
+    }
     opt_.run_program = [this](SimTime until) { run_program(until); };
     opt_.on_interrupt = [this] {
       if (executing_) stop_program("");  // Ctrl-C stops the program, not the server
@@ -57,9 +94,13 @@ class Served {
     prompt();
     while (!quit_) {
       if (!resume_.empty()) {
+        if (editor_ && editor_->editing()) {
+          editor_->above([] {});  // the prompt goes; the note and the run's stop come after it
+          editor_->stop();
+        }
         cli_.note(std::exchange(resume_, std::string()));
         execute([this] { cli_.report(e_.cont()); });
-        prompt();
+        prompt(true);  // with the line the user was typing
         continue;
       }
       if (!loop_->poll_once(-1, in_fd_)) break;
@@ -70,18 +111,43 @@ class Served {
   }
 
  private:
-  void prompt() {
-    if (tty_ && !quit_) {
+  void prompt(bool keep_line = false) {
+    if (quit_) return;
+    std::fflush(out_);
+    if (editor_) {
+      editor_->start(keep_line);
+      edit_pending();  // lines typed ahead while the last command ran
+    } else if (tty_) {
       std::fputs("(tmdb) ", out_);
       std::fflush(out_);
     }
   }
+
+  // The line editor's lines, each a command: typed now (`buf`) or before.
+  void edit(const char* buf, std::size_t n) {
+    std::string line;
+    for (TerminalPrompt::Got got = editor_->feed(buf, n, line); !quit_; got = editor_->feed(nullptr, 0, line)) {
+      if (got == TerminalPrompt::Got::Nothing) return;
+      editor_->stop();
+      if (got == TerminalPrompt::Got::End) {
+        std::fputs("quit\n", out_);
+        quit_ = true;
+        return;
+      }
+      command(line);
+      if (quit_) return;
+      std::fflush(out_);
+      editor_->start();
+    }
+  }
+  void edit_pending() { edit(nullptr, 0); }
 
   // Reads what standard input has; every whole line is a command. End of input quits.
   void read_commands() {
     char buf[4096];
     ssize_t n = ::read(in_fd_, buf, sizeof buf);
     if (n < 0 && (errno == EINTR || errno == EAGAIN)) return;
+    if (editor_ && n > 0) return edit(buf, static_cast<std::size_t>(n));
     if (n <= 0) {
       if (!pending_.empty()) command(std::exchange(pending_, std::string()));
       quit_ = true;
@@ -182,6 +248,12 @@ class Served {
     }
     if (executing_) {
       stop_program("Program stopped: the host " + what + ".");
+    } else if (editor_ && editor_->editing()) {
+      std::fflush(out_);
+      editor_->above([&] {
+        cli_.report(Stop{StopKind::Pause, 0, "[the host " + what + "]", 0, 0});
+        std::fflush(out_);
+      });
     } else {
       cli_.report(Stop{StopKind::Pause, 0, "[the host " + what + "]", 0, 0});
       prompt();
@@ -195,6 +267,9 @@ class Served {
   std::FILE* out_;
   CommandLine cli_;
   std::unique_ptr<ServeLoop> loop_;
+  std::unique_ptr<TerminalPrompt> editor_;     // on a terminal: the line editor
+  std::unique_ptr<LineSink> notes_;            // the server's notes, printed above the prompt
+  std::unique_ptr<std::ostream> notes_stream_;
   std::string pending_;      // a command line not yet complete
   bool executing_ = false;   // a debugger command is running (the engine runs the program)
   bool stopping_ = false;    // the running program is to stop (host, Ctrl-C, shutdown)

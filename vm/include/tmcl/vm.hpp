@@ -62,6 +62,10 @@ std::string_view halt_name(Halt h);
 struct Limits {
   std::uint64_t max_steps = UINT64_MAX;
   SimTime until = kNever;
+  // With max_steps: StepLimit only once the next thing to happen is an instruction. A WAIT in
+  // progress goes on to its end and a due interrupt is entered first, so pc is the instruction
+  // that runs next (a debugger's step stops there: docs/debugger.md, "Stepping").
+  bool to_instruction = false;
   // A request from outside to end the run, set asynchronously (a signal handler, another thread,
   // a trace that can no longer write; lock-free, so a signal handler may set it): once *stop is
   // true, run() returns Halt::Interrupted between two instructions, within kStopPollSteps

@@ -5,6 +5,7 @@
 #pragma once
 
 #include <cstdint>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -16,6 +17,9 @@ namespace tmcl {
 
 // One instruction as source without labels ("MVP ABS, 0, 1000", "JA 12", ".raw 99, 0, 0, 0").
 std::string format_instruction(const Instruction& ins);
+// The same with some operands written as the given text instead of a number ("JC LT, loop",
+// "COMP Limit"): a name in a keyword's place is parenthesised, as in an object's listing.
+std::string format_instruction(const Instruction& ins, const std::map<Field, std::string>& names);
 
 enum class ImageKind { Auto, Bin, Datagrams, Object, Library };
 

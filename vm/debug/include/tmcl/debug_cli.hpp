@@ -45,6 +45,9 @@ class CommandLine {
   void report(const Stop& stop);  // a stop that no command made (the host stopped the program)
   void note(const std::string& text);  // a line of its own
   int status() const;  // tmclrun's exit status for how the program last ended
+  // Tab completion: candidates for the word of `line` that starts at `start` (commands, info
+  // subcommands, labels, constants, source files, registers, expression functions).
+  std::vector<std::string> completions(const std::string& line, std::size_t start) const;
 
  private:
   struct Impl;

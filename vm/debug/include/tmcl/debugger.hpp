@@ -41,6 +41,10 @@ struct ProgramInfo {
   std::string function_of(std::int32_t address) const;   // "loop", "loop+2", or ""
   std::optional<std::int64_t> symbol(const std::string& name) const;  // label or constant (case-insensitive)
   const std::string* source_text(std::int32_t address) const;  // that address's source line, if known
+  // `ins` (at `address`) with its targets by label and the operands the source wrote with a
+  // constant by that name ("JC LT, loop", "COMP Limit"); `numbers` gets "loop = 5, ..." for them
+  // (empty when nothing was named). symbolic.cpp.
+  std::string named(const Instruction& ins, std::int32_t address, Vm& vm, std::string* numbers = nullptr) const;
 };
 
 // ---- expressions: registers, v[n], ap(param, motor), gp(bank, n), in(n), ain(n), out(n), time,
@@ -152,11 +156,20 @@ class Engine {
   std::string interpolate(const std::string& text);
 
   // ---- execution (each returns why it stopped) ----
+  // The stepping rules (docs/debugger.md, "Stepping"): a stop made by a step, next, finish or
+  // until is always before an instruction, the one that runs next (a WAIT in progress has ended,
+  // a due interrupt has been entered), so the stops are the instructions as --trace lists them.
+  // A breakpoint counts one hit per execution of its instruction, also when a step lands on it.
   Stop start(bool stop_at_entry);  // power on, pc 0; runs unless stop_at_entry
   Stop cont();
-  Stop step(std::uint64_t n = 1);  // n instructions, into CSUB and handlers
-  Stop next();                     // one instruction at this depth: over CSUB and handlers
-  Stop finish();                   // until the RSUB or RETI that leaves this frame
+  // n instructions, a WAIT with its wait, into CSUB and into a handler entered before the next
+  // instruction (the handler's first instruction is a stop). From a WAIT in progress or with an
+  // interrupt due, the first step only finishes the WAIT or enters the handler.
+  Stop step(std::uint64_t n = 1);
+  // One instruction of this frame: over CSUB and over handlers entered meanwhile, never over
+  // an instruction of this frame; after RSUB or RETI, the caller's (interrupted code's) next one.
+  Stop next();
+  Stop finish();                   // until this frame is left (RSUB, RETI), before the caller's next instruction
   Stop until(std::int32_t address);// run to address (or a breakpoint), at this depth or above
   Stop advance(SimTime duration);  // run for that much simulated time
   void kill();
@@ -193,6 +206,27 @@ class Engine {
   void state_changed();
 
   int depth() const;  // call-stack depth plus one inside an interrupt handler
+  // Whether the next thing to happen is the instruction at pc: no WAIT in progress, no
+  // interrupt or event due first. Every stop of a step is; a pause or a time limit may not be.
+  bool at_instruction() const;
+
+  // The call stack as backtrace shows it, innermost first: the frame at pc; each caller at its
+  // CSUB; inside a handler, the interrupted code at the instruction it resumes (`interrupted`,
+  // described by vm().saved), then its callers.
+  struct Frame {
+    std::int32_t pc = 0;
+    bool interrupted = false;
+  };
+  std::vector<Frame> frames() const;
+
+  // Changes the world outside the program from the prompt (set var in(0) = 1, a stop switch, an
+  // analog input) as a scenario line at this instant would: the event joins the VM's queue of
+  // timed inputs and is applied at once (an edge may latch an interrupt, entered before the next
+  // instruction). History starts again here. false with `error` when the program is not running.
+  bool set_input(InputEvent ev, std::string& error);
+  // set var LV = value: a register, variable or parameter through assign_expr, an input
+  // (in(n), ain(n)) through set_input.
+  bool assign(const Expr& lhs, std::int64_t value, std::string& error);
 
  private:
   struct Checkpoint {
@@ -205,11 +239,14 @@ class Engine {
     SimTime until = kNever;                // stop (Step) when time reaches this
     std::int32_t temp_addr = -1;           // stop (Step) at this address ...
     int depth = -1;                        // ... when the depth is at most this
+    int below = -1;                        // stop (Step) before the first instruction at this depth or less
   };
   Stop go(const Goal& g);
   RunResult exec(std::uint64_t max_steps, SimTime until);  // with checkpoints and pause
   RunResult exec_over_trap(std::uint64_t max_steps, SimTime until);
   Stop from_result(const RunResult& r);
+  Stop landed();  // a step's stop before the instruction at pc: a breakpoint there counts
+  bool counted() const { return checked_steps_ == vm_->steps && checked_pc_ == vm_->pc; }
   bool watched_step(const Goal& g, Stop& stop, RunResult& r);
   bool check_break(Stop& stop);  // a Break at pc: stop here? (conditions, ignore counts)
   bool watch_changed(Stop& stop);
@@ -217,7 +254,6 @@ class Engine {
   bool watch_by_traps(std::vector<std::uint8_t>* vars = nullptr) const;
   static bool writes_var(const Instruction& ins, const std::vector<std::uint8_t>& vars);
   void refresh_watches();
-  std::int32_t return_address() const;
   void take_checkpoint();
   void restore_checkpoint(const Checkpoint& cp);
   const Checkpoint* checkpoint_before(std::uint64_t steps) const;
@@ -241,6 +277,10 @@ class Engine {
   bool paused_ = false;
   std::string pause_note_;        // Stop::message of the next Pause (pause_for)
   std::int32_t temp_trap_ = -1;   // go()'s temporary trap, kept when points change meanwhile
+  std::vector<std::int32_t> exit_traps_;  // go()'s traps where a frame may be left (Goal::below)
+  // Where the breakpoints at pc were last checked (steps, pc): that execution has had its hit.
+  std::uint64_t checked_steps_ = UINT64_MAX;
+  std::int32_t checked_pc_ = -1;
   std::uint64_t next_slice_ = 0;  // on_slice is due when steps reach this ...
   SimTime slice_bound_ = kNever;  // ... or time reaches this
   bool in_slice_ = false;         // on_slice is running (no nested call)
