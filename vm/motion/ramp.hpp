@@ -43,7 +43,7 @@ struct Limits {
   bool can_move() const;
 };
 
-enum class EventKind : std::uint8_t { TargetReached, VelocityReached, Stopped, Deviation };
+enum class EventKind : std::uint8_t { TargetReached, VelocityReached, Stopped, Deviation, ReferenceDone };
 struct PlanEvent {
   double t;
   EventKind kind;

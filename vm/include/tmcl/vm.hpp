@@ -90,8 +90,11 @@ struct Timer {
   SimTime next = kNever;
 };
 
+// A motor's switches as the program sees them (WAIT LIMSW/REFSW, interrupts 27-32): closed when
+// a timed scenario line or the position (a switch placed at positions) closes them.
 struct MotorSwitches {
   bool left = false, right = false, home = false;
+  std::uint8_t timed = 0, placed = 0;  // bit (1 << SwitchInput): closed by that source
 };
 
 // A direct-mode reply: status 100 ok, 2 invalid command, 3 wrong type, 4 invalid value,
@@ -135,12 +138,16 @@ class TraceSink {
 
 // One external input change at an instant (from a scenario, or pushed by a server).
 struct InputEvent {
-  enum Kind : std::uint8_t { Digital, Analog, StopLeft, StopRight, Home, Slip };
+  enum Kind : std::uint8_t { Digital, Analog, StopLeft, StopRight, Home, Slip, Placed };
   SimTime at = 0;
   Kind kind = Digital;
   int index = 0;  // input number, or motor
   std::int32_t value = 0;
   int line = 0;   // scenario line (0: not from a file)
+  // Placed (at 0): switch `input` of motor `index` is closed while the motor's physical position
+  // lies in [from, to] (MotionCore::place_switch; scenario `switch left 0 at -20000`).
+  SwitchInput input = SwitchInput::StopLeft;
+  std::int64_t from = 0, to = 0;
 };
 
 struct Vm {
@@ -322,6 +329,9 @@ struct Vm {
   bool check_handler_code();
   void handle_motion_event(const MotionEvent& ev);
   void apply_input(const InputEvent& ev);
+  // A switch closed or opened by one source (timed: a scenario line; else its position): the
+  // program's view, the trace and the interrupts follow the switch as both sources close it.
+  void switch_source(int motor, SwitchInput input, bool timed, bool level);
   void raise(int vector);          // latch an interrupt if it is enabled and has a vector
   bool try_enter_interrupt();
   void fire_due_timers();
