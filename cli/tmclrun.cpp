@@ -506,11 +506,12 @@ int run(int argc, char** argv) {
   if (recording) {
     recording_core.finish(vm.now);
     std::ostringstream csv, svg;
-    if (!o.csv.empty()) tmcl::write_csv(csv, recorder);
+    const std::string units = core->units_note();  // a core in chip units says which
+    if (!o.csv.empty()) tmcl::write_csv(csv, recorder, units);
     if (!o.plot.empty()) {
       tmcl::PlotOptions plot;
       plot.title = (o.program == "-" ? std::string("<stdin>") : o.program) + " on " + o.target + " (" +
-                   std::string(core->name()) + " motion)";
+                   std::string(core->name()) + " motion" + (units.empty() ? "" : "; " + units) + ")";
       tmcl::write_svg(svg, recorder, plot);
     }
     for (const auto& [file, text] : {std::pair{o.csv, csv.str()}, std::pair{o.plot, svg.str()}}) {

@@ -269,7 +269,7 @@ class Tmc429Core final : public ramp::RampCore<Tmc429Motor> {
     }
   }
   std::string units_note() const override {
-    std::string note = "TMC429 units (fCLK 16 MHz)";
+    std::string note = "TMC429 units";
     auto one = [](const Tmc429Motor& m) {
       char buf[160];
       std::snprintf(buf, sizeof buf, "pulse divisor %d, ramp divisor %d: velocity 1 = %.6g pps, acceleration 1 = %.6g pps²",
