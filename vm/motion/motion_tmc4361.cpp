@@ -293,7 +293,7 @@ class Tmc4361Core final : public ramp::RampCore<Tmc4361Motor> {
         if (dt >= 0 && seg.t0 + dt < best) best = seg.t0 + dt, kind = k;
       };
       if ((seg.dir < 0 && m.left) || (seg.dir > 0 && m.right)) consider(0, Halt::Switch);
-      consider(m.rm.entry(seg, seg.dir < 0 ? 0 : 1), Halt::Switch);  // a stop switch at a position
+      if (m.rm.has_zones) consider(m.rm.entry(seg, seg.dir < 0 ? 0 : 1), Halt::Switch);  // a stop switch at a position
       if (seg.dir > 0 && (vs_en & 2)) consider(ramp::crossing(seg, m.p[kApVirtualStopRight] - base), Halt::VirtualStop);
       if (seg.dir < 0 && (vs_en & 1)) consider(ramp::crossing(seg, m.p[kApVirtualStopLeft] - base), Halt::VirtualStop);
       if (maxdev > 0) {

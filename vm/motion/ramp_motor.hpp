@@ -129,6 +129,7 @@ struct RampMotor {
     }
     return hit_;
   }
+  SimTime next_switch_at(SimTime from) const { return has_zones ? next_switch(from).at : kNever; }
   // The reported change happened: the switch is in its new state.
   void switched(const SwitchHit& h) {
     zones[static_cast<std::size_t>(h.input)].in = h.in;
@@ -201,7 +202,7 @@ class RampCore : public CoreSkeleton<M> {
 
   SimTime next_event() const override {
     SimTime t = this->next_pending();
-    for (const auto& m : motors_) t = std::min({t, m.rm.next_event(), m.rm.next_switch(now_).at});
+    for (const auto& m : motors_) t = std::min({t, m.rm.next_event(), m.rm.next_switch_at(now_)});
     return t;
   }
   // Switches at positions: every ramp core reports them; what they stop is the core's.
@@ -240,11 +241,11 @@ class RampCore : public CoreSkeleton<M> {
     for (std::size_t i = 0; i < motors_.size(); ++i) {
       M& m = motors_[i];
       for (;;) {
-        SimTime tp = m.rm.next_event();
-        SwitchHit h = m.rm.next_switch(now_);
-        if (std::min(tp, h.at) > end) break;
-        now_ = std::min(tp, h.at);
-        if (h.at <= tp) {
+        const SimTime tp = m.rm.next_event(), ts = m.rm.next_switch_at(now_);
+        if (std::min(tp, ts) > end) break;
+        now_ = std::min(tp, ts);
+        if (ts <= tp) {
+          const SwitchHit h = m.rm.next_switch(now_);
           m.rm.switched(h);
           MotionEvent ev{h.at, static_cast<std::uint8_t>(i), MotionEventKind::SwitchChanged, wrap32(h.position)};
           ev.input = static_cast<SwitchInput>(h.input);
