@@ -237,6 +237,52 @@ TEST(tmc429_retargeting_a_running_move) {
   }
 }
 
+// Soft mode (138 = 1): near the target the speed is k = a/V times the distance left, down to
+// the minimum speed, which covers the last 1/k seconds.
+TEST(tmc429_soft_mode_approaches_exponentially) {
+  const double V = 1000 * vunit(3), a = 1000 * aunit(3, 7), k = a / V, vmin = vunit(3);
+  Chip b;
+  b.set(138, 1);
+  CHECK_EQ(b.core->next_event(), tmcl::kNever);  // at rest on its target (0): nothing to do
+  b.core->move_absolute(0, 100000);
+  CHECK_EQ(b.get(138), 1);  // MVP keeps the soft mode
+  const double T = (V - vmin) / a + (100000 - (V * V - vmin * vmin) / (2 * a) - V / k) / V + std::log(V / vmin) / k + 1 / k;
+  CHECK(std::llabs(b.core->next_event() - us(T)) <= 2);
+  for (double d : {1500.0, 500.0, 50.0}) {  // on the exponential (the last V/k = 2000 steps): v = k d
+    const double t = T - 1 / k - std::log(k * d / vmin) / k;
+    const auto smp = b.core->sample_at(0, us(t));
+    CHECK(std::fabs(smp.velocity - k * static_cast<double>(100000 - smp.position)) < 0.002 * smp.velocity + k);
+    CHECK(std::fabs(smp.acceleration + k * smp.velocity) < 0.01 * k * smp.velocity);
+  }
+  b.next();
+  CHECK(b.last().kind == MotionEventKind::TargetReached);
+  CHECK_EQ(b.core->position(0), 100000);
+  b.core->move_absolute(0, 99000);  // a short one, backwards: the same profile, lower peak
+  b.next();
+  CHECK_EQ(b.core->position(0), 99000);
+  // A new maximum speed half way down the exponential: it goes on with the new k.
+  b.core->move_absolute(0, 0);
+  b.to(b.now + us((99000 - V * V / a) / V));
+  b.set(4, 500);
+  b.next();
+  CHECK(b.last().kind == MotionEventKind::TargetReached);
+  CHECK_EQ(b.core->position(0), 0);
+}
+
+TEST(tmc429_soft_mode_without_minimum_speed_stops_short) {
+  Chip b;
+  b.set(130, 0);
+  b.set(5, 700);
+  b.set(138, 1);
+  b.core->move_absolute(0, 50000);
+  b.to(100000000);
+  const double k = 700 * aunit(3, 7) / (1000 * vunit(3));  // vunit/k = 2.86 steps
+  CHECK(!b.core->target_reached(0));  // below one unit the chip's speed is 0: the last vunit/k steps
+  CHECK_EQ(b.core->position(0), 50000 - static_cast<std::int32_t>(std::ceil(vunit(3) / k)));
+  CHECK_EQ(b.get(8), 0);
+  CHECK_EQ(b.get(3), 0);
+}
+
 TEST(tmc429_pulse_divisor_changes_the_step_rate_at_once) {
   Chip b;
   b.core->rotate(0, 1000);
@@ -470,37 +516,26 @@ TEST(rfs_mode4_left_switch_from_both_sides) {
   CHECK_EQ(c.edge_moving(1000), 1);
 }
 
-TEST(rfs_mode5_home_switch_turning_at_the_left_switch) {
-  Search b(5);
-  b.left_at(-20000);
-  b.right_at(30000);
-  b.place(SwitchInput::Home, 5000, 5300);
-  b.start();
-  b.run(20000, true);  // the left switch turns the search around
-  b.run(25000, true);  // to the home switch
-  b.run(1, false);
-  b.run(302, false);
-  b.move(151);
-  b.done();
-  CHECK_EQ(b.get(9), 1);
-  CHECK_EQ(b.get(11), 0);
-  CHECK_EQ(b.edge_moving(-1000), -151);
-}
-
-TEST(rfs_mode6_home_switch_turning_at_the_right_switch) {
-  Search b(6);
-  b.left_at(-20000);
-  b.right_at(20000);
-  b.place(SwitchInput::Home, -5300, -5000);
-  b.start();
-  b.run(20000, true);
-  b.run(25000, true);
-  b.run(1, false);
-  b.run(302, false);
-  b.move(151);
-  b.done();
-  CHECK_EQ(b.get(10), 0);
-  CHECK_EQ(b.edge_moving(1000), 151);
+// Mode 5 searches in -, mode 6 in +: the end switch on the way turns the search around.
+TEST(rfs_modes5_and_6_home_switch_turning_at_the_end_switch) {
+  for (int mode : {5, 6}) {
+    const int d = mode == 5 ? -1 : 1;
+    Search b(mode);
+    b.left_at(-20000);
+    b.right_at(20000);
+    b.place(SwitchInput::Home, d < 0 ? 5000 : -5300, d < 0 ? 5300 : -5000);
+    b.start();
+    b.run(20000, true);  // the end switch turns the search around
+    b.run(25000, true);  // to the home switch
+    b.run(1, false);     // out of it
+    b.run(302, false);   // back in and through it
+    b.move(151);         // to its centre
+    b.done();
+    CHECK_EQ(b.get(9), 1);
+    CHECK_EQ(b.get(11), 0);
+    CHECK_EQ(b.get(10), 0);
+    CHECK_EQ(b.edge_moving(-d * 1000), static_cast<std::int32_t>(-d * 151));
+  }
 }
 
 TEST(rfs_modes7_and_8_home_switch_ignoring_end_switches) {

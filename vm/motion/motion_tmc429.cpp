@@ -158,6 +158,7 @@ class Tmc429Core final : public ramp::RampCore<Tmc429Motor> {
         if (!in_range(param, value)) return ParamWrite::OutOfRange;
         m.p[kRampMode] = value;
         abort_search(m);
+        if (value != 2 && m.goal == Tmc429Goal::Idle && target_reached(motor)) return ParamWrite::Ok;  // nothing to do
         m.goal = value == 2 ? Tmc429Goal::Velocity : Tmc429Goal::Position;
         if (value == 2) m.vt = m.p[kApTargetSpeed];
         m.trip_t = ramp::kInf;
@@ -332,12 +333,56 @@ class Tmc429Core final : public ramp::RampCore<Tmc429Motor> {
     Limits lim = ramp_limits(m);
     Builder b = m.rm.restart(now_, vscale);
     switch (m.goal) {
-      case Tmc429Goal::Position: b.plan_position(lim, static_cast<double>(m.p[kApTargetPosition] - m.rm.base)); break;
+      case Tmc429Goal::Position:
+        if (m.p[kRampMode] != 1 || !plan_soft(m, b, lim))
+          b.plan_position(lim, static_cast<double>(m.p[kApTargetPosition] - m.rm.base));
+        break;
       case Tmc429Goal::Velocity: b.plan_velocity(lim, m.vt * vunit(m)); break;
       case Tmc429Goal::Halt: return switch_stop(m, b, lim);
       default: break;
     }
     scan_trips(m, lim);
+  }
+
+  // Soft mode (138 = 1): a positioning whose approach slows exponentially. Within vp/k of the
+  // target the speed is k times the distance left, k = a_max / V_MAX (so the slowing starts with
+  // at most a_max), down to the minimum speed (130), which runs the last 1/k seconds onto the
+  // target. With minimum speed 0 the speed falls below one unit short of the target and the chip's
+  // whole units make it 0 there: the motor stops short and the target is not reached (hence the
+  // manual's "should always be set 1"). The exponential is pieces of constant jerk, 1/20 of 1/k
+  // each, that meet it in speed and place at their ends (the acceleration is off by 1e-3 of it at
+  // most); the last cruise absorbs the rounding. False (nothing planned) when
+  // the motion now does not fit the profile (moving away from the target, or too fast to enter
+  // it): the position mode's ramp takes over.
+  bool plan_soft(const Tmc429Motor& m, Builder& b, const Limits& lim) const {
+    const ramp::State s = b.state();
+    const double target = static_cast<double>(m.p[kApTargetPosition] - m.rm.base);
+    const double dist = std::fabs(target - s.x), V = lim.vmax, a = lim.amax;
+    const int dir = target > s.x ? 1 : -1;
+    if (!lim.can_move() || dist < 0.5 || s.v * dir < 0 || (s.v == 0 && s.a != 0)) return false;
+    const double u0 = s.v == 0 ? lim.vstart : std::fabs(s.v), k = a / V;
+    const double vp = std::min(V, -V + std::sqrt(V * V + 2 * a * dist + u0 * u0));
+    const double vend = lim.vstop > 0 ? lim.vstop : vunit(m);  // below one unit the chip reads 0
+    if (vp < u0 * (1 - 1e-9) || vp <= vend) return false;  // (within the exponential vp = u0)
+    if (!b.ramp_to(lim, dir * std::max(vp, u0))) return false;
+    b.cruise((dist - std::fabs(b.state().x - s.x) - vp / k) / vp, dir);
+    const double tau_all = std::log(vp / vend) / k;
+    const int n = std::max(1, static_cast<int>(std::ceil(tau_all * k * 20)));
+    const double tau = tau_all / n, fall = std::exp(-k * tau);
+    double u = vp;
+    for (int i = 0; i < n; ++i, u *= fall) {  // each piece ends on the exponential's speed and place
+      const double dv = u * fall - u, dx = (u - u * fall) / k - u * tau;
+      const double j = (6 * dv * tau - 12 * dx) / (tau * tau * tau);
+      b.piece(tau, (dv - j * tau * tau / 2) / tau, j, dir);
+    }
+    if (lim.vstop <= 0) {  // stops short: no target reached
+      b.stop_hard();
+      b.finish_rest();
+      return true;
+    }
+    b.cruise((dir * (target - b.state().x)) / lim.vstop, dir);
+    b.arrive(target, dir);
+    return true;
   }
 
   // A limit switch stops the motor with the ramp (149 = 1) or at once (149 = 0).
