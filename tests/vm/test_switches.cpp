@@ -130,3 +130,21 @@ TEST(a_core_without_placed_switches_is_a_fault) {
   CHECK(r.halt == Halt::Fault);
   CHECK_EQ(r.message, std::string("the motion core 'ideal' cannot place switches at positions (scenario line 3)"));
 }
+
+// A search that never meets its switch runs until a WAIT RFS timeout (ETO) or RFS STOP; RFS
+// STATUS reads 1 while it runs, 0 after.
+TEST(wait_rfs_on_a_search_that_finds_nothing) {
+  World w("tmc429",
+          {I(Op::RFS, 0, 0), I(Op::WAIT, 4, 0, 100), I(Op::RFS, 2, 0), I(Op::CALCX, 10), I(Op::RFS, 1, 0),
+           I(Op::WAIT, 4, 0, 0), I(Op::RFS, 2, 0), I(Op::STOP)},
+          "");
+  auto r = w.vm.run({1000, tmcl::kNever});
+  CHECK(r.halt == Halt::Stop);
+  CHECK(w.vm.errors & tmcl::kErrTimeout);
+  CHECK_EQ(w.vm.x, 1);    // STATUS after the timeout: still searching
+  CHECK_EQ(w.vm.acc, 0);  // after RFS STOP: no search
+  World v("tmc429", {I(Op::RFS, 0, 0), I(Op::WAIT, 4, 0, 0), I(Op::STOP)}, "");
+  auto b = v.vm.run({1000, tmcl::kNever});
+  CHECK(b.halt == Halt::Blocked);
+  CHECK(b.message.find("WAIT RFS") != std::string::npos);
+}
