@@ -100,6 +100,8 @@ void Vm::power_on(const EepromImage* image) {
   warnings_total = 0;
   input_next = 0;
   next_check_ = 0;
+  unplaceable_.clear();
+  for (const auto& p : placed) apply_input(p);
 
   eeprom = image ? *image : EepromImage{};
   eeprom.profile = std::string(profile->name);
@@ -170,7 +172,14 @@ void Vm::reset_interpreter() {
 void Vm::add_inputs(std::vector<InputEvent> events) {
   inputs_queue.erase(inputs_queue.begin(), inputs_queue.begin() + static_cast<std::ptrdiff_t>(input_next));
   input_next = 0;
-  for (auto& e : events) inputs_queue.push_back(e);
+  for (auto& e : events) {
+    if (e.kind != InputEvent::Placed) {
+      inputs_queue.push_back(e);
+      continue;
+    }
+    placed.push_back(e);
+    apply_input(e);
+  }
   std::stable_sort(inputs_queue.begin(), inputs_queue.end(),
                    [](const InputEvent& a, const InputEvent& b) { return a.at < b.at; });
   next_check_ = 0;
@@ -347,9 +356,9 @@ void Vm::apply_input(const InputEvent& ev) {
     case InputEvent::Placed:
       if (!motor_ok(ev.index)) return;
       sync_motion();
-      if (!motion->place_switch(ev.index, ev.input, ev.from, ev.to))
-        fault("the motion core '" + std::string(motion->name()) + "' cannot place switches at positions" +
-              (ev.line > 0 ? " (scenario line " + std::to_string(ev.line) + ")" : std::string()));
+      if (!motion->place_switch(ev.index, ev.input, ev.from, ev.to) && unplaceable_.empty())
+        unplaceable_ = "the motion core '" + std::string(motion->name()) + "' cannot place switches at positions" +
+                       (ev.line > 0 ? " (scenario line " + std::to_string(ev.line) + ")" : std::string());
       return;
     case InputEvent::Slip:
       if (!motor_ok(ev.index)) return;

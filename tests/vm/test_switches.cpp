@@ -148,3 +148,20 @@ TEST(wait_rfs_on_a_search_that_finds_nothing) {
   CHECK(b.halt == Halt::Blocked);
   CHECK(b.message.find("WAIT RFS") != std::string::npos);
 }
+
+// Placed switches belong to the machine: they work in direct mode with no program running (a
+// host driving the virtual module), and again after a power cycle.
+TEST(placed_switches_in_direct_mode_and_after_power_on) {
+  World w("tmc429", {I(Op::STOP)}, "switch left 0 at -2000\n");
+  w.vm.stop_application();
+  for (int cycle = 0; cycle < 2; ++cycle) {
+    CHECK_EQ(w.vm.execute_direct(I(Op::ROL, 0, 0, 1000)).status, tmcl::kStatusOk);
+    auto r = w.vm.run({UINT64_MAX, 1'000'000});
+    CHECK(r.halt == Halt::NotRunning);
+    CHECK_EQ(w.core->position(0), -2000);  // stopped on the switch
+    CHECK(w.vm.switches[0].left);
+    w.vm.power_on(nullptr);
+    CHECK(!w.vm.switches[0].left);
+    CHECK_EQ(w.core->position(0), 0);
+  }
+}

@@ -229,6 +229,9 @@ struct Vm {
   // ---- external inputs queued by time ----
   std::vector<InputEvent> inputs_queue;  // sorted by time; consumed from input_next
   std::size_t input_next = 0;
+  // Switches placed at positions (InputEvent::Placed): they belong to the machine, not to time,
+  // so add_inputs places them at once and power_on again on the reset core, program or not.
+  std::vector<InputEvent> placed;
 
   Vm(const Profile& p, MotionCore& core);
 
@@ -253,7 +256,7 @@ struct Vm {
   // RST and the reset above: stack, registers, flags, interrupt state cleared (pc and status
   // unchanged).
   void reset_interpreter();
-  // Queues external input changes (sorted by time, stable).
+  // Queues external input changes (sorted by time, stable); places the switches at positions.
   void add_inputs(std::vector<InputEvent> events);
 
   // Runs the program until STOP, a fault, a limit, or blocked forever.
@@ -320,6 +323,7 @@ struct Vm {
   SimTime next_check_ = 0;         // the run loop leaves its fast path when now >= next_check_
   bool fault_set_ = false;
   std::string fault_message_;
+  std::string unplaceable_;  // a placed switch the core refused: every run() is this fault
   std::vector<MotionEvent> event_buf_;
 
   void fault(std::string message);
