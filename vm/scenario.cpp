@@ -30,9 +30,10 @@ constexpr KindName kPlaced[] = {
 // `switch left|right|home MOTOR at POS` or `... from LO to HI`: a switch that belongs to the
 // machine, closed while the motor's physical position is <= POS (left), >= POS (right) or in
 // [LO, HI]. Appends the event, or reports what is wrong with the line.
+// `first_line[motor * 3 + input]`: the line that placed that switch (0: none yet).
 template <class Error, class AtWord>
 void parse_placed(const std::vector<LineWord>& w, const ScenarioOptions& options, std::vector<InputEvent>& out,
-                  int line_no, Error error, AtWord at_word, const std::string& line) {
+                  std::vector<int>& first_line, int line_no, Error error, AtWord at_word, const std::string& line) {
   static const char* kShape = "expected 'switch left|right MOTOR at POSITION' or 'switch left|right|home MOTOR from POSITION to POSITION'";
   if (w.size() < 5) {
     error(static_cast<int>(line.find_last_not_of(" \t")) + 2, 1, std::string(kShape) + ": the line ends early");
@@ -106,6 +107,12 @@ void parse_placed(const std::vector<LineWord>& w, const ScenarioOptions& options
     at_word(w[3], std::string(kShape) + ": 'at' or 'from' expected here");
     return;
   }
+  int& first = first_line[static_cast<std::size_t>(ev.index * 3 + input)];
+  if (first != 0) {
+    at_word(w[1], "switch " + w[1].text + " " + w[2].text + " is already placed at line " + std::to_string(first));
+    return;
+  }
+  first = line_no;
   out.push_back(ev);
 }
 
@@ -114,6 +121,7 @@ void parse_placed(const std::vector<LineWord>& w, const ScenarioOptions& options
 bool parse_scenario(const std::string& text, const std::string& file, std::vector<InputEvent>& out,
                     std::vector<FileDiag>& diags, const ScenarioOptions& options) {
   const std::size_t errors_before = diags.size();
+  std::vector<int> placed_at(256 * 3, 0);  // per motor and switch: the line that placed it
   int line_no = 0;
   for (std::size_t pos = 0; pos < text.size();) {
     std::size_t end = text.find('\n', pos);
@@ -132,7 +140,7 @@ bool parse_scenario(const std::string& text, const std::string& file, std::vecto
     auto at_word = [&](const LineWord& x, const std::string& msg) { error(x.col, static_cast<int>(x.text.size()), msg); };
     static const char* kShape = "expected 'at TIME WHAT INDEX = VALUE'";
     if (w[0].text == "switch") {
-      parse_placed(w, options, out, line_no, error, at_word, line);
+      parse_placed(w, options, out, placed_at, line_no, error, at_word, line);
       continue;
     }
     if (w[0].text != "at") {

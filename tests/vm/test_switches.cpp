@@ -67,6 +67,7 @@ TEST(scenario_switch_line_errors) {
       {"switch left 0 at 5.5", "s.txt:1:18: error: bad position '5.5' (microsteps, a 32-bit integer)"},
       {"switch left 0 at 5 6", "s.txt:1:20: error: unexpected '6' after the position"},
       {"switch home 0 from 1 to 2 3", "s.txt:1:27: error: unexpected '3' after the range"},
+      {"switch left 0 at -5\nswitch left 0 from 1 to 2", "s.txt:2:8: error: switch left 0 is already placed at line 1"},
   };
   tmcl::ScenarioOptions opts;
   opts.motors = 1;
