@@ -660,3 +660,20 @@ TEST(tmc429_clone_keeps_the_search) {
   CHECK(copy->reference_done(0));
   CHECK_EQ(copy->position(0), 0);
 }
+
+// A switch change whose exact instant lies within the nanosecond after a whole microsecond is
+// reported at that microsecond; the next scan starts past it (it looped for ever, found by
+// fuzz_vm: leaving the home range at 2992 steps at 7812.5 pps with a_max 2047).
+TEST(tmc429_switch_change_within_the_rounding_nanosecond) {
+  Chip b;
+  b.set(5, 2047);
+  b.place(SwitchInput::Home, 0, 2991);
+  b.core->rotate(0, 256);
+  CHECK(b.until(MotionEventKind::SwitchChanged));
+  CHECK(b.last().active && b.last().at == 0);  // it stands in the range: closed from the start
+  CHECK(b.until(MotionEventKind::SwitchChanged));
+  CHECK(!b.last().active);
+  CHECK_EQ(b.last().position, 2992);
+  CHECK_EQ(b.last().at, 387094 - 20);  // (the fuzz case's ROR took effect at 20 us)
+  CHECK_EQ(b.core->next_event(), tmcl::kNever);
+}

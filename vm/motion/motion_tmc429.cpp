@@ -130,7 +130,7 @@ class Tmc429Core final : public ramp::RampCore<Tmc429Motor> {
   void advance(SimTime to, std::vector<MotionEvent>& out) override {
     collect(
         to, out,
-        [this](Tmc429Motor& m, EventKind k) {
+        [](Tmc429Motor& m, EventKind k) {
           if (k == EventKind::ReferenceDone) m.search.step = SearchStep::Off;
           if (k != EventKind::VelocityReached) m.goal = Tmc429Goal::Idle, m.trip_t = ramp::kInf;
         },

@@ -152,12 +152,15 @@ struct RampMotor {
 
   double plan_x(std::int64_t physical) const { return static_cast<double>(physical - phys - base); }
 
+  // From just after `from`: an instant within ceil_us's nanosecond after it is reported at
+  // `from`, so a change there has been reported already and the motor counts as past it.
   SwitchHit scan_switches(SimTime from) const {
     SwitchHit best;
-    const double s = secs(from);
+    const double s = secs(from) + 1.01e-9;
     for (std::size_t i = plan.find(s); i < plan.segs.size(); ++i) {
       Segment seg = plan.segs[i];
-      if (seg.t0 < s) {  // the part of the segment from `from` on
+      const bool first = seg.t0 < s;
+      if (first) {  // the part of the segment from `from` on
         double dt = std::min(s - seg.t0, seg.dur);
         seg = {seg.t0 + dt, seg.dur - dt, seg.x(dt), seg.v(dt), seg.a(dt), seg.j, seg.dir};
       }
@@ -180,7 +183,7 @@ struct RampMotor {
           t = crossing(seg, plan_x(at));
         }
         if (t < 0) continue;
-        SimTime when = origin + ceil_us(seg.t0 + t);
+        SimTime when = first && t == 0 ? from : origin + ceil_us(seg.t0 + t);
         if (when < best.at) best = {when, k, !z.in, at - phys, edge - phys, seg.dir};
       }
       if (best.at != kNever) return best;
