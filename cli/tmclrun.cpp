@@ -592,11 +592,12 @@ int run(int argc, char** argv) {
     recording_core.finish(vm.now);
     recorder.show_motors(tmcl::shown_motors(vm));
     std::ostringstream csv, svg;
-    if (!o.csv.empty()) tmcl::write_csv(csv, recorder);
+    const std::string units = core->units_note();  // a core in chip units says which
+    if (!o.csv.empty()) tmcl::write_csv(csv, recorder, units);
     if (!o.plot.empty()) {
       tmcl::PlotOptions plot;
       plot.title = (o.program == "-" ? std::string("<stdin>") : o.program) + " on " + o.target + " (" +
-                   std::string(core->name()) + " motion)";
+                   std::string(core->name()) + " motion" + (units.empty() ? "" : "; " + units) + ")";
       plot.from = o.plot_from;
       plot.to = o.plot_to;
       tmcl::write_svg(svg, recorder, plot);

@@ -1,4 +1,5 @@
-// Scenario files (format in scenario.hpp): timed input changes. Every line is checked and every
+// Scenario files (format in scenario.hpp): timed input changes and switches placed at positions.
+// Every line is checked and every
 // error collected with its column, so a user mends the whole file in one go, as with the
 // assembler. Numbers and times go through the one decimal reader (numbers.hpp, duration.hpp).
 #include "tmcl/scenario.hpp"
@@ -23,11 +24,104 @@ constexpr KindName kKinds[] = {
     {"home", InputEvent::Home, 255, true},                {"slip", InputEvent::Slip, 255, true},
 };
 
+constexpr KindName kPlaced[] = {
+    {"left", InputEvent::Placed, 255, true}, {"right", InputEvent::Placed, 255, true}, {"home", InputEvent::Placed, 255, true}};
+
+// `switch left|right|home MOTOR at POS` or `... from LO to HI`: a switch that belongs to the
+// machine, closed while the motor's physical position is <= POS (left), >= POS (right) or in
+// [LO, HI]. Appends the event, or reports what is wrong with the line.
+// `first_line[motor * 3 + input]`: the line that placed that switch (0: none yet).
+template <class Error, class AtWord>
+void parse_placed(const std::vector<LineWord>& w, const ScenarioOptions& options, std::vector<InputEvent>& out,
+                  std::vector<int>& first_line, int line_no, Error error, AtWord at_word, const std::string& line) {
+  static const char* kShape = "expected 'switch left|right MOTOR at POSITION' or 'switch left|right|home MOTOR from POSITION to POSITION'";
+  if (w.size() < 5) {
+    error(static_cast<int>(line.find_last_not_of(" \t")) + 2, 1, std::string(kShape) + ": the line ends early");
+    return;
+  }
+  int input = -1;
+  for (int k = 0; k < 3; ++k)
+    if (w[1].text == kPlaced[k].name) input = k;
+  if (input < 0) {
+    std::string hint = closest_match(w[1].text, {"left", "right", "home"});
+    at_word(w[1], "unknown switch '" + w[1].text + "' (left, right, home)" + (hint.empty() ? "" : "; did you mean '" + hint + "'?"));
+    return;
+  }
+  bool ok = true;
+  std::int64_t motor = 0;
+  const int max = std::min(255, options.motors - 1);
+  if (!parse_int(w[2].text, 0, 255, motor)) {
+    at_word(w[2], "bad motor number '" + w[2].text + "' (0.." + std::to_string(max) + ")");
+    ok = false;
+  } else if (motor > max) {
+    at_word(w[2], (options.module.empty() ? std::string("the module") : options.module) + " has no motor " +
+                      std::to_string(motor) + " (0.." + std::to_string(max) + ")");
+    ok = false;
+  }
+  auto position = [&](const LineWord& x, std::int64_t& v) {
+    if (parse_int(x.text, INT32_MIN, INT32_MAX, v)) return true;
+    at_word(x, "bad position '" + x.text + "' (microsteps, a 32-bit integer)");
+    return false;
+  };
+  InputEvent ev;
+  ev.kind = InputEvent::Placed;
+  ev.index = static_cast<int>(motor);
+  ev.input = static_cast<SwitchInput>(input);
+  ev.line = line_no;
+  if (w[3].text == "at") {
+    if (input == 2) {
+      at_word(w[3], "a home switch closes over a range: 'switch home MOTOR from POSITION to POSITION'");
+      return;
+    }
+    if (w.size() > 5) {
+      at_word(w[5], "unexpected '" + w[5].text + "' after the position (a comment starts with '#')");
+      return;
+    }
+    std::int64_t p = 0;
+    if (!position(w[4], p) || !ok) return;
+    ev.from = input == 0 ? INT64_MIN : p;
+    ev.to = input == 0 ? p : INT64_MAX;
+  } else if (w[3].text == "from") {
+    if (w.size() < 7 || w[5].text != "to") {
+      if (w.size() < 6)
+        error(static_cast<int>(line.find_last_not_of(" \t")) + 2, 1, "'to POSITION' is missing");
+      else
+        at_word(w[5], "'to' expected here");
+      return;
+    }
+    if (w.size() > 7) {
+      at_word(w[7], "unexpected '" + w[7].text + "' after the range (a comment starts with '#')");
+      return;
+    }
+    std::int64_t lo = 0, hi = 0;
+    bool good = position(w[4], lo);
+    good = position(w[6], hi) && good;
+    if (!good || !ok) return;
+    if (lo > hi) {
+      at_word(w[6], "the range ends below its start (" + w[4].text + " > " + w[6].text + ")");
+      return;
+    }
+    ev.from = lo;
+    ev.to = hi;
+  } else {
+    at_word(w[3], std::string(kShape) + ": 'at' or 'from' expected here");
+    return;
+  }
+  int& first = first_line[static_cast<std::size_t>(ev.index * 3 + input)];
+  if (first != 0) {
+    at_word(w[1], "switch " + w[1].text + " " + w[2].text + " is already placed at line " + std::to_string(first));
+    return;
+  }
+  first = line_no;
+  out.push_back(ev);
+}
+
 }  // namespace
 
 bool parse_scenario(const std::string& text, const std::string& file, std::vector<InputEvent>& out,
                     std::vector<FileDiag>& diags, const ScenarioOptions& options) {
   const std::size_t errors_before = diags.size();
+  std::vector<int> placed_at(256 * 3, 0);  // per motor and switch: the line that placed it
   int line_no = 0;
   for (std::size_t pos = 0; pos < text.size();) {
     std::size_t end = text.find('\n', pos);
@@ -45,6 +139,10 @@ bool parse_scenario(const std::string& text, const std::string& file, std::vecto
     };
     auto at_word = [&](const LineWord& x, const std::string& msg) { error(x.col, static_cast<int>(x.text.size()), msg); };
     static const char* kShape = "expected 'at TIME WHAT INDEX = VALUE'";
+    if (w[0].text == "switch") {
+      parse_placed(w, options, out, placed_at, line_no, error, at_word, line);
+      continue;
+    }
     if (w[0].text != "at") {
       at_word(w[0], std::string(kShape) + ", found '" + w[0].text + "'");
       continue;

@@ -101,6 +101,8 @@ void Vm::power_on(const EepromImage* image) {
   warnings_total = 0;
   input_next = 0;
   next_check_ = 0;
+  unplaceable_.clear();
+  for (const auto& p : placed) apply_input(p);
 
   eeprom = image ? *image : EepromImage{};
   eeprom.profile = std::string(profile->name);
@@ -171,7 +173,14 @@ void Vm::reset_interpreter() {
 void Vm::add_inputs(std::vector<InputEvent> events) {
   inputs_queue.erase(inputs_queue.begin(), inputs_queue.begin() + static_cast<std::ptrdiff_t>(input_next));
   input_next = 0;
-  for (auto& e : events) inputs_queue.push_back(e);
+  for (auto& e : events) {
+    if (e.kind != InputEvent::Placed) {
+      inputs_queue.push_back(e);
+      continue;
+    }
+    placed.push_back(e);
+    apply_input(e);
+  }
   std::stable_sort(inputs_queue.begin(), inputs_queue.end(),
                    [](const InputEvent& a, const InputEvent& b) { return a.at < b.at; });
   next_check_ = 0;
@@ -300,6 +309,7 @@ void Vm::handle_motion_event(const MotionEvent& ev) {
       errors |= kErrDeviation;
       raise(21 + ev.motor);
       break;
+    case MotionEventKind::SwitchChanged: switch_source(ev.motor, ev.input, false, ev.active); break;
     default: break;
   }
 }
@@ -334,27 +344,24 @@ void Vm::apply_input(const InputEvent& ev) {
     case InputEvent::StopRight:
     case InputEvent::Home: {
       if (!motor_ok(ev.index)) return;
-      MotorSwitches& s = switches[idx];
       bool level = ev.value != 0;
-      bool* sw = ev.kind == InputEvent::StopLeft ? &s.left : ev.kind == InputEvent::StopRight ? &s.right : &s.home;
-      bool before = *sw;
-      *sw = level;
       sync_motion();  // the core must be at `now` before it hears of the switch
       auto input = ev.kind == InputEvent::StopLeft    ? SwitchInput::StopLeft
                    : ev.kind == InputEvent::StopRight ? SwitchInput::StopRight
                                                       : SwitchInput::Home;
       motion->set_switch(ev.index, input, level);
-      what = std::string(ev.kind == InputEvent::StopLeft    ? "left"
-                         : ev.kind == InputEvent::StopRight ? "right"
-                                                            : "home") +
-             " " + std::to_string(ev.index) + " = " + std::to_string(level);
+      what = std::string(switch_input_name(input)) + " " + std::to_string(ev.index) + " = " + std::to_string(level);
       if (trace) trace->input_event(*this, what);
-      if (ev.kind != InputEvent::Home) {
-        int n = (ev.kind == InputEvent::StopLeft ? 27 : 28) + 2 * ev.index;
-        if (n < 255 && transition_fires(bank3[static_cast<std::size_t>(n)], before, level)) raise(n);
-      }
+      switch_source(ev.index, input, true, level);
       return;
     }
+    case InputEvent::Placed:
+      if (!motor_ok(ev.index)) return;
+      sync_motion();
+      if (!motion->place_switch(ev.index, ev.input, ev.from, ev.to) && unplaceable_.empty())
+        unplaceable_ = "the motion core '" + std::string(motion->name()) + "' cannot place switches at positions" +
+                       (ev.line > 0 ? " (scenario line " + std::to_string(ev.line) + ")" : std::string());
+      return;
     case InputEvent::Slip:
       if (!motor_ok(ev.index)) return;
       sync_motion();
@@ -363,6 +370,20 @@ void Vm::apply_input(const InputEvent& ev) {
       break;
   }
   if (trace) trace->input_event(*this, what);
+}
+
+void Vm::switch_source(int motor, SwitchInput input, bool timed, bool level) {
+  if (!motor_ok(motor)) return;
+  MotorSwitches& s = switches[static_cast<std::size_t>(motor)];
+  const auto bit = static_cast<std::uint8_t>(1u << static_cast<unsigned>(input));
+  std::uint8_t& source = timed ? s.timed : s.placed;
+  source = static_cast<std::uint8_t>(level ? source | bit : source & ~bit);
+  bool* sw = input == SwitchInput::StopLeft ? &s.left : input == SwitchInput::StopRight ? &s.right : &s.home;
+  bool before = *sw;
+  *sw = ((s.timed | s.placed) & bit) != 0;
+  if (input == SwitchInput::Home) return;
+  int n = (input == SwitchInput::StopLeft ? 27 : 28) + 2 * motor;
+  if (n < 255 && transition_fires(bank3[static_cast<std::size_t>(n)], before, *sw)) raise(n);
 }
 
 int Vm::wait_check() {

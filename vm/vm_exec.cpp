@@ -320,6 +320,10 @@ RunResult Vm::Loop::run_fast(Vm& vm, const Limits& lim) {
 }
 
 RunResult Vm::run(const Limits& limits) {
+  if (!unplaceable_.empty()) {
+    fault(unplaceable_);
+    return {Halt::Fault, unplaceable_};
+  }
   if (status != AppStatus::Running && !fault_set_) return Loop::settle(*this, limits);
   next_check_ = 0;
   return trace ? Loop::run_traced(*this, limits) : Loop::run_fast(*this, limits);

@@ -30,8 +30,10 @@ void MotionRecorder::mark(SimTime at, int motor, Mark kind, std::string label, s
 }
 
 void MotionRecorder::motion_event(const MotionEvent& ev) {
-  Mark k = ev.kind == MotionEventKind::TargetReached ? Mark::TargetReached : Mark::Other;
-  mark(ev.at, ev.motor, k, std::string(motion_event_name(ev.kind)), ev.position);
+  Mark k = ev.kind == MotionEventKind::TargetReached   ? Mark::TargetReached
+           : ev.kind == MotionEventKind::SwitchChanged ? Mark::StopSwitch
+                                                       : Mark::Other;
+  mark(ev.at, ev.motor, k, motion_event_text(ev), ev.position);
 }
 
 namespace {
@@ -46,19 +48,21 @@ std::string csv_field(const std::string& s) {
   return q + "\"";
 }
 
-// "move issued: MVP ABS, 0, 5000"; a core's event is just its name ("velocity reached").
+// "move issued: MVP ABS, 0, 5000"; a core's event is just its name ("velocity reached"), a
+// switch's its own ("left switch on", "home switch closed").
 std::string event_text(const RecordedMark& m) {
   std::string kind(mark_name(m.kind));
   if (m.label.empty() || m.label == kind) return kind;
-  if (m.kind == Mark::Other) return m.label;
+  if (m.kind == Mark::Other || m.kind == Mark::StopSwitch) return m.label;  // "left switch closed"
   return kind + ": " + m.label;
 }
 
 }  // namespace
 
-void write_csv(std::ostream& out, const MotionRecorder& rec) {
+void write_csv(std::ostream& out, const MotionRecorder& rec, std::string_view units_note) {
   out << "# time in s, position in microsteps, velocity in pps, acceleration in pps^2; sample period "
       << seconds(rec.period()) << " s\n";
+  if (!units_note.empty()) out << "# " << units_note << '\n';
   out << "time_s,motor,position,velocity_pps,acceleration_pps2,event\n";
   const auto& times = rec.times();
   const auto& marks = rec.marks();

@@ -1,6 +1,10 @@
 // Recording decorator and trace tee for tmclrun --csv/--plot (see motion_recording.hpp).
 #include "tmcl/motion_recording.hpp"
 
+#include <cstdio>
+
+#include "tmcl/params.hpp"
+
 namespace tmcl {
 
 void RecordingCore::advance(SimTime to, std::vector<MotionEvent>& events) {
@@ -27,7 +31,13 @@ void RecordingCore::move_relative(int motor, std::int32_t offset) {
 
 void RecordingCore::rotate(int motor, std::int32_t velocity) {
   inner_.rotate(motor, velocity);
-  issued(motor, "rotate at " + std::to_string(velocity) + " pps");
+  std::string speed = std::to_string(velocity) + " pps";
+  if (auto p = inner_.physical(motor, kApTargetSpeed, velocity)) {  // a core in chip units
+    char buf[64];
+    std::snprintf(buf, sizeof buf, "%.3f %s", p->value, std::string(p->unit).c_str());
+    speed = std::to_string(velocity) + " (" + buf + ")";
+  }
+  issued(motor, "rotate at " + speed);
 }
 
 void RecordingCore::stop(int motor) {

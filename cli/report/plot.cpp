@@ -294,8 +294,14 @@ void write_svg(std::ostream& out, const Plot& whole, const PlotOptions& opt) {
   out << "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" << W << "\" height=\"" << H << "\" viewBox=\"0 0 " << W
       << ' ' << H << "\" font-family=\"Helvetica, Arial, sans-serif\">\n";
   out << "<rect width=\"100%\" height=\"100%\" fill=\"#ffffff\"/>\n";
-  out << "<text x=\"" << left << "\" y=\"30\" font-size=\"19\" font-weight=\"bold\" fill=\"#222\">" << xml(opt.title)
-      << "</text>\n";
+  // A long title (a core in chip units names them there) is set smaller, to fit the width: a bold
+  // character is about 0.6 em wide.
+  double title_chars = 0;
+  for (unsigned char c : opt.title) title_chars += (c & 0xC0) != 0x80;
+  const int title_font = std::clamp(static_cast<int>((W - left - 16) / (0.6 * std::max(1.0, title_chars))), 10, 19);
+  out << "<text x=\"" << left << "\" y=\"30\" font-size=\"" << title_font << "\" font-weight=\"bold\" fill=\"#222\">"
+      << xml(opt.title) << "</text>\n";
+
   for (std::size_t i = 0; i < legend.size(); ++i) legend[i].draw(out, placed_legend[i].first, placed_legend[i].second);
 
   // interrupt rows: the label in the margin, one path of ticks, one hover title

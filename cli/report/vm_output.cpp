@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cinttypes>
+#include <optional>
 #include <set>
 
 #include "tmcl/duration.hpp"
@@ -57,6 +58,29 @@ std::string TextTrace::where(std::int32_t pc) const {
   return "-";
 }
 
+namespace {
+// A core in chip units (tmc429): the physical value of the velocity or acceleration an instruction
+// wrote or read, e.g. "motor 0, parameter 4: 1000 = 30517.578 pps"; nullopt otherwise.
+std::optional<std::string> units_text(const Vm& vm, const Instruction& ins) {
+  int param = ins.type;
+  std::int32_t raw = ins.value;
+  switch (static_cast<Op>(ins.op)) {
+    case Op::ROR: case Op::ROL: param = kApTargetSpeed; raw = ins.op == static_cast<std::uint8_t>(Op::ROL) ? -ins.value : ins.value; break;
+    case Op::RORA: case Op::ROLA: param = kApTargetSpeed; raw = vm.acc; break;
+    case Op::SAP: break;
+    case Op::GAP: case Op::AAP: raw = vm.acc; break;
+    default: return std::nullopt;
+  }
+  if (!vm.motor_ok(ins.motor)) return std::nullopt;
+  auto phys = vm.motion->physical(ins.motor, param, raw);
+  if (!phys) return std::nullopt;
+  char buf[128];
+  std::snprintf(buf, sizeof buf, "motor %d, parameter %d: %" PRId32 " = %.3f %s", ins.motor, param, raw, phys->value,
+                std::string(phys->unit).c_str());
+  return std::string(buf);
+}
+}  // namespace
+
 // The widths of the source and instruction columns, from the whole program, once.
 void TextTrace::measure(const Vm& vm) {
   std::size_t source = 16, text = 28;
@@ -75,6 +99,7 @@ void TextTrace::instruction(const Vm& vm, SimTime at, std::int32_t pc, const Ins
   std::fprintf(out_, "%s %5" PRId32 " %-*s %-*s A=%" PRId32 " X=%" PRId32 " F=%s E=%s%s%s\n", format_time(at).c_str(), pc,
                source_width_, where(pc).c_str(), text_width_, named.c_str(), vm.acc, vm.x, flags_text(vm.flags).c_str(),
                errors_text(vm.errors).c_str(), named == plain ? "" : "  // ", named == plain ? "" : plain.c_str());
+  if (auto u = units_text(vm, ins)) std::fprintf(out_, "%s  units: %s\n", format_time(at).c_str(), u->c_str());
   written();
 }
 
@@ -93,7 +118,7 @@ void TextTrace::interrupt_leave(const Vm& vm, std::int32_t to_pc) {
 void TextTrace::motion_event(const Vm& vm, const MotionEvent& ev) {
   (void)vm;
   std::fprintf(out_, "%s  motion: motor %d %s at position %" PRId32 "\n", format_time(ev.at).c_str(), ev.motor,
-               std::string(motion_event_name(ev.kind)).c_str(), ev.position);
+               motion_event_text(ev).c_str(), ev.position);
   written();
 }
 

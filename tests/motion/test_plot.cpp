@@ -7,6 +7,7 @@
 
 #include "check.hpp"
 #include "recording.hpp"
+#include "tmcl/motion_recording.hpp"
 
 using mt::Runner;
 
@@ -142,4 +143,39 @@ TEST(svg_window_of_time) {
   CHECK(s.find("move to 5") == std::string::npos);   // at 1 s: outside
   CHECK(s.find("TI_STOPL0") != std::string::npos);   // at 6 s: inside
   for (double x : attribute_values(s, "x1")) CHECK(x >= 96 - 1e-9 && x <= 1100 - 28 + 1e-9);
+}
+
+// A title that would run past the width (a core in chip units names its divisors there) is set
+// smaller; a short one keeps its size.
+TEST(svg_long_title_fits) {
+  tmcl::MotionRecorder rec(1, 1000);
+  std::ostringstream short_svg, long_svg;
+  tmcl::write_svg(short_svg, rec, {"p.tmc on usb-2-sd (tmc4361 motion)", 1100, 780});
+  CHECK(short_svg.str().find("font-size=\"19\" font-weight=\"bold\" fill=\"#222\">p.tmc on") != std::string::npos);
+  const std::string title(200, 'x');
+  tmcl::write_svg(long_svg, rec, {title, 1100, 780});
+  CHECK(long_svg.str().find("font-size=\"10\" font-weight=\"bold\" fill=\"#222\">" + title) != std::string::npos);
+  std::ostringstream mid;
+  tmcl::write_svg(mid, rec, {std::string(120, 'x'), 1100, 780});
+  CHECK(mid.str().find("font-size=\"13\" font-weight=\"bold\"") != std::string::npos);  // (1100 - 96 - 16) / 72
+}
+
+// The recording of a core in chip units: a rotation's speed in units and pps; a placed switch's
+// events as marks that name the switch; the CSV's units line.
+TEST(recording_in_chip_units) {
+  auto core = tmcl::make_motion_core("tmc429");
+  core->reset(*tmcl::find_profile("generic"), 1);
+  tmcl::MotionRecorder rec(1, 100000);
+  tmcl::RecordingCore rc(*core, rec);
+  CHECK(rc.place_switch(0, tmcl::SwitchInput::StopLeft, INT64_MIN, -3000));
+  rc.rotate(0, -1000);
+  std::vector<tmcl::MotionEvent> ev;
+  for (int i = 0; i < 4 && rc.next_event() != tmcl::kNever; ++i) rc.advance(rc.next_event(), ev);
+  std::ostringstream csv;
+  tmcl::write_csv(csv, rec, rc.units_note());
+  const std::string s = csv.str();
+  CHECK(s.find("move issued: rotate at -1000 (-30517.578 pps)") != std::string::npos);
+  CHECK(s.find(",0,-3000,,,left switch closed\n") != std::string::npos);
+  CHECK(s.find("\n# TMC429 units: pulse divisor 3, ramp divisor 7: velocity 1 = 30.5176 pps, acceleration 1 = 465.661 pps²\n") !=
+        std::string::npos);
 }

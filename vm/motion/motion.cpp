@@ -15,6 +15,7 @@ struct Registry {
     factories.emplace("ideal", [] { return make_ideal_motion_core(); });
     factories.emplace("tmc4361", [] { return make_tmc4361_motion_core(); });
     factories.emplace("linear", [] { return make_linear_motion_core(); });
+    factories.emplace("tmc429", [] { return make_tmc429_motion_core(); });
   }
 };
 
@@ -32,8 +33,23 @@ std::string_view motion_event_name(MotionEventKind kind) {
     case MotionEventKind::Stopped: return "stopped";
     case MotionEventKind::Deviation: return "deviation";
     case MotionEventKind::ReferenceDone: return "reference search done";
+    case MotionEventKind::SwitchChanged: return "switch changed";
   }
   return "?";
+}
+
+std::string_view switch_input_name(SwitchInput input) {
+  switch (input) {
+    case SwitchInput::StopLeft: return "left";
+    case SwitchInput::StopRight: return "right";
+    case SwitchInput::Home: return "home";
+  }
+  return "?";
+}
+
+std::string motion_event_text(const MotionEvent& ev) {
+  if (ev.kind != MotionEventKind::SwitchChanged) return std::string(motion_event_name(ev.kind));
+  return std::string(switch_input_name(ev.input)) + " switch " + (ev.active ? "closed" : "opened");
 }
 
 void register_motion_core(std::string name, MotionFactory factory) {

@@ -61,7 +61,7 @@ class LinearCore final : public ramp::RampCore<LinearMotor> {
     switch (param) {
       case kApTargetPosition: move_absolute(motor, value); return ParamWrite::Ok;
       case kApActualPosition:
-        m.rm.base += static_cast<std::int64_t>(value) - m.rm.xactual(now_);
+        m.rm.shift(static_cast<std::int64_t>(value) - m.rm.xactual(now_));
         if (m.goal == LinearGoal::Position) replan(m);
         return ParamWrite::Ok;
       case kApTargetSpeed: rotate(motor, value); return ParamWrite::Ok;

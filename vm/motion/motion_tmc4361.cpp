@@ -71,7 +71,7 @@ class Tmc4361Core final : public ramp::RampCore<Tmc4361Motor> {
     switch (param) {
       case kApTargetPosition: move_absolute(motor, value); return ParamWrite::Ok;
       case kApActualPosition: {  // shift the coordinate system; a move in progress still goes to its target
-        m.rm.base += static_cast<std::int64_t>(value) - m.rm.xactual(now_);
+        m.rm.shift(static_cast<std::int64_t>(value) - m.rm.xactual(now_));
         if (m.goal == Tmc4361Goal::Position) replan(m);
         return ParamWrite::Ok;
       }
@@ -163,6 +163,8 @@ class Tmc4361Core final : public ramp::RampCore<Tmc4361Motor> {
     return 0;
   }
 
+  // Timed switches (set_switch) block motion toward them here; switches placed at positions
+  // (place_switch, RampCore) stop it where the motor reaches them (scan_trips).
   void set_switch(int motor, SwitchInput input, bool active) override {
     Tmc4361Motor& m = at(motor);
     (input == SwitchInput::StopLeft ? m.left : input == SwitchInput::StopRight ? m.right : m.home) = active;
@@ -291,6 +293,7 @@ class Tmc4361Core final : public ramp::RampCore<Tmc4361Motor> {
         if (dt >= 0 && seg.t0 + dt < best) best = seg.t0 + dt, kind = k;
       };
       if ((seg.dir < 0 && m.left) || (seg.dir > 0 && m.right)) consider(0, Halt::Switch);
+      if (m.rm.has_zones) consider(m.rm.entry(seg, seg.dir < 0 ? 0 : 1), Halt::Switch);  // a stop switch at a position
       if (seg.dir > 0 && (vs_en & 2)) consider(ramp::crossing(seg, m.p[kApVirtualStopRight] - base), Halt::VirtualStop);
       if (seg.dir < 0 && (vs_en & 1)) consider(ramp::crossing(seg, m.p[kApVirtualStopLeft] - base), Halt::VirtualStop);
       if (maxdev > 0) {
@@ -308,6 +311,7 @@ class Tmc4361Core final : public ramp::RampCore<Tmc4361Motor> {
         Builder b(m.rm.plan, {}, 0);
         b.truncate(best);
         halt(m, b, lim, kind);
+        m.rm.rest_on_grid();
         return;
       }
     }

@@ -315,12 +315,7 @@ void Builder::plan_ahead(const Limits& lim, int dir, double u0, double a0, doubl
   double rest = dir * (target - s_.x) - s_dec;  // what the cruise must cover
   if (rest > 0 && std::fabs(s_.v) > 0) emit_cruise(rest / std::fabs(s_.v), dir);
   if (has_dec) emit(dec, dir);
-  s_.x = target;  // the snap: floating-point residue never leaves the motor short of the target
-  s_.v = 0;
-  s_.a = 0;
-  last_dir_ = dir;
-  event(EventKind::TargetReached);
-  finish_rest();
+  arrive(target, dir);  // the snap: floating-point residue never leaves the motor short of the target
 }
 
 void Builder::plan_position(const Limits& lim, double target) {
@@ -361,16 +356,23 @@ void Builder::plan_position(const Limits& lim, double target) {
 }
 
 void Builder::plan_velocity(const Limits& lim, double vt) {
+  if (!ramp_to(lim, vt)) return coast();
+  if (vt == 0) {  // at rest now
+    event(EventKind::Stopped);
+    return finish_rest();
+  }
+  event(EventKind::VelocityReached);
+  finish_cruise();
+}
+
+bool Builder::ramp_to(const Limits& lim, double vt) {
   bool rates = lim.amax > 0 && lim.dmax > 0 && (lim.vbreak <= 0 || (lim.astart > 0 && lim.dfinal > 0));
-  if (!rates) return coast();
+  if (!rates) return false;
   int dir = s_.v != 0 ? sign(s_.v) : sign(s_.a);
   if (dir != 0 && sign(vt) != dir) stop_ramp(lim);  // reversal (or vt == 0): to rest first
   if (s_.v == 0 && s_.a == 0) {
     snap();
-    if (vt == 0) {
-      event(EventKind::Stopped);
-      return finish_rest();
-    }
+    if (vt == 0) return true;
     int d = sign(vt);
     double u1 = std::fabs(vt), vs = std::min(lim.vstart, u1);
     start_motion(d, vs);
@@ -384,8 +386,25 @@ void Builder::plan_velocity(const Limits& lim, double vt) {
     emit(leg, dir);
   }
   s_.v = vt;  // the leg ends on vt up to rounding; cruise exactly at it
-  event(EventKind::VelocityReached);
-  finish_cruise();
+  s_.a = 0;
+  return true;
+}
+
+void Builder::piece(double tau, double a, double j, int dir) {
+  Leg leg;
+  leg.add(tau, a, j);
+  emit(leg, dir);
+}
+
+void Builder::cruise(double tau, int dir) { emit_cruise(tau, dir); }
+
+void Builder::arrive(double target, int dir) {
+  s_.x = target;
+  s_.v = 0;
+  s_.a = 0;
+  last_dir_ = dir;
+  event(EventKind::TargetReached);
+  finish_rest();
 }
 
 void Builder::truncate(double t) {

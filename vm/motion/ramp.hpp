@@ -43,7 +43,7 @@ struct Limits {
   bool can_move() const;
 };
 
-enum class EventKind : std::uint8_t { TargetReached, VelocityReached, Stopped, Deviation };
+enum class EventKind : std::uint8_t { TargetReached, VelocityReached, Stopped, Deviation, ReferenceDone };
 struct PlanEvent {
   double t;
   EventKind kind;
@@ -84,6 +84,14 @@ class Builder {
   void plan_position(const Limits& lim, double target);
   // Velocity mode: reach signed velocity `vt` and keep it (vt == 0: stop with the decel set).
   void plan_velocity(const Limits& lim, double vt);
+  // Pieces of a plan a core composes itself (tmc429's soft approach): the legs of plan_velocity
+  // to signed speed vt without its event and end (false, nothing added, when a needed rate is
+  // 0); one constant-jerk piece in direction dir (a and j in the speed frame: a < 0 slows down);
+  // a cruise at the current speed; the arrival on `target` at rest (TargetReached).
+  bool ramp_to(const Limits& lim, double vt);
+  void piece(double tau, double a, double j, int dir);
+  void cruise(double tau, int dir);
+  void arrive(double target, int dir);
   // Stops (events are the caller's): with the deceleration set and the stop-velocity cut-off,
   // with a linear deceleration (ignores bows), or at once.
   void stop_ramp(const Limits& lim);

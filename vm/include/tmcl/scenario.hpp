@@ -7,6 +7,14 @@
 //   at 2s    right 0 = 1        right stop switch of motor 0 (interrupt 28, WAIT LIMSW)
 //   at 2500ms home 0 = 1        reference (home) switch of motor 0 (WAIT REFSW)
 //   at 3s    slip 0 = -400      the encoder of motor 0 loses 400 counts (deviation check)
+//   switch left 0 at -20000         closed while motor 0's position is <= -20000
+//   switch right 0 at 30000         closed while motor 0's position is >= 30000
+//   switch home 0 from -150 to 150  closed while the position is in the range (left and right
+//                                   take a range too: a cam on that input)
+// Switches at positions belong to the machine: the position is the motor's physical one, in
+// microsteps from where it stood at power-on (SAP 1 and reference searches do not move them);
+// the motion core reports each closing and opening at its exact instant. Both kinds may be mixed:
+// an input is closed while either closes it.
 // Times are absolute simulated instants (durations as in duration.hpp); events at the same
 // instant apply in file order. Every bad line is reported, like the assembler does, as
 // FILE:LINE:COL: error: ... with the line and a caret (and a did-you-mean for a misspelt

@@ -103,8 +103,11 @@ struct Timer {
   SimTime next = kNever;
 };
 
+// A motor's switches as the program sees them (WAIT LIMSW/REFSW, interrupts 27-32): closed when
+// a timed scenario line or the position (a switch placed at positions) closes them.
 struct MotorSwitches {
   bool left = false, right = false, home = false;
+  std::uint8_t timed = 0, placed = 0;  // bit (1 << SwitchInput): closed by that source
 };
 
 // A direct-mode reply: status 100 ok, 2 invalid command, 3 wrong type, 4 invalid value,
@@ -149,12 +152,16 @@ class TraceSink {
 
 // One external input change at an instant (from a scenario, or pushed by a server).
 struct InputEvent {
-  enum Kind : std::uint8_t { Digital, Analog, StopLeft, StopRight, Home, Slip };
+  enum Kind : std::uint8_t { Digital, Analog, StopLeft, StopRight, Home, Slip, Placed };
   SimTime at = 0;
   Kind kind = Digital;
   int index = 0;  // input number, or motor
   std::int32_t value = 0;
   int line = 0;   // scenario line (0: not from a file)
+  // Placed (at 0): switch `input` of motor `index` is closed while the motor's physical position
+  // lies in [from, to] (MotionCore::place_switch; scenario `switch left 0 at -20000`).
+  SwitchInput input = SwitchInput::StopLeft;
+  std::int64_t from = 0, to = 0;
 };
 
 struct Vm {
@@ -236,6 +243,9 @@ struct Vm {
   // ---- external inputs queued by time ----
   std::vector<InputEvent> inputs_queue;  // sorted by time; consumed from input_next
   std::size_t input_next = 0;
+  // Switches placed at positions (InputEvent::Placed): they belong to the machine, not to time,
+  // so add_inputs places them at once and power_on again on the reset core, program or not.
+  std::vector<InputEvent> placed;
 
   Vm(const Profile& p, MotionCore& core);
 
@@ -260,7 +270,7 @@ struct Vm {
   // RST and the reset above: stack, registers, flags, interrupt state cleared (pc and status
   // unchanged).
   void reset_interpreter();
-  // Queues external input changes (sorted by time, stable).
+  // Queues external input changes (sorted by time, stable); places the switches at positions.
   void add_inputs(std::vector<InputEvent> events);
 
   // Runs the program until STOP, a fault, a limit, or blocked forever.
@@ -332,6 +342,7 @@ struct Vm {
   SimTime next_check_ = 0;         // the run loop leaves its fast path when now >= next_check_
   bool fault_set_ = false;
   std::string fault_message_;
+  std::string unplaceable_;  // a placed switch the core refused: every run() is this fault
   std::vector<MotionEvent> event_buf_;
 
   void fault(std::string message);
@@ -341,6 +352,9 @@ struct Vm {
   bool check_handler_code();
   void handle_motion_event(const MotionEvent& ev);
   void apply_input(const InputEvent& ev);
+  // A switch closed or opened by one source (timed: a scenario line; else its position): the
+  // program's view, the trace and the interrupts follow the switch as both sources close it.
+  void switch_source(int motor, SwitchInput input, bool timed, bool level);
   void raise(int vector);          // latch an interrupt if it is enabled and has a vector
   bool try_enter_interrupt();
   void fire_due_timers();

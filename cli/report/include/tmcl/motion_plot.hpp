@@ -17,6 +17,7 @@
 #include <optional>
 #include <ostream>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "tmcl/motion.hpp"
@@ -60,7 +61,8 @@ class MotionRecorder {
 
 // CSV: a comment line, a header, then rows in time order; sample rows have an empty event column,
 // event rows an empty velocity and acceleration. Stable text (fixed decimals) for golden files.
-void write_csv(std::ostream& out, const MotionRecorder& rec);
+// `units_note` (MotionCore::units_note: a core in chip units) is a second comment line.
+void write_csv(std::ostream& out, const MotionRecorder& rec, std::string_view units_note = {});
 
 // The SVG of plot.hpp: three stacked panels (position, velocity, acceleration) over a shared
 // time axis, one colour per quantity, one dash pattern per motor, event markers and a legend.

@@ -33,6 +33,13 @@ class RecordingCore final : public MotionCore {
   bool target_reached(int motor) const override { return inner_.target_reached(motor); }
   bool reference_done(int motor) const override { return inner_.reference_done(motor); }
   MotionSample sample_at(int motor, SimTime t) const override { return inner_.sample_at(motor, t); }
+  bool place_switch(int motor, SwitchInput input, std::int64_t lo, std::int64_t hi) override {
+    return inner_.place_switch(motor, input, lo, hi);
+  }
+  std::optional<PhysicalValue> physical(int motor, int param, std::int32_t raw) const override {
+    return inner_.physical(motor, param, raw);
+  }
+  std::string units_note() const override { return inner_.units_note(); }
 
   // Samples up to `at` (the end of the run).
   void finish(SimTime at) { rec_.sample_until(inner_, at); }

@@ -21,6 +21,7 @@
 #include <functional>
 #include <limits>
 #include <memory>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -36,17 +37,30 @@ enum class MotionEventKind : std::uint8_t {
   Stopped,          // the motor came to rest for another reason (stop switch, virtual stop, MST)
   Deviation,        // encoder deviation beyond axis parameter 212: motor stopped (interrupt 21+motor)
   ReferenceDone,    // a reference search completed
+  SwitchChanged,    // a switch placed at a position (place_switch) closed or opened
 };
 std::string_view motion_event_name(MotionEventKind kind);
+
+enum class SwitchInput : std::uint8_t { StopLeft, StopRight, Home };
+std::string_view switch_input_name(SwitchInput input);  // "left", "right", "home"
 
 struct MotionEvent {
   SimTime at;
   std::uint8_t motor;
   MotionEventKind kind;
   std::int32_t position;  // actual position at that instant
+  // SwitchChanged only: which input, and whether it is now closed (active).
+  SwitchInput input = SwitchInput::StopLeft;
+  bool active = false;
 };
+// The event as the trace and the recording show it: "left switch closed", else the kind's name.
+std::string motion_event_text(const MotionEvent& ev);
 
-enum class SwitchInput : std::uint8_t { StopLeft, StopRight, Home };
+// The physical value of a raw parameter value (MotionCore::physical).
+struct PhysicalValue {
+  double value;
+  std::string_view unit;  // "pps", "pps²"
+};
 
 // Result of a parameter write the VM forwards to a core.
 enum class ParamWrite : std::uint8_t { Ok, ReadOnly, OutOfRange };
@@ -95,6 +109,17 @@ class MotionCore {
   virtual std::int32_t reference_search(int motor, RfsAction action) = 0;
 
   virtual void set_switch(int motor, SwitchInput input, bool active) = 0;
+  // A switch that belongs to the machine (scenario `switch left 0 at -20000`): `input` is closed
+  // while the motor's physical position lies in [lo, hi] (INT64_MIN / INT64_MAX for an open end).
+  // The physical position counts microsteps from where the motor stood at power-on: writing the
+  // actual position (SAP 1) or a reference search moves the register, not the switch. A core that
+  // places switches reports each closing and opening as a SwitchChanged event at its exact
+  // instant, treats the input as closed while either this or set_switch says so, and returns
+  // true; the default cannot place switches and returns false.
+  virtual bool place_switch(int motor, SwitchInput input, std::int64_t lo, std::int64_t hi) {
+    (void)motor, (void)input, (void)lo, (void)hi;
+    return false;
+  }
   virtual void encoder_slip(int motor, std::int32_t counts) = 0;  // encoder loses/gains counts
 
   virtual std::int32_t position(int motor) const = 0;  // actual position (axis parameter 1)
@@ -108,6 +133,17 @@ class MotionCore {
     (void)t;
     return {position(motor), 0.0, 0.0};
   }
+
+  // For cores whose parameters are in a chip's units (tmc429): the physical value that the raw
+  // value of a velocity or acceleration parameter stands for on `motor` now (parameter 2 for the
+  // speeds of ROR/ROL). nullopt for a parameter that is not a rate, and for cores in pps.
+  virtual std::optional<PhysicalValue> physical(int motor, int param, std::int32_t raw) const {
+    (void)motor, (void)param, (void)raw;
+    return std::nullopt;
+  }
+  // One line saying the units in force ("TMC429 units: ..."), for the title of a plot and the
+  // head of a CSV; empty for cores in pps.
+  virtual std::string units_note() const { return {}; }
 
   // A copy of the core with its whole state, for the debugger's checkpoints (reverse execution,
   // vm/debug). nullptr (the default) when the core cannot be copied: the debugger then says
@@ -135,5 +171,10 @@ std::unique_ptr<MotionCore> make_tmc4361_motion_core();
 // The built-in `linear` core (TMC2300-MOTOR-EVAL): one acceleration for both directions of
 // speed change, speeds limited to ±32767 pps (docs/motion.md).
 std::unique_ptr<MotionCore> make_linear_motion_core();
+
+// The built-in `tmc429` core (TMCM-1110, -3110, -6110, -351): the TMC429's velocities and
+// accelerations in chip units with pulse and ramp divisors, limit switches with their stop
+// functions, and the modules' reference search (docs/motion.md).
+std::unique_ptr<MotionCore> make_tmc429_motion_core();
 
 }  // namespace tmcl
