@@ -279,7 +279,7 @@ TEST(bad_project_file_is_reported_and_ignored) {
   d.request("initialize", R"({"processId":null,"capabilities":{},"rootPath":")" + dir.path + R"("})");
   errors = messages(d, 1);
   CHECK_EQ(errors.size(), 1u);
-  CHECK_EQ(errors.empty() ? "" : errors[0], dir.path + "/.tmcl-lsp.json: error: \"target\" must be one of generic, usb-2-sd, tmc2300-eval, not \"usb-3-sd\"" +
+  CHECK_EQ(errors.empty() ? "" : errors[0], dir.path + "/.tmcl-lsp.json: error: \"target\" must be one of generic, tmc2300-eval, usb-2-sd, not \"usb-3-sd\"" +
                                                 " (the file is ignored: target generic, no include folders)");
   // Not an object.
   Client e;
