@@ -21,6 +21,7 @@
 #include "tmcl/asm/output.hpp"
 #include "tmcl/fileio.hpp"
 #include "tmcl/numbers.hpp"
+#include "tmcl/targets.hpp"
 #include "tmcl/version.hpp"
 
 namespace {
@@ -65,7 +66,12 @@ options:
   -i                 with --fmt: rewrite each FILE in place
   --check            with --fmt: write nothing; exit 65 naming each FILE not in the layout
   --address N        module address in datagrams (default 1)
-  -t, --target NAME  usb-2-sd | tmc2300-eval | generic (default)
+  -t, --target NAME  the module: a bundled target (tmcm-1110, usb-2-sd, ...; --list-targets),
+                     NAME.profile in $TMCL_PROFILE_PATH or ~/.config/tmcl/profiles, or a
+                     profile file (PATH with a '/' or ending in .profile). Default: what the
+                     first line names (// tmcl-target: NAME), else generic
+  --list-targets     list every target found and where it comes from
+  --show-target NAME print the target's profile file (a start for a module of your own)
   -I DIR             search DIR for #include files (after the including file's folder)
   -D NAME=VALUE      define a constant (VALUE is an expression)
   -Werror            treat warnings as errors
@@ -109,6 +115,11 @@ std::string with_extension(const std::string& path, const char* ext) {
 int usage_error(const std::string& msg) {
   std::fprintf(stderr, "tmclasm: %s\n(see tmclasm --help)\n", msg.c_str());
   return kExitUsage;
+}
+
+int input_error(const std::string& msg) {
+  std::fprintf(stderr, "%s\n", msg.c_str());
+  return kExitInput;
 }
 
 
@@ -389,10 +400,14 @@ int run(int argc, char** argv) {
       else if (v == "datagrams") dopts.kind = tmcl::ImageKind::Datagrams;
       else if (v == "object") dopts.kind = tmcl::ImageKind::Object;
       else return usage_error("unknown input format '" + v + "' for --from (bin, datagrams, object)");
-    } else if (a == "-t" || a == "--target") {
-      if (!value(a, v)) return usage_error(a + " needs a target name");
-      opts.profile = tmcl::find_profile(v);
-      if (!opts.profile) return usage_error("unknown target '" + v + "' (usb-2-sd, tmc2300-eval, generic)");
+    } else if (a == "-t" || a == "--target" || a == "--show-target") {
+      if (!value(a, v)) return usage_error(a + " needs a target name or a profile file");
+      tmcl::TargetResult t = tmcl::resolve_target(v);
+      if (!t.profile) return t.usage ? usage_error(t.message()) : input_error(t.message(opts.error_limit, "tmclasm"));
+      if (a == "--show-target") return write_output("-", bytes_of(std::string(t.profile->text))) ? 0 : kExitOutput;
+      opts.profile = t.profile;
+    } else if (a == "--list-targets") {
+      return write_output("-", bytes_of(tmcl::format_target_list(tmcl::list_targets()))) ? 0 : kExitOutput;
     } else if (a == "--address") {
       if (!value(a, v)) return usage_error("--address needs a number");
       char* end = nullptr;

@@ -30,6 +30,7 @@
 #include "tmcl/image.hpp"
 #include "tmcl/plot.hpp"
 #include "tmcl/program_image.hpp"
+#include "tmcl/targets.hpp"
 #include "tmcl/version.hpp"
 
 namespace {
@@ -63,7 +64,8 @@ commands:
 options:
   -a N                   module address (default 1)
   --host-address N       host address replies are sent to (default 2)
-  -t, --target NAME      module profile for names, ranges and memory (default generic)
+  -t, --target NAME      module profile for names, ranges and memory: a target name or a profile
+                         file, as for tmclasm (default: the one whose firmware the module reports)
   --baud N               serial baud rate, 9600 to 1000000 (default 9600; raw 8N1)
   --timeout DURATION     wait this long for each reply (default 1s)
   --retries N            resend a request this often when no reply comes (default 2)
@@ -103,6 +105,7 @@ struct Options {
   std::vector<std::string> args;
   host::ClientOptions client;
   std::string target = "generic";  // one default for every tool (errata E39)
+  bool target_given = false;       // -t: else the module's reply to 136 picks the profile
   long baud = 9600;
   bool raw = false, quiet = false;
   std::vector<std::string> include_dirs;
@@ -155,7 +158,8 @@ int parse_args(int argc, char** argv, Options& o) {
       if (!value(v) || !parse_long(v, 0, 255, n)) return usage_error(a + " needs an address from 0 to 255");
       (a == "-a" ? o.client.module : o.client.host) = static_cast<std::uint8_t>(n);
     } else if (a == "-t" || a == "--target") {
-      if (!value(o.target)) return usage_error("-t needs a module name");
+      if (!value(o.target)) return usage_error("-t needs a target name or a profile file");
+      o.target_given = true;
     } else if (a == "--baud") {
       if (!value(v) || !parse_long(v, 1, 100000000, n) || !host::valid_baud(n))
         return usage_error("--baud takes 9600, 19200, 38400, 57600, 115200, 230400, 460800, 500000, 576000, 921600 or 1000000");
@@ -224,8 +228,10 @@ int parse_args(int argc, char** argv, Options& o) {
   o.port = words[0];
   o.command = words[1];
   o.args.assign(words.begin() + 2, words.end());
-  o.profile = tmcl::find_profile(o.target);
-  if (!o.profile) return usage_error("unknown module '" + o.target + "' (usb-2-sd, tmc2300-eval, generic)");
+  const tmcl::TargetResult t = tmcl::resolve_target(o.target);
+  if (!t.profile && !t.usage) std::fprintf(stderr, "%s\n", t.message(tmcl::kDefaultErrorLimit, "tmclctl").c_str());
+  if (!t.profile) return t.usage ? usage_error(t.message()) : kExitInput;
+  o.profile = t.profile;
   return -1;
 }
 

@@ -26,6 +26,7 @@
 #include "tmcl/numbers.hpp"
 #include "tmcl/program_image.hpp"
 #include "tmcl/scenario.hpp"
+#include "tmcl/targets.hpp"
 #include "tmcl/version.hpp"
 #include "tmcl/vm.hpp"
 #include "tmcl/vm_output.hpp"
@@ -40,7 +41,8 @@ const char* kUsage = R"(usage: tmclrun [options] PROGRAM        PROGRAM: .tmc so
 Runs a TMCL program on a deterministic virtual module. Simulated time: nothing waits for real.
 
 options:
-  -t, --target NAME      usb-2-sd | tmc2300-eval | generic (default, as for tmclasm)
+  -t, --target NAME      the module: a target name or a profile file, as for tmclasm (default:
+                         what the program's first line names, // tmcl-target: NAME, else generic)
   --motion NAME          motion core (default: the module's; available: %s)
   --instr-time DURATION  simulated time per instruction (default 20us)
   --max-time DURATION    stop when simulated time reaches DURATION
@@ -242,7 +244,8 @@ int parse_args(int argc, char** argv, Options& o) {
       std::puts(tmcl::version_line("tmclrun").c_str());
       return kExitOk;
     } else if (a == "-t" || a == "--target") {
-      if (!value(o.target)) return usage_error("-t needs a module name");
+      if (!value(o.target)) return usage_error("-t needs a target name or a profile file");
+      o.target_given = true;
     } else if (a == "--motion") {
       if (!value(o.motion)) return usage_error("--motion needs a core name");
     } else if (a == "--instr-time") {
@@ -424,21 +427,17 @@ int run(int argc, char** argv) {
     return located_error(why);
   }
 
-  const tmcl::Profile* profile = tmcl::find_profile(o.target);
-  if (!profile) {
-    std::vector<std::string> names;
-    for (const auto* p : tmcl::all_profiles()) names.emplace_back(p->name);
-    return usage_error("unknown module '" + o.target + "' (available: " + joined(names) + ")");
-  }
-  std::string core_name = o.motion.empty() ? std::string(profile->default_motion) : o.motion;
-  auto core = tmcl::make_motion_core(core_name);
-  if (!core && !o.motion.empty())
+  if (!o.target_given) o.target = tmcl::target_named_by_file(o.program, o.target);
+  tmcl::TargetResult target = tmcl::resolve_target(o.target);
+  if (!target.profile)
+    return !target.diags.empty() ? file_errors(target.diags) : target.usage ? usage_error(target.error) : input_error("", target.error);
+  const tmcl::Profile* profile = target.profile;
+  o.target = std::string(profile->name);
+  std::string core_note;
+  auto core = o.motion.empty() ? tmcl::make_profile_motion_core(*profile, &core_note) : tmcl::make_motion_core(o.motion);
+  if (!core)
     return usage_error("unknown motion core '" + o.motion + "' (available: " + joined(tmcl::motion_core_names()) + ")");
-  if (!core) {
-    std::fprintf(stderr, "tmclrun: note: motion core '%s' (the default for %s) is not built in; using 'ideal'\n",
-                 core_name.c_str(), o.target.c_str());
-    core = tmcl::make_ideal_motion_core();
-  }
+  if (!core_note.empty()) std::fprintf(stderr, "tmclrun: note: %s\n", core_note.c_str());
 
   // ---- the program (optional with --serve: a host may download one) ----
   std::vector<tmcl::Instruction> program;

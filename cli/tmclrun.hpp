@@ -17,6 +17,7 @@ namespace tmclrun {
 // The options of tmclrun.cpp; tmclrun_modes.cpp keeps its own and sets the three flags below.
 struct Options {
   std::string target = "generic";  // one default for every tool (docs/errata.md)
+  bool target_given = false;       // -t: else the program's first line may name the target
   std::string motion;
   tmcl::SimTime instr_time = 20;
   tmcl::Limits limits;

@@ -73,6 +73,7 @@ struct Reader {
   int line_no = 0;
   std::string_view source = {};  // the current line
   std::map<std::string_view, int> seen = {};  // key -> first line
+  std::map<std::string_view, bool> attempted = {};  // keys of every line, good or bad
   std::map<std::string_view, int> sources = {};  // source id -> line
   std::map<std::pair<int, int>, int> defined = {};  // (bank or -1 for axis, number) -> line, this file
   std::map<int, int> vectors_defined = {};
@@ -269,6 +270,7 @@ struct Reader {
       error(key, "unknown key '" + std::string(key.text) + "'" + (hint.empty() ? "" : "; did you mean '" + hint + "'?"));
       return;
     }
+    attempted[info->key] = true;
     const int nargs = static_cast<int>(words.size()) - 1;
     if (nargs < info->min_args || (info->max_args >= 0 && nargs > info->max_args)) {
       const Word& at = nargs < info->min_args ? key : words[static_cast<std::size_t>(info->max_args) + 1];
@@ -566,14 +568,15 @@ struct Reader {
   void finish() {
     Profile& p = s.profile;
     auto missing = [&](const char* key, const char* shape) {
+      if (attempted.count(key)) return;  // there is one, with an error of its own
       diags.push_back({file, 1, 0, 1, "the profile has no '" + std::string(key) + "' line (" + shape + ")", ""});
     };
-    if (p.name.empty()) missing("name", "name NAME");
-    if (!based) {
-      if (p.firmware.empty()) missing("firmware", "firmware NNNNVnnn, the reply to command 136");
-      if (!seen.count("motors")) missing("motors", "motors N");
-      if (!commands_given) missing("commands", "commands N|N-M|MNEMONIC|all...");
-      if (p.standalone && !seen.count("program-memory")) missing("program-memory", "program-memory N|unlimited [eeprom|ram]");
+    missing("name", "name NAME");
+    if (!based && !attempted.count("based-on")) {
+      missing("firmware", "firmware NNNNVnnn, the reply to command 136");
+      missing("motors", "motors N");
+      missing("commands", "commands N|N-M|MNEMONIC|all...");
+      if (p.standalone) missing("program-memory", "program-memory N|unlimited [eeprom|ram]");
     }
     if (p.title.empty()) p.title = p.name;
     if (p.default_motion.empty()) p.default_motion = "ideal";
