@@ -390,13 +390,15 @@ struct Reader {
       auto [it, fresh] = sources.emplace(w[1].text, line_no);
       if (!fresh) return error(w[1], "source " + std::string(w[1].text) + " is already declared at line " + std::to_string(it->second));
     } else if (k == "firmware") {
+      // Usually a 4-digit module number, 'V', the major digit and two minor digits (1110V103);
+      // older modules differ (the TMCM-351's manual shows 351V.442), so any 8 printable
+      // characters with a 'V' are taken.
       const std::string_view f = w[1].text;
-      bool ok = f.size() == 8 && f[4] == 'V';
-      for (std::size_t i = 0; ok && i < 8; ++i)
-        if (i != 4 && !std::isdigit(static_cast<unsigned char>(f[i]))) ok = false;
+      bool ok = f.size() == 8 && f.find('V') != std::string_view::npos;
+      for (char c : f) ok = ok && c > ' ' && c < 0x7f;
       if (!ok)
-        return error(w[1], "the firmware reply to command 136 is 8 characters: 4-digit module number, 'V', major digit, "
-                           "2-digit minor (e.g. 1110V103), not '" + std::string(f) + "'");
+        return error(w[1], "the firmware reply to command 136 is 8 characters with a 'V': usually the 4-digit module "
+                           "number, 'V', major digit, 2-digit minor (e.g. 1110V103), not '" + std::string(f) + "'");
       p.firmware = f;
     } else if (k == "motors") {
       if (!number(w[1], 1, 255, n, "a motor count")) return;

@@ -106,7 +106,7 @@ std::string not_used(const std::string& path, std::size_t errors) {
 std::vector<std::string> known_names(const TargetSearch& search) {
   std::vector<std::string> names;
   for (const auto& e : list_targets(search))
-    if (e.shadowed_by.empty() && e.error.empty()) names.push_back(e.name);
+    if (e.shadowed_by.empty() && e.error.empty() && !e.alias) names.push_back(e.name);
   return names;
 }
 
@@ -230,6 +230,7 @@ std::vector<TargetEntry> list_targets(const TargetSearch& search) {
       alias.name = std::string(a);
       alias.title = "= " + std::string(p->name);
       alias.origin = "bundled";
+      alias.alias = true;
       add(std::move(alias));
     }
   }

@@ -43,6 +43,7 @@ struct TargetEntry {
   std::string name, title, origin;  // origin: "bundled" or the file
   std::string shadowed_by;          // the origin of the profile that hides this one
   std::string error;                // the file does not parse
+  bool alias = false;               // another name of the profile listed before it
 };
 std::vector<TargetEntry> list_targets(const TargetSearch& search = TargetSearch::from_environment());
 // The list as a table for `tmclasm --list-targets`.
