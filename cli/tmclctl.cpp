@@ -19,6 +19,7 @@
 #include <thread>
 #include <vector>
 
+#include "tmcl/analysis.hpp"
 #include "tmcl/asm/assembler.hpp"
 #include "tmcl/asm/disasm.hpp"
 #include "tmcl/duration.hpp"
@@ -26,6 +27,7 @@
 #include "tmcl/host/client.hpp"
 #include "tmcl/host/commands.hpp"
 #include "tmcl/host/port.hpp"
+#include "tmcl/host/probe.hpp"
 #include "tmcl/host/transfer.hpp"
 #include "tmcl/image.hpp"
 #include "tmcl/plot.hpp"
@@ -60,12 +62,16 @@ commands:
   monitor PARAM...            poll parameters (ap:N[:MOTOR], gp:N[:BANK], io:N[:BANK], NAME[@MOTOR])
   console                     interactive direct mode: instructions in source syntax
   scan                        find the modules on a bus: address, firmware, module type
+  probe -o FILE.profile       read what a module has (firmware, parameters, memory) into a draft
+                              profile for -t (docs/profiles.md, "Your own module")
 
 options:
   -a N                   module address (default 1)
   --host-address N       host address replies are sent to (default 2)
   -t, --target NAME      module profile for names, ranges and memory: a target name or a profile
-                         file, as for tmclasm (default: the one whose firmware the module reports)
+                         file, as for tmclasm (default: the one whose firmware the module reports
+                         to 136, which is read on connect; download: what the program's first
+                         line names, // tmcl-target: NAME)
   --baud N               serial baud rate, 9600 to 1000000 (default 9600; raw 8N1)
   --timeout DURATION     wait this long for each reply (default 1s)
   --retries N            resend a request this often when no reply comes (default 2)
@@ -75,8 +81,10 @@ options:
   download: --no-verify  skip reading the program back with 134
             --run        reset and start the program afterwards
             --autostart  set global parameter 77 and store it: the program starts at power-on
+            the program is checked as tmclasm -Werror checks it (the module's profile and the
+            control-flow analysis) before anything is sent
             --from N     resume an interrupted download at address N
-  upload:   -o FILE      the .bin to write (atomically)
+  upload:   -o FILE      the .bin to write (atomically); probe: the draft profile
   monitor:  --every DURATION (default 100ms)  --for DURATION (default: until Ctrl-C)
             --csv FILE   write the rows to FILE instead of standard output
             --plot FILE  also draw the polled values against time as an SVG (one panel each)
@@ -90,6 +98,7 @@ examples:
   tmclctl tcp:127.0.0.1:2001 get 'actual position'
   tmclctl /dev/ttyUSB0 --baud 115200 monitor ap:1 ap:3 --every 50ms --for 10s --csv run.csv
   tmclctl /dev/pts/5 scan --range 1-8
+  tmclctl /dev/ttyACM0 probe -o mymodule.profile
 
 exit status: 0 ok, 1 verify mismatch, 2 the module answered with an error status, 64 usage error,
              65 bad input file, 69 no reply from the module, 74 port error, output file or
@@ -356,6 +365,47 @@ struct Session {
     return ins;
   }
 
+  // On connect: 136 says which module answers. Without -t its profile is used; with -t naming
+  // another module, a warning. A module that does not answer at once is left to the command.
+  void identify_module() {
+    client.set_timeout(std::min(o.client.timeout_ms, 300));
+    const host::Identity id = host::identify(client);
+    client.set_timeout(o.client.timeout_ms);
+    client.set_retries(o.client.retries);
+    if (!id.answered) return;
+    const auto number = [](std::string_view fw) { return fw.substr(0, fw.find('V')); };
+    if (o.target_given) {
+      if (o.profile->name != "generic" && number(o.profile->firmware) != number(id.version))
+        std::fprintf(stderr, "tmclctl: warning: module %d reports firmware %s%s, not %s (-t %s is used)\n", o.client.module,
+                     id.version.c_str(), id.profile ? (" (" + std::string(id.profile->title) + ")").c_str() : "",
+                     std::string(o.profile->title).c_str(), o.target.c_str());
+    } else if (id.profile) {
+      o.profile = id.profile;
+    } else if (!o.quiet) {
+      std::fprintf(stderr, "tmclctl: note: no profile knows firmware %s; using generic (`tmclctl %s probe -o NAME.profile` "
+                           "drafts one)\n", id.version.c_str(), o.port.c_str());
+    }
+  }
+
+  int cmd_probe() {
+    if (o.output.empty() || !o.args.empty()) return usage_error("probe takes -o FILE.profile and no arguments");
+    const bool tty = !o.quiet && ::isatty(2);
+    Bar bar{"Probing  ", tty};
+    std::string name = o.output.substr(o.output.rfind('/') == std::string::npos ? 0 : o.output.rfind('/') + 1);
+    if (name.size() > 8 && name.compare(name.size() - 8, 8, ".profile") == 0) name.resize(name.size() - 8);
+    const host::ProbeResult r = host::probe(client, name.empty() ? "probed" : name, std::ref(bar));
+    bar.end();
+    if (r.outcome != host::Outcome::Ok) {
+      std::fprintf(stderr, "tmclctl: error: %s; nothing written\n", r.message.c_str());
+      return exit_for(r.outcome);
+    }
+    if (!write_output(o.output, r.text)) return kExitPort;
+    if (!o.quiet)
+      std::printf("wrote %s: %d axis parameters, %d global parameters (bank 0), %d interrupt settings, %d motor%s; "
+                  "every fact unverified\n", o.output.c_str(), r.axis, r.bank0, r.bank3, r.motors, r.motors == 1 ? "" : "s");
+    return kExitOk;
+  }
+
   int cmd_send() {
     if (o.args.size() != 1) return usage_error("send takes one instruction in quotes, e.g. send 'SAP 4, 0, 51200'");
     auto ins = assemble(o.args[0]);
@@ -410,14 +460,35 @@ struct Session {
       std::fputs(messages.c_str(), stderr);
       if (!ok) return kExitInput;
     } else {
+      // The program's first line may name its target; -t wins, else it wins over 136.
+      if (!o.target_given) {
+        const std::string named = tmcl::target_named_by_file(first, "");
+        if (!named.empty()) {
+          const tmcl::TargetResult t = tmcl::resolve_target(named);
+          if (!t.profile) {
+            std::fprintf(stderr, "%s:1: error: %s\n", first.c_str(), t.message(1).c_str());
+            return kExitInput;
+          }
+          if (t.profile->name != o.profile->name && o.profile->name != "generic")
+            std::fprintf(stderr, "tmclctl: warning: %s is for %s, the module is %s\n", first.c_str(),
+                         std::string(t.profile->title).c_str(), std::string(o.profile->title).c_str());
+          o.profile = t.profile;
+        }
+      }
+      // The checks of tmclasm -Werror: the module's profile and the control-flow analysis.
       tmcl::AsmOptions opt;
       opt.profile = o.profile;
       opt.include_dirs = o.include_dirs;
-      opt.symbols = false;
+      opt.symbols = true;
+      opt.warnings_are_errors = true;
       tmcl::DiskReader reader;
       tmcl::AsmResult r = tmcl::assemble(o.args, opt, reader);
+      if (r.ok()) tmcl::analyze(tmcl::analysis_input(r), r.diags);
       std::fputs(r.diags.render(r.sources).c_str(), stderr);
-      if (!r.ok()) return kExitInput;
+      if (!r.ok()) {
+        std::fprintf(stderr, "tmclctl: the program has errors (warnings count, as with tmclasm -Werror); nothing sent\n");
+        return kExitInput;
+      }
       program = r.program;
     }
     if (program.empty()) {
@@ -503,6 +574,9 @@ struct Session {
       if (!o.quiet) std::printf("verified %d instructions in %.2fs\n", total, seconds_since(t1));
     }
     host::Result r;
+    if (o.autostart && o.profile->program_store == tmcl::ProgramStore::Ram)
+      std::fprintf(stderr, "tmclctl: warning: %s keeps its program in RAM: after a power cycle there is no program to "
+                           "start (autostart is set anyway)\n", std::string(o.profile->title).c_str());
     if (o.autostart) {
       const Instruction set77{static_cast<std::uint8_t>(Op::SGP), 77, 0, 1};
       if (int rc = ask(set77, r); rc != kExitOk) return rc;
@@ -567,7 +641,7 @@ struct Session {
     std::printf("download pointer: %u\n", s0 & 0xFFFF);
     std::printf("accumulator:      %" PRId32 "\n", r2.reply.value);
     std::printf("x register:       %" PRId32 "\n", r3.reply.value);
-    const tmcl::Profile* p = host::profile_by_firmware(v0.reply.version);
+    const tmcl::Profile* p = host::profile_for_firmware(v0.reply.version);
     std::printf("firmware:         %s (0x%08" PRIX32 ")%s%s\n", v0.reply.version.c_str(), static_cast<std::uint32_t>(v1.reply.value),
                 p ? ", " : "", p ? std::string(p->title).c_str() : "");
     return kExitOk;
@@ -728,7 +802,7 @@ struct Session {
       if (!r.ok()) continue;
       host::Result v = client.request(Instruction{static_cast<std::uint8_t>(Op::GetFirmwareVersion), 0, 0, 0});
       const std::string version = v.ok() ? v.reply.version : "?";
-      const tmcl::Profile* p = host::profile_by_firmware(version);
+      const tmcl::Profile* p = host::profile_for_firmware(version);
       std::printf("address %3d: firmware %s (0x%08" PRIX32 "), %s\n", a, version.c_str(), static_cast<std::uint32_t>(r.reply.value),
                   p ? std::string(p->title).c_str() : "unknown module type");
       std::fflush(stdout);
@@ -778,7 +852,7 @@ int run(int argc, char** argv) {
   host::Port::set_cancel_flag(&g_stop);
 
   static const char* const kCommands[] = {"send", "get", "set", "store", "download", "upload", "run", "stop", "step",
-                                          "reset", "status", "monitor", "console", "scan"};
+                                          "reset", "status", "monitor", "console", "scan", "probe"};
   bool known = false;
   for (const char* c : kCommands) known = known || o.command == c;
   if (!known) return usage_error("unknown command '" + o.command + "'");
@@ -797,6 +871,8 @@ int run(int argc, char** argv) {
   if (o.command == "scan") return cmd_scan(o, port);
   Session s{o, *port, host::Client(*port, o.client)};
   const std::string& c = o.command;
+  if (c == "probe") return s.cmd_probe();
+  s.identify_module();
   if (c == "send") return s.cmd_send();
   if (c == "get") return s.cmd_param(host::ParamAction::Get);
   if (c == "set") return s.cmd_param(host::ParamAction::Set);
