@@ -15,6 +15,7 @@
 #include <string>
 #include <vector>
 
+#include "programs.hpp"
 #include "spawn.hpp"
 #include "tmcl/fileio.hpp"
 #include "tmcl/profile_file.hpp"
@@ -23,24 +24,6 @@ namespace {
 
 using tmcl::bench::run_process;
 using Clock = std::chrono::steady_clock;
-
-// 500 lines of the asm benchmark's shape, with values every profile accepts without a warning.
-std::string program(int lines) {
-  std::string s;
-  int n = 0;
-  for (int i = 0; n < lines; ++i) {
-    s += "// block " + std::to_string(i) + ": move and wait\n";
-    s += "Speed" + std::to_string(i) + " = " + std::to_string(i % 100) + " * 16 + (Base & 0xF)\n";
-    s += "L" + std::to_string(i) + ":\n";
-    s += "  SAP 4, 0, Speed" + std::to_string(i) + " + 1   // maximum speed\n";
-    s += "  MVP ABS, 0, -" + std::to_string(i * 7) + "\n";
-    s += "  WAIT POS, 0, 0\n";
-    s += "  CALC MUL, (1 << 4) | %101\n";
-    s += "  JC GE, L" + std::to_string(i) + "\n";
-    n += 8;
-  }
-  return s + "Base = $1F\n";
-}
 
 double median(std::vector<double> v) {
   std::sort(v.begin(), v.end());
@@ -53,7 +36,7 @@ int main() {
   const std::string dir = "/tmp/tmcl-profile-bench-" + std::to_string(::getpid());
   if (std::system(("mkdir -p " + dir).c_str()) != 0) return 1;
   const std::string src = dir + "/small.tmc", out = dir + "/small.bin";
-  std::ofstream(src) << program(500);
+  std::ofstream(src) << tmcl::bench::tmcl_program(500, 100, "0xF");
 
   // (1) Whole processes, alternating so that a busy machine slows all of them alike.
   const char* baseline = std::getenv("TMCL_BASELINE_TMCLASM");

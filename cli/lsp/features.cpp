@@ -12,11 +12,7 @@ namespace tmcl::lsp {
 namespace {
 
 std::string access_text(std::uint8_t a) {
-  std::string s;
-  if (a & kRead) s += 'R';
-  if (a & kWrite) s += 'W';
-  if (a & kEeprom) s += 'E';
-  if (a & kAutoStore) s += 'A';
+  const std::string s = access_letters(a);
   return s.empty() ? "-" : s;
 }
 

@@ -49,15 +49,6 @@ const ParamInfo* param(const Profile& p, const Row& r) {
   return nullptr;
 }
 
-std::string letters(std::uint8_t a) {
-  std::string s;
-  if (a & tmcl::kRead) s += 'R';
-  if (a & tmcl::kWrite) s += 'W';
-  if (a & tmcl::kEeprom) s += 'E';
-  if (a & tmcl::kAutoStore) s += 'A';
-  return s;
-}
-
 struct Module {
   const char* name;
   std::vector<std::string> sources;  // files in tests/data/modules/
@@ -103,9 +94,9 @@ TEST(every_parameter_of_the_sources_is_in_the_profile) {
           ::tmcl_test::fail(__FILE__, __LINE__, std::string(m.name) + " lacks " + r.kind + " " + std::to_string(r.number) + " of " + file);
           continue;
         }
-        if (m.manual && file == m.manual && letters(info->access) != expected_access(m.name, r))
+        if (m.manual && file == m.manual && tmcl::access_letters(info->access) != expected_access(m.name, r))
           ::tmcl_test::fail(__FILE__, __LINE__, std::string(m.name) + " " + r.kind + " " + std::to_string(r.number) + ": access " +
-                                                    letters(info->access) + ", the manual " + r.access);
+                                                    tmcl::access_letters(info->access) + ", the manual " + r.access);
         if (m.manual && file == m.manual && (info->unverified & (tmcl::kFactAccess | tmcl::kFactExists)))
           ::tmcl_test::fail(__FILE__, __LINE__, std::string(m.name) + " " + r.kind + " " + std::to_string(r.number) +
                                                     ": the manual gives it, yet it is marked unverified");

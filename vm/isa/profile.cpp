@@ -61,6 +61,15 @@ const Profile* load_bundled(std::string_view name) {
 
 }  // namespace
 
+std::string access_letters(std::uint8_t access) {
+  std::string s;
+  if (access & kRead) s += 'R';
+  if (access & kWrite) s += 'W';
+  if (access & kEeprom) s += 'E';
+  if (access & kAutoStore) s += 'A';
+  return s;
+}
+
 const ParamInfo* Profile::axis_param(int number) const { return find_param(axis_params, number); }
 
 const ParamInfo* Profile::global_param(int bank, int number) const {

@@ -34,18 +34,9 @@ std::string facts(std::uint8_t bits) {
   return out;
 }
 
-std::string access(std::uint8_t a) {
-  std::string s;
-  if (a & kRead) s += 'R';
-  if (a & kWrite) s += 'W';
-  if (a & kEeprom) s += 'E';
-  if (a & kAutoStore) s += 'A';
-  return s;
-}
-
 std::string param(const ParamInfo& q) {
   std::string line = std::to_string(q.number) + " " + quoted(q.name) + " " + std::to_string(q.min) + ".." +
-                     std::to_string(q.max) + " " + access(q.access);
+                     std::to_string(q.max) + " " + access_letters(q.access);
   std::int64_t d = q.default_value;
   if (d < q.min) d = static_cast<std::uint32_t>(q.default_value);  // an unsigned range's high half
   line += " default=" + std::to_string(d);

@@ -9,6 +9,7 @@
 #include <bitset>
 #include <cstdint>
 #include <span>
+#include <string>
 #include <string_view>
 
 namespace tmcl {
@@ -20,6 +21,9 @@ enum Access : std::uint8_t {
   kEeprom = 4,     // E: STAP/RSAP, STGP/RSGP
   kAutoStore = 8,  // A: SGP stores it in EEPROM at once
 };
+
+// "RWE": the letters of Access bits in the manuals' order R, W, E, A (empty for none).
+std::string access_letters(std::uint8_t access);
 
 // The facts of a parameter line a profile may mark `unverified` (no source confirms them).
 enum Fact : std::uint8_t {
