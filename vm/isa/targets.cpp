@@ -57,7 +57,11 @@ const Loaded& load_file(const std::string& path, const TargetSearch& search) {
   std::lock_guard<std::recursive_mutex> g(u.lock);
   struct stat st{};
   const bool exists = file_exists(path, st);
-  Loaded& entry = u.by_path[path];
+  // Cached by the file itself: the same relative path from another folder is another file.
+  char* real = exists ? ::realpath(path.c_str(), nullptr) : nullptr;
+  const std::string key = real ? real : path;
+  std::free(real);
+  Loaded& entry = u.by_path[key];
   if (entry.loading) return entry;  // no profile yet: the based-on line that asked says so
   const long long mtime = exists ? static_cast<long long>(st.st_mtim.tv_sec) * 1000000000LL + st.st_mtim.tv_nsec : -1;
   const long long size = exists ? static_cast<long long>(st.st_size) : -1;
