@@ -177,7 +177,7 @@ AsmResult assemble(const std::vector<std::string>& files, const AsmOptions& opti
     }
     out.unused_members.insert(out.unused_members.end(), slot.unused.begin(), slot.unused.end());
   }
-  const Profile& profile = choose_target(options, units, out.diags);
+  const Profile& profile = choose_target(options, units, out.sources, out.diags);
   out.profile = &profile;
 
   // resolve names

@@ -19,6 +19,7 @@
 #include "internal.hpp"
 #include "syntax.hpp"
 #include "tmcl/fileio.hpp"
+#include "tmcl/targets.hpp"
 
 namespace tmcl::detail {
 namespace {
@@ -387,7 +388,16 @@ class FastAssembler {
 bool fast_assemble(const std::string& path, const AsmOptions& options, FileReader& reader, std::string& text,
                    AsmResult& out) {
   if (options.relocatable || text.size() > kMaxFileBytes) return false;
-  const Profile& profile = options.profile ? *options.profile : generic_profile();
+  // The target the first line names (`// tmcl-target: NAME`) unless -t names one; one that cannot
+  // be used is the full assembler's to report, at its place.
+  const Profile* named = options.profile;
+  if (!named) {
+    if (auto comment = target_comment(text)) {
+      named = resolve_target(comment->name).profile;
+      if (!named) return false;
+    }
+  }
+  const Profile& profile = named ? *named : generic_profile();
   FastAssembler fa(options, reader, profile, out);
   bool ok = true;
   for (const auto& [name, value] : options.defines) {  // added first, as the full assembler does

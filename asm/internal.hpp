@@ -250,7 +250,8 @@ struct InputSlot {
 void read_inputs(const std::vector<std::string>& files, const AsmOptions& options, FileReader& reader,
                  AsmResult& out, Storage& store, std::vector<InputSlot>& slots, std::string* first = nullptr);
 void choose_members(std::vector<InputSlot>& slots, SourceSet& sources);
-const Profile& choose_target(const AsmOptions& options, const std::vector<Unit>& units, Diagnostics& diags);
+const Profile& choose_target(const AsmOptions& options, const std::vector<Unit>& units, const SourceSet& sources,
+                             Diagnostics& diags);
 class Resolver;
 // Relocates unit `u` (an object) into out.program, checking what the target needs checked.
 void link_object(Resolver& resolver, int u, const Unit& unit, const Profile& profile, AsmResult& out);

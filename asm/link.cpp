@@ -7,6 +7,7 @@
 #include <set>
 
 #include "internal.hpp"
+#include "tmcl/targets.hpp"
 #include "tmcl/program_image.hpp"
 
 namespace tmcl::detail {
@@ -180,34 +181,58 @@ void choose_members(std::vector<InputSlot>& slots, SourceSet& sources) {
   }
 }
 
-// -t when given; otherwise the target the objects were built for. An object built for `generic`
-// links into a program for any target (and is checked against it); objects built for two
-// different modules, or for another module than -t, do not link.
-const Profile& choose_target(const AsmOptions& options, const std::vector<Unit>& units, Diagnostics& diags) {
+// -t when given; otherwise the target the objects were built for and the sources name on their
+// first line (`// tmcl-target: NAME`, targets.hpp). An object built for `generic` links into a
+// program for any target (and is checked against it); inputs built for two different modules, or
+// objects built for another module than -t, do not link. Targets are the same when their names
+// are: a user's profile file and an object that recorded its name meet by name.
+const Profile& choose_target(const AsmOptions& options, const std::vector<Unit>& units, const SourceSet& sources,
+                             Diagnostics& diags) {
   const Profile* chosen = options.profile;
   std::string chosen_from;
   for (const auto& u : units) {
-    if (!u.object) continue;
-    const std::string& t = u.object->target;
-    const Profile* p = find_profile(t);
-    if (!p) {
-      diags.error(SourceLoc{}, "'" + u.input_name + "' was built for the unknown target '" + t + "'");
+    std::string t;
+    SourceLoc at{};
+    if (u.object) {
+      t = u.object->target;
+    } else if (!options.profile && u.root_file >= 0 && static_cast<std::size_t>(u.root_file) < sources.files.size()) {
+      auto c = target_comment(sources.files[static_cast<std::size_t>(u.root_file)].line(1));
+      if (!c) continue;
+      t = c->name;
+      at = SourceLoc{u.root_file, 1, c->col, static_cast<int>(c->name.size())};
+    } else {
       continue;
     }
-    if (p == &generic_profile()) continue;
+    const Profile* p = nullptr;
+    if (u.object) {
+      p = resolve_target(t).profile;
+      if (!p) {
+        diags.error(SourceLoc{}, "'" + u.input_name + "' was built for the unknown target '" + t + "'");
+        continue;
+      }
+    } else {
+      TargetResult r = resolve_target(t);
+      if (!r.profile) {
+        diags.error(at, "the first line names a target that cannot be used: " + r.message(1));
+        continue;
+      }
+      p = r.profile;
+    }
+    if (p->name == "generic") continue;
+    const char* built = u.object ? " was built for " : " names the target ";
     if (options.profile) {
-      if (p != options.profile)
-        diags.error(SourceLoc{}, "'" + u.input_name + "' was built for " + t + " but the program is linked for " +
+      if (p->name != options.profile->name)
+        diags.error(SourceLoc{}, "'" + u.input_name + "'" + built + t + " but the program is linked for " +
                                      std::string(options.profile->name) + " (-t); rebuild it with -t " +
                                      std::string(options.profile->name));
       continue;
     }
-    if (!chosen || chosen == &generic_profile()) {
+    if (!chosen || chosen->name == "generic") {
       chosen = p;
       chosen_from = u.input_name;
-    } else if (p != chosen) {
-      diags.error(SourceLoc{}, "inputs built for different targets: '" + chosen_from + "' for " +
-                                   std::string(chosen->name) + ", '" + u.input_name + "' for " + t);
+    } else if (p->name != chosen->name) {
+      diags.error(u.object ? SourceLoc{} : at, "inputs built for different targets: '" + chosen_from + "' for " +
+                                                    std::string(chosen->name) + ", '" + u.input_name + "' for " + t);
     }
   }
   return chosen ? *chosen : generic_profile();

@@ -12,36 +12,17 @@
 #include <fstream>
 #include <string>
 
+#include "programs.hpp"
 #include "spawn.hpp"
 #include "tmcl/asm/assembler.hpp"
 
 namespace {
 
 using tmcl::bench::run_process;
+using tmcl::bench::tmcl_program;
 using Clock = std::chrono::steady_clock;
 
 double seconds_since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
-
-// A TMCL program of `lines` lines in the style of real programs, with every construct the
-// assembler has to handle on its hot path.
-std::string tmcl_program(int lines) {
-  std::string s;
-  s.reserve(static_cast<std::size_t>(lines) * 40);
-  int n = 0;
-  for (int i = 0; n < lines; ++i) {
-    s += "// block " + std::to_string(i) + ": move and wait\n";
-    s += "Speed" + std::to_string(i) + " = " + std::to_string(i % 5000) + " * 16 + (Base & 0xFF)\n";
-    s += "L" + std::to_string(i) + ":\n";
-    s += "  SAP 4, 0, Speed" + std::to_string(i) + " + 1   // maximum speed\n";
-    s += "  MVP ABS, 0, -" + std::to_string(i * 7) + "\n";
-    s += "  WAIT POS, 0, 0\n";
-    s += "  CALC MUL, (1 << 4) | %101\n";
-    s += "  JC GE, L" + std::to_string(i) + "\n";
-    n += 8;
-  }
-  s += "Base = $1F\n";
-  return s;
-}
 
 // An x86 file of the same shape for GNU as.
 std::string x86_program(int lines) {

@@ -24,6 +24,7 @@
 #include "tmcl/fileio.hpp"
 #include "tmcl/numbers.hpp"
 #include "tmcl/options.hpp"
+#include "tmcl/targets.hpp"
 
 namespace {
 
@@ -77,6 +78,11 @@ std::string with_extension(const std::string& path, const char* ext) {
 int usage_error(const std::string& msg) {
   std::fprintf(stderr, "tmclasm: %s\n(see tmclasm --help)\n", msg.c_str());
   return kExitUsage;
+}
+
+int input_error(const std::string& msg) {
+  std::fprintf(stderr, "%s\n", msg.c_str());
+  return kExitInput;
 }
 
 
@@ -275,6 +281,8 @@ int format_sources(const std::vector<std::string>& files, bool in_place, bool ch
 // Everything the command line sets.
 struct Settings {
   tmcl::AsmOptions opts;
+  std::string target, show_target;  // -t, --show-target: resolved after the options (profile files)
+  bool list_targets = false;
   std::string output, map_file, symbols_file;
   bool have_output = false, have_format = false;
   tmcl::OutputFormat format = tmcl::OutputFormat::Bin;
@@ -392,12 +400,15 @@ tmcl::cli::Tool command_line(Settings& s) {
          s.address = static_cast<int>(n);
          return std::string();
        }},
-      {"-t, --target", "NAME", "usb-2-sd | tmc2300-eval | generic (default)",
-       [&s](const std::string& v) {
-         s.opts.profile = tmcl::find_profile(v);
-         return s.opts.profile ? std::string() : "unknown target '" + v + "' (usb-2-sd, tmc2300-eval, generic)";
-       },
-       Values::words(tmcl::profile_names()), "a target name"},
+      {"-t, --target", "NAME",
+       "the module: a bundled target (tmcm-1110, usb-2-sd, ...; --list-targets),\n"
+       "NAME.profile in $TMCL_PROFILE_PATH or ~/.config/tmcl/profiles, or a\n"
+       "profile file (PATH with a '/' or ending in .profile). Default: what the\n"
+       "first line names (// tmcl-target: NAME), else generic",
+       set(s.target), Values::words([] { return tmcl::target_names(); }, {"profile"}), "a target name or a profile file"},
+      {"--list-targets", "", "list every target found and where it comes from", flag(s.list_targets)},
+      {"--show-target", "NAME", "print the target's profile file (a start for a module of your own)",
+       set(s.show_target), Values::words([] { return tmcl::target_names(); }, {"profile"}), "a target name or a profile file"},
       {"-I", "DIR", "search DIR for #include files (after the including file's folder)",
        tmcl::cli::append(s.opts.include_dirs), Values::dirs()},
       {"-D", "NAME=VALUE", "define a constant (VALUE is an expression)",
@@ -520,6 +531,14 @@ int run(int argc, char** argv) {
   const tmcl::cli::Result cl = tmcl::cli::parse(command_line(s), argc, argv);
   if (cl.status == tmcl::cli::Result::Status::Done) return 0;
   if (cl.status == tmcl::cli::Result::Status::Error) return usage_error(cl.error);
+  if (s.list_targets) return write_output("-", bytes_of(tmcl::format_target_list(tmcl::list_targets()))) ? 0 : kExitOutput;
+  for (const std::string* v : {&s.show_target, &s.target}) {
+    if (v->empty()) continue;
+    const tmcl::TargetResult t = tmcl::resolve_target(*v);
+    if (!t.profile) return t.usage ? usage_error(t.message()) : input_error(t.message(s.opts.error_limit, "tmclasm"));
+    if (v == &s.show_target) return write_output("-", bytes_of(std::string(t.profile->text))) ? 0 : kExitOutput;
+    s.opts.profile = t.profile;
+  }
   const std::vector<std::string>& files = cl.operands;
   const Mode mode = s.mode;
   const std::string out = s.have_output ? s.output : "-";

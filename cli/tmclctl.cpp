@@ -21,6 +21,7 @@
 #include <thread>
 #include <vector>
 
+#include "tmcl/analysis.hpp"
 #include "tmcl/asm/assembler.hpp"
 #include "tmcl/asm/disasm.hpp"
 #include "tmcl/duration.hpp"
@@ -29,12 +30,14 @@
 #include "tmcl/host/commands.hpp"
 #include "tmcl/host/console.hpp"
 #include "tmcl/host/port.hpp"
+#include "tmcl/host/probe.hpp"
 #include "tmcl/host/scan.hpp"
 #include "tmcl/host/transfer.hpp"
 #include "tmcl/image.hpp"
 #include "tmcl/options.hpp"
 #include "tmcl/plot.hpp"
 #include "tmcl/program_image.hpp"
+#include "tmcl/targets.hpp"
 
 namespace {
 
@@ -63,17 +66,22 @@ commands:
   monitor PARAM...            poll parameters (ap:N[:MOTOR], gp:N[:BANK], io:N[:BANK], NAME[@MOTOR])
   console                     interactive direct mode: instructions in source syntax
   scan                        find the modules on a bus: address, firmware, module type
+  probe -o FILE.profile       read what a module has (firmware, parameters, memory) into a draft
+                              profile for -t (docs/profiles.md, "Your own module")
 
 options:
 )";
 
 const char* kEpilogue = R"(DURATION: an integer with us, ms, s or min (500ms, 2s).
+download checks the program as tmclasm -Werror checks it (the module's profile and the control-flow
+analysis) before anything is sent.
 
 examples:
   tmclctl /dev/ttyACM0 download --run prog.tmc
   tmclctl tcp:127.0.0.1:2001 get 'actual position'
   tmclctl /dev/ttyUSB0 --baud 115200 monitor ap:1 ap:3 --every 50ms --for 10s --csv run.csv
   tmclctl /dev/pts/5 scan --range 1-8
+  tmclctl /dev/ttyACM0 probe -o mymodule.profile
 
 exit status: 0 ok, 1 verify mismatch, 2 the module answered with an error status, 64 usage error,
              65 bad input file, 69 no reply from the module, 74 port error, output file or
@@ -81,7 +89,7 @@ exit status: 0 ok, 1 verify mismatch, 2 the module answered with an error status
 )";
 
 const char* const kCommands[] = {"send", "get", "set", "store", "download", "upload", "run", "stop", "step",
-                                 "reset", "status", "monitor", "console", "scan"};
+                                 "reset", "status", "monitor", "console", "scan", "probe"};
 
 volatile std::sig_atomic_t g_stop = 0;
 extern "C" void on_sigint(int) { g_stop = 1; }
@@ -92,6 +100,7 @@ struct Options {
   std::vector<std::string> args;
   host::ClientOptions client;
   std::string target = "generic";  // one default for every tool (errata E39)
+  bool target_given = false;       // -t: else the module's reply to 136 picks the profile
   long baud = 9600;
   bool raw = false, quiet = false;
   std::vector<std::string> include_dirs;
@@ -170,8 +179,17 @@ tmcl::cli::Tool command_line(Options& o) {
       {"-a", "N", "module address (default 1)", address("-a", o.client.module), {}, "an address from 0 to 255"},
       {"--host-address", "N", "host address replies are sent to (default 2)", address("--host-address", o.client.host),
        {}, "an address from 0 to 255"},
-      {"-t, --target", "NAME", "module profile for names, ranges and memory (default generic)", set(o.target),
-       Values::words(tmcl::profile_names()), "a module name"},
+      {"-t, --target", "NAME",
+       "module profile for names, ranges and memory: a target name or a profile\n"
+       "file, as for tmclasm (default: the one whose firmware the module reports\n"
+       "to 136, which is read on connect; download: what the program's first\n"
+       "line names, // tmcl-target: NAME)",
+       [&o](const std::string& v) {
+         o.target = v;
+         o.target_given = true;
+         return std::string();
+       },
+       Values::words([] { return tmcl::target_names(); }, {"profile"}), "a target name or a profile file"},
       {"--baud", "N", "serial baud rate, 9600 to 1000000 (default 9600; raw 8N1)",
        [&o, kBauds](const std::string& v) {
          long n = 0;
@@ -219,7 +237,7 @@ tmcl::cli::Tool command_line(Options& o) {
          return std::string();
        },
        {}, "an address", false, "download:"},
-      {"-o", "FILE", "the .bin to write (atomically)", set(o.output), Values::files({"bin"}), {}, false, "upload:"},
+      {"-o", "FILE", "the .bin to write (atomically); probe: the draft profile", set(o.output), Values::files({"bin"}), {}, false, "upload:"},
       {"--every", "DURATION", "poll every DURATION (default 100ms)",
        [&o, duration](const std::string& v) {
          o.every_text = v;
@@ -281,8 +299,10 @@ int parse_args(int argc, char** argv, Options& o) {
   o.port = words[0];
   o.command = words[1];
   o.args.assign(words.begin() + 2, words.end());
-  o.profile = tmcl::find_profile(o.target);
-  if (!o.profile) return usage_error("unknown module '" + o.target + "' (usb-2-sd, tmc2300-eval, generic)");
+  const tmcl::TargetResult t = tmcl::resolve_target(o.target);
+  if (!t.profile && !t.usage) std::fprintf(stderr, "%s\n", t.message(tmcl::kDefaultErrorLimit, "tmclctl").c_str());
+  if (!t.profile) return t.usage ? usage_error(t.message()) : kExitInput;
+  o.profile = t.profile;
   return -1;
 }
 
@@ -410,6 +430,47 @@ struct Session {
     return e;
   }
 
+  // On connect: 136 says which module answers. Without -t its profile is used; with -t naming
+  // another module, a warning. A module that does not answer at once is left to the command.
+  void identify_module() {
+    client.set_timeout(std::min(o.client.timeout_ms, 300));
+    const host::Identity id = host::identify(client);
+    client.set_timeout(o.client.timeout_ms);
+    client.set_retries(o.client.retries);
+    if (!id.answered) return;
+    const auto number = [](std::string_view fw) { return fw.substr(0, fw.find('V')); };
+    if (o.target_given) {
+      if (o.profile->name != "generic" && number(o.profile->firmware) != number(id.version))
+        std::fprintf(stderr, "tmclctl: warning: module %d reports firmware %s%s, not %s (-t %s is used)\n", o.client.module,
+                     id.version.c_str(), id.profile ? (" (" + std::string(id.profile->title) + ")").c_str() : "",
+                     std::string(o.profile->title).c_str(), o.target.c_str());
+    } else if (id.profile) {
+      o.profile = id.profile;
+    } else if (!o.quiet) {
+      std::fprintf(stderr, "tmclctl: note: no profile knows firmware %s; using generic (`tmclctl %s probe -o NAME.profile` "
+                           "drafts one)\n", id.version.c_str(), o.port.c_str());
+    }
+  }
+
+  int cmd_probe() {
+    if (o.output.empty() || !o.args.empty()) return usage_error("probe takes -o FILE.profile and no arguments");
+    const bool tty = !o.quiet && ::isatty(2);
+    Bar bar{"Probing  ", tty};
+    std::string name = o.output.substr(o.output.rfind('/') == std::string::npos ? 0 : o.output.rfind('/') + 1);
+    if (name.size() > 8 && name.compare(name.size() - 8, 8, ".profile") == 0) name.resize(name.size() - 8);
+    const host::ProbeResult r = host::probe(client, name.empty() ? "probed" : name, std::ref(bar));
+    bar.end();
+    if (r.outcome != host::Outcome::Ok) {
+      std::fprintf(stderr, "tmclctl: error: %s; nothing written\n", r.message.c_str());
+      return exit_for(r.outcome);
+    }
+    if (!write_output(o.output, r.text)) return kExitPort;
+    if (!o.quiet)
+      std::printf("wrote %s: %d axis parameters, %d global parameters (bank 0), %d interrupt settings, %d motor%s; "
+                  "every fact unverified\n", o.output.c_str(), r.axis, r.bank0, r.bank3, r.motors, r.motors == 1 ? "" : "s");
+    return kExitOk;
+  }
+
   int cmd_send() {
     if (o.args.size() != 1) return usage_error("send takes one instruction in quotes, e.g. send 'SAP 4, 0, 51200'");
     const auto e = enter(o.args[0]);
@@ -466,14 +527,35 @@ struct Session {
       std::fputs(messages.c_str(), stderr);
       if (!ok) return kExitInput;
     } else {
+      // The program's first line may name its target; -t wins, else it wins over 136.
+      if (!o.target_given) {
+        const std::string named = tmcl::target_named_by_file(first, "");
+        if (!named.empty()) {
+          const tmcl::TargetResult t = tmcl::resolve_target(named);
+          if (!t.profile) {
+            std::fprintf(stderr, "%s:1: error: %s\n", first.c_str(), t.message(1).c_str());
+            return kExitInput;
+          }
+          if (t.profile->name != o.profile->name && o.profile->name != "generic")
+            std::fprintf(stderr, "tmclctl: warning: %s is for %s, the module is %s\n", first.c_str(),
+                         std::string(t.profile->title).c_str(), std::string(o.profile->title).c_str());
+          o.profile = t.profile;
+        }
+      }
+      // The checks of tmclasm -Werror: the module's profile and the control-flow analysis.
       tmcl::AsmOptions opt;
       opt.profile = o.profile;
       opt.include_dirs = o.include_dirs;
-      opt.symbols = false;
+      opt.symbols = true;
+      opt.warnings_are_errors = true;
       tmcl::DiskReader reader;
       tmcl::AsmResult r = tmcl::assemble(o.args, opt, reader);
+      if (r.ok()) tmcl::analyze(tmcl::analysis_input(r), r.diags);
       std::fputs(r.diags.render(r.sources).c_str(), stderr);
-      if (!r.ok()) return kExitInput;
+      if (!r.ok()) {
+        std::fprintf(stderr, "tmclctl: the program has errors (warnings count, as with tmclasm -Werror); nothing sent\n");
+        return kExitInput;
+      }
       program = r.program;
     }
     if (program.empty()) {
@@ -560,6 +642,9 @@ struct Session {
       if (!o.quiet) std::printf("verified %d instructions in %.2fs\n", total, seconds_since(t1));
     }
     host::Result r;
+    if (o.autostart && o.profile->program_store == tmcl::ProgramStore::Ram)
+      std::fprintf(stderr, "tmclctl: warning: %s keeps its program in RAM: after a power cycle there is no program to "
+                           "start (autostart is set anyway)\n", std::string(o.profile->title).c_str());
     if (o.autostart) {
       const Instruction set77{static_cast<std::uint8_t>(Op::SGP), 77, 0, 1};
       if (int rc = ask(set77, r); rc != kExitOk) return rc;
@@ -624,7 +709,7 @@ struct Session {
     std::printf("download pointer: %u\n", s0 & 0xFFFF);
     std::printf("accumulator:      %" PRId32 "\n", r2.reply.value);
     std::printf("x register:       %" PRId32 "\n", r3.reply.value);
-    const tmcl::Profile* p = host::profile_by_firmware(v0.reply.version);
+    const tmcl::Profile* p = host::profile_for_firmware(v0.reply.version);
     std::printf("firmware:         %s (0x%08" PRIX32 ")%s%s\n", v0.reply.version.c_str(), static_cast<std::uint32_t>(v1.reply.value),
                 p ? ", " : "", p ? std::string(p->title).c_str() : "");
     return kExitOk;
@@ -868,6 +953,8 @@ int run(int argc, char** argv) {
   if (o.command == "scan") return cmd_scan(o, port);
   Session s{o, *port, host::Client(*port, o.client)};
   const std::string& c = o.command;
+  if (c == "probe") return s.cmd_probe();
+  s.identify_module();
   if (c == "send") return s.cmd_send();
   if (c == "get") return s.cmd_param(host::ParamAction::Get);
   if (c == "set") return s.cmd_param(host::ParamAction::Set);

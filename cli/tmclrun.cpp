@@ -31,6 +31,7 @@
 #include "tmcl/program_image.hpp"
 #include "tmcl/run_control.hpp"
 #include "tmcl/scenario.hpp"
+#include "tmcl/targets.hpp"
 #include "tmcl/vm.hpp"
 #include "tmcl/vm_output.hpp"
 #include "tmclrun.hpp"
@@ -197,8 +198,15 @@ tmcl::cli::Tool command_line(Options& o) {
   t.epilogue = kEpilogue;
   t.column = 25;
   t.options = {
-      {"-t, --target", "NAME", "usb-2-sd | tmc2300-eval | generic (default, as for tmclasm)", set(o.target),
-       Values::words(tmcl::profile_names()), "a module name"},
+      {"-t, --target", "NAME",
+       "the module: a target name or a profile file, as for tmclasm (default:\n"
+       "what the program's first line names, // tmcl-target: NAME, else generic)",
+       [&o](const std::string& v) {
+         o.target = v;
+         o.target_given = true;
+         return std::string();
+       },
+       Values::words([] { return tmcl::target_names(); }, {"profile"}), "a target name or a profile file"},
       {"--motion", "NAME", "motion core (default: the module's; available: " + joined(tmcl::motion_core_names()) + ")",
        set(o.motion), Values::words(tmcl::motion_core_names()), "a core name"},
       {"--instr-time", "DURATION", "simulated time per instruction (default 20us)", duration("--instr-time", o.instr_time),
@@ -505,19 +513,17 @@ int run(int argc, char** argv) {
     return located_error(why);
   }
 
-  const tmcl::Profile* profile = tmcl::find_profile(o.target);
-  if (!profile) {
-    return usage_error("unknown module '" + o.target + "' (available: " + joined(tmcl::profile_names()) + ")");
-  }
-  std::string core_name = o.motion.empty() ? std::string(profile->default_motion) : o.motion;
-  auto core = tmcl::make_motion_core(core_name);
-  if (!core && !o.motion.empty())
+  if (!o.target_given) o.target = tmcl::target_named_by_file(o.program, o.target);
+  tmcl::TargetResult target = tmcl::resolve_target(o.target);
+  if (!target.profile)
+    return !target.diags.empty() ? file_errors(target.diags) : target.usage ? usage_error(target.error) : input_error("", target.error);
+  const tmcl::Profile* profile = target.profile;
+  o.target = std::string(profile->name);
+  std::string core_note;
+  auto core = o.motion.empty() ? tmcl::make_profile_motion_core(*profile, &core_note) : tmcl::make_motion_core(o.motion);
+  if (!core)
     return usage_error("unknown motion core '" + o.motion + "' (available: " + joined(tmcl::motion_core_names()) + ")");
-  if (!core) {
-    std::fprintf(stderr, "tmclrun: note: motion core '%s' (the default for %s) is not built in; using 'ideal'\n",
-                 core_name.c_str(), o.target.c_str());
-    core = tmcl::make_ideal_motion_core();
-  }
+  if (!core_note.empty()) std::fprintf(stderr, "tmclrun: note: %s\n", core_note.c_str());
 
   // ---- the program (optional with --serve: a host may download one) ----
   std::vector<tmcl::Instruction> program;

@@ -22,6 +22,7 @@ constexpr int kExitOk = 0, kExitLimit = 3, kExitUsage = 64, kExitInput = 65, kEx
 // Everything the command line sets (tmclrun.cpp's option table).
 struct Options {
   std::string target = "generic";  // one default for every tool (docs/errata.md)
+  bool target_given = false;       // -t: else the program's first line may name the target
   std::string motion;
   tmcl::SimTime instr_time = 20;
   tmcl::Limits limits;

@@ -13,6 +13,7 @@
 #include "tmcl/debug_cli.hpp"
 #include "tmcl/server.hpp"
 #include "tmcl/vm_output.hpp"
+#include "tmcl/targets.hpp"
 #include "tmclrun.hpp"
 
 using namespace tmclrun;
@@ -53,10 +54,10 @@ int build_bus(Options& o, std::vector<std::unique_ptr<tmcl::MotionCore>>& cores,
     for (int a : seen)
       if (a == b.address) return usage_error("--module: two modules with address " + std::to_string(a));
     seen.push_back(b.address);
-    const tmcl::Profile* profile = tmcl::find_profile(b.target.empty() ? o.target : b.target);
-    if (!profile) return usage_error("--module " + o.modules[i] + ": unknown module '" + b.target + "'");
-    auto core = tmcl::make_motion_core(std::string(profile->default_motion));
-    if (!core) core = tmcl::make_ideal_motion_core();
+    const tmcl::TargetResult t = tmcl::resolve_target(b.target.empty() ? o.target : b.target);
+    if (!t.profile) return usage_error("--module " + o.modules[i] + ": " + t.message());
+    const tmcl::Profile* profile = t.profile;
+    auto core = tmcl::make_profile_motion_core(*profile);
     std::vector<tmcl::Instruction> program;
     tmcl::SourceMap sources;
     if (!b.file.empty()) {
@@ -94,7 +95,7 @@ int tmclrun::check_mode_options(Options& o, bool have_program) {
     if (have_program) return usage_error("with --module, give each module's program there, not as PROGRAM");
     BusSpec first;
     if (std::string err; !parse_bus_spec(o.modules.front(), first, err)) return usage_error(err);
-    if (!first.target.empty()) o.target = first.target;
+    if (!first.target.empty()) o.target = first.target, o.target_given = true;
     o.program = first.file;
     o.serve_opts.protocol.module_address = first.address;
   }
@@ -109,6 +110,7 @@ int tmclrun::run_mode(Options& o, const tmcl::Profile& profile, std::unique_ptr<
       return usage_error("--serve with --debug takes tcp:HOST:PORT or pty, one module, no --dap and no --trace");
     o.serve_opts.eeprom_path = o.eeprom;
   }
+  o.debug.target_given = o.target_given;
   if (o.debug.enabled)  // the debugger loads and runs the program (vm/debug, docs/debugger.md)
     return tmcl::debug::main(o.debug, profile, std::move(core), o.program, o.asm_opts, o.instr_time, o.limits,
                              std::move(inputs), image, o.serving ? &o.serve_opts : nullptr);

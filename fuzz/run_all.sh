@@ -19,6 +19,7 @@ for t in "${targets[@]}"; do
   # Seeds: sources for the source fuzzers, images for the image fuzzers.
   case "$t" in
     fuzz_asm) find examples tests/golden include_files -name '*.tmc' -o -name '*.inc' | head -500 | xargs -r cp -t "$corpus" 2>/dev/null || true ;;
+    fuzz_profile) find vm/isa/profiles tests/profiles -name '*.profile' | xargs -r cp -t "$corpus" 2>/dev/null || true ;;
     fuzz_symbols) find tests/golden -name '*.sym' -o -name '*.golden' | head -200 | xargs -r cp -t "$corpus" 2>/dev/null || true ;;
     *) find tests/golden examples -name '*.bin' | head -200 | xargs -r cp -t "$corpus" 2>/dev/null || true ;;
   esac

@@ -255,6 +255,11 @@ struct Runner {
 }  // namespace
 
 int main(int argc, char** argv) {
+  // The tools look for profiles in the user's folders (TMCL_PROFILE_PATH, ~/.config/tmcl/profiles;
+  // vm/isa/targets.hpp): a case sees the bundled ones only, unless its RUN line sets its own.
+  ::unsetenv("TMCL_PROFILE_PATH");
+  ::unsetenv("XDG_CONFIG_HOME");
+  ::setenv("HOME", "/nonexistent/tmcl-golden-home", 1);
   Runner runner;
   std::string filter;
   std::vector<fs::path> paths;

@@ -184,10 +184,4 @@ std::string mode_name(std::uint32_t mode) {
   return mode < 5 ? names[mode] : "mode " + std::to_string(mode);
 }
 
-const Profile* profile_by_firmware(const std::string& version) {
-  for (const Profile* p : all_profiles())
-    if (!p->firmware.empty() && p->firmware == version) return p;
-  return nullptr;
-}
-
 }  // namespace tmcl::host

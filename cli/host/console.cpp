@@ -18,14 +18,6 @@ std::string folded(std::string_view s) {
   return out;
 }
 
-// The bundled include named after the module: "USB-2-SD (firmware 1.14)" -> "USB-2-SD.inc".
-std::string named_include(const Profile& p) {
-  const std::string stem = folded(p.title.substr(0, p.title.find(' '))) + ".inc";
-  for (const auto& [name, text] : bundled_includes())
-    if (folded(name) == stem) return name;
-  return "";
-}
-
 // One line of source as the file "<command line>", for `profile`, with the session's names as
 // -D definitions. Includes are read from disk and the bundled ones; no STOP is appended.
 AsmResult assemble_line(const std::string& line, const Profile& profile, const std::vector<std::string>& include_dirs,
@@ -51,13 +43,7 @@ AsmResult assemble_line(const std::string& line, const Profile& profile, const s
 
 }  // namespace
 
-std::string module_include_file(const Profile& profile) {
-  if (std::string own = named_include(profile); !own.empty()) return own;
-  for (const Profile* other : all_profiles())
-    if (other->axis_params.data() == profile.axis_params.data() && other->bank0.data() == profile.bank0.data())
-      if (std::string shared = named_include(*other); !shared.empty()) return shared;
-  return "";
-}
+std::string module_include_file(const Profile& profile) { return std::string(profile.include_file); }
 
 ConsoleSession::ConsoleSession(const Profile& profile, std::vector<std::string> include_dirs)
     : profile_(profile), include_dirs_(std::move(include_dirs)) {

@@ -5,6 +5,7 @@
 #include <set>
 
 #include "tmcl/host/commands.hpp"
+#include "tmcl/host/probe.hpp"
 
 namespace tmcl::host {
 namespace {
@@ -30,7 +31,7 @@ ScanResult scan_bus(Client& client, const ScanOptions& options, const std::funct
     client.set_timeout(std::max(timeout, kScanConfirmMs));
     if (Result v = client.request(version(0)); v.ok()) f.version = v.reply.version;
     client.set_timeout(timeout);
-    f.profile = profile_by_firmware(f.version);
+    f.profile = profile_for_firmware(f.version);
     found.insert(address);
     ++result.found;
     on_found(f);

@@ -12,11 +12,7 @@ namespace tmcl::lsp {
 namespace {
 
 std::string access_text(std::uint8_t a) {
-  std::string s;
-  if (a & kRead) s += 'R';
-  if (a & kWrite) s += 'W';
-  if (a & kEeprom) s += 'E';
-  if (a & kAutoStore) s += 'A';
+  const std::string s = access_letters(a);
   return s.empty() ? "-" : s;
 }
 
@@ -118,7 +114,7 @@ Server::Reply Server::hover(const Value& params) {
   if (!t) return r;
   std::size_t index = static_cast<std::size_t>(t - doc->tokens.data());
   Context c = context_at(doc->tokens, index);
-  const Profile& prof = profile();
+  const Profile& prof = profile(*doc);
   std::string text;
   if (c.mnemonic == t) {
     text = "```tmcl\n" + syntax_of(*c.op) + "\n```\n" + std::string(c.op->meaning) + " (opcode " + std::to_string(c.op->code) + ")";
@@ -238,7 +234,7 @@ Server::Reply Server::completion(const Value& params) {
       return r;
     }
   }
-  const Profile& prof = profile();
+  const Profile& prof = profile(*doc);
   if (!c.op || c.operand < 0) {
     for (const OpInfo& op : all_ops())
       if (!op.mnemonic.empty() && !op.control) item(std::string(op.mnemonic), 14, std::string(op.meaning));

@@ -47,7 +47,7 @@ Server::Reply Server::inlay_hints(const Value& params) {
   Document* doc = find_document(params, err);
   std::size_t begin, end;
   if (!doc || !range_param(*doc, params, begin, end, err)) return err;
-  const Profile& prof = profile();
+  const Profile& prof = profile(*doc);
   const std::vector<SourceToken>& toks = doc->tokens;
   Reply r;
   r.result = Value::array();

@@ -3,6 +3,7 @@
 // when that library is built), re-published for every open file that includes a changed one.
 // Bad input never ends the server: it gets the protocol's error response.
 #include "tmcl/lsp/server.hpp"
+#include "tmcl/targets.hpp"
 
 #include <unistd.h>
 
@@ -202,9 +203,13 @@ const Document* Server::document(const std::string& uri) const {
   return it == docs_.end() ? nullptr : &it->second;
 }
 
-const Profile& Server::profile() const {
-  const Profile* p = find_profile(settings_.target);
+const Profile& Server::settings_profile() const {
+  const Profile* p = resolve_target(settings_.target).profile;
   return p ? *p : generic_profile();
+}
+
+const Profile& Server::profile(const Document& doc) const {
+  return doc.result && doc.result->profile ? *doc.result->profile : settings_profile();
 }
 
 std::vector<std::string> Server::handle(std::string_view body) {
@@ -421,7 +426,9 @@ Server::Reply Server::change(const Value& params) {
 
 void Server::check(Document& doc) {
   AsmOptions opts;
-  opts.profile = find_profile(settings_.target);
+  // A first line that names a target wins over the settings: the assembler reads it, and says
+  // there when it names none that can be used.
+  opts.profile = target_comment(doc.text) ? nullptr : &settings_profile();
   opts.include_dirs = settings_.include_dirs;
   opts.error_limit = 0;
   OverlayReader reader(docs_);

@@ -11,6 +11,7 @@
 
 #include "context.hpp"
 #include "tmcl/lsp/server.hpp"
+#include "tmcl/targets.hpp"
 
 namespace tmcl::lsp {
 
@@ -20,12 +21,6 @@ constexpr int kMessageError = 1;    // MessageType.Error
 constexpr int kMessageWarning = 2;  // MessageType.Warning
 constexpr int kFileKind = 17;       // CompletionItemKind.File
 constexpr const char* kProjectFile = ".tmcl-lsp.json";
-
-std::string target_names() {
-  std::string out;
-  for (const Profile* p : all_profiles()) out += (out.empty() ? "" : ", ") + std::string(p->name);
-  return out;
-}
 
 json::Value show_message(int type, std::string text) {
   json::Value n = json::Value::object();
@@ -70,11 +65,15 @@ bool read_project_file(const std::string& path, Settings& s, std::string& error,
     const std::string& key = v.key(i);
     const json::Value& item = v.at(i);
     if (key == "target") {
-      if (!item.is_string() || !find_profile(item.as_string())) {
-        error = path + ": error: \"target\" must be one of " + target_names() + ", not " + json::write(item);
+      // A profile file named by a relative path is found from the project file's folder.
+      std::string target = item.is_string() ? item.as_string() : std::string();
+      if (target.find('/') != std::string::npos && target.front() != '/') target = folder_of(path) + "/" + target;
+      const TargetResult t = resolve_target(target);
+      if (!item.is_string() || !t.profile) {
+        error = path + ": error: \"target\": " + (item.is_string() ? t.message(1) : "a target name or a profile file, not " + json::write(item));
         return false;
       }
-      s.target = item.as_string();
+      s.target = target;
     } else if (key == "includeDirs") {
       if (!item.is_array()) {
         error = path + ": error: \"includeDirs\" must be an array of folder names";
@@ -126,8 +125,8 @@ Server::Reply Server::load_settings() {
   }
   const Value& o = init_options_;
   if (o["target"].is_string()) {
-    if (!find_profile(o["target"].as_string()))
-      return {Value(), kInvalidParams, "unknown target '" + o["target"].as_string() + "' (" + target_names() + ")"};
+    const TargetResult t = resolve_target(o["target"].as_string());
+    if (!t.profile) return {Value(), kInvalidParams, t.message(1)};
     s.target = o["target"].as_string();
   }
   if (o["includeDirs"].is_array()) {

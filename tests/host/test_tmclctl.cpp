@@ -119,7 +119,8 @@ TEST(parameters_by_number_and_name) {
   Output send = ctl({"-t", "usb-2-sd", p, "send", "GAP 4, 0"});
   CHECK_EQ(send.out, "100 success, value 1234\n");
   Output raw = ctl({"-t", "usb-2-sd", "--raw", p, "send", "GAP 4, 0"});
-  CHECK_EQ(raw.out, "> 01 06 04 00 00 00 00 00 0B\n< 02 01 64 06 00 00 04 D2 43\n100 success, value 1234\n");
+  CHECK_EQ(raw.out, "> 01 88 00 00 00 00 00 00 89\n< 02 30 30 31 35 56 31 31 34\n"  // 136 on connect: 0015V114
+                    "> 01 06 04 00 00 00 00 00 0B\n< 02 01 64 06 00 00 04 D2 43\n100 success, value 1234\n");
   Output unknown = ctl({"-t", "usb-2-sd", p, "get", "maximum positoning speed"});
   CHECK_EQ(unknown.status, 64);
   CHECK(has(unknown.err, "did you mean 'Maximum positioning speed'?"));
@@ -301,28 +302,29 @@ void fault_case(const std::string& spec, const std::vector<std::string>& ctl_opt
 // A dropped reply costs one whole timeout, so the cases that recover from one wait 250 ms with 8
 // retries: the window for the answer to come is still 2 s.
 TEST(faults_recovered_or_reported) {
-  fault_case("drop@1", {"--timeout", "250ms", "--retries", "8"}, 0, "");  // waits the timeout once, then the retry is answered
-  fault_case("drop@1", {"--timeout", "100ms", "--retries", "0"}, 69, "no reply within 100 ms to GAP 4, 0");
-  fault_case("corrupt@1", {"--timeout", "10s"}, 0, "");  // a corrupted reply ends the wait at once
-  fault_case("corrupt@1", {"--timeout", "10s", "--retries", "0"}, 69, "only a corrupted reply (wrong checksum) to GAP 4, 0");
+  // Reply 1 answers the 136 tmclctl sends on connect; reply 2 is the GAP's.
+  fault_case("drop@2", {"--timeout", "250ms", "--retries", "8"}, 0, "");  // waits the timeout once, then the retry is answered
+  fault_case("drop@2", {"--timeout", "100ms", "--retries", "0"}, 69, "no reply within 100 ms to GAP 4, 0");
+  fault_case("corrupt@2", {"--timeout", "10s"}, 0, "");  // a corrupted reply ends the wait at once
+  fault_case("corrupt@2", {"--timeout", "10s", "--retries", "0"}, 69, "only a corrupted reply (wrong checksum) to GAP 4, 0");
   fault_case("delay=50ms", {"--timeout", "10s", "--retries", "0"}, 0, "");
   // Late beyond the timeout: retried until the late reply (or the one behind it) is read; 20
   // attempts of 100 ms leave seconds for the 300 ms.
-  fault_case("delay=300ms@1", {"--timeout", "100ms", "--retries", "20"}, 0, "");
+  fault_case("delay=300ms@2", {"--timeout", "100ms", "--retries", "20"}, 0, "");
   fault_case("split", {"--timeout", "10s", "--retries", "0"}, 0, "");
   fault_case("split=30ms", {"--timeout", "10s", "--retries", "0"}, 0, "");
-  fault_case("silence=250ms@1", {"--timeout", "200ms", "--retries", "20"}, 0, "");
-  fault_case("silence=250ms@1", {"--timeout", "100ms", "--retries", "0"}, 69, "no reply within 100 ms");
+  fault_case("silence=250ms@2", {"--timeout", "200ms", "--retries", "20"}, 0, "");
+  fault_case("silence=250ms@2", {"--timeout", "100ms", "--retries", "0"}, 69, "no reply within 100 ms");
   fault_case("stale", {"--timeout", "10s", "--retries", "0"}, 0, "");
   fault_case("drop@cmd=GAP", {"--timeout", "50ms", "--retries", "1"}, 69, "(2 attempts)");
   fault_case("drop@cmd=6#1", {"--timeout", "250ms", "--retries", "8"}, 0, "");
   // The same over TCP, where a frame split across writes is two segments.
   const std::string tcp = "tcp:127.0.0.1:0";
-  fault_case("drop@1", {"--timeout", "250ms", "--retries", "8"}, 0, "", tcp);
-  fault_case("corrupt@1", {"--timeout", "10s", "--retries", "0"}, 69, "only a corrupted reply", tcp);
+  fault_case("drop@2", {"--timeout", "250ms", "--retries", "8"}, 0, "", tcp);
+  fault_case("corrupt@2", {"--timeout", "10s", "--retries", "0"}, 69, "only a corrupted reply", tcp);
   fault_case("split=30ms", {"--timeout", "10s", "--retries", "0"}, 0, "", tcp);
   fault_case("stale,delay=20ms", {"--timeout", "10s", "--retries", "0"}, 0, "", tcp);
-  fault_case("silence=250ms@1", {"--timeout", "200ms", "--retries", "20"}, 0, "", tcp);
+  fault_case("silence=250ms@2", {"--timeout", "200ms", "--retries", "20"}, 0, "", tcp);
 }
 
 TEST(scan_over_several_baud_rates) {

@@ -39,7 +39,7 @@ expect() {
 
 expect "tmclasm --tar" --target
 expect "tmclasm --target=us" usb-2-sd
-expect "tmclasm -t tmc" tmc2300-eval
+expect "tmclasm -t tmc" tmc2300-eval tmcm-1110 tmcm-1140 tmcm-1160 tmcm-1161 tmcm-1260 tmcm-3110 tmcm-351 tmcm-6110
 expect "tmclasm --format l" listing lib
 expect "tmclasm -Wno-unr" -Wno-unreachable
 expect "tmclasm -Werror=eeprom" eeprom-wear  # bash replaces what follows the "="
@@ -60,7 +60,7 @@ expect "tmclctl --baud 1152" 115200
 expect "tmclctl tcp:127.0.0.1:2001 download " sub prog.tmc prog.bin prog.dgm
 expect "tmcl-lsp --s" --stdio
 # Hidden options are not offered.
-expect "tmclasm --li"
+expect "tmclasm --list-o"
 
 if ((failures > 0)); then
   echo "completion: $failures problem(s)"

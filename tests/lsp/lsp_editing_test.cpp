@@ -279,8 +279,9 @@ TEST(bad_project_file_is_reported_and_ignored) {
   d.request("initialize", R"({"processId":null,"capabilities":{},"rootPath":")" + dir.path + R"("})");
   errors = messages(d, 1);
   CHECK_EQ(errors.size(), 1u);
-  CHECK_EQ(errors.empty() ? "" : errors[0], dir.path + "/.tmcl-lsp.json: error: \"target\" must be one of generic, usb-2-sd, tmc2300-eval, not \"usb-3-sd\"" +
-                                                " (the file is ignored: target generic, no include folders)");
+  const std::string bad_target = errors.empty() ? "" : errors[0];
+  CHECK(bad_target.rfind(dir.path + "/.tmcl-lsp.json: error: \"target\": unknown target 'usb-3-sd'; did you mean 'usb-2-sd'? (targets: generic, ", 0) == 0);
+  CHECK(bad_target.find("; or a profile file, docs/profiles.md) (the file is ignored: target generic, no include folders)") != std::string::npos);
   // Not an object.
   Client e;
   dir.write(".tmcl-lsp.json", "[1]");
@@ -360,4 +361,57 @@ TEST(malformed_params_get_answers) {
   CHECK(w.contains("result"));
   c.notify("workspace/didChangeWatchedFiles", R"({"changes":[{"uri":5},{"type":1}]})");
   CHECK(!c.server.exited());
+}
+
+// The target's profile everywhere: hover, completion and diagnostics of a TMCM module; a first
+// line that names a target wins over the settings; the setting may name a profile file.
+TEST(hover_completion_and_diagnostics_follow_the_module) {
+  Client c;
+  start(c, R"({"target":"tmcm-1110"})");
+  c.open(kEditUri, "  SAP 154, 0, 3\n  SAP 4, 0, 5000\n  SAP \n");
+  CHECK_EQ(hover_text(c, kEditUri, 0, 6), "154: Pulse divisor, 0…13, RWE, default 3 (tmcm-1110)");
+  Value d = c.last_diagnostics(kEditUri);
+  CHECK_EQ(d.size(), 2u);  // the range of 4, and the unfinished SAP
+  CHECK(d.at(0)["message"].as_string().find("0 to 2047") != std::string::npos);
+  Value items = c.request("textDocument/completion", pos(kEditUri, 2, 6))["result"];
+  bool divisor = false;
+  for (const Value& i : items.items()) divisor = divisor || (i["label"].as_string() == "154" && i["detail"].as_string().find("Pulse divisor") != std::string::npos);
+  CHECK(divisor);
+}
+
+TEST(first_line_target_wins_over_the_settings) {
+  Client c;
+  start(c, R"({"target":"usb-2-sd"})");
+  c.open(kEditUri, "// tmcl-target: pd60-1260\n  SAP 4, 0, 5000\n  SAP 153, 0, 1\n");
+  CHECK(hover_text(c, kEditUri, 1, 6).find("(tmcm-1260)") != std::string::npos);
+  Value d = c.last_diagnostics(kEditUri);
+  CHECK_EQ(d.size(), 1u);  // 5000 pps is fine there; 153 does not exist
+  CHECK(d.at(0)["message"].as_string().find("axis parameter 153 does not exist on TMCM-1260") != std::string::npos);
+  // A name that is no target: an error on the first line, at the name.
+  c.open("file:///work/f.tmc", "// tmcl-target: tmcm-9999\n  STOP\n");
+  d = c.last_diagnostics("file:///work/f.tmc");
+  CHECK_EQ(d.size(), 1u);
+  CHECK_EQ(d.at(0)["range"]["start"]["line"].as_int(), 0);
+  CHECK_EQ(d.at(0)["range"]["start"]["character"].as_int(), 16);
+}
+
+TEST(the_target_setting_may_be_a_profile_file) {
+  TempDir dir;
+  dir.write("profiles/mine.profile",
+            "tmcl-profile 1\nname mine\nfirmware 4242V100\nmotors 1\nprogram-memory 100\ncommands 1-6 128-137 255\n"
+            "axis 4 \"My speed\" 0..100 RW default=7\n");
+  dir.write(".tmcl-lsp.json", R"({"target": "profiles/mine.profile"})");
+  Client c;
+  c.request("initialize", R"({"processId":null,"capabilities":{},"rootUri":")" + dir.uri() + R"("})");
+  CHECK(messages(c, 1).empty());
+  const std::string main = dir.uri("main.tmc");
+  c.open(main, "  SAP 4, 0, 1\n");
+  CHECK_EQ(hover_text(c, main, 0, 6), "4: My speed, 0…100, RW, default 7 (mine)");
+  // A malformed profile file is reported like a bad setting, naming its first error.
+  dir.write("profiles/mine.profile", "tmcl-profile 1\nmotors x\n");
+  Client e;
+  e.request("initialize", R"({"processId":null,"capabilities":{},"rootUri":")" + dir.uri() + R"("})");
+  auto errors = messages(e, 1);
+  CHECK_EQ(errors.size(), 1u);
+  CHECK(!errors.empty() && errors[0].find("mine.profile:2:8: error: expected a motor count") != std::string::npos);
 }

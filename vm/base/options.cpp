@@ -243,8 +243,19 @@ std::string completion(const Tool& tool, const std::vector<std::string>& words) 
   }
 
   std::vector<std::string> candidates;
+  std::string files_instead;  // a path where words or a file may go: "files EXT..."
   auto offer_words = [&](const Values& v, const std::string& before) {
-    for (const std::string& item : v.items)
+    if (!v.or_files.empty() && cur.find('/', before.size()) != std::string::npos) {
+      files_instead = "files";
+      for (const auto& e : v.or_files) files_instead += " " + e;
+      return;
+    }
+    std::vector<std::string> items = v.items;
+    if (v.later) {
+      std::vector<std::string> more = v.later();
+      items.insert(items.end(), more.begin(), more.end());
+    }
+    for (const std::string& item : items)
       if (starts_with(before + item, cur)) candidates.push_back(before + item);
   };
   Values values;
@@ -278,6 +289,10 @@ std::string completion(const Tool& tool, const std::vector<std::string>& words) 
   }
   if (values.kind == Values::Kind::Words) {
     offer_words(values, "");
+  }
+  if (!files_instead.empty()) {
+    return files_instead + "\n";
+  } else if (values.kind == Values::Kind::Words) {
   } else if (values.kind == Values::Kind::Files) {
     std::string out = "files";
     for (const auto& e : values.items) out += " " + e;

@@ -17,6 +17,7 @@
 #include "tmcl/debug_cli.hpp"
 #include "tmcl/duration.hpp"
 #include "tmcl/json.hpp"
+#include "tmcl/targets.hpp"
 
 namespace tmcl::debug {
 namespace {
@@ -216,11 +217,17 @@ bool Dap::launch(const Value& req, std::string& error) {
   std::string program = a["program"].as_string();
   if (program.empty()) return error = "launch needs \"program\": a .tmc, .bin or .dgm file", false;
   std::string target = a["target"].as_string().empty() ? setup_.target : a["target"].as_string();
-  const Profile* profile = find_profile(target);
-  if (!profile) return error = "unknown target '" + target + "'", false;
-  std::string core_name = a["motion"].as_string().empty() ? std::string(profile->default_motion) : a["motion"].as_string();
-  auto core = make_motion_core(core_name);
+  if (a["target"].as_string().empty() && !setup_.target_given) target = target_named_by_file(program, target);
+  const Profile* profile = setup_.profile && target == setup_.target ? setup_.profile : nullptr;
+  if (!profile) {
+    const TargetResult t = resolve_target(target);
+    if (!t.profile) return error = t.message(), false;
+    profile = t.profile;
+  }
+  std::string core_name = a["motion"].as_string();
+  auto core = core_name.empty() ? make_profile_motion_core(*profile) : make_motion_core(core_name);
   if (!core) return error = "unknown motion core '" + core_name + "'", false;
+  if (core_name.empty()) core_name = std::string(core->name());
   Setup s;
   s.profile = profile;
   s.core_name = core_name;

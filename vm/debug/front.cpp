@@ -14,6 +14,8 @@ int main(const FrontEnd& fe, const Profile& profile, std::unique_ptr<MotionCore>
   if (fe.dap) {
     DapSetup ds;
     ds.target = std::string(profile.name);
+    ds.profile = &profile;
+    ds.target_given = fe.target_given;
     ds.instr_time = instr_time;
     ds.asm_options = asm_options;
     ds.source_dirs = fe.source_dirs;

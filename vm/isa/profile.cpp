@@ -1,20 +1,64 @@
-// Lookups over the module profile tables in vm/profiles/.
+// The bundled profiles (vm/isa/profiles/*.profile, compiled in by embed_files.cmake) and the
+// lookups over a profile's tables. A bundled profile is parsed the first time it is asked for
+// and kept for the life of the program, so a tool pays only for the module it uses.
 #include "tmcl/profile.hpp"
 
+#include <algorithm>
 #include <cstdint>
+#include <cstdio>
+#include <map>
+#include <memory>
+#include <mutex>
+#include <string>
+#include <vector>
 
-#include "profiles/profiles.hpp"
+#include "tmcl/profile_file.hpp"
 
 namespace tmcl {
+
+// Generated from vm/isa/profiles/ (embed_files.cmake): file name -> text.
+const std::map<std::string, std::string_view>& bundled_profile_files();
+
 namespace {
 
 const ParamInfo* find_param(std::span<const ParamInfo> table, int number) {
-  for (const auto& p : table)
-    if (p.number == number) return &p;
-  return nullptr;
+  auto it = std::lower_bound(table.begin(), table.end(), number,
+                             [](const ParamInfo& p, int n) { return p.number < n; });
+  return it != table.end() && it->number == number ? &*it : nullptr;
 }
 
-constexpr const Profile* kAll[] = {&profiles::kGeneric, &profiles::kUsb2Sd, &profiles::kTmc2300Eval};
+constexpr std::string_view kExtension = ".profile";
+
+struct Bundled {
+  std::recursive_mutex lock;  // based-on loads its base while loading
+  std::map<std::string, std::unique_ptr<ProfileStore>, std::less<>> by_file;
+  std::vector<const Profile*> all;  // filled by all_profiles()
+};
+
+Bundled& bundled() {
+  static Bundled b;
+  return b;
+}
+
+// The bundled file NAME.profile, parsed once; nullptr when there is none. A bundled file that
+// does not parse is a defect of the build (tests/profiles parses every one): said on standard
+// error, and the profile is missing.
+const Profile* load_bundled(std::string_view name) {
+  Bundled& b = bundled();
+  std::lock_guard<std::recursive_mutex> g(b.lock);
+  const std::string file = std::string(name) + std::string(kExtension);
+  if (auto it = b.by_file.find(file); it != b.by_file.end()) return it->second ? &it->second->profile : nullptr;
+  const auto& files = bundled_profile_files();
+  auto text = files.find(file);
+  if (text == files.end()) return nullptr;
+  std::vector<FileDiag> diags;
+  b.by_file[file] = nullptr;  // a based-on cycle ends here
+  auto store = parse_profile(std::string(text->second), "<bundled>/" + file, "bundled", diags, load_bundled);
+  if (!store) std::fputs(render_file_diags(diags, 0).c_str(), stderr);
+  const Profile* p = store ? &store->profile : nullptr;
+  b.by_file[file] = std::move(store);
+  return p;
+}
 
 }  // namespace
 
@@ -35,6 +79,15 @@ std::string param_text(std::string_view kind, int number, const ParamInfo* p) {
   return s;
 }
 
+std::string access_letters(std::uint8_t access) {
+  std::string s;
+  if (access & kRead) s += 'R';
+  if (access & kWrite) s += 'W';
+  if (access & kEeprom) s += 'E';
+  if (access & kAutoStore) s += 'A';
+  return s;
+}
+
 const ParamInfo* Profile::axis_param(int number) const { return find_param(axis_params, number); }
 
 const ParamInfo* Profile::global_param(int bank, int number) const {
@@ -49,20 +102,56 @@ const InterruptVector* Profile::vector(int number) const {
   return nullptr;
 }
 
-std::span<const Profile* const> all_profiles() { return kAll; }
+std::int64_t Profile::motion_constant(std::string_view constant, std::int64_t otherwise) const {
+  for (const auto& c : motion_constants)
+    if (c.name == constant) return c.value;
+  return otherwise;
+}
+
+std::span<const Profile* const> all_profiles() {
+  Bundled& b = bundled();
+  std::lock_guard<std::recursive_mutex> g(b.lock);
+  if (b.all.empty()) {
+    if (const Profile* g0 = load_bundled("generic")) b.all.push_back(g0);
+    for (const auto& [file, text] : bundled_profile_files()) {
+      const std::string_view name = std::string_view(file).substr(0, file.size() - kExtension.size());
+      if (name == "generic") continue;
+      if (const Profile* p = load_bundled(name)) b.all.push_back(p);
+    }
+  }
+  return b.all;
+}
 
 std::vector<std::string> profile_names() {
   std::vector<std::string> names;
-  for (const Profile* p : kAll) names.emplace_back(p->name);
+  for (const Profile* p : all_profiles()) names.emplace_back(p->name);
   return names;
 }
 
 const Profile* find_profile(std::string_view name) {
-  for (const Profile* p : kAll)
-    if (p->name == name) return p;
+  if (name.empty() || name.find('/') != std::string_view::npos) return nullptr;
+  if (const Profile* p = load_bundled(name)) return p;
+  for (const Profile* p : all_profiles())
+    if (std::find(p->aliases.begin(), p->aliases.end(), name) != p->aliases.end()) return p;
   return nullptr;
 }
 
-const Profile& generic_profile() { return profiles::kGeneric; }
+const Profile& generic_profile() {
+  static const Profile* g = load_bundled("generic");
+  if (!g) {
+    // Only a broken build gets here (the bundled generic.profile did not parse, said above):
+    // an empty profile that accepts everything keeps the tools alive.
+    static Profile empty{};
+    empty.name = "generic";
+    empty.title = "generic";
+    empty.any_parameter = true;
+    empty.motors = 1;
+    empty.user_vars = 256;
+    empty.default_motion = "ideal";
+    empty.firmware = "0000V100";
+    g = &empty;
+  }
+  return *g;
+}
 
 }  // namespace tmcl

@@ -66,6 +66,17 @@ std::unique_ptr<MotionCore> make_motion_core(std::string_view name) {
   return it->second();
 }
 
+std::unique_ptr<MotionCore> make_profile_motion_core(const Profile& profile, std::string* note) {
+  if (auto core = make_motion_core(profile.default_motion)) return core;
+  std::string_view use = profile.fallback_motion.empty() ? std::string_view("ideal") : profile.fallback_motion;
+  auto core = make_motion_core(use);
+  if (!core) use = "ideal", core = make_ideal_motion_core();
+  if (note)
+    *note = "motion core '" + std::string(profile.default_motion) + "' (the default for " + std::string(profile.name) +
+            ") is not built in; using '" + std::string(use) + "'";
+  return core;
+}
+
 std::vector<std::string> motion_core_names() {
   Registry& r = registry();
   std::lock_guard<std::mutex> g(r.lock);

@@ -25,7 +25,17 @@ struct Values {
   // Words: the candidates. Files: the file extensions offered, without the dot (none: any file).
   std::vector<std::string> items;
 
+  // Words worked out only when the shell asks (the targets found on the search path, which a
+  // run need not read).
+  std::function<std::vector<std::string>()> later = {};
+  // Words whose value may also be a file: a value with a '/' completes files with these
+  // extensions (-t NAME or -t PATH/TO/FILE.profile).
+  std::vector<std::string> or_files = {};
+
   static Values words(std::vector<std::string> w) { return {Kind::Words, std::move(w)}; }
+  static Values words(std::function<std::vector<std::string>()> f, std::vector<std::string> or_files = {}) {
+    return {Kind::Words, {}, std::move(f), std::move(or_files)};
+  }
   static Values files(std::vector<std::string> extensions = {}) { return {Kind::Files, std::move(extensions)}; }
   static Values dirs() { return {Kind::Dirs, {}}; }
 };

@@ -66,6 +66,8 @@ int serve_debug(Engine& engine, const ServeOptions& options, std::FILE* in, std:
 // stopOnEntry); these are the defaults from tmclrun's command line.
 struct DapSetup {
   std::string target = "generic";
+  const Profile* profile = nullptr;  // tmclrun's -t, resolved (a profile file has no name to find it by)
+  bool target_given = false;         // -t given: else the program's first line may name the target
   SimTime instr_time = 20;
   AsmOptions asm_options;
   std::vector<std::string> source_dirs;  // --source-dir: where an image's sources may be
@@ -83,6 +85,7 @@ struct FrontEnd {
   std::string symbols;          // --symbols FILE (labels and line table for a .bin)
   std::vector<std::string> source_dirs;  // --source-dir DIR (repeatable): sources of a .bin
   std::size_t checkpoint_bytes = std::size_t{64} << 20;  // --checkpoint-memory MiB
+  bool target_given = false;    // set by tmclrun: -t was given (--dap then ignores first-line targets)
 };
 
 // Loads PROGRAM and runs the command line (or DAP) on it; with `serve`, while serving a host

@@ -1,6 +1,9 @@
-// Module profiles: what one TMCL module offers (commands, parameters, banks, memory), as data.
-// The assembler checks programs against a profile; the VM takes its limits and defaults from it.
-// There is one table per module in vm/profiles/; nothing else in the code branches on a module.
+// Module profiles: what one TMCL module offers (commands, parameters, banks, memory, motion), as
+// data. The assembler checks programs against a profile; the VM takes its limits and defaults
+// from it. Profiles are text files (docs/profiles.md): the bundled ones in vm/isa/profiles/ are
+// compiled into the tools, a user's own are read at run time (profile_file.hpp, targets.hpp).
+// Nothing else in the code branches on a module. `Profile` is a view: its spans and strings point
+// into the storage of the file it was read from, which lives as long as the program.
 #pragma once
 
 #include <bitset>
@@ -20,6 +23,19 @@ enum Access : std::uint8_t {
   kAutoStore = 8,  // A: SGP stores it in EEPROM at once
 };
 
+// "RWE": the letters of Access bits in the manuals' order R, W, E, A (empty for none).
+std::string access_letters(std::uint8_t access);
+
+// The facts of a parameter line a profile may mark `unverified` (no source confirms them).
+enum Fact : std::uint8_t {
+  kFactName = 1,
+  kFactRange = 2,
+  kFactAccess = 4,
+  kFactDefault = 8,
+  kFactUnit = 16,
+  kFactExists = 32,  // that the module has the parameter at all
+};
+
 struct ParamInfo {
   std::uint16_t number;
   std::string_view name;  // the manual's name
@@ -29,6 +45,8 @@ struct ParamInfo {
   std::int32_t default_value;
   // The unit of the manual's "Range [Units]" column ("pps", "μsteps"); empty where it gives none.
   std::string_view unit;
+  std::string_view source = {};  // where the facts come from, as the file says ("M:5.1")
+  std::uint8_t unverified = 0;   // Fact bits no source confirms
 };
 
 // Whether a parameter takes `value`: within [min, max] read as signed, or (a value that fits 32
@@ -46,13 +64,23 @@ struct InterruptVector {
   std::string_view meaning;
 };
 
+// A named constant of the module's motion core (clock frequency, unit conversions), for the core
+// to read with Profile::motion_constant.
+struct MotionConstant {
+  std::string_view name;
+  std::int64_t value;
+};
+
+// Where a module keeps its stored program: in EEPROM it survives a power cycle, in RAM it does not.
+enum class ProgramStore : std::uint8_t { Unknown, Ram, Eeprom };
+
 struct Profile {
   std::string_view name;      // -t NAME
   std::string_view title;     // "USB-2-SD (firmware 1.14)"
   std::bitset<256> commands;  // opcodes the module executes, control commands included
   bool any_parameter;         // generic: every parameter number is accepted without access checks;
                               // a value is range-checked where the tables list the parameter
-  std::span<const ParamInfo> axis_params;
+  std::span<const ParamInfo> axis_params;  // sorted by number, as bank0 and bank3
   std::span<const ParamInfo> bank0;  // global parameters, bank 0
   std::span<const ParamInfo> bank3;  // interrupt configuration, bank 3
   int user_vars;              // bank 2 size
@@ -64,18 +92,31 @@ struct Profile {
   std::string_view default_motion;  // name of the default motion core
   std::string_view firmware;        // 136 type 0 reply text, 8 characters, e.g. "0015V114"
 
+  bool standalone = true;  // runs standalone programs (has program memory at all)
+  ProgramStore program_store = ProgramStore::Unknown;  // whether the program survives a power cycle
+  std::string_view fallback_motion;  // the core to use while default_motion is not built in
+  std::string_view include_file;     // the module's bundled include file ("USB-2-SD.inc"), if any
+  std::span<const MotionConstant> motion_constants;
+  std::span<const std::string_view> aliases;     // other -t names ("pd60-1260")
+  std::span<const std::string_view> unverified;  // every fact no source confirms, one phrase each
+  std::string_view origin;  // "bundled", or the file it was read from
+  std::string_view text;    // the profile file as read (--show-target)
+
   bool has_command(std::uint8_t op) const { return commands.test(op); }
   const ParamInfo* axis_param(int number) const;
   // Bank 0 or 3 parameter; nullptr for other banks or unknown numbers.
   const ParamInfo* global_param(int bank, int number) const;
   const InterruptVector* vector(int number) const;
+  // The motion constant NAME, or `otherwise` when the profile does not give it.
+  std::int64_t motion_constant(std::string_view constant, std::int64_t otherwise) const;
 };
 
-// All built-in profiles, generic first.
+// All bundled profiles, generic first, then by name.
 std::span<const Profile* const> all_profiles();
 // Their -t names, in the same order (the tools' completion and messages).
 std::vector<std::string> profile_names();
-// Profile by -t name, or nullptr.
+// A bundled profile by -t name or alias, or nullptr. A user's profiles are found with
+// resolve_target (targets.hpp).
 const Profile* find_profile(std::string_view name);
 const Profile& generic_profile();
 

@@ -159,6 +159,9 @@ void register_motion_core(std::string name, MotionFactory factory);
 std::unique_ptr<MotionCore> make_motion_core(std::string_view name);
 // Registered names, sorted.
 std::vector<std::string> motion_core_names();
+// The core a module's profile names (`motion NAME`); while that core is not built in (a profile
+// may name one a newer tmcl has), its `fallback=` core, else `ideal`, with `note` saying so.
+std::unique_ptr<MotionCore> make_profile_motion_core(const Profile& profile, std::string* note = nullptr);
 
 // The built-in `ideal` core: every move completes at the instant it is commanded, rotation runs
 // at the commanded speed from that instant (infinite acceleration).

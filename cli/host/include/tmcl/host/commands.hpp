@@ -39,7 +39,4 @@ bool param_instruction(const ParamRef& p, ParamAction action, std::int32_t value
 // 135 type 0/1 value: mode byte 3, wait flag byte 2, pointer or pc bytes 1-0.
 std::string mode_name(std::uint32_t mode);  // "stopped", "running", "step", "reset", "download"
 
-// The profile whose 136 version string is `version` (nullptr: none of ours).
-const Profile* profile_by_firmware(const std::string& version);
-
 }  // namespace tmcl::host

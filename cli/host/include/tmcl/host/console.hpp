@@ -17,9 +17,8 @@
 
 namespace tmcl::host {
 
-// The bundled include file with the names of `profile`'s parameters ("USB-2-SD.inc"): the one
-// named after the module (its title's first word), else the one of a module whose tables the
-// profile shares (generic borrows the USB-2-SD's); "" when there is none.
+// The bundled include file with the names of `profile`'s parameters ("USB-2-SD.inc"), as the
+// profile's include-file line names it (generic inherits the USB-2-SD's); "" when there is none.
 std::string module_include_file(const Profile& profile);
 
 class ConsoleSession {

@@ -61,7 +61,7 @@ struct Document {
 };
 
 struct Settings {
-  std::string target = "generic";         // -t
+  std::string target = "generic";         // -t: a target name or a profile file
   std::vector<std::string> include_dirs;  // -I
 };
 
@@ -135,7 +135,10 @@ class Server {
   Value range_of(const Document& doc, std::size_t offset, std::size_t len) const;
   Value location_of(const SourceLoc& loc, const AsmResult& r) const;
   bool range_param(const Document& doc, const Value& params, std::size_t& begin, std::size_t& end, Reply& err) const;
-  const Profile& profile() const;
+  // The target of a document: what its first line names (// tmcl-target: NAME), else the
+  // settings' target; the settings' alone for the other.
+  const Profile& profile(const Document& doc) const;
+  const Profile& settings_profile() const;
   const Symbol* symbol(const Document& doc, std::string_view name) const;
 
   std::map<std::string, Document> docs_;

@@ -1,0 +1,3 @@
+tmcl-profile 1
+name other-name
+based-on generic

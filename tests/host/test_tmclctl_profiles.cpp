@@ -1,0 +1,115 @@
+// tmclctl and module profiles, against the virtual module (`tmclrun --serve -t NAME`): the
+// module's reply to 136 on connect picks its profile (parameter names of a TMCM-1110 without
+// -t), -t naming another module is warned about, download checks the program as tmclasm -Werror
+// does and honours its first line, autostart on a module that keeps its program in RAM is warned
+// about, and `probe` drafts a profile that agrees with the bundled one on which parameters exist.
+#include <set>
+#include <sstream>
+
+#include "check.hpp"
+#include "tmclctl_test.hpp"
+#include "tmcl/profile_file.hpp"
+
+using namespace hosttest;
+
+TEST(the_reply_to_136_picks_the_profile) {
+  Server server(kRun, {"--serve", "tcp:127.0.0.1:0", "-t", "tmcm-1110"});
+  const std::string& p = server.port();
+  // "Pulse divisor" is a TMCM-1110 parameter (154); generic would not know the name.
+  Output g = ctl({p, "get", "pulse divisor"});
+  show(g);
+  CHECK_EQ(g.status, 0);
+  CHECK_EQ(g.out, "3\n");
+  CHECK(g.err.empty());
+  Output s = ctl({p, "status"});
+  CHECK(has(s.out, "firmware:         1110V103"));
+  CHECK(has(s.out, "TMCM-1110 stepRocker (firmware 1.03)"));
+  // -t naming another module: it is used, with a warning.
+  Output w = ctl({"-t", "usb-2-sd", p, "get", "ap", "4"});
+  CHECK_EQ(w.status, 0);
+  CHECK(has(w.err, "warning: module 1 reports firmware 1110V103 (TMCM-1110 stepRocker (firmware 1.03)), not USB-2-SD (firmware 1.14) (-t usb-2-sd is used)"));
+  // -t naming the same module, or generic: no word.
+  CHECK(ctl({"-t", "tmcm-1110", p, "get", "ap", "4"}).err.empty());
+  CHECK(ctl({"-t", "generic", p, "get", "ap", "4"}).err.empty());
+}
+
+TEST(download_checks_like_tmclasm_werror) {
+  Server server(kRun, {"--serve", "tcp:127.0.0.1:0", "-t", "tmcm-1110"});
+  const std::string& p = server.port();
+  // A value beyond the TMC429's range is a warning of tmclasm, an error here: nothing is sent.
+  const std::string bad = write_temp("bad.tmc", "SAP 4, 0, 5000\nSTOP\n");
+  Output d = ctl({p, "download", bad});
+  CHECK_EQ(d.status, 65);
+  CHECK(has(d.err, "error: value 5000 is outside the range of axis parameter 4"));
+  CHECK(has(d.err, "[-Werror=target]"));
+  CHECK(has(d.err, "nothing sent"));
+  // The control-flow analysis too: a subroutine without RSUB.
+  const std::string flow = write_temp("flow.tmc", "CSUB Sub\nSTOP\nSub:\nSAP 4, 0, 100\n");
+  d = ctl({p, "download", flow});
+  CHECK_EQ(d.status, 65);
+  CHECK(has(d.err, "-Werror="));
+  // A clean program goes through.
+  const std::string good = write_temp("good.tmc", "SAP 4, 0, 1000\nSTOP\n");
+  d = ctl({"-q", p, "download", good});
+  show(d);
+  CHECK_EQ(d.status, 0);
+  // The program's first line names another module: used (its checks), with a warning.
+  const std::string named = write_temp("named.tmc", "// tmcl-target: tmcm-1260\nSAP 4, 0, 5000\nSTOP\n");
+  d = ctl({"-q", p, "download", named});
+  CHECK_EQ(d.status, 0);  // 5000 pps is within the TMCM-1260's range
+  CHECK(has(d.err, "warning: " + named + " is for TMCM-1260 / PD57/60-1260 (firmware 1.44), the module is TMCM-1110"));
+}
+
+TEST(autostart_on_a_module_without_eeprom_program_is_warned) {
+  Server server(kRun, {"--serve", "tcp:127.0.0.1:0", "-t", "usb-2-sd"});
+  const std::string prog = write_temp("auto.tmc", "SAP 4, 0, 1000\nSTOP\n");
+  Output d = ctl({"-q", server.port(), "download", "--autostart", prog});
+  CHECK_EQ(d.status, 0);
+  CHECK(has(d.err, "warning: USB-2-SD (firmware 1.14) keeps its program in RAM: after a power cycle there is no program to start"));
+  Server eeprom(kRun, {"--serve", "tcp:127.0.0.1:0", "-t", "tmcm-1110"});
+  d = ctl({"-q", eeprom.port(), "download", "--autostart", prog});
+  CHECK_EQ(d.status, 0);
+  CHECK(!has(d.err, "warning"));
+}
+
+TEST(probe_drafts_a_profile_that_agrees_on_which_parameters_exist) {
+  Server server(kRun, {"--serve", "pty", "-t", "tmcm-6110"});
+  const std::string out = temp_dir() + "/probed-6110.profile";
+  Output o = ctl({server.port(), "probe", "-o", out});
+  show(o);
+  CHECK_EQ(o.status, 0);
+  CHECK(has(o.out, "wrote " + out + ": "));
+  CHECK(has(o.out, "6 motors; every fact unverified"));
+  std::vector<tmcl::FileDiag> diags;
+  auto draft = tmcl::parse_profile(slurp(out), out, out, diags);
+  CHECK(draft != nullptr);
+  if (!draft) {
+    std::fputs(tmcl::render_file_diags(diags, 0).c_str(), stderr);
+    return;
+  }
+  const tmcl::Profile& d = draft->profile;
+  const tmcl::Profile& b = *tmcl::find_profile("tmcm-6110");
+  auto numbers = [](std::span<const tmcl::ParamInfo> t) {
+    std::set<int> s;
+    for (const auto& p : t) s.insert(p.number);
+    return s;
+  };
+  CHECK(numbers(d.axis_params) == numbers(b.axis_params));
+  CHECK(numbers(d.bank0) == numbers(b.bank0));
+  CHECK(numbers(d.bank3) == numbers(b.bank3));
+  CHECK_EQ(d.name, "probed-6110");
+  CHECK_EQ(d.firmware, b.firmware);
+  CHECK_EQ(d.motors, b.motors);
+  CHECK_EQ(d.program_memory, b.program_memory);
+  CHECK_EQ(d.user_vars, b.user_vars);
+  CHECK_EQ(d.coords, b.coords);
+  CHECK_EQ(d.default_motion, "tmc429");  // it has the TMC429's pulse divisor
+  // The values read are the defaults, every fact unverified.
+  CHECK_EQ(d.axis_param(154)->default_value, b.axis_param(154)->default_value);
+  for (const auto& p : d.axis_params) CHECK_EQ(p.unverified, 0xFF);
+  // A silent port: nothing written.
+  Output none = ctl({"--timeout", "50ms", "--retries", "0", "-a", "9", server.port(), "probe", "-o", out + ".none"});
+  CHECK_EQ(none.status, 69);
+  CHECK(!exists(out + ".none"));
+  CHECK_EQ(ctl({server.port(), "probe"}).status, 64);  // -o is needed
+}

@@ -1,0 +1,156 @@
+// Unit tests of -t NAME|PATH (vm/isa/targets.cpp): the search path and its order, a user's
+// profile read again when it changes, based-on a hidden profile of the same name, cycles of
+// based-on lines, the list of targets and the first-line comment.
+#include "check.hpp"
+
+#include <unistd.h>
+
+#include <cstdlib>
+#include <fstream>
+#include <string>
+
+#include "tmcl/targets.hpp"
+
+namespace {
+
+struct TempDir {
+  std::string path;
+  TempDir() {
+    char templ[] = "/tmp/tmcl-targets-XXXXXX";
+    path = ::mkdtemp(templ) ? templ : "/tmp";
+  }
+  ~TempDir() {
+    const std::string rm = "rm -rf '" + path + "'";
+    if (std::system(rm.c_str()) != 0) std::fprintf(stderr, "could not remove %s\n", path.c_str());
+  }
+  std::string write(const std::string& name, const std::string& text) const {
+    const std::string p = path + "/" + name;
+    std::ofstream(p) << text;
+    return p;
+  }
+};
+
+std::string profile_text(const std::string& name, int motors, const std::string& extra = "") {
+  return "tmcl-profile 1\nname " + name + "\nfirmware 0042V100\nmotors " + std::to_string(motors) +
+         "\nprogram-memory 100\ncommands 1-6\n" + extra;
+}
+
+}  // namespace
+
+TEST(a_path_is_read_and_a_name_is_searched_in_order) {
+  TempDir a, b;
+  a.write("mod.profile", profile_text("mod", 2));
+  b.write("mod.profile", profile_text("mod", 3));
+  b.write("other.profile", profile_text("other", 4));
+  tmcl::TargetSearch s{{a.path, b.path}};
+  auto r = tmcl::resolve_target("mod", s);
+  CHECK(r.profile && r.profile->motors == 2);  // the first folder wins
+  r = tmcl::resolve_target("other", s);
+  CHECK(r.profile && r.profile->motors == 4);
+  r = tmcl::resolve_target(b.path + "/mod.profile", s);
+  CHECK(r.profile && r.profile->motors == 3);
+  CHECK_EQ(r.profile->origin, b.path + "/mod.profile");
+  r = tmcl::resolve_target("usb-2-sd", s);  // then the bundled ones
+  CHECK(r.profile && r.profile->origin == "bundled");
+  r = tmcl::resolve_target("moe", s);
+  CHECK(!r.profile && r.usage);
+  CHECK(r.error.find("unknown target 'moe'; did you mean 'mod'?") == 0);
+  r = tmcl::resolve_target("", s);
+  CHECK(!r.profile && r.usage);
+}
+
+TEST(a_changed_file_is_read_again_and_the_old_profile_stays_valid) {
+  TempDir d;
+  const std::string path = d.write("mod.profile", profile_text("mod", 2));
+  tmcl::TargetSearch s{{}};
+  const tmcl::Profile* first = tmcl::resolve_target(path, s).profile;
+  CHECK(first && first->motors == 2);
+  CHECK_EQ(tmcl::resolve_target(path, s).profile, first);  // the same file: read once
+  d.write("mod.profile", profile_text("mod", 5, "# now longer\n"));
+  const tmcl::Profile* second = tmcl::resolve_target(path, s).profile;
+  CHECK(second && second->motors == 5);
+  CHECK(first != second);
+  CHECK_EQ(first->name, "mod");  // still readable
+  d.write("mod.profile", "tmcl-profile 1\nmotors x\n");
+  auto bad = tmcl::resolve_target(path, s);
+  CHECK(!bad.profile && !bad.usage && !bad.diags.empty());
+  CHECK(bad.message().find("mod.profile:2:8: error: expected a motor count") != std::string::npos);
+}
+
+TEST(based_on_its_own_name_means_the_hidden_one) {
+  TempDir d;
+  d.write("usb-2-sd.profile", "tmcl-profile 1\nname usb-2-sd\nbased-on usb-2-sd\nmotors 3\n");
+  d.write("a.profile", "tmcl-profile 1\nname a\nbased-on b\n");
+  d.write("b.profile", "tmcl-profile 1\nname b\nbased-on a\n");
+  tmcl::TargetSearch s{{d.path}};
+  auto r = tmcl::resolve_target("usb-2-sd", s);
+  CHECK(r.profile && r.profile->motors == 3 && r.profile->program_memory == 577);
+  r = tmcl::resolve_target("a", s);  // a cycle: an error, not a hang
+  CHECK(!r.profile);
+  CHECK(r.message().find("unknown profile") != std::string::npos);
+}
+
+TEST(the_file_name_and_the_name_inside_agree) {
+  TempDir d;
+  d.write("mod.profile", profile_text("other", 2));
+  auto r = tmcl::resolve_target("mod", tmcl::TargetSearch{{d.path}});
+  CHECK(!r.profile && !r.usage);
+  CHECK(r.message(20, "tool").find("tool: error: ") == 0);
+  CHECK(r.error.find("says 'name other'") != std::string::npos);
+}
+
+TEST(the_search_path_comes_from_the_environment) {
+  ::setenv("TMCL_PROFILE_PATH", "/a::/b", 1);
+  ::setenv("HOME", "/home/u", 1);
+  ::unsetenv("XDG_CONFIG_HOME");
+  auto s = tmcl::TargetSearch::from_environment();
+  CHECK(s.dirs == (std::vector<std::string>{"/a", "/b", "/home/u/.config/tmcl/profiles"}));
+  ::setenv("XDG_CONFIG_HOME", "/x", 1);
+  ::unsetenv("TMCL_PROFILE_PATH");
+  s = tmcl::TargetSearch::from_environment();
+  CHECK(s.dirs == (std::vector<std::string>{"/x/tmcl/profiles"}));
+  ::setenv("XDG_CONFIG_HOME", "relative", 1);  // not absolute: ignored, as the XDG rules say
+  s = tmcl::TargetSearch::from_environment();
+  CHECK(s.dirs == (std::vector<std::string>{"/home/u/.config/tmcl/profiles"}));
+}
+
+TEST(list_targets_shows_every_profile_and_what_hides_what) {
+  TempDir d;
+  d.write("usb-2-sd.profile", "tmcl-profile 1\nname usb-2-sd\ntitle \"mine\"\nbased-on usb-2-sd\n");
+  d.write("bad.profile", "tmcl-profile 1\nmotors 0\n");
+  d.write("notes.txt", "not a profile");
+  auto list = tmcl::list_targets(tmcl::TargetSearch{{d.path}});
+  bool mine = false, hidden = false, bad = false, pd60 = false;
+  for (const auto& e : list) {
+    mine = mine || (e.name == "usb-2-sd" && e.title == "mine" && e.shadowed_by.empty());
+    hidden = hidden || (e.name == "usb-2-sd" && e.origin == "bundled" && e.shadowed_by == d.path + "/usb-2-sd.profile");
+    bad = bad || (e.name == "bad" && !e.error.empty());
+    pd60 = pd60 || e.name == "notes";
+  }
+  CHECK(mine && hidden && bad && !pd60);
+  CHECK(list.size() == tmcl::all_profiles().size() + 2 + [] {
+          std::size_t aliases = 0;
+          for (const auto* p : tmcl::all_profiles()) aliases += p->aliases.size();
+          return aliases;
+        }());
+  const std::string table = tmcl::format_target_list(list);
+  CHECK(table.rfind("NAME", 0) == 0);
+  CHECK(table.find("(hidden by " + d.path + "/usb-2-sd.profile)") != std::string::npos);
+}
+
+TEST(the_first_line_names_a_target) {
+  auto c = tmcl::target_comment("// tmcl-target: tmcm-1110\n  SAP 4, 0, 1\n");
+  CHECK(c && c->name == "tmcm-1110" && c->col == 17);
+  c = tmcl::target_comment("\xEF\xBB\xBF  //tmcl-target:   my.profile  // more\r\n");
+  CHECK(c && c->name == "my.profile" && c->col == 20);
+  CHECK(!tmcl::target_comment("SAP 4, 0, 1 // tmcl-target: x\n"));
+  CHECK(!tmcl::target_comment("\n// tmcl-target: x\n"));  // the first line only
+  CHECK(!tmcl::target_comment("// tmcl-target:\n"));
+  CHECK(!tmcl::target_comment("// TMCL-TARGET: x\n"));
+  CHECK(!tmcl::target_comment(""));
+  TempDir d;
+  CHECK_EQ(tmcl::target_named_by_file(d.write("p.tmc", "// tmcl-target: usb-2-sd\nSTOP\n"), "generic"), "usb-2-sd");
+  CHECK_EQ(tmcl::target_named_by_file(d.write("q.tmc", "STOP\n"), "generic"), "generic");
+  CHECK_EQ(tmcl::target_named_by_file(d.path + "/none.tmc", "generic"), "generic");
+  CHECK_EQ(tmcl::target_named_by_file("-", "generic"), "generic");
+}
