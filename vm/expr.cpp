@@ -4,10 +4,10 @@
 #include <cctype>
 #include <cstdlib>
 
-#include "tmcl/debugger.hpp"
+#include "tmcl/expr.hpp"
 #include "tmcl/duration.hpp"
 
-namespace tmcl::debug {
+namespace tmcl {
 namespace {
 
 enum Reg : std::int64_t { kA, kX, kFlags, kErrors, kPc, kSp, kTime, kSteps };
@@ -412,4 +412,4 @@ bool assign_expr(const Expr& e, Vm& vm, std::int64_t value, std::string& error) 
   }
 }
 
-}  // namespace tmcl::debug
+}  // namespace tmcl
