@@ -36,6 +36,11 @@ void Vm::load(const std::vector<Instruction>& prog) {
   source_of.clear();
 }
 
+void Vm::count_coverage() {
+  executed.assign(program.size(), 0);
+  taken.assign(program.size(), 0);
+}
+
 void Vm::decode_all() {
   code_.resize(program.size());
   for (std::size_t i = 0; i + 1 < program.size(); ++i) code_[i] = ops::decode_for_run(program[i], program[i + 1], program_size, *profile);
