@@ -1,11 +1,13 @@
 // The debugger's expressions (print, display, set var, conditions, watchpoints): a small
 // recursive-descent parser into a node vector, evaluated on the live VM. Reads of parameters go
 // through the VM's own access rules, so the debugger can never show a value the module would not.
+#include <algorithm>
 #include <cctype>
 #include <cstdlib>
 
-#include "tmcl/expr.hpp"
+#include "tmcl/diag_text.hpp"
 #include "tmcl/duration.hpp"
+#include "tmcl/expr.hpp"
 
 namespace tmcl {
 namespace {
@@ -28,12 +30,13 @@ class Parser {
  public:
   Parser(const std::string& text, const ProgramInfo& info, Expr& out) : s_(text), info_(info), e_(out) {}
 
-  bool parse(std::string& error) {
+  bool parse(std::string& error, std::size_t* error_at) {
     int root = binary(0);
     skip();
     if (err_.empty() && pos_ < s_.size()) fail("unexpected '" + s_.substr(pos_, 1) + "'");
     if (!err_.empty()) {
       error = err_ + " in '" + s_ + "'";
+      if (error_at) *error_at = std::min(err_at_, s_.size());
       return false;
     }
     e_.root = root;
@@ -64,8 +67,11 @@ class Parser {
     pos_ += t.size();
     return true;
   }
-  void fail(std::string m) {
-    if (err_.empty()) err_ = std::move(m);
+  // The first error wins; `at` is where it is (default: the current position).
+  void fail(std::string m, std::size_t at = std::string::npos) {
+    if (!err_.empty()) return;
+    err_ = std::move(m);
+    err_at_ = at == std::string::npos ? pos_ : at;
   }
   int node(Expr::Node n) {
     e_.nodes.push_back(n);
@@ -166,8 +172,16 @@ class Parser {
         }
       for (const auto& r : kRegs)
         if (low == r.name) return node({Expr::Node::Reg, r.reg, -1, -1});
+      // `position M` and `velocity M`: the actual position (axis parameter 1) and actual speed
+      // (3) of motor M, the words a test's expectations read best with.
+      if ((low == "position" || low == "velocity") && pos_ < s_.size() &&
+          (std::isalnum(static_cast<unsigned char>(s_[pos_])) || s_[pos_] == '(' || s_[pos_] == '_' || s_[pos_] == '$')) {
+        int param = node({Expr::Node::Num, low == "position" ? 1 : 3, -1, -1});
+        int motor = unary();
+        return node({Expr::Node::Ap, 0, param, motor});
+      }
       if (auto v = info_.symbol(name)) return node({Expr::Node::Num, *v, -1, -1});
-      fail("no register, label or constant named '" + name + "'");
+      fail("no register, label or constant named '" + name + "'" + suggestion(name), start);
       return -1;
     }
     fail("unexpected '" + std::string(1, c) + "'");
@@ -217,10 +231,21 @@ class Parser {
     return node({Expr::Node::Num, v, -1, -1});
   }
 
+  // "; did you mean 'acc'?" when a register, function, label or constant is close to `name`.
+  std::string suggestion(const std::string& name) const {
+    std::vector<std::string_view> names = {"v", "ap", "gp", "in", "ain", "out", "position", "velocity"};
+    for (const auto& r : kRegs) names.emplace_back(r.name);
+    for (const auto& l : info_.labels) names.emplace_back(l.first);
+    for (const auto& c : info_.constants) names.emplace_back(c.first);
+    std::string hint = closest_match(name, names);
+    return hint.empty() ? "" : "; did you mean '" + hint + "'?";
+  }
+
   const std::string& s_;
   const ProgramInfo& info_;
   Expr& e_;
   std::size_t pos_ = 0;
+  std::size_t err_at_ = 0;
   int depth_ = 0;
   std::string err_;
 };
@@ -351,9 +376,9 @@ bool Expr::assignable() const {
   return k == Node::Var || k == Node::Ap || k == Node::Gp || k == Node::Out;
 }
 
-bool parse_expr(const std::string& text, const ProgramInfo& info, Expr& out, std::string& error) {
+bool parse_expr(const std::string& text, const ProgramInfo& info, Expr& out, std::string& error, std::size_t* error_at) {
   out = Expr{};
-  return Parser(text, info, out).parse(error);
+  return Parser(text, info, out).parse(error, error_at);
 }
 
 bool eval_expr(const Expr& e, Vm& vm, std::int64_t& value, std::string& error) {

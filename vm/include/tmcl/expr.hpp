@@ -39,7 +39,8 @@ struct ProgramInfo {
 };
 
 // ---- expressions: registers, v[n], ap(param, motor), gp(bank, n), in(n), ain(n), out(n), time,
-// steps, pc, labels and constants, with C's operators; durations like 2s are microseconds ----
+// steps, pc, position M and velocity M (ap(1, M), ap(3, M)), labels and constants, with C's
+// operators; durations like 2s are microseconds ----
 struct Expr {
   struct Node {
     enum Kind : std::uint8_t { Num, Reg, Var, Ap, Gp, In, Ain, Out, Unary, Binary } kind = Num;
@@ -52,7 +53,10 @@ struct Expr {
   bool uses_time() const;    // reads time or motion state: may change between instructions
   bool assignable() const;   // the root is a register, variable or parameter
 };
-bool parse_expr(const std::string& text, const ProgramInfo& info, Expr& out, std::string& error);
+// On failure `error` says what and, when `error_at` is given, it receives the byte offset in
+// `text` where the mistake is (for a caret under it).
+bool parse_expr(const std::string& text, const ProgramInfo& info, Expr& out, std::string& error,
+                std::size_t* error_at = nullptr);
 // Evaluates on the VM; false with `error` (e.g. "no axis parameter 300 on usb-2-sd").
 bool eval_expr(const Expr& e, Vm& vm, std::int64_t& value, std::string& error);
 // Assigns to the expression's root (set var): through the VM's parameter rules.
