@@ -299,11 +299,13 @@ int parse_args(int argc, char** argv, Options& o) {
     } else if (a != "-" && a.size() > 1 && a[0] == '-') {
       return usage_error("unknown option '" + args[i] + "'");
     } else {
-      if (have_program) return usage_error("only one PROGRAM can be run (got '" + o.program + "' and '" + a + "')");
-      o.program = a;
+      if (!have_program) o.program = a;
+      o.inputs.push_back(a);
       have_program = true;
     }
   }
+  if (o.inputs.size() > 1 && !o.testing)
+    return usage_error("only one PROGRAM can be run (got '" + o.inputs[0] + "' and '" + o.inputs[1] + "')");
   if (int r = check_mode_options(o, args, have_program); r >= 0) return r;
   if (!o.log.empty() && (!o.serving || !o.trace)) return usage_error("--log FILE goes with --serve --trace");
   if (!o.eeprom_seal.empty()) {
@@ -439,6 +441,8 @@ int run(int argc, char** argv) {
                  core_name.c_str(), o.target.c_str());
     core = tmcl::make_ideal_motion_core();
   }
+
+  if (o.testing) return run_mode(o, *profile, std::move(core), {}, {}, {}, nullptr);  // --test: tmclrun_modes.cpp
 
   // ---- the program (optional with --serve: a host may download one) ----
   std::vector<tmcl::Instruction> program;

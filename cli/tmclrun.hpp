@@ -31,6 +31,8 @@ struct Options {
   bool serving = false;    // --serve
   bool debugging = false;  // --debug, --debug-commands or --dap
   bool dap = false;        // --dap
+  bool testing = false;    // --test
+  std::vector<std::string> inputs;  // every PROGRAM argument (--test takes several)
 };
 
 // ---- tmclrun.cpp ----

@@ -1,16 +1,20 @@
 // tmclrun-full's part of tmclrun (cli/tmclrun_modes.hpp): the options of serving (--serve and its
-// companions, --module, --faults) and debugging (--debug, --dap), their checks, and the runs that
-// serve a host with the virtual module (vm/module) or debug with the debugger (vm/debug).
+// companions, --module, --faults), debugging (--debug, --dap) and testing (--test and its
+// reports), their checks, and the runs that serve a host with the virtual module (vm/module),
+// debug with the debugger (vm/debug) or run test files (vm/testrun).
 #include <cerrno>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
 #include <memory>
 #include <string>
+#include <tuple>
 #include <vector>
 
 #include "tmcl/debug_cli.hpp"
+#include "tmcl/numbers.hpp"
 #include "tmcl/server.hpp"
+#include "tmcl/testrun.hpp"
 #include "tmcl/vm_output.hpp"
 #include "tmclrun.hpp"
 
@@ -24,6 +28,7 @@ struct ModeOptions {
   tmcl::ServeOptions serve_opts;
   std::vector<std::string> modules;  // --module ADDR[/TARGET][:FILE], in order
   tmcl::debug::FrontEnd debug;       // --debug, --debug-commands, --symbols, --checkpoint-memory, --dap
+  tmcl::testrun::SuiteOptions test;  // --test, -j, --junit, --coverage, --coverage-summary, --update
 };
 // One command line per process: main() parses it once, and the run reads it back.
 ModeOptions g_modes;
@@ -144,6 +149,14 @@ bool tmclrun::mode_option(const std::string& a, bool has_inline, const ValueFn& 
     tmcl::SimTime wall = 0;
     status = duration_option("--max-wall-time", value, wall);
     if (status < 0) m.serve_opts.max_wall_ms = wall / tmcl::kUsPerMs + (wall % tmcl::kUsPerMs ? 1 : 0);
+  } else if (a == "--test" || a == "--coverage-summary" || a == "--update") {
+    (a == "--test" ? o.testing : a == "--update" ? m.test.update : m.test.coverage_summary) = true;
+  } else if (a == "-j" || a == "--jobs") {
+    std::int64_t n = 0;
+    if (!value(v) || !tmcl::parse_int(v, 1, 256, n)) status = usage_error(a + " needs a number of tests at a time, 1 to 256");
+    m.test.jobs = static_cast<int>(n);
+  } else if (a == "--junit" || a == "--coverage") {
+    if (!value(a == "--junit" ? m.test.junit : m.test.coverage)) status = usage_error(a + " needs a file");
   } else if (int r = tmcl::debug::parse_option(a, has_inline, value, m.debug); r != 0) {
     if (r < 0) status = usage_error(m.debug.error);
     o.debugging = m.debug.enabled;
@@ -156,6 +169,15 @@ bool tmclrun::mode_option(const std::string& a, bool has_inline, const ValueFn& 
 
 int tmclrun::check_mode_options(Options& o, const std::vector<std::string>& args, bool have_program) {
   ModeOptions& m = g_modes;
+  for (const char* opt : {"-j", "--jobs", "--junit", "--coverage", "--coverage-summary", "--update"})
+    for (const auto& arg : args)
+      if (!o.testing && (arg == opt || arg.rfind(std::string(opt) + "=", 0) == 0)) return usage_error(std::string(opt) + " goes with --test");
+  if (o.testing && (o.serving || o.debugging || o.trace || o.json || !o.csv.empty() || !o.plot.empty() || !o.scenario.empty() ||
+                    !o.eeprom.empty() || !o.eeprom_seal.empty()))
+    return usage_error("--test runs test files (each holds its own scenario): it goes with -t, --motion, --instr-time, "
+                       "--max-time, --strict, -I, -D and -W, not with --serve, --debug, --dap, --trace, --json, --csv, "
+                       "--plot, --scenario or --eeprom");
+  if (o.testing && !have_program) return usage_error("--test needs test files or folders (FILE.tmctest or DIR)");
   if (!o.serving) {
     for (const char* opt : {"--autostart", "--time-scale", "--module-address", "--host-address", "--eeprom-locked",
                             "--max-wall-time", "--faults", "--module"})
@@ -181,6 +203,13 @@ int tmclrun::run_mode(Options& o, const tmcl::Profile& profile, std::unique_ptr<
                       const std::vector<tmcl::Instruction>& program, const tmcl::SourceMap& sources,
                       std::vector<tmcl::InputEvent> inputs, tmcl::EepromImage* image) {
   ModeOptions& m = g_modes;
+  if (o.testing) {  // the test files of o.inputs (vm/testrun, docs/testing.md)
+    tmcl::testrun::RunOptions& r = m.test.run;
+    std::tie(r.target, r.motion, r.instr_time, r.asm_options, r.strict) = std::tie(o.target, o.motion, o.instr_time, o.asm_opts, o.strict);
+    r.max_time_given = o.limits.until != tmcl::kNever;
+    r.max_time = o.limits.until;
+    return tmcl::testrun::run_command(o.inputs, m.test, stdout, stderr);
+  }
   if (o.debugging && o.serving) {  // debugging while serving: tcp or pty, one module
     if (o.dap || m.serve_opts.transport == tmcl::Transport::Stdio || !m.modules.empty() || o.trace)
       return usage_error("--serve with --debug takes tcp:HOST:PORT or pty, one module, no --dap and no --trace");
