@@ -2,6 +2,8 @@
 // running a test file's text against a program's text through the library (tmcl/testrun.hpp).
 #pragma once
 
+#include <unistd.h>
+
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -12,17 +14,21 @@
 
 namespace runtest {
 
+// The scratch folder, made the current folder on first use so that paths in messages are short.
 inline std::string scratch() {
   static const std::string dir = [] {
     char t[] = "/tmp/tmcl-testrun-XXXXXX";
-    return std::string(::mkdtemp(t));
+    std::string d = ::mkdtemp(t);
+    if (::chdir(d.c_str()) != 0) return std::string();
+    return d;
   }();
   return dir;
 }
 
-// Writes `text` to NAME in the scratch folder (subfolders are made) and returns its path.
+// Writes `text` to NAME in the scratch folder (subfolders are made) and returns its path there.
 inline std::string put(const std::string& name, const std::string& text) {
-  const std::string path = scratch() + "/" + name;
+  scratch();
+  const std::string path = name;
   std::error_code ec;
   std::filesystem::create_directories(std::filesystem::path(path).parent_path(), ec);
   std::ofstream(path, std::ios::binary) << text;

@@ -209,7 +209,14 @@ TestResult run_test(const TestFile& t, std::shared_ptr<const Program> program, c
     }
   }
   if (!ended) advance(max_time);
-  const End end = end_of(res.halt);
+  End end = end_of(res.halt);
+  // With a time limit the VM jumps a WAIT that nothing can end to the limit; the run was blocked.
+  if (end == End::MaxTime && vm.status == AppStatus::Running && vm.wait.active && vm.next_wakeup() == kNever) {
+    end = End::Blocked;
+    const std::string place = p.info.place(vm.pc);
+    res.message = "the WAIT at " + (place.empty() ? "address " + std::to_string(vm.pc) : place) +
+                  " can never end: no timer, motion, input or timeout is pending";
+  }
   for (const Expectation& e : t.expects) {
     switch (e.kind) {
       case Expectation::At: break;
