@@ -138,24 +138,22 @@ bool update_files(const SuiteResult& s, std::FILE* out, std::FILE* err) {
     std::vector<std::size_t> starts{0};
     for (std::size_t i = 0; i < text.size(); ++i)
       if (text[i] == '\n') starts.push_back(i + 1);
-    std::vector<const Failure*> edits;
+    std::vector<std::pair<std::size_t, const Failure*>> edits;  // (offset, failure), in line order
     for (const Failure& f : r.failures) {
       if (f.update.empty()) {
         std::fprintf(out, "not updated: %s:%d (%s)\n", r.path.c_str(), f.line, f.message.c_str());
         all = false;
-      } else {
-        edits.push_back(&f);
+        continue;
       }
+      const std::size_t at = starts[static_cast<std::size_t>(f.line - 1)] + static_cast<std::size_t>(f.update_col - 1);
+      std::fprintf(out, "updated %s:%d: %s (was %s)\n", r.path.c_str(), f.line, f.update.c_str(),
+                   text.substr(at, static_cast<std::size_t>(f.update_len)).c_str());
+      edits.emplace_back(at, &f);
     }
     if (edits.empty()) continue;
-    // From the last edit back, so earlier offsets stay right.
-    std::sort(edits.begin(), edits.end(), [](const Failure* a, const Failure* b) { return a->line > b->line; });
-    for (const Failure* f : edits) {
-      const std::size_t at = starts[static_cast<std::size_t>(f->line - 1)] + static_cast<std::size_t>(f->update_col - 1);
-      const std::string was = text.substr(at, static_cast<std::size_t>(f->update_len));
-      text.replace(at, static_cast<std::size_t>(f->update_len), f->update);
-      std::fprintf(out, "updated %s:%d: %s (was %s)\n", r.path.c_str(), f->line, f->update.c_str(), was.c_str());
-    }
+    // From the last edit back, so the earlier offsets stay right.
+    for (auto e = edits.rbegin(); e != edits.rend(); ++e)
+      text.replace(e->first, static_cast<std::size_t>(e->second->update_len), e->second->update);
     if (!write_text(r.path, text, err)) all = false;
   }
   return all;
