@@ -98,7 +98,8 @@ TEST(file_tolerance_in_ascii_and_comparisons_in_parentheses) {
 }
 
 TEST(file_program_paths_are_relative_to_the_test_file) {
-  CHECK_EQ(parsed("program ../lib/p.tmc\n", "a/b/t.tmctest").program, "a/b/../lib/p.tmc");
+  CHECK_EQ(parsed("program ../lib/p.tmc\n", "a/b/t.tmctest").program, "a/lib/p.tmc");
+  CHECK_EQ(parsed("program ../../p.tmc\n", "a/t.tmctest").program, "../p.tmc");
   CHECK_EQ(parsed("program /abs/p.bin\n", "a/t.tmctest").program, "/abs/p.bin");
   CHECK_EQ(parsed("program my prog.tmc\n", "t.tmctest").program, "my prog.tmc");
 }

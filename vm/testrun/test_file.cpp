@@ -5,6 +5,7 @@
 // need the program's labels, so bind_expectations parses them once the program is loaded.
 #include <algorithm>
 #include <cctype>
+#include <filesystem>
 
 #include "tmcl/duration.hpp"
 #include "tmcl/fileio.hpp"
@@ -343,10 +344,11 @@ bool parse_test_file(const std::string& text, const std::string& path, const std
   std::stable_sort(mine.begin(), mine.end(),
                    [](const FileDiag& a, const FileDiag& b) { return a.line != b.line ? a.line < b.line : a.col < b.col; });
   diags.insert(diags.end(), mine.begin(), mine.end());
-  // The program is found relative to the test file.
+  // The program is found relative to the test file ("tests/../prog.tmc" is "prog.tmc").
   if (!out.program.empty() && out.program[0] != '/') {
     const auto slash = path.find_last_of('/');
-    if (slash != std::string::npos) out.program = path.substr(0, slash + 1) + out.program;
+    if (slash != std::string::npos)
+      out.program = std::filesystem::path(path.substr(0, slash + 1) + out.program).lexically_normal().generic_string();
   }
   return diags.size() == before;
 }
