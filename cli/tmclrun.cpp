@@ -36,6 +36,7 @@ using namespace tmclrun;
 namespace {
 
 const char* kUsage = R"(usage: tmclrun [options] PROGRAM        PROGRAM: .tmc source, .bin, .dgm, or - (stdin)
+       tmclrun --test [options] FILE.tmctest|DIR...
 
 Runs a TMCL program on a deterministic virtual module. Simulated time: nothing waits for real.
 
@@ -82,6 +83,13 @@ options:
   --source-dir DIR       with --debug or --dap: look for the sources of a .bin in DIR too
   --checkpoint-memory MIB  with --debug: memory for reverse execution (default 64)
   --dap                  the debugger over the Debug Adapter Protocol on stdin/stdout
+  --test                 run test files (*.tmctest; a folder: every one under it) and print
+                         PASS or FAIL for each, then 'N passed, N failed' (docs/testing.md)
+  -j, --jobs N           with --test: run N tests at a time (default: one per core)
+  --junit FILE           with --test: write a JUnit XML report to FILE
+  --coverage FILE        with --test: write line and branch coverage to FILE (lcov tracefile)
+  --coverage-summary     with --test: print lines and branches covered per file
+  --update               with --test: rewrite the values of failing expectations from the run
   -I DIR                 search DIR for #include files
   -D NAME=VALUE          define an assembler constant
   -Werror, -Werror=NAME  assembler warnings (all, or the one named) are errors
@@ -97,10 +105,12 @@ examples:
   tmclrun --eeprom module.eeprom prog.tmc       run twice: the EEPROM persists
   tmclrun --plot motion.svg --csv motion.csv prog.tmc   what the motors did, as a picture and data
   tmclrun --serve tcp:127.0.0.1:2001 prog.tmc   a virtual module for PyTrinamic (Ctrl-C stops it)
+  tmclrun --test --junit report.xml --coverage coverage.info tests/
 
 exit status: 0 STOP, 3 limit reached or blocked forever, 70 runtime fault, 65 bad input,
              64 usage error, 71 --serve transport failed or tmclrun-full missing, 74 an output
-             file (EEPROM, --csv, --plot) or standard output could not be written
+             file (EEPROM, --csv, --plot, a report) or standard output could not be written;
+             with --test: 0 every test passed, 1 a test failed, 65 a bad test file or program
 )";
 
 std::string joined(const std::vector<std::string>& names) {
