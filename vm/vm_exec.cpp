@@ -320,8 +320,9 @@ RunResult Vm::Loop::run_fast(Vm& vm, const Limits& lim) {
       vm.acc = acc;
       vm.flags = flags;
       execute(vm, pc);
+      // Only a CALL can take its branch here: a JC or DJNZ comes this way when it faults.
       if constexpr (kCount)
-        if (!vm.trap_hit) count_branch(vm, pc);
+        if (ins.op == static_cast<std::uint8_t>(Op::CALL) && !vm.trap_hit) count_branch(vm, pc);
       pc = vm.pc;
       acc = vm.acc;
       flags = vm.flags;
