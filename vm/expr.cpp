@@ -12,7 +12,11 @@
 namespace tmcl {
 namespace {
 
-enum Reg : std::int64_t { kA, kX, kFlags, kErrors, kPc, kSp, kTime, kSteps };
+// A Reg node's value: which register ExprReader reads.
+enum Reg : std::int64_t {
+  kA = ExprReader::Acc, kX = ExprReader::X, kFlags = ExprReader::Flags, kErrors = ExprReader::Errors,
+  kPc = ExprReader::Pc, kSp = ExprReader::Sp, kTime = ExprReader::Time, kSteps = ExprReader::Steps
+};
 
 struct RegName {
   const char* name;
@@ -252,11 +256,63 @@ class Parser {
 
 std::int64_t op(const char* s) { return static_cast<std::int64_t>(s[0]) * 256 + (s[1] ? s[1] : 0); }
 
-bool eval_node(const Expr& e, int i, Vm& vm, std::int64_t& out, std::string& error);
+// The VM as expressions read it: parameters through its own access rules, so the debugger can
+// never show a value the module would not.
+class VmReader final : public ExprReader {
+ public:
+  explicit VmReader(Vm& vm) : vm_(vm) {}
+  int motors() const override { return vm_.profile->motors; }
+  bool reg(Reg r, std::int64_t& out, std::string&) override {
+    switch (r) {
+      case Acc: out = vm_.acc; break;
+      case X: out = vm_.x; break;
+      case Flags: out = vm_.flags; break;
+      case Errors: out = vm_.errors; break;
+      case Pc: out = vm_.pc; break;
+      case Sp: out = vm_.sp; break;
+      case Time: out = vm_.now; break;
+      case Steps: out = static_cast<std::int64_t>(vm_.steps); break;
+    }
+    return true;
+  }
+  bool var(int n, std::int64_t& out, std::string&) override {
+    out = vm_.vars[static_cast<std::size_t>(n)];
+    return true;
+  }
+  bool axis(int param, int motor, std::int64_t& out, std::string& error) override {
+    std::int32_t v = 0;
+    if (vm_.get_axis(motor, param, v) != kStatusOk) {
+      error = "axis parameter " + std::to_string(param) + " cannot be read on " + std::string(vm_.profile->name);
+      return false;
+    }
+    out = v;
+    return true;
+  }
+  bool global(int bank, int param, std::int64_t& out, std::string& error) override {
+    std::int32_t v = 0;
+    if (vm_.get_global(bank, param, v) != kStatusOk) {
+      error = "global parameter " + std::to_string(param) + " of bank " + std::to_string(bank) + " cannot be read on " +
+              std::string(vm_.profile->name);
+      return false;
+    }
+    out = v;
+    return true;
+  }
+  bool port(int kind, int n, std::int64_t& out, std::string&) override {
+    auto p = static_cast<std::size_t>(n);
+    out = kind == Expr::Node::In ? vm_.inputs[p] : kind == Expr::Node::Ain ? vm_.analog[p] : vm_.outputs[p];
+    return true;
+  }
 
-bool index_arg(const Expr& e, int i, Vm& vm, std::int64_t lo, std::int64_t hi, const char* what, std::int64_t& out,
+ private:
+  Vm& vm_;
+};
+
+bool eval_node(const Expr& e, int i, ExprReader& m, std::int64_t& out, std::string& error);
+
+bool index_arg(const Expr& e, int i, ExprReader& m, std::int64_t lo, std::int64_t hi, const char* what, std::int64_t& out,
                std::string& error) {
-  if (!eval_node(e, i, vm, out, error)) return false;
+  if (!eval_node(e, i, m, out, error)) return false;
   if (out < lo || out > hi) {
     error = std::string(what) + " " + std::to_string(out) + " is out of range (" + std::to_string(lo) + ".." +
             std::to_string(hi) + ")";
@@ -265,68 +321,38 @@ bool index_arg(const Expr& e, int i, Vm& vm, std::int64_t lo, std::int64_t hi, c
   return true;
 }
 
-bool eval_node(const Expr& e, int i, Vm& vm, std::int64_t& out, std::string& error) {
+bool eval_node(const Expr& e, int i, ExprReader& m, std::int64_t& out, std::string& error) {
   const Expr::Node& n = e.nodes[static_cast<std::size_t>(i)];
   std::int64_t a = 0, b = 0;
   switch (n.kind) {
     case Expr::Node::Num: out = n.value; return true;
-    case Expr::Node::Reg:
-      switch (n.value) {
-        case kA: out = vm.acc; break;
-        case kX: out = vm.x; break;
-        case kFlags: out = vm.flags; break;
-        case kErrors: out = vm.errors; break;
-        case kPc: out = vm.pc; break;
-        case kSp: out = vm.sp; break;
-        case kTime: out = vm.now; break;
-        default: out = static_cast<std::int64_t>(vm.steps); break;
-      }
-      return true;
+    case Expr::Node::Reg: return m.reg(static_cast<ExprReader::Reg>(n.value), out, error);
     case Expr::Node::Var:
-      if (!index_arg(e, n.a, vm, 0, 255, "user variable", a, error)) return false;
-      out = vm.vars[static_cast<std::size_t>(a)];
-      return true;
-    case Expr::Node::Ap: {
-      if (!index_arg(e, n.a, vm, 0, 255, "axis parameter", a, error)) return false;
-      if (!index_arg(e, n.b, vm, 0, vm.profile->motors - 1, "motor", b, error)) return false;
-      std::int32_t v = 0;
-      if (vm.get_axis(static_cast<int>(b), static_cast<int>(a), v) != kStatusOk) {
-        error = "axis parameter " + std::to_string(a) + " cannot be read on " + std::string(vm.profile->name);
-        return false;
-      }
-      out = v;
-      return true;
-    }
-    case Expr::Node::Gp: {
-      if (!index_arg(e, n.a, vm, 0, 255, "bank", a, error)) return false;
-      if (!index_arg(e, n.b, vm, 0, 255, "global parameter", b, error)) return false;
-      std::int32_t v = 0;
-      if (vm.get_global(static_cast<int>(a), static_cast<int>(b), v) != kStatusOk) {
-        error = "global parameter " + std::to_string(b) + " of bank " + std::to_string(a) + " cannot be read on " +
-                std::string(vm.profile->name);
-        return false;
-      }
-      out = v;
-      return true;
-    }
+      if (!index_arg(e, n.a, m, 0, 255, "user variable", a, error)) return false;
+      return m.var(static_cast<int>(a), out, error);
+    case Expr::Node::Ap:
+      if (!index_arg(e, n.a, m, 0, 255, "axis parameter", a, error)) return false;
+      if (!index_arg(e, n.b, m, 0, m.motors() - 1, "motor", b, error)) return false;
+      return m.axis(static_cast<int>(a), static_cast<int>(b), out, error);
+    case Expr::Node::Gp:
+      if (!index_arg(e, n.a, m, 0, 255, "bank", a, error)) return false;
+      if (!index_arg(e, n.b, m, 0, 255, "global parameter", b, error)) return false;
+      return m.global(static_cast<int>(a), static_cast<int>(b), out, error);
     case Expr::Node::In:
     case Expr::Node::Ain:
-    case Expr::Node::Out: {
-      if (!index_arg(e, n.a, vm, 0, Vm::kPorts - 1, "port", a, error)) return false;
-      auto p = static_cast<std::size_t>(a);
-      out = n.kind == Expr::Node::In ? vm.inputs[p] : n.kind == Expr::Node::Ain ? vm.analog[p] : vm.outputs[p];
-      return true;
-    }
+    case Expr::Node::Out:
+      if (!index_arg(e, n.a, m, 0, Vm::kPorts - 1, "port", a, error)) return false;
+      return m.port(n.kind, static_cast<int>(a), out, error);
     case Expr::Node::Unary:
-      if (!eval_node(e, n.a, vm, a, error)) return false;
+      if (!eval_node(e, n.a, m, a, error)) return false;
       out = n.value == op("-") ? -a : n.value == op("~") ? ~a : !a;
       return true;
     case Expr::Node::Binary: {
-      if (!eval_node(e, n.a, vm, a, error)) return false;
+      if (!eval_node(e, n.a, m, a, error)) return false;
       // && and || do not evaluate their right side when the left decides.
       if (n.value == op("&&") && !a) return out = 0, true;
       if (n.value == op("||") && a) return out = 1, true;
-      if (!eval_node(e, n.b, vm, b, error)) return false;
+      if (!eval_node(e, n.b, m, b, error)) return false;
       const std::int64_t o = n.value;
       if ((o == op("/") || o == op("%")) && b == 0) {
         error = "division by zero";
@@ -381,12 +407,17 @@ bool parse_expr(const std::string& text, const ProgramInfo& info, Expr& out, std
   return Parser(text, info, out).parse(error, error_at);
 }
 
-bool eval_expr(const Expr& e, Vm& vm, std::int64_t& value, std::string& error) {
+bool eval_expr(const Expr& e, ExprReader& reader, std::int64_t& value, std::string& error) {
   if (e.root < 0) {
     error = "empty expression";
     return false;
   }
-  return eval_node(e, e.root, vm, value, error);
+  return eval_node(e, e.root, reader, value, error);
+}
+
+bool eval_expr(const Expr& e, Vm& vm, std::int64_t& value, std::string& error) {
+  VmReader reader(vm);
+  return eval_expr(e, reader, value, error);
 }
 
 bool assign_expr(const Expr& e, Vm& vm, std::int64_t value, std::string& error) {
@@ -400,6 +431,7 @@ bool assign_expr(const Expr& e, Vm& vm, std::int64_t value, std::string& error) 
   }
   auto v32 = static_cast<std::int32_t>(static_cast<std::uint32_t>(value));
   const Expr::Node& n = e.nodes[static_cast<std::size_t>(e.root)];
+  VmReader reader(vm);
   std::int64_t a = 0, b = 0;
   switch (n.kind) {
     case Expr::Node::Reg:
@@ -409,12 +441,12 @@ bool assign_expr(const Expr& e, Vm& vm, std::int64_t value, std::string& error) 
       else vm.errors = static_cast<std::uint8_t>(v32);
       return true;
     case Expr::Node::Var:
-      if (!index_arg(e, n.a, vm, 0, 255, "user variable", a, error)) return false;
+      if (!index_arg(e, n.a, reader, 0, 255, "user variable", a, error)) return false;
       vm.vars[static_cast<std::size_t>(a)] = v32;
       return true;
     case Expr::Node::Ap:
-      if (!index_arg(e, n.a, vm, 0, 255, "axis parameter", a, error)) return false;
-      if (!index_arg(e, n.b, vm, 0, vm.profile->motors - 1, "motor", b, error)) return false;
+      if (!index_arg(e, n.a, reader, 0, 255, "axis parameter", a, error)) return false;
+      if (!index_arg(e, n.b, reader, 0, vm.profile->motors - 1, "motor", b, error)) return false;
       if (vm.set_axis(static_cast<int>(b), static_cast<int>(a), v32) != kStatusOk) {
         error = "axis parameter " + std::to_string(a) + " cannot be set to " + std::to_string(v32) + " on " +
                 std::string(vm.profile->name);
@@ -422,8 +454,8 @@ bool assign_expr(const Expr& e, Vm& vm, std::int64_t value, std::string& error) 
       }
       return true;
     case Expr::Node::Gp:
-      if (!index_arg(e, n.a, vm, 0, 255, "bank", a, error)) return false;
-      if (!index_arg(e, n.b, vm, 0, 255, "global parameter", b, error)) return false;
+      if (!index_arg(e, n.a, reader, 0, 255, "bank", a, error)) return false;
+      if (!index_arg(e, n.b, reader, 0, 255, "global parameter", b, error)) return false;
       if (vm.set_global(static_cast<int>(a), static_cast<int>(b), v32) != kStatusOk) {
         error = "global parameter " + std::to_string(b) + " of bank " + std::to_string(a) + " cannot be set to " +
                 std::to_string(v32) + " on " + std::string(vm.profile->name);
@@ -431,7 +463,7 @@ bool assign_expr(const Expr& e, Vm& vm, std::int64_t value, std::string& error) 
       }
       return true;
     default:
-      if (!index_arg(e, n.a, vm, 0, Vm::kPorts - 1, "port", a, error)) return false;
+      if (!index_arg(e, n.a, reader, 0, Vm::kPorts - 1, "port", a, error)) return false;
       vm.outputs[static_cast<std::size_t>(a)] = v32 != 0;
       return true;
   }

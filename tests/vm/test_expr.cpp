@@ -61,3 +61,42 @@ TEST(expr_errors_say_where_and_suggest_a_name) {
   CHECK_EQ(err, "no register, label or constant named 'nosuch' in 'nosuch'");
   CHECK_EQ(at, 0u);
 }
+
+namespace {
+// A machine that is not a VM (as tmclctl reads a module): values from a table, one read refused.
+struct TableReader final : tmcl::ExprReader {
+  int motors() const override { return 2; }
+  bool reg(Reg r, std::int64_t& out, std::string& error) override {
+    if (r == Steps) {
+      error = "steps cannot be read from a module";
+      return false;
+    }
+    out = r == Acc ? 5 : r == Pc ? 12 : 0;
+    return true;
+  }
+  bool var(int n, std::int64_t& out, std::string&) override { return out = 100 + n, true; }
+  bool axis(int param, int motor, std::int64_t& out, std::string&) override { return out = param * 10 + motor, true; }
+  bool global(int bank, int param, std::int64_t& out, std::string&) override { return out = bank * 1000 + param, true; }
+  bool port(int kind, int n, std::int64_t& out, std::string&) override {
+    return out = (kind == tmcl::Expr::Node::Out ? 50 : 60) + n, true;
+  }
+};
+}  // namespace
+
+TEST(expr_reads_through_any_reader) {
+  TableReader m;
+  tmcl::ProgramInfo info;
+  auto eval = [&](const std::string& text, std::int64_t& v, std::string& err) {
+    tmcl::Expr e;
+    CHECK(tmcl::parse_expr(text, info, e, err));
+    return tmcl::eval_expr(e, m, v, err);
+  };
+  std::int64_t v = 0;
+  std::string err;
+  CHECK(eval("acc + v[3] + ap(4, 1) + gp(2, 7) + out(1) + in(2) + position 1 + velocity(0) + pc", v, err));
+  CHECK_EQ(v, 5 + 103 + 41 + 2007 + 51 + 62 + 11 + 30 + 12);
+  CHECK(!eval("steps > 0", v, err));
+  CHECK_EQ(err, "steps cannot be read from a module");
+  CHECK(!eval("ap(1, 2)", v, err));  // the reader has two motors
+  CHECK_EQ(err, "motor 2 is out of range (0..1)");
+}

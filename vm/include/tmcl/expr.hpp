@@ -57,6 +57,21 @@ struct Expr {
 // `text` where the mistake is (for a caret under it).
 bool parse_expr(const std::string& text, const ProgramInfo& info, Expr& out, std::string& error,
                 std::size_t* error_at = nullptr);
+// What an expression reads: a VM (eval_expr on a Vm below), or a module through its host
+// protocol (tmclctl PORT test). A read that cannot be made is false with `error` saying why.
+class ExprReader {
+ public:
+  enum Reg : std::uint8_t { Acc, X, Flags, Errors, Pc, Sp, Time, Steps };
+  virtual ~ExprReader() = default;
+  virtual int motors() const = 0;
+  virtual bool reg(Reg r, std::int64_t& out, std::string& error) = 0;
+  virtual bool var(int n, std::int64_t& out, std::string& error) = 0;                   // 0..255
+  virtual bool axis(int param, int motor, std::int64_t& out, std::string& error) = 0;   // motor < motors()
+  virtual bool global(int bank, int param, std::int64_t& out, std::string& error) = 0;
+  // in(n), ain(n), out(n): `kind` is Expr::Node::In, Ain or Out; n < Vm::kPorts.
+  virtual bool port(int kind, int n, std::int64_t& out, std::string& error) = 0;
+};
+bool eval_expr(const Expr& e, ExprReader& reader, std::int64_t& value, std::string& error);
 // Evaluates on the VM; false with `error` (e.g. "no axis parameter 300 on usb-2-sd").
 bool eval_expr(const Expr& e, Vm& vm, std::int64_t& value, std::string& error);
 // Assigns to the expression's root (set var): through the VM's parameter rules.
