@@ -1,9 +1,10 @@
 // tmclctl: talks to a TMCL module (or tmclrun --serve) over a serial port or TCP: send one
 // instruction, get/set/store parameters, download/verify/upload programs, run/stop/step/reset,
-// status, monitor, an interactive console and a bus scan. A thin tool: the protocol, transfers
-// and parameter names live in cli/host/ (tmcl_host); see docs/tmclctl.md for every command.
-// Exit status: 0 ok, 1 verify mismatch, 2 error status from the module, 64 usage, 65 bad input,
-// 69 no reply, 74 port, output file or standard output error, 130 interrupted.
+// status, monitor, an interactive console, a bus scan and test files (tmclctl_testrun.cpp). A
+// thin tool: the protocol, transfers and parameter names live in cli/host/ (tmcl_host); see
+// docs/tmclctl.md for every command. Exit status: 0 ok, 1 verify mismatch or a test failed,
+// 2 error status from the module, 64 usage, 65 bad input, 69 no reply, 74 port, output file or
+// standard output error, 130 interrupted.
 #include <signal.h>
 #include <unistd.h>
 
@@ -31,6 +32,7 @@
 #include "tmcl/plot.hpp"
 #include "tmcl/program_image.hpp"
 #include "tmcl/version.hpp"
+#include "tmclctl_testrun.hpp"
 
 namespace {
 
@@ -59,6 +61,8 @@ commands:
   monitor PARAM...            poll parameters (ap:N[:MOTOR], gp:N[:BANK], io:N[:BANK], NAME[@MOTOR])
   console                     interactive direct mode: instructions in source syntax
   scan                        find the modules on a bus: address, firmware, module type
+  test FILE|DIR...            run test files (*.tmctest) on the module by the wall clock: a smoke
+                              test on hardware (docs/testing.md)
 
 options:
   -a N                   module address (default 1)
@@ -78,6 +82,7 @@ options:
   monitor:  --every DURATION (default 100ms)  --for DURATION (default: until Ctrl-C)
             --csv FILE   write the rows to FILE instead of standard output
             --plot FILE  also draw the polled values against time as an SVG (one panel each)
+  test:     --junit FILE write a JUnit XML report to FILE
   scan:     --range A-B  addresses to try (default 1-255)
             --bauds LIST baud rates to try, comma-separated (serial ports only)
   --help, --version
@@ -88,10 +93,11 @@ examples:
   tmclctl tcp:127.0.0.1:2001 get 'actual position'
   tmclctl /dev/ttyUSB0 --baud 115200 monitor ap:1 ap:3 --every 50ms --for 10s --csv run.csv
   tmclctl /dev/pts/5 scan --range 1-8
+  tmclctl -t usb-2-sd /dev/ttyACM0 test tests/ --junit hardware.xml
 
-exit status: 0 ok, 1 verify mismatch, 2 the module answered with an error status, 64 usage error,
-             65 bad input file, 69 no reply from the module, 74 port error, output file or
-             standard output not written, 130 interrupted (Ctrl-C)
+exit status: 0 ok, 1 verify mismatch or a test failed, 2 the module answered with an error
+             status, 64 usage error, 65 bad input file, 69 no reply from the module, 74 port
+             error, output file or standard output not written, 130 interrupted (Ctrl-C)
 )";
 
 volatile std::sig_atomic_t g_stop = 0;
@@ -108,7 +114,7 @@ struct Options {
   std::vector<std::string> include_dirs;
   bool verify = true, run = false, autostart = false;
   int from = 0;
-  std::string output, csv, plot;
+  std::string output, csv, plot, junit;
   tmcl::SimTime every = 100 * tmcl::kUsPerMs, for_time = 0;
   std::string every_text = "100ms";  // as given, for the plot's title
   int range_lo = 1, range_hi = 255;
@@ -193,8 +199,8 @@ int parse_args(int argc, char** argv, Options& o) {
       if (!value(o.output)) return usage_error("-o needs a file");
     } else if (a == "--csv") {
       if (!value(o.csv)) return usage_error("--csv needs a file");
-    } else if (a == "--plot") {
-      if (!value(o.plot)) return usage_error("--plot needs a file");
+    } else if (a == "--plot" || a == "--junit") {
+      if (!value(a == "--plot" ? o.plot : o.junit)) return usage_error(a + " needs a file");
     } else if (a == "--range") {
       long lo = 0, hi = 0;
       const auto dash = value(v) ? v.find('-') : std::string::npos;
@@ -772,11 +778,13 @@ int run(int argc, char** argv) {
   host::Port::set_cancel_flag(&g_stop);
 
   static const char* const kCommands[] = {"send", "get", "set", "store", "download", "upload", "run", "stop", "step",
-                                          "reset", "status", "monitor", "console", "scan"};
+                                          "reset", "status", "monitor", "console", "scan", "test"};
   bool known = false;
   for (const char* c : kCommands) known = known || o.command == c;
   if (!known) return usage_error("unknown command '" + o.command + "'");
   if ((!o.csv.empty() || !o.plot.empty()) && o.command != "monitor") return usage_error("--csv and --plot go with monitor");
+  if (!o.junit.empty() && o.command != "test") return usage_error("--junit goes with test");
+  if (o.command == "test" && o.args.empty()) return usage_error("test needs test files or folders (FILE.tmctest or DIR)");
 
   std::string err;
   std::unique_ptr<host::Port> port = host::Port::open(o.port, o.baud, o.client.timeout_ms, err);
@@ -803,6 +811,7 @@ int run(int argc, char** argv) {
   if (c == "reset") return s.cmd_control(Op::ResetApplication);
   if (c == "status") return s.cmd_status();
   if (c == "monitor") return s.cmd_monitor();
+  if (c == "test") return tmclctl_test(s.client, *o.profile, o.args, o.include_dirs, o.junit, &g_stop);
   return s.cmd_console();
 }
 

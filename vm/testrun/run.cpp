@@ -50,11 +50,6 @@ bool is_literal(const std::string& text) {
   return parse_int(text, INT64_MIN, INT64_MAX, v);
 }
 
-std::string condition_text(const Expectation& e) {
-  std::string s = e.left + " " + std::string(compare_text(e.op)) + " " + e.right;
-  if (!e.tolerance.empty()) s += " \xC2\xB1 " + e.tolerance;
-  return s;
-}
 
 class Checker {
  public:
@@ -74,16 +69,7 @@ class Checker {
       fail(e, "the tolerance of " + condition_text(e) + " is negative (" + std::to_string(tolerance) + ")", "");
       return;
     }
-    bool ok = false;
-    switch (e.op) {
-      case Compare::Eq: ok = (left > right ? left - right : right - left) <= tolerance; break;
-      case Compare::Ne: ok = left != right; break;
-      case Compare::Lt: ok = left < right; break;
-      case Compare::Le: ok = left <= right; break;
-      case Compare::Gt: ok = left > right; break;
-      case Compare::Ge: ok = left >= right; break;
-    }
-    if (ok) return;
+    if (holds(e, left, right, tolerance)) return;
     std::string msg = "expected " + condition_text(e) + " at " + when + ", got " + std::to_string(left);
     if (!is_literal(e.right)) msg += " (" + e.right + " is " + std::to_string(right) + ")";
     Failure& f = fail(e, msg, program_place(p_, vm_));
@@ -159,6 +145,24 @@ std::string end_text(const Program& p, const Vm& vm, const RunResult& res, End e
 }
 
 }  // namespace
+
+std::string condition_text(const Expectation& e) {
+  std::string s = e.left + " " + std::string(compare_text(e.op)) + " " + e.right;
+  if (!e.tolerance.empty()) s += " \xC2\xB1 " + e.tolerance;
+  return s;
+}
+
+bool holds(const Expectation& e, std::int64_t left, std::int64_t right, std::int64_t tolerance) {
+  switch (e.op) {
+    case Compare::Eq: return (left > right ? left - right : right - left) <= tolerance;
+    case Compare::Ne: return left != right;
+    case Compare::Lt: return left < right;
+    case Compare::Le: return left <= right;
+    case Compare::Gt: return left > right;
+    case Compare::Ge: return left >= right;
+  }
+  return false;
+}
 
 TestResult run_test(const TestFile& t, std::shared_ptr<const Program> program, const RunOptions& o) {
   TestResult r;
@@ -251,7 +255,7 @@ TestResult run_test_file(const std::string& path, const RunOptions& options, Pro
   };
   std::vector<std::uint8_t> bytes;
   std::string err;
-  if (!read_file(path, bytes, err, kMaxScenarioBytes)) return error("tmclrun: error: " + err + "\n");
+  if (!read_file(path, bytes, err, kMaxScenarioBytes)) return error(options.tool + ": error: " + err + "\n");
   TestFile t;
   std::vector<FileDiag> diags;
   const bool parsed = parse_test_file(std::string(bytes.begin(), bytes.end()), path, options.target, t, diags);

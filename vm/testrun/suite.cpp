@@ -60,7 +60,7 @@ SuiteResult run_suite(const std::vector<std::string>& files, const SuiteOptions&
   std::mutex lock;
   auto work = [&] {
     for (std::size_t i; (i = next++) < files.size();) {
-      TestResult r = run_test_file(files[i], options.run, cache);
+      TestResult r = options.run_one ? options.run_one(files[i], cache) : run_test_file(files[i], options.run, cache);
       std::lock_guard<std::mutex> g(lock);
       s.tests[i] = std::move(r);
       finished[i] = 1;
@@ -86,8 +86,10 @@ SuiteResult run_suite(const std::vector<std::string>& files, const SuiteOptions&
 }
 
 std::string result_text(const TestResult& r) {
+  std::string notes;
+  for (const std::string& n : r.notes) notes += "  " + n + "\n";
   switch (r.status) {
-    case TestResult::Pass: return "PASS " + r.path + "\n";
+    case TestResult::Pass: return "PASS " + r.path + "\n" + notes;
     case TestResult::Skip: return "SKIP " + r.path + " (" + r.skip_reason + ")\n";
     case TestResult::Error: return "ERROR " + r.path + "\n";
     case TestResult::Fail: break;
@@ -101,7 +103,7 @@ std::string result_text(const TestResult& r) {
       b = e + 1;
     }
   }
-  return s;
+  return s + notes;
 }
 
 std::string summary_line(const SuiteResult& s) {
@@ -113,23 +115,23 @@ std::string summary_line(const SuiteResult& s) {
 
 namespace {
 
-bool write_text(const std::string& path, const std::string& text, std::FILE* err) {
+bool write_text(const std::string& tool, const std::string& path, const std::string& text, std::FILE* err) {
   std::string why;
   if (write_file_atomic(path, std::vector<std::uint8_t>(text.begin(), text.end()), why)) return true;
-  std::fprintf(err, "tmclrun: error: %s\n", why.c_str());
+  std::fprintf(err, "%s: error: %s\n", tool.c_str(), why.c_str());
   return false;
 }
 
 // --update: rewrites the value of every failing expectation that has one to rewrite. Returns
 // false when a failure is left that could not be rewritten, or a file could not be written.
-bool update_files(const SuiteResult& s, std::FILE* out, std::FILE* err) {
+bool update_files(const std::string& tool, const SuiteResult& s, std::FILE* out, std::FILE* err) {
   bool all = true;
   for (const TestResult& r : s.tests) {
     if (r.status != TestResult::Fail) continue;
     std::vector<std::uint8_t> bytes;
     std::string why;
     if (!read_file(r.path, bytes, why, kMaxScenarioBytes)) {
-      std::fprintf(err, "tmclrun: error: %s\n", why.c_str());
+      std::fprintf(err, "%s: error: %s\n", tool.c_str(), why.c_str());
       all = false;
       continue;
     }
@@ -154,7 +156,7 @@ bool update_files(const SuiteResult& s, std::FILE* out, std::FILE* err) {
     // From the last edit back, so the earlier offsets stay right.
     for (auto e = edits.rbegin(); e != edits.rend(); ++e)
       text.replace(e->first, static_cast<std::size_t>(e->second->update_len), e->second->update);
-    if (!write_text(r.path, text, err)) all = false;
+    if (!write_text(tool, r.path, text, err)) all = false;
   }
   return all;
 }
@@ -165,11 +167,12 @@ int run_command(const std::vector<std::string>& paths, const SuiteOptions& optio
   std::vector<std::string> files;
   std::string why;
   if (!find_tests(paths, files, why)) {
-    std::fprintf(err, "tmclrun: error: %s\n", why.c_str());
+    std::fprintf(err, "%s: error: %s\n", options.run.tool.c_str(), why.c_str());
     return 65;
   }
   if (files.empty()) {
-    std::fprintf(err, "tmclrun: error: no test files (*.tmctest) in %s\n", paths.empty() ? "." : paths.front().c_str());
+    std::fprintf(err, "%s: error: no test files (*.tmctest) in %s\n", options.run.tool.c_str(),
+                 paths.empty() ? "." : paths.front().c_str());
     return 65;
   }
   SuiteOptions o = options;
@@ -184,9 +187,10 @@ int run_command(const std::vector<std::string>& paths, const SuiteOptions& optio
     if (o.run.coverage) coverage.add(r);
   });
   int status = s.errors > 0 ? 65 : s.failed > 0 ? 1 : 0;
-  if (o.update && s.failed > 0 && update_files(s, out, err) && s.errors == 0) status = 0;
-  if (!o.junit.empty() && !write_text(o.junit, junit_xml(s, "tmclrun"), err)) status = 74;
-  if (!o.coverage.empty() && !write_text(o.coverage, lcov_tracefile(coverage), err)) status = 74;
+  const std::string& tool = o.run.tool;
+  if (o.update && s.failed > 0 && update_files(tool, s, out, err) && s.errors == 0) status = 0;
+  if (!o.junit.empty() && !write_text(tool, o.junit, junit_xml(s, tool), err)) status = 74;
+  if (!o.coverage.empty() && !write_text(tool, o.coverage, lcov_tracefile(coverage), err)) status = 74;
   if (o.coverage_summary) std::fputs(coverage_summary(coverage).c_str(), out);
   std::fputs(summary_line(s).c_str(), out);
   return status;

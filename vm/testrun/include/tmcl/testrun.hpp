@@ -57,6 +57,10 @@ struct Expectation {
   std::string text;        // as written after `expect`, without a comment
 };
 
+// LEFT OP RIGHT [± TOLERANCE] as written, and whether it holds for these values.
+std::string condition_text(const Expectation& e);
+bool holds(const Expectation& e, std::int64_t left, std::int64_t right, std::int64_t tolerance);
+
 struct TestFile {
   std::string path;     // as given
   std::string program;  // the program's path, relative to the current folder
@@ -108,6 +112,7 @@ struct RunOptions {
   bool strict = false;             // a run-time warning is a fault (tmclrun --strict)
   bool coverage = false;           // count executions (Coverage)
   int error_limit = kDefaultErrorLimit;
+  std::string tool = "tmclrun";    // names the program in its messages
 };
 
 // One unmet expectation.
@@ -127,6 +132,7 @@ struct TestResult {
   std::string error;       // Error: the diagnostics (a bad test file or program), rendered
   std::string skip_reason;
   std::string messages;    // the assembler's warnings for the program, rendered
+  std::vector<std::string> notes;  // "FILE:LINE: note: ..." (what a module cannot check)
   double seconds = 0;      // wall time of the test
   SimTime ended_at = 0;    // simulated instant the run ended
   std::shared_ptr<const Program> program;
@@ -156,6 +162,24 @@ TestResult run_test_file(const std::string& path, const RunOptions& options, Pro
 // Runs a parsed and bound test on the VM.
 TestResult run_test(const TestFile& test, std::shared_ptr<const Program> program, const RunOptions& options);
 
+// ---- on a module (tmclctl PORT test) ----
+// A module as a test runs on it: expressions read its state over the host protocol (ExprReader),
+// and it stores, starts, watches and stops the program.
+class Module : public ExprReader {
+ public:
+  // Stores `program` (and verifies it), then starts it from address 0; false with `error`.
+  virtual bool load_and_start(const std::vector<Instruction>& program, std::string& error) = 0;
+  // Whether the program still runs; false with `error` when the module does not answer.
+  virtual bool running(bool& out, std::string& error) = 0;
+  virtual void stop() = 0;  // stops the program (max-time reached)
+  virtual bool cancelled() const { return false; }  // Ctrl-C: the test ends as an error
+};
+// Runs one test file on the module by the wall clock: values polled when their instant comes,
+// then the end awaited (the program stops, or max-time). A test with scenario lines, or written
+// for another module than options.target, is skipped; `never fault` and `no warnings` become
+// notes (a module reports neither).
+TestResult run_test_live(const std::string& path, const RunOptions& options, ProgramCache& cache, Module& module);
+
 // ---- several tests ----
 // The test files named: files as given, folders searched for *.tmctest (sorted). A path that
 // does not exist is an error in `error`.
@@ -168,6 +192,8 @@ struct SuiteOptions {
   std::string coverage;   // --coverage FILE (lcov)
   bool coverage_summary = false;
   bool update = false;
+  // How one test runs: empty, on the VM (run_test_file); tmclctl runs them on a module.
+  std::function<TestResult(const std::string& path, ProgramCache& cache)> run_one;
 };
 
 struct SuiteResult {
