@@ -326,6 +326,8 @@ Server::Reply Server::dispatch(const std::string& method, const Value& params, b
     return r;
   }
   if (method == "textDocument/codeAction") return code_actions(params);
+  if (method == "textDocument/codeLens") return code_lens(params);
+  if (method == "workspace/executeCommand") return execute_command(params);
   if (!is_request) return r;  // unknown notifications ($/cancelRequest, ...) are ignored
   return {Value(), kMethodNotFound, "unknown method '" + method + "'"};
 }
@@ -354,6 +356,8 @@ Server::Reply Server::initialize(const Value& params) {
   caps.set("workspaceSymbolProvider", true);
   caps.set("foldingRangeProvider", true);
   caps.set("codeActionProvider", Value::object()).set("codeActionKinds", Value::array()).push("quickfix");
+  caps.set("codeLensProvider", Value::object()).set("resolveProvider", false);
+  caps.set("executeCommandProvider", Value::object()).set("commands", Value::array()).push("tmcl.runTest");
   caps.set("signatureHelpProvider", Value::object()).set("triggerCharacters", Value::array()).push(",");
   Value& comp = caps.set("completionProvider", Value::object());
   comp.set("triggerCharacters", Value::array()).push(" ");
@@ -420,6 +424,7 @@ Server::Reply Server::change(const Value& params) {
 }
 
 void Server::check(Document& doc) {
+  if (is_test_file(doc)) return publish(doc, test_diagnostics(doc, {}));
   AsmOptions opts;
   opts.profile = find_profile(settings_.target);
   opts.include_dirs = settings_.include_dirs;

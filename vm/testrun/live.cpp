@@ -58,20 +58,19 @@ TestResult run_test_live(const std::string& path, const RunOptions& options, Pro
     r.error = options.tool + ": error: " + err + "\n";
     return finish(TestResult::Error);
   }
+  const std::string text(bytes.begin(), bytes.end());
   TestFile t;
   std::vector<FileDiag> diags;
-  const bool parsed = parse_test_file(std::string(bytes.begin(), bytes.end()), path, options.target, t, diags);
-  if (parsed && (t.skipped || !t.inputs.empty() || (!t.target.empty() && t.target != options.target))) {
+  if (parse_test_file(text, path, options.target, t, diags) &&
+      (t.skipped || !t.inputs.empty() || (!t.target.empty() && t.target != options.target))) {
     r.skip_reason = t.skipped ? t.skip
                     : !t.inputs.empty()
                         ? "its scenario lines change the program's inputs, which a module's host cannot"
                         : "written for " + t.target + ", and the module is " + options.target + " (-t)";
     return finish(TestResult::Skip);
   }
-  const Profile* profile = find_profile(options.target);
-  std::shared_ptr<const Program> program;
-  if (profile && !t.program.empty()) program = cache.get(t, *profile, options, err);
-  if (program) bind_expectations(t, program->info, diags);
+  diags.clear();
+  std::shared_ptr<const Program> program = check_test_source(path, text, options, cache, t, diags, err);
   if (!diags.empty() || !program) {
     r.error = render_file_diags(diags, options.error_limit) + err;
     return finish(TestResult::Error);

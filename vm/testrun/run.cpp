@@ -240,42 +240,59 @@ TestResult run_test(const TestFile& t, std::shared_ptr<const Program> program, c
   return r;
 }
 
+std::shared_ptr<const Program> check_test_source(const std::string& path, const std::string& text, const RunOptions& options,
+                                                 ProgramCache& cache, TestFile& t, std::vector<FileDiag>& diags,
+                                                 std::string& program_error) {
+  parse_test_file(text, path, options.target, t, diags);
+  // The program is loaded even when the file has errors, so that the expressions' errors (which
+  // need its labels) are reported with the others in one go.
+  const Profile* profile = find_profile(t.target.empty() ? options.target : t.target);
+  std::shared_ptr<const Program> program;
+  if (profile && !t.program.empty()) program = cache.get(t, *profile, options, program_error);
+  if (program) bind_expectations(t, program->info, diags);
+  std::stable_sort(diags.begin(), diags.end(),
+                   [](const FileDiag& a, const FileDiag& b) { return a.line != b.line ? a.line < b.line : a.col < b.col; });
+  return program;
+}
+
 TestResult run_test_file(const std::string& path, const RunOptions& options, ProgramCache& cache) {
+  std::vector<std::uint8_t> bytes;
+  std::string err;
+  if (!read_file(path, bytes, err, kMaxScenarioBytes)) {
+    TestResult r;
+    r.path = path;
+    r.status = TestResult::Error;
+    r.error = options.tool + ": error: " + err + "\n";
+    return r;
+  }
+  return run_test_source(path, std::string(bytes.begin(), bytes.end()), options, cache);
+}
+
+TestResult run_test_source(const std::string& path, const std::string& text, const RunOptions& options, ProgramCache& cache) {
   const auto t0 = std::chrono::steady_clock::now();
   auto finish = [&](TestResult r) {
     r.path = path;
     r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     return r;
   };
-  auto error = [&](std::string text) {
+  auto error = [&](std::string diagnostics) {
     TestResult r;
     r.status = TestResult::Error;
-    r.error = std::move(text);
+    r.error = std::move(diagnostics);
     return finish(std::move(r));
   };
-  std::vector<std::uint8_t> bytes;
-  std::string err;
-  if (!read_file(path, bytes, err, kMaxScenarioBytes)) return error(options.tool + ": error: " + err + "\n");
   TestFile t;
   std::vector<FileDiag> diags;
-  const bool parsed = parse_test_file(std::string(bytes.begin(), bytes.end()), path, options.target, t, diags);
-  if (parsed && t.skipped) {
+  if (parse_test_file(text, path, options.target, t, diags) && t.skipped) {  // a skipped test is not loaded
     TestResult r;
     r.status = TestResult::Skip;
     r.skip_reason = t.skip;
     return finish(std::move(r));
   }
-  // The program is loaded even when the file has errors, so that the expressions' errors (which
-  // need its labels) are reported with the others in one go.
-  const Profile* profile = find_profile(t.target.empty() ? options.target : t.target);
-  std::shared_ptr<const Program> program;
-  if (profile && !t.program.empty()) program = cache.get(t, *profile, options, err);
-  if (program) bind_expectations(t, program->info, diags);
-  if (!diags.empty() || !program) {
-    std::stable_sort(diags.begin(), diags.end(),
-                     [](const FileDiag& a, const FileDiag& b) { return a.line != b.line ? a.line < b.line : a.col < b.col; });
-    return error(render_file_diags(diags, options.error_limit) + err);
-  }
+  diags.clear();
+  std::string err;
+  std::shared_ptr<const Program> program = check_test_source(path, text, options, cache, t, diags, err);
+  if (!diags.empty() || !program) return error(render_file_diags(diags, options.error_limit) + err);
   return finish(run_test(t, std::move(program), options));
 }
 

@@ -159,6 +159,14 @@ bool bind_expectations(TestFile& test, const ProgramInfo& info, std::vector<File
 
 // Reads, checks and runs one test file.
 TestResult run_test_file(const std::string& path, const RunOptions& options, ProgramCache& cache);
+// The same with the file's text at hand (an editor's buffer).
+TestResult run_test_source(const std::string& path, const std::string& text, const RunOptions& options, ProgramCache& cache);
+// Reads a test file's text and binds it to its program (loaded through `cache`); every problem
+// is a diagnostic of the test file in `diags`, except the program's own, rendered in
+// `program_error`. The program is null when it could not be loaded.
+std::shared_ptr<const Program> check_test_source(const std::string& path, const std::string& text, const RunOptions& options,
+                                                 ProgramCache& cache, TestFile& test, std::vector<FileDiag>& diags,
+                                                 std::string& program_error);
 // Runs a parsed and bound test on the VM.
 TestResult run_test(const TestFile& test, std::shared_ptr<const Program> program, const RunOptions& options);
 
