@@ -439,13 +439,17 @@ void Server::check(Document& doc) {
   doc.reads.clear();
   for (const auto& f : r->sources.files) doc.reads.insert(f.path);
   doc.result = std::move(r);
+  publish(doc, diagnostics_of(doc));
+}
+
+void Server::publish(const Document& doc, Value diagnostics) {
   Value n = Value::object();
   n.set("jsonrpc", "2.0");
   n.set("method", "textDocument/publishDiagnostics");
   Value& p = n.set("params", Value::object());
   p.set("uri", doc.uri);
   p.set("version", static_cast<long long>(doc.version));
-  p.set("diagnostics", diagnostics_of(doc));
+  p.set("diagnostics", std::move(diagnostics));
   out_.push_back(json::write(n));
 }
 

@@ -84,17 +84,6 @@ Server::Value Server::test_diagnostics(Document& doc, const std::vector<testrun:
   return list;
 }
 
-void Server::publish(const Document& doc, Value diagnostics) {
-  Value n = Value::object();
-  n.set("jsonrpc", "2.0");
-  n.set("method", "textDocument/publishDiagnostics");
-  Value& p = n.set("params", Value::object());
-  p.set("uri", doc.uri);
-  p.set("version", static_cast<long long>(doc.version));
-  p.set("diagnostics", std::move(diagnostics));
-  out_.push_back(json::write(n));
-}
-
 Server::Reply Server::code_lens(const Value& params) {
   Reply err;
   Document* doc = find_document(params, err);

@@ -20,15 +20,6 @@ std::vector<Instruction> loop_program() {
 const std::vector<std::uint64_t> kLoopExecuted = {1, 3, 3, 1, 1, 1, 1, 1, 0};  // the sentinel last
 const std::vector<std::uint64_t> kLoopTaken = {0, 0, 2, 0, 0, 1, 0, 0, 0};
 
-struct QuietTrace final : tmcl::TraceSink {
-  void instruction(const tmcl::Vm&, tmcl::SimTime, std::int32_t, const Instruction&) override {}
-  void interrupt_enter(const tmcl::Vm&, int, std::int32_t) override {}
-  void interrupt_leave(const tmcl::Vm&, std::int32_t) override {}
-  void motion_event(const tmcl::Vm&, const tmcl::MotionEvent&) override {}
-  void wait_end(const tmcl::Vm&, std::int32_t, bool) override {}
-  void input_event(const tmcl::Vm&, const std::string&) override {}
-};
-
 }  // namespace
 
 TEST(coverage_is_not_counted_unless_asked) {
@@ -49,7 +40,7 @@ TEST(coverage_counts_instructions_and_branches_on_the_fast_path) {
 
 TEST(coverage_counts_the_same_traced) {
   Machine m(loop_program(), test_profile(), 20);
-  QuietTrace t;
+  NullTrace t;
   m.vm.trace = &t;
   m.vm.count_coverage();
   CHECK(m.run().halt == Halt::Stop);

@@ -88,6 +88,7 @@ class Server {
   void open(const Value& params);
   Reply change(const Value& params);
   void check(Document& doc);
+  void publish(const Document& doc, Value diagnostics);  // textDocument/publishDiagnostics
   void check_includers(const std::string& path);
   Value diagnostics_of(const Document& doc) const;
   Value diagnostic_json(const Diagnostic& d, const AsmResult& r) const;
@@ -122,7 +123,6 @@ class Server {
   static bool is_test_file(const Document& doc);
   testrun::RunOptions test_options() const;
   Value test_diagnostics(Document& doc, const std::vector<testrun::Failure>& failures);
-  void publish(const Document& doc, Value diagnostics);
   Reply code_lens(const Value& params);
   Reply execute_command(const Value& params);
 
