@@ -277,7 +277,7 @@ int parse_args(int argc, char** argv, Options& o) {
       std::int64_t n = 0;
       if (!tmcl::parse_int(v, 0, 1'000'000'000, n))
         return usage_error("bad error limit '" + v + "' for --error-limit (a number, 0 for no limit)");
-      g_failure.error_limit = static_cast<int>(n);
+      g_failure.error_limit = o.asm_opts.error_limit = static_cast<int>(n);
     } else if (a == "--csv") {
       if (!value(o.csv)) return usage_error("--csv needs a file");
     } else if (a == "--plot") {

@@ -208,6 +208,7 @@ int tmclrun::run_mode(Options& o, const tmcl::Profile& profile, std::unique_ptr<
     std::tie(r.target, r.motion, r.instr_time, r.asm_options, r.strict) = std::tie(o.target, o.motion, o.instr_time, o.asm_opts, o.strict);
     r.max_time_given = o.limits.until != tmcl::kNever;
     r.max_time = o.limits.until;
+    r.error_limit = o.asm_opts.error_limit;  // --error-limit
     return tmcl::testrun::run_command(o.inputs, m.test, stdout, stderr);
   }
   if (o.debugging && o.serving) {  // debugging while serving: tcp or pty, one module
