@@ -54,6 +54,8 @@ else:
            ["suite/fail.tmctest", "suite/pass.tmctest", "suite/skip.tmctest", "bad/program.tmctest"])
     for c in cases:
         float(c.get("time"))  # seconds as a decimal number
+    import datetime
+    datetime.datetime.strptime(suite.get("timestamp"), "%Y-%m-%dT%H:%M:%S")
     fail = cases[0].find("failure")
     expect("failure type", fail.get("type"), "expectation")
     if "suite/fail.tmctest:4: expected acc = 5 at 1ms, got 6" not in fail.text:

@@ -40,6 +40,7 @@ SuiteResult sample() {
   s.tests = {pass, fail, error, skip};
   s.passed = s.failed = s.errors = s.skipped = 1;
   s.seconds = 1.5;
+  s.timestamp = "2026-12-03T08:00:00";
   return s;
 }
 
@@ -63,7 +64,8 @@ TEST(report_junit_xml_exactly) {
   CHECK_EQ(junit_xml(sample(), "tmclrun"),
            "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n"
            "<testsuites name=\"tmclrun\" tests=\"4\" failures=\"1\" errors=\"1\" skipped=\"1\" time=\"1.500\">\n"
-           "  <testsuite name=\"tmclrun\" tests=\"4\" failures=\"1\" errors=\"1\" skipped=\"1\" time=\"1.500\">\n"
+           "  <testsuite name=\"tmclrun\" tests=\"4\" failures=\"1\" errors=\"1\" skipped=\"1\" time=\"1.500\" "
+           "timestamp=\"2026-12-03T08:00:00\">\n"
            "    <testcase classname=\"tests.motion\" name=\"homing\" file=\"tests/motion/homing.tmctest\" time=\"0.013\"/>\n"
            "    <testcase classname=\"tmclrun\" name=\"cycles\" file=\"cycles.tmctest\" time=\"0.250\">\n"
            "      <failure message=\"2 expectations failed; the first: expected v[3] &lt; 7 &amp; v[4] &gt; &quot;2&quot; at "

@@ -51,7 +51,8 @@ std::string junit_xml(const SuiteResult& s, const std::string& suite_name) {
                              "\" time=\"" + seconds_text(s.seconds) + "\"";
   std::string x = "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n";
   x += "<testsuites name=\"" + xml(suite_name) + "\"" + counts + ">\n";
-  x += "  <testsuite name=\"" + xml(suite_name) + "\"" + counts + ">\n";
+  x += "  <testsuite name=\"" + xml(suite_name) + "\"" + counts +
+       (s.timestamp.empty() ? "" : " timestamp=\"" + xml(s.timestamp) + "\"") + ">\n";
   for (const TestResult& r : s.tests) {
     // classname: the test's folder with dots (as a package); name: the file without .tmctest.
     const std::filesystem::path p(r.path);

@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <atomic>
 #include <chrono>
+#include <ctime>
 #include <filesystem>
 #include <mutex>
 #include <set>
@@ -52,6 +53,10 @@ SuiteResult run_suite(const std::vector<std::string>& files, const SuiteOptions&
                       const std::function<void(const TestResult&)>& done) {
   const auto t0 = std::chrono::steady_clock::now();
   SuiteResult s;
+  const std::time_t now = std::chrono::system_clock::to_time_t(std::chrono::system_clock::now());
+  std::tm utc{};
+  char stamp[32];
+  if (::gmtime_r(&now, &utc) && std::strftime(stamp, sizeof stamp, "%Y-%m-%dT%H:%M:%S", &utc)) s.timestamp = stamp;
   s.tests.resize(files.size());
   ProgramCache cache;
   std::vector<char> finished(files.size(), 0);

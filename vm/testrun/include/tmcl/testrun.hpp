@@ -208,6 +208,7 @@ struct SuiteResult {
   std::vector<TestResult> tests;  // in the order of the files
   int passed = 0, failed = 0, errors = 0, skipped = 0;
   double seconds = 0;
+  std::string timestamp;  // when the run started, UTC: "2026-12-03T08:00:00" (JUnit's timestamp)
 };
 
 // Runs the tests `jobs` at a time, calling `done` for each result in the files' order as soon as
