@@ -26,7 +26,7 @@ Server::Value range_on(const std::string& line_text, int line, int col, int len)
   return r;
 }
 
-std::string line_of(const Document& doc, int line) {
+std::string doc_line(const Document& doc, int line) {
   if (line < 1 || static_cast<std::size_t>(line) > doc.line_starts.size()) return "";
   const std::size_t b = doc.line_starts[static_cast<std::size_t>(line - 1)];
   std::size_t e = doc.text.find('\n', b);
@@ -37,7 +37,7 @@ std::string line_of(const Document& doc, int line) {
 
 Server::Value diagnostic(const Document& doc, int line, int col, int len, int severity, const std::string& message) {
   Server::Value d = Server::Value::object();
-  d.set("range", range_on(line_of(doc, line), line, col, len));
+  d.set("range", range_on(doc_line(doc, line), line, col, len));
   d.set("severity", severity);
   d.set("source", "tmcl");
   d.set("message", message);
@@ -92,7 +92,7 @@ Server::Reply Server::code_lens(const Value& params) {
   r.result = Value::array();
   if (!is_test_file(*doc)) return r;
   Value& lens = r.result.push(Value::object());
-  lens.set("range", range_on(line_of(*doc, 1), 1, 1, 0));
+  lens.set("range", range_on(doc_line(*doc, 1), 1, 1, 0));
   Value& cmd = lens.set("command", Value::object());
   cmd.set("title", "\xE2\x96\xB6 Run test");
   cmd.set("command", kRunTest);
