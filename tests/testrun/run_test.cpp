@@ -156,6 +156,15 @@ TEST(run_scenario_lines_and_definitions_reach_the_program) {
   CHECK_EQ(messages(run("defined", "program defined.tmc\ndefine SPEED=40 * 3\nexpect at end v[1] = 120\n")), "");
 }
 
+TEST(run_tolerances_at_the_ends_of_64_bits) {
+  // The distance of two values is taken without overflow: 2^62 against -2^62 (wrapped, it would
+  // be negative and the expectation met).
+  CHECK_EQ(messages(run_counter("wide", "expect at end (1 << 62) = -(1 << 62) \xC2\xB1 5\nexpect at end acc = 1 \xC2\xB1 0\n")),
+           "2: expected (1 << 62) = -(1 << 62) \xC2\xB1 5 at the end, got 4611686018427387904 (-(1 << 62) is "
+           "-4611686018427387904)\n"
+           "3: expected acc = 1 \xC2\xB1 0 at the end, got 0\n");
+}
+
 TEST(run_an_expression_that_cannot_be_evaluated_fails) {
   const TestResult& r = run_counter("eval", "expect at end ap(300, 0) = 1\nexpect at end v[1] / v[0] = 0\n");
   CHECK_EQ(messages(r),

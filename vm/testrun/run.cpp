@@ -154,7 +154,11 @@ std::string condition_text(const Expectation& e) {
 
 bool holds(const Expectation& e, std::int64_t left, std::int64_t right, std::int64_t tolerance) {
   switch (e.op) {
-    case Compare::Eq: return (left > right ? left - right : right - left) <= tolerance;
+    case Compare::Eq: {
+      // The distance in unsigned arithmetic: no overflow, whatever two 64-bit values they are.
+      const auto l = static_cast<std::uint64_t>(left), r = static_cast<std::uint64_t>(right);
+      return (left > right ? l - r : r - l) <= static_cast<std::uint64_t>(tolerance);
+    }
     case Compare::Ne: return left != right;
     case Compare::Lt: return left < right;
     case Compare::Le: return left <= right;
