@@ -100,3 +100,14 @@ TEST(expr_reads_through_any_reader) {
   CHECK(!eval("ap(1, 2)", v, err));  // the reader has two motors
   CHECK_EQ(err, "motor 2 is out of range (0..1)");
 }
+
+TEST(expr_arithmetic_wraps_instead_of_overflowing) {
+  Machine m({I(Op::STOP)});
+  CHECK_EQ(value_of("(1 << 62) * 4", m.vm), 0);
+  CHECK_EQ(value_of("(1 << 62) + (1 << 62) + (1 << 62) + (1 << 62)", m.vm), 0);
+  CHECK_EQ(value_of("-(1 << 62) - (1 << 62) - (1 << 62) - (1 << 62)", m.vm), 0);
+  CHECK_EQ(value_of("(-(1 << 62) - (1 << 62)) / -1", m.vm), INT64_MIN);
+  CHECK_EQ(value_of("-(-(1 << 62) - (1 << 62))", m.vm), INT64_MIN);
+  CHECK_EQ(value_of("(-(1 << 62) - (1 << 62)) % -1", m.vm), 0);
+  CHECK_EQ(value_of("7 / -1 + 7 % -1", m.vm), -7);
+}
