@@ -104,3 +104,14 @@ TEST(coverage_does_not_count_a_jump_that_faults) {
   CHECK_EQ(m.vm.executed[1], 1u);
   CHECK_EQ(m.vm.taken[1], 0u);
 }
+
+TEST(coverage_follows_a_new_program) {
+  // A program loaded while counting (a host's download) is counted afresh, sized to it.
+  Machine m({I(Op::STOP)}, test_profile(), 20);
+  m.vm.count_coverage();
+  m.vm.load(loop_program());
+  m.vm.start(0);
+  CHECK(m.run().halt == Halt::Stop);
+  CHECK(m.vm.executed == kLoopExecuted);
+  CHECK(m.vm.taken == kLoopTaken);
+}
