@@ -1,9 +1,10 @@
 // tmclctl: talks to a TMCL module (or tmclrun --serve) over a serial port or TCP: send one
 // instruction, get/set/store parameters, download/verify/upload programs, run/stop/step/reset,
-// status, monitor, an interactive console and a bus scan. A thin tool: the protocol, transfers
-// and parameter names live in cli/host/ (tmcl_host); see docs/tmclctl.md for every command.
-// Exit status: 0 ok, 1 verify mismatch, 2 error status from the module, 64 usage, 65 bad input,
-// 69 no reply, 74 port, output file or standard output error, 130 interrupted.
+// status, monitor, an interactive console, a bus scan, a probe and test files (tmclctl_testrun.cpp). A
+// thin tool: the protocol, transfers and parameter names live in cli/host/ (tmcl_host); see
+// docs/tmclctl.md for every command. Exit status: 0 ok, 1 verify mismatch or a test failed,
+// 2 error status from the module, 64 usage, 65 bad input, 69 no reply, 74 port, output file or
+// standard output error, 130 interrupted.
 #include <dirent.h>
 #include <signal.h>
 #include <unistd.h>
@@ -38,6 +39,7 @@
 #include "tmcl/plot.hpp"
 #include "tmcl/program_image.hpp"
 #include "tmcl/targets.hpp"
+#include "tmclctl_testrun.hpp"
 
 namespace {
 
@@ -68,6 +70,8 @@ commands:
   scan                        find the modules on a bus: address, firmware, module type
   probe -o FILE.profile       read what a module has (firmware, parameters, memory) into a draft
                               profile for -t (docs/profiles.md, "Your own module")
+  test FILE|DIR...            run test files (*.tmctest) on the module by the wall clock: a smoke
+                              test on hardware (docs/testing.md)
 
 options:
 )";
@@ -82,14 +86,15 @@ examples:
   tmclctl /dev/ttyUSB0 --baud 115200 monitor ap:1 ap:3 --every 50ms --for 10s --csv run.csv
   tmclctl /dev/pts/5 scan --range 1-8
   tmclctl /dev/ttyACM0 probe -o mymodule.profile
+  tmclctl -t usb-2-sd /dev/ttyACM0 test tests/ --junit hardware.xml
 
-exit status: 0 ok, 1 verify mismatch, 2 the module answered with an error status, 64 usage error,
-             65 bad input file, 69 no reply from the module, 74 port error, output file or
-             standard output not written, 130 interrupted (Ctrl-C)
+exit status: 0 ok, 1 verify mismatch or a test failed, 2 the module answered with an error
+             status, 64 usage error, 65 bad input file, 69 no reply from the module, 74 port
+             error, output file or standard output not written, 130 interrupted (Ctrl-C)
 )";
 
 const char* const kCommands[] = {"send", "get", "set", "store", "download", "upload", "run", "stop", "step",
-                                 "reset", "status", "monitor", "console", "scan", "probe"};
+                                 "reset", "status", "monitor", "console", "scan", "probe", "test"};
 
 volatile std::sig_atomic_t g_stop = 0;
 extern "C" void on_sigint(int) { g_stop = 1; }
@@ -106,7 +111,7 @@ struct Options {
   std::vector<std::string> include_dirs;
   bool verify = true, run = false, autostart = false;
   int from = 0;
-  std::string output, csv, plot;
+  std::string output, csv, plot, junit;
   tmcl::SimTime every = 100 * tmcl::kUsPerMs, for_time = 0;
   std::string every_text = "100ms";  // as given, for the plot's title
   int range_lo = 1, range_hi = 255;
@@ -250,6 +255,7 @@ tmcl::cli::Tool command_line(Options& o) {
        false, "monitor:"},
       {"--plot", "FILE", "also draw the polled values against time as an SVG (one panel each)", set(o.plot),
        Values::files({"svg"}), {}, false, "monitor:"},
+      {"--junit", "FILE", "write a JUnit XML report to FILE", set(o.junit), Values::files({"xml"}), {}, false, "test:"},
       {"--range", "A-B", "addresses to try (default 1-255)",
        [&o](const std::string& v) {
          long lo = 0, hi = 0;
@@ -281,6 +287,7 @@ tmcl::cli::Tool command_line(Options& o) {
     if (before.size() == 1) return Values::words({std::begin(kCommands), std::end(kCommands)});
     const std::string& command = before[1];
     if (command == "download") return Values::files({"tmc", "bin", "dgm", "o", "a"});
+    if (command == "test") return Values::files({"tmctest"});
     if ((command == "get" || command == "set" || command == "store" || command == "monitor") && before.size() == 2)
       return Values::words({"ap", "gp", "io"});
     return Values();
@@ -939,6 +946,10 @@ int run(int argc, char** argv) {
   for (const char* c : kCommands) known = known || o.command == c;
   if (!known) return usage_error("unknown command '" + o.command + "'");
   if ((!o.csv.empty() || !o.plot.empty()) && o.command != "monitor") return usage_error("--csv and --plot go with monitor");
+  if (!o.junit.empty() && o.command != "test") return usage_error("--junit goes with test");
+  if (o.command == "test" && o.args.empty()) return usage_error("test needs test files or folders (FILE.tmctest or DIR)");
+  if (!o.junit.empty() && o.command != "test") return usage_error("--junit goes with test");
+  if (o.command == "test" && o.args.empty()) return usage_error("test needs test files or folders (FILE.tmctest or DIR)");
 
   std::string err;
   std::unique_ptr<host::Port> port = host::Port::open(o.port, o.baud, o.client.timeout_ms, err);
@@ -967,6 +978,8 @@ int run(int argc, char** argv) {
   if (c == "reset") return s.cmd_control(Op::ResetApplication);
   if (c == "status") return s.cmd_status();
   if (c == "monitor") return s.cmd_monitor();
+  if (c == "test") return tmclctl_test(s.client, *o.profile, o.args, o.include_dirs, o.junit, &g_stop);
+  if (c == "test") return tmclctl_test(s.client, *o.profile, o.args, o.include_dirs, o.junit, &g_stop);
   return s.cmd_console();
 }
 

@@ -41,6 +41,8 @@ using namespace tmclrun;
 namespace {
 
 const char* kUsage = R"(usage: tmclrun [options] PROGRAM        PROGRAM: .tmc source, .bin, .dgm, or - (stdin)
+       tmclrun --test [options] FILE.tmctest|DIR...
+       tmclrun --test [options] FILE.tmctest|DIR...
 
 Runs a TMCL program on a deterministic virtual module. Simulated time: nothing waits for real.
 
@@ -56,12 +58,15 @@ examples:
   tmclrun --eeprom module.eeprom prog.tmc       run twice: the EEPROM persists
   tmclrun --plot motion.svg --csv motion.csv prog.tmc   what the motors did, as a picture and data
   tmclrun --serve tcp:127.0.0.1:2001 prog.tmc   a virtual module for PyTrinamic (Ctrl-C stops it)
+  tmclrun --test --junit report.xml --coverage coverage.info tests/
+  tmclrun --test --junit report.xml --coverage coverage.info tests/
 
 exit status: 0 STOP, 3 limit reached or blocked forever, 70 runtime fault, 65 bad input,
              64 usage error, 71 --serve transport failed, 74 an output file (EEPROM, --csv,
-             --plot) or standard output could not be written (a --trace into a closed pipe
-             ends the run so), 130/143 ended by SIGINT (Ctrl-C)/SIGTERM after writing the
-             summary, --json, --csv, --plot and EEPROM
+             --plot, a report) or standard output could not be written (a --trace into a closed
+             pipe ends the run so), 130/143 ended by SIGINT (Ctrl-C)/SIGTERM after writing the
+             summary, --json, --csv, --plot and EEPROM; with --test: 0 every test passed, 1 a
+             test failed, 65 a bad test file or program
 )";
 
 std::string joined(const std::vector<std::string>& names) {
@@ -242,11 +247,11 @@ tmcl::cli::Tool command_line(Options& o) {
        "return to, a handler left without RETI) is a runtime fault (70)",
        flag(o.strict)},
       {"--error-limit", "N", "show at most N errors of the source or scenario (default 20, 0 = all)",
-       [](const std::string& v) {
+       [&o](const std::string& v) {
          std::int64_t n = 0;
          if (!tmcl::parse_int(v, 0, 1'000'000'000, n))
            return "bad error limit '" + v + "' for --error-limit (a number, 0 for no limit)";
-         g_failure.error_limit = static_cast<int>(n);
+         g_failure.error_limit = o.asm_opts.error_limit = static_cast<int>(n);
          return std::string();
        }},
       {"--serve", "SPEC",
@@ -359,6 +364,23 @@ tmcl::cli::Tool command_line(Options& o) {
          o.debug.enabled = o.debug.dap = true;
          return std::string();
        }},
+      {"--test", "",
+       "run test files (*.tmctest; a folder: every one under it) and print\n"
+       "PASS or FAIL for each, then 'N passed, N failed' (docs/testing.md)",
+       flag(o.testing)},
+      {"-j, --jobs", "N", "with --test: run N tests at a time (default: one per core)",
+       [&o](const std::string& v) {
+         std::int64_t n = 0;
+         if (!tmcl::parse_int(v, 1, 256, n)) return std::string("--jobs needs a number of tests at a time, 1 to 256");
+         o.test.jobs = static_cast<int>(n);
+         return std::string();
+       },
+       {}, "a number of tests at a time, 1 to 256"},
+      {"--junit", "FILE", "with --test: write a JUnit XML report to FILE", set(o.test.junit), Values::files({"xml"})},
+      {"--coverage", "FILE", "with --test: write line and branch coverage to FILE (lcov tracefile)", set(o.test.coverage),
+       Values::files({"info"})},
+      {"--coverage-summary", "", "with --test: print lines and branches covered per file", flag(o.test.coverage_summary)},
+      {"--update", "", "with --test: rewrite the values of failing expectations from the run", flag(o.test.update)},
       {"-I", "DIR", "search DIR for #include files", tmcl::cli::append(o.asm_opts.include_dirs), Values::dirs(),
        "a directory"},
       {"-D", "NAME=VALUE", "define an assembler constant",
@@ -385,7 +407,8 @@ int parse_args(int argc, char** argv, Options& o) {
   if (cl.status == tmcl::cli::Result::Status::Done) return kExitOk;
   if (cl.status == tmcl::cli::Result::Status::Error) return usage_error(cl.error);
   o.given = cl.given;
-  if (cl.operands.size() > 1)
+  o.inputs = cl.operands;
+  if (cl.operands.size() > 1 && !o.testing)
     return usage_error("only one PROGRAM can be run (got '" + cl.operands[0] + "' and '" + cl.operands[1] + "')");
   const bool have_program = !cl.operands.empty();
   if (have_program) o.program = cl.operands[0];
@@ -524,6 +547,8 @@ int run(int argc, char** argv) {
   if (!core)
     return usage_error("unknown motion core '" + o.motion + "' (available: " + joined(tmcl::motion_core_names()) + ")");
   if (!core_note.empty()) std::fprintf(stderr, "tmclrun: note: %s\n", core_note.c_str());
+
+  if (o.testing) return run_mode(o, *profile, std::move(core), {}, {}, {}, nullptr);  // --test: tmclrun_modes.cpp
 
   // ---- the program (optional with --serve: a host may download one) ----
   std::vector<tmcl::Instruction> program;

@@ -1,5 +1,5 @@
 // What tmclrun.cpp (the options, loading, the run) and tmclrun_modes.cpp (serving with the
-// virtual module, debugging) share: the options, and the steps of a run that both take.
+// virtual module, debugging, testing) share: the options, and the steps of a run that both take.
 #pragma once
 
 #include <memory>
@@ -11,6 +11,7 @@
 #include "tmcl/eeprom.hpp"
 #include "tmcl/scenario.hpp"
 #include "tmcl/server.hpp"
+#include "tmcl/testrun.hpp"
 #include "tmcl/vm.hpp"
 #include "tmcl/vm_output.hpp"
 
@@ -40,6 +41,9 @@ struct Options {
   std::vector<std::string> modules;    // --module ADDR[/TARGET][:FILE], in order
   tmcl::debug::FrontEnd debug;         // --debug, --debug-commands, --symbols, --checkpoint-memory, --dap
   std::vector<std::string> given;      // the options given, by name (tmcl::cli::Result::given)
+  bool testing = false;                // --test
+  tmcl::testrun::SuiteOptions test;    // --jobs, --junit, --coverage, --coverage-summary, --update
+  std::vector<std::string> inputs;     // every PROGRAM argument (--test takes several)
 };
 
 // ---- tmclrun.cpp ----

@@ -1,6 +1,7 @@
 // tmclrun's modes beside a plain run: the checks of the options of serving (--serve and its
-// companions, --module, --faults) and debugging (--debug, --dap), and the runs that serve a host
-// with the virtual module (vm/module) or debug with the debugger (vm/debug).
+// companions, --module, --faults), debugging (--debug, --dap) and testing (--test and its
+// reports), and the runs that serve a host with the virtual module (vm/module), debug with the
+// debugger (vm/debug) or run test files (vm/testrun).
 #include <algorithm>
 #include <cerrno>
 #include <cstdio>
@@ -8,10 +9,13 @@
 #include <cstring>
 #include <memory>
 #include <string>
+#include <tuple>
 #include <vector>
 
 #include "tmcl/debug_cli.hpp"
+#include "tmcl/numbers.hpp"
 #include "tmcl/server.hpp"
+#include "tmcl/testrun.hpp"
 #include "tmcl/vm_output.hpp"
 #include "tmcl/targets.hpp"
 #include "tmclrun.hpp"
@@ -82,6 +86,15 @@ int build_bus(Options& o, std::vector<std::unique_ptr<tmcl::MotionCore>>& cores,
 }  // namespace
 
 int tmclrun::check_mode_options(Options& o, bool have_program) {
+  auto given = [&o](const char* opt) { return std::find(o.given.begin(), o.given.end(), opt) != o.given.end(); };
+  for (const char* opt : {"--jobs", "--junit", "--coverage", "--coverage-summary", "--update"})
+    if (!o.testing && given(opt)) return usage_error(std::string(opt) + " goes with --test");
+  if (o.testing && (o.serving || o.debug.enabled || o.trace || o.json || !o.csv.empty() || !o.plot.empty() ||
+                    !o.scenario.empty() || !o.eeprom.empty() || !o.eeprom_seal.empty()))
+    return usage_error("--test runs test files (each holds its own scenario): it goes with -t, --motion, --instr-time, "
+                       "--max-time, --strict, -I, -D and -W, not with --serve, --debug, --dap, --trace, --json, --csv, "
+                       "--plot, --scenario or --eeprom");
+  if (o.testing && !have_program) return usage_error("--test needs test files or folders (FILE.tmctest or DIR)");
   if (!o.serving) {
     for (const char* opt : {"--autostart", "--time-scale", "--module-address", "--host-address", "--eeprom-locked",
                             "--max-wall-time", "--faults", "--module"})
@@ -105,6 +118,14 @@ int tmclrun::check_mode_options(Options& o, bool have_program) {
 int tmclrun::run_mode(Options& o, const tmcl::Profile& profile, std::unique_ptr<tmcl::MotionCore> core,
                       const std::vector<tmcl::Instruction>& program, const tmcl::SourceMap& sources,
                       std::vector<tmcl::InputEvent> inputs, tmcl::EepromImage* image) {
+  if (o.testing) {  // the test files of o.inputs (vm/testrun, docs/testing.md)
+    tmcl::testrun::RunOptions& r = o.test.run;
+    std::tie(r.target, r.motion, r.instr_time, r.asm_options, r.strict) = std::tie(o.target, o.motion, o.instr_time, o.asm_opts, o.strict);
+    r.max_time_given = o.limits.until != tmcl::kNever;
+    r.max_time = o.limits.until;
+    r.error_limit = o.asm_opts.error_limit;  // --error-limit
+    return tmcl::testrun::run_command(o.inputs, o.test, stdout, stderr);
+  }
   if (o.debug.enabled && o.serving) {  // debugging while serving: tcp or pty, one module
     if (o.debug.dap || o.serve_opts.transport == tmcl::Transport::Stdio || !o.modules.empty() || o.trace)
       return usage_error("--serve with --debug takes tcp:HOST:PORT or pty, one module, no --dap and no --trace");

@@ -35,6 +35,12 @@ void Vm::load(const std::vector<Instruction>& prog) {
   program.push_back(Instruction{});  // sentinel: running past the end faults
   decode_all();
   source_of.clear();
+  if (!executed.empty()) count_coverage();  // counting goes on, sized to the new program
+}
+
+void Vm::count_coverage() {
+  executed.assign(program.size(), 0);
+  taken.assign(program.size(), 0);
 }
 
 void Vm::decode_all() {

@@ -43,8 +43,10 @@ struct Vm::Loop {
   static std::optional<RunResult> service(Vm& vm, const Limits& lim);
   static void unknown_instruction(Vm& vm, std::int32_t at);
   static void execute(Vm& vm, std::int32_t at);
+  static void count_branch(Vm& vm, std::int32_t at);
   static RunResult run_traced(Vm& vm, const Limits& lim);
   static std::uint64_t burst_length(const Vm& vm, const Limits& lim);
+  template <bool kCount>
   static RunResult run_fast(Vm& vm, const Limits& lim);
 };
 
@@ -139,12 +141,26 @@ inline void Vm::Loop::execute(Vm& vm, std::int32_t at) {
       // A debugger trap: undo the instruction's time and count, leave run() from the slow path.
       vm.now -= vm.instr_time;
       --vm.steps;
+      if (!vm.executed.empty()) --vm.executed[static_cast<std::size_t>(at)];
       vm.trap_hit = true;
       vm.next_check_ = vm.now;
       return;
     }
     unknown_instruction(vm, at);
   }
+}
+
+// Coverage: after the instruction at `at` ran through the table dispatch, counts a JC, CALL or
+// DJNZ whose condition held. The flags a JC or CALL tested are unchanged by it; a DJNZ's variable
+// is already decremented. A jump that faulted (its target outside the program) did not happen.
+void Vm::Loop::count_branch(Vm& vm, std::int32_t at) {
+  const Instruction& ins = vm.program[static_cast<std::size_t>(at)];
+  bool held = false;
+  if (ins.op == static_cast<std::uint8_t>(Op::JC) || ins.op == static_cast<std::uint8_t>(Op::CALL))
+    held = ops::condition(vm, ins.type);
+  else if (ins.op == static_cast<std::uint8_t>(Op::DJNZ))
+    held = vm.vars[ins.type] != 0;
+  if (held && !vm.fault_set_) ++vm.taken[static_cast<std::size_t>(at)];
 }
 
 // Traced execution: one instruction at a time, each reported after it ran.
@@ -161,8 +177,10 @@ RunResult Vm::Loop::run_traced(Vm& vm, const Limits& lim) {
     if (vm.in_handler && !vm.handler_code.empty() && vm.check_handler_code()) continue;  // --strict: a fault
     vm.now += vm.instr_time;
     ++vm.steps;
+    if (!vm.executed.empty()) ++vm.executed[static_cast<std::size_t>(at)];
     execute(vm, at);
     if (vm.trap_hit) continue;
+    if (!vm.executed.empty()) count_branch(vm, at);
     vm.trace->instruction(vm, t0, at, vm.program[static_cast<std::size_t>(at)]);
     if (vm.warnings_total != warned) vm.trace->warning(vm, vm.last_warning);
     if (was_in_handler && !vm.in_handler) vm.trace->interrupt_leave(vm, vm.pc);  // RETI (or RST)
@@ -188,7 +206,9 @@ std::uint64_t Vm::Loop::burst_length(const Vm& vm, const Limits& lim) {
 // keep struct fields in registers across the calls of the slow instructions). The most frequent
 // pure instructions run inline through the same primitives as vm_ops.hpp (arith, flags_of,
 // compare_flags, condition); every other instruction, and every case that could fault, writes
-// the registers back and goes through the table dispatch.
+// the registers back and goes through the table dispatch. kCount: the same loop counting every
+// instruction and every branch taken (Vm::executed, Vm::taken), for coverage.
+template <bool kCount>
 RunResult Vm::Loop::run_fast(Vm& vm, const Limits& lim) {
   using namespace ops;
   for (;;) {
@@ -206,9 +226,12 @@ RunResult Vm::Loop::run_fast(Vm& vm, const Limits& lim) {
     std::uint64_t left = total;
     std::int32_t pc = vm.pc, acc = vm.acc;
     std::uint8_t flags = vm.flags;
+    std::uint64_t* const executed = vm.executed.data();
+    std::uint64_t* const taken = vm.taken.data();
     while (left != 0) {
       --left;
       const Instruction& ins = code[pc];
+      if constexpr (kCount) ++executed[pc];
       switch (ins.op) {
 // The ALU part of CALC t / CALCV t on `dst`, shared by the plain and the fused forms.
 #define TMCL_ALU(t, dst)          \
@@ -229,6 +252,10 @@ RunResult Vm::Loop::run_fast(Vm& vm, const Limits& lim) {
     const Instruction& d = code[pc + 1];                               \
     std::int32_t& n = vm.vars[d.type];                                 \
     n = wrap(static_cast<std::uint32_t>(n) - 1u);                      \
+    if constexpr (kCount) {                                            \
+      ++executed[pc + 1];                                              \
+      taken[pc + 1] += n != 0;                                         \
+    }                                                                  \
     pc = n != 0 ? d.value : pc + 2;                                    \
   }                                                                    \
   continue;
@@ -280,7 +307,9 @@ RunResult Vm::Loop::run_fast(Vm& vm, const Limits& lim) {
           break;
         case static_cast<std::uint8_t>(Op::JC):
           if (static_cast<std::uint32_t>(ins.value) < size) {
-            pc = condition(flags, vm.errors, ins.type) ? ins.value : pc + 1;
+            const bool jump = condition(flags, vm.errors, ins.type);
+            if constexpr (kCount) taken[pc] += jump;
+            pc = jump ? ins.value : pc + 1;
             continue;
           }
           break;
@@ -288,6 +317,7 @@ RunResult Vm::Loop::run_fast(Vm& vm, const Limits& lim) {
           if (static_cast<std::uint32_t>(ins.value) < size) {
             std::int32_t& v = vm.vars[ins.type];
             v = wrap(static_cast<std::uint32_t>(v) - 1u);
+            if constexpr (kCount) taken[pc] += v != 0;
             pc = v != 0 ? ins.value : pc + 1;
             continue;
           }
@@ -302,6 +332,9 @@ RunResult Vm::Loop::run_fast(Vm& vm, const Limits& lim) {
       vm.acc = acc;
       vm.flags = flags;
       execute(vm, pc);
+      // Only a CALL can take its branch here: a JC or DJNZ comes this way when it faults.
+      if constexpr (kCount)
+        if (ins.op == static_cast<std::uint8_t>(Op::CALL) && !vm.trap_hit) count_branch(vm, pc);
       pc = vm.pc;
       acc = vm.acc;
       flags = vm.flags;
@@ -326,7 +359,8 @@ RunResult Vm::run(const Limits& limits) {
   }
   if (status != AppStatus::Running && !fault_set_) return Loop::settle(*this, limits);
   next_check_ = 0;
-  return trace ? Loop::run_traced(*this, limits) : Loop::run_fast(*this, limits);
+  if (trace) return Loop::run_traced(*this, limits);
+  return executed.empty() ? Loop::run_fast<false>(*this, limits) : Loop::run_fast<true>(*this, limits);
 }
 
 }  // namespace tmcl

@@ -69,7 +69,7 @@ bool Server::position(const Document& doc, const Value& params, std::size_t& off
 Server::Target Server::target(const Value& params, bool with_position) {
   Target at;
   Document* doc = find_document(params, at.error);
-  if (!doc) return at;
+  if (!doc || is_test_file(*doc)) return at;  // a test file has no TMCL to ask about: a null answer
   if (with_position) {
     if (!position(*doc, params, at.offset, at.error)) return at;
     at.token = token_at(*doc, at.offset);

@@ -46,7 +46,7 @@ Server::Reply Server::inlay_hints(const Value& params) {
   Reply err;
   Document* doc = find_document(params, err);
   std::size_t begin, end;
-  if (!doc || !range_param(*doc, params, begin, end, err)) return err;
+  if (!doc || is_test_file(*doc) || !range_param(*doc, params, begin, end, err)) return err;
   const Profile& prof = profile(*doc);
   const std::vector<SourceToken>& toks = doc->tokens;
   Reply r;

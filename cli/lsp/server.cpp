@@ -331,6 +331,8 @@ Server::Reply Server::dispatch(const std::string& method, const Value& params, b
     return r;
   }
   if (method == "textDocument/codeAction") return code_actions(params);
+  if (method == "textDocument/codeLens") return code_lens(params);
+  if (method == "workspace/executeCommand") return execute_command(params);
   if (!is_request) return r;  // unknown notifications ($/cancelRequest, ...) are ignored
   return {Value(), kMethodNotFound, "unknown method '" + method + "'"};
 }
@@ -359,6 +361,8 @@ Server::Reply Server::initialize(const Value& params) {
   caps.set("workspaceSymbolProvider", true);
   caps.set("foldingRangeProvider", true);
   caps.set("codeActionProvider", Value::object()).set("codeActionKinds", Value::array()).push("quickfix");
+  caps.set("codeLensProvider", Value::object()).set("resolveProvider", false);
+  caps.set("executeCommandProvider", Value::object()).set("commands", Value::array()).push("tmcl.runTest");
   caps.set("signatureHelpProvider", Value::object()).set("triggerCharacters", Value::array()).push(",");
   Value& comp = caps.set("completionProvider", Value::object());
   comp.set("triggerCharacters", Value::array()).push(" ");
@@ -425,6 +429,7 @@ Server::Reply Server::change(const Value& params) {
 }
 
 void Server::check(Document& doc) {
+  if (is_test_file(doc)) return publish(doc, test_diagnostics(doc, {}));
   AsmOptions opts;
   // A first line that names a target wins over the settings: the assembler reads it, and says
   // there when it names none that can be used.
@@ -441,13 +446,17 @@ void Server::check(Document& doc) {
   doc.reads.clear();
   for (const auto& f : r->sources.files) doc.reads.insert(f.path);
   doc.result = std::move(r);
+  publish(doc, diagnostics_of(doc));
+}
+
+void Server::publish(const Document& doc, Value diagnostics) {
   Value n = Value::object();
   n.set("jsonrpc", "2.0");
   n.set("method", "textDocument/publishDiagnostics");
   Value& p = n.set("params", Value::object());
   p.set("uri", doc.uri);
   p.set("version", static_cast<long long>(doc.version));
-  p.set("diagnostics", diagnostics_of(doc));
+  p.set("diagnostics", std::move(diagnostics));
   out_.push_back(json::write(n));
 }
 

@@ -44,7 +44,7 @@ Server::Reply Server::semantic_tokens(const Value& params, bool in_range) {
   Reply err;
   Document* doc = find_document(params, err);
   std::size_t begin = 0, end = doc ? doc->text.size() : 0;
-  if (!doc || (in_range && !range_param(*doc, params, begin, end, err))) return err;
+  if (!doc || is_test_file(*doc) || (in_range && !range_param(*doc, params, begin, end, err))) return err;
   std::unordered_map<std::string, SymbolKind> kinds;  // by lower-case name: names are case-insensitive
   if (doc->result)
     for (const Symbol& s : doc->result->symbols) kinds.emplace(lower(s.name), s.kind);

@@ -502,3 +502,36 @@ TEST(position_reached_events_are_routed) {
 }
 
 }  // namespace
+
+TEST(test_files_on_the_virtual_module) {
+  // tmclctl PORT test: the program downloaded and run, values polled by the wall clock; a test
+  // with scenario lines skipped, `never fault` noted as not checked, a value a module cannot give
+  // named, the JUnit report written.
+  Server server(kRun, {"--serve", "pty", "-t", "usb-2-sd"});
+  const std::string dir = temp_dir() + "/live";
+  ::mkdir(dir.c_str(), 0700);
+  write_temp("live/p.tmc", "SGP 1, 2, 5\nCALC LOAD, 42\nWAIT TICKS, 0, 30\nSGP 1, 2, 7\nSTOP\n");
+  write_temp("live/a.tmctest",
+             "program p.tmc\nmax-time 5s\nexpect at 100ms v[1] = 5\nexpect at 100ms acc = 42\nexpect at end v[1] = 7\n"
+             "expect at end halted stop\nexpect never fault\n");
+  write_temp("live/b.tmctest", "program p.tmc\nmax-time 1s\nexpect at 100ms v[1] = 6\nexpect at 200ms steps > 0\n");
+  write_temp("live/c.tmctest", "program p.tmc\nat 1s input 0 = 1\nexpect at end v[1] = 7\n");
+  write_temp("live/d.tmctest", "program p.tmc\ntarget generic\nexpect at end v[1] = 7\n");
+  const std::string junit = temp_dir() + "/live.xml";
+  Output o = ctl({"-t", "usb-2-sd", server.port(), "test", dir, "--junit", junit});
+  show(o);
+  CHECK_EQ(o.status, 1);
+  CHECK(has(o.out, "PASS " + dir + "/a.tmctest\n  " + dir +
+                       "/a.tmctest:7: note: 'never fault' is not checked on a module (a module reports no faults or warnings)\n"));
+  CHECK(has(o.out, "FAIL " + dir + "/b.tmctest\n  " + dir + "/b.tmctest:3: expected v[1] = 6 at 100ms, got 5 (read at 0."));
+  CHECK(has(o.out, "  " + dir + "/b.tmctest:4: cannot read steps > 0 at 200ms: 'steps' cannot be read from a module (acc, x and pc can)\n"));
+  CHECK(has(o.out, "SKIP " + dir + "/c.tmctest (its scenario lines change the program's inputs, which a module's host cannot)\n"));
+  CHECK(has(o.out, "SKIP " + dir + "/d.tmctest (written for generic, and the module is usb-2-sd (-t))\n"));
+  CHECK(has(o.out, "1 passed, 1 failed, 2 skipped\n"));
+  CHECK(has(slurp(junit), "<testsuites name=\"tmclctl\" tests=\"4\" failures=\"1\" errors=\"0\" skipped=\"2\""));
+  // The options that go with it.
+  CHECK_EQ(ctl({server.port(), "status", "--junit", junit}).status, 64);
+  Output none = ctl({server.port(), "test"});
+  CHECK_EQ(none.status, 64);
+  CHECK(has(none.err, "test needs test files or folders"));
+}

@@ -12,7 +12,8 @@ set(LAYERS
   "asm|asm|asm,isa,base"
   "analysis|asm/analysis|analysis,asm,isa,base"
   "debug|vm/debug|debug,module,vm,asm,motion,isa,base"
-  "lsp|cli/lsp|lsp,analysis,asm,isa,base"
+  "testrun|vm/testrun|testrun,analysis,vm,asm,motion,isa,base"
+  "lsp|cli/lsp|lsp,testrun,analysis,vm,motion,asm,isa,base"
   "report|cli/report|report,vm,motion,isa,base"
   "host|cli/host|host,asm,isa,base"
 )

@@ -75,6 +75,17 @@ inline const tmcl::Profile& test_profile() {
   return p;
 }
 
+// A trace that prints nothing: a VM with it set runs the traced loop (every instruction through
+// the table dispatch), to compare with the fast path.
+struct NullTrace final : tmcl::TraceSink {
+  void instruction(const tmcl::Vm&, tmcl::SimTime, std::int32_t, const Instruction&) override {}
+  void interrupt_enter(const tmcl::Vm&, int, std::int32_t) override {}
+  void interrupt_leave(const tmcl::Vm&, std::int32_t) override {}
+  void motion_event(const tmcl::Vm&, const tmcl::MotionEvent&) override {}
+  void wait_end(const tmcl::Vm&, std::int32_t, bool) override {}
+  void input_event(const tmcl::Vm&, const std::string&) override {}
+};
+
 struct Machine {
   std::unique_ptr<tmcl::MotionCore> core = tmcl::make_ideal_motion_core();
   tmcl::Vm vm;

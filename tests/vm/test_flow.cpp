@@ -173,14 +173,6 @@ TEST(push_pop_stack) {  // E12
 namespace {
 // Runs a program twice, once on the fast path and once traced (the table dispatch for every
 // instruction), and checks that both end in the same state at the same instant.
-struct NullTrace final : tmcl::TraceSink {
-  void instruction(const tmcl::Vm&, tmcl::SimTime, std::int32_t, const Instruction&) override {}
-  void interrupt_enter(const tmcl::Vm&, int, std::int32_t) override {}
-  void interrupt_leave(const tmcl::Vm&, std::int32_t) override {}
-  void motion_event(const tmcl::Vm&, const tmcl::MotionEvent&) override {}
-  void wait_end(const tmcl::Vm&, std::int32_t, bool) override {}
-  void input_event(const tmcl::Vm&, const std::string&) override {}
-};
 void check_paths_agree(const std::vector<Instruction>& prog, tmcl::Limits lim, tmcl::SimTime instr) {
   Machine fast(prog, test_profile(), instr), traced(prog, test_profile(), instr);
   NullTrace t;

@@ -489,7 +489,7 @@ void Cli::cmd_disassemble(const std::string& arg) {
   const std::int32_t mark = e_.running() ? selected_pc() : -1;
   for (std::int32_t a = from; a <= to && a < vm.program_size; ++a) {
     std::string f = info.function_of(a), place = info.place(a), numbers;
-    std::string text = info.named(vm.program[static_cast<std::size_t>(a)], a, vm, &numbers);
+    std::string text = named_instruction(info, vm.program[static_cast<std::size_t>(a)], a, vm, &numbers);
     char buf[512];
     std::snprintf(buf, sizeof buf, "%s%5d %-16s %-32s %-16s", a == mark ? "=> " : "   ", a, f.empty() ? "" : ("<" + f + ">").c_str(),
                   text.c_str(), place.c_str());
@@ -519,7 +519,7 @@ void Cli::cmd_x(const std::string& fmt, const std::string& arg) {
   for (std::uint64_t i = 0; i < n && at < vm.program_size; ++i, ++at) {
     const Instruction& ins = vm.program[static_cast<std::size_t>(at)];
     std::string f = e_.info().function_of(at), numbers;
-    std::string text = e_.info().named(ins, at, vm, &numbers);
+    std::string text = named_instruction(e_.info(), ins, at, vm, &numbers);
     char buf[256];
     if (insns)
       std::snprintf(buf, sizeof buf, "%s%d%s:\t%s", at == mark ? "=> " : "   ", at, f.empty() ? "" : (" <" + f + ">").c_str(), text.c_str());

@@ -66,12 +66,13 @@ bool names_something(const std::string& text, const ProgramInfo& info) {
 
 }  // namespace
 
-std::string ProgramInfo::named(const Instruction& ins, std::int32_t address, Vm& vm, std::string* numbers) const {
+std::string named_instruction(const ProgramInfo& info, const Instruction& ins, std::int32_t address, Vm& vm,
+                              std::string* numbers) {
   const OpInfo* op = op_info(ins.op);
   if (!op || op->control) return format_instruction(ins);
   std::vector<std::string> written;
-  if (const std::string* line = source_text(address); line && address >= 0 &&
-                                                      static_cast<std::size_t>(address) < program.size() && program[static_cast<std::size_t>(address)] == ins)
+  if (const std::string* line = info.source_text(address); line && address >= 0 &&
+                                                      static_cast<std::size_t>(address) < info.program.size() && info.program[static_cast<std::size_t>(address)] == ins)
     written = operand_texts(*line);
   if (written.size() != op->operands.size()) written.clear();
   std::map<Field, std::string> names;
@@ -82,17 +83,17 @@ std::string ProgramInfo::named(const Instruction& ins, std::int32_t address, Vm&
     const std::int64_t value = spec.field == Field::Value ? ins.value : static_cast<std::int64_t>(field_of(ins, spec.field));
     std::string name;
     if (spec.role == Role::Address) {
-      for (const auto& l : labels)
+      for (const auto& l : info.labels)
         if (l.second == value) {
           name = l.first;
           break;
         }
     }
-    if (name.empty() && i < written.size() && names_something(written[i], *this)) {
+    if (name.empty() && i < written.size() && names_something(written[i], info)) {
       Expr e;
       std::string err;
       std::int64_t v = 0;
-      bool constant = parse_expr(written[i], *this, e, err);
+      bool constant = parse_expr(written[i], info, e, err);
       for (const auto& n : e.nodes)
         constant = constant && (n.kind == Expr::Node::Num || n.kind == Expr::Node::Unary || n.kind == Expr::Node::Binary);
       if (constant && eval_expr(e, vm, v, err) && (v == value || (spec.field != Field::Value && (v & 255) == value)))

@@ -122,12 +122,6 @@ std::span<const Profile* const> all_profiles() {
   return b.all;
 }
 
-std::vector<std::string> profile_names() {
-  std::vector<std::string> names;
-  for (const Profile* p : all_profiles()) names.emplace_back(p->name);
-  return names;
-}
-
 const Profile* find_profile(std::string_view name) {
   if (name.empty() || name.find('/') != std::string_view::npos) return nullptr;
   if (const Profile* p = load_bundled(name)) return p;

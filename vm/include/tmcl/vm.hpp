@@ -240,6 +240,13 @@ struct Vm {
   std::vector<std::uint8_t> handler_code;
   bool handler_left_ = false;             // this handler's jump out was reported
 
+  // ---- coverage (tmclrun --test --coverage): per address, how often the instruction ran, and for
+  // JC, CALL and DJNZ how often its condition held (it jumped, or called). Empty: nothing is
+  // counted and the run loop runs its plain form. count_coverage() sizes both to the program
+  // (after load); start() and power_on() keep the counts.
+  std::vector<std::uint64_t> executed, taken;
+  void count_coverage();
+
   // ---- external inputs queued by time ----
   std::vector<InputEvent> inputs_queue;  // sorted by time; consumed from input_next
   std::size_t input_next = 0;

@@ -14,58 +14,26 @@
 #include <vector>
 
 #include "tmcl/eeprom.hpp"
+#include "tmcl/expr.hpp"
 #include "tmcl/motion.hpp"
 #include "tmcl/vm.hpp"
 
 namespace tmcl::debug {
 
-// What the debugger knows of the program: its instructions, the source place of each, the
-// sources' text (for `list`), labels and constants.
-struct ProgramInfo {
-  std::vector<Instruction> program;
-  struct Line {
-    int file = -1;  // index into files; -1: unknown (a .bin without line table, appended STOP)
-    int line = 0;
-  };
-  std::vector<Line> lines;  // per address (may be shorter than program)
-  struct File {
-    std::string name;
-    std::vector<std::string> text;  // lines; empty when the text is not at hand
-    std::string path = {};          // a .bin's source: the absolute path where it was found
-  };
-  std::vector<File> files;
-  std::vector<std::pair<std::string, std::int64_t>> labels;     // name, address
-  std::vector<std::pair<std::string, std::int64_t>> constants;  // name, value
+// ProgramInfo (what the debugger knows of the program) and the expressions (Expr, parse_expr,
+// eval_expr, assign_expr) live in the VM's layer (tmcl/expr.hpp), where the test runner uses
+// them too; these names keep them reachable as tmcl::debug::NAME.
+using tmcl::assign_expr;
+using tmcl::eval_expr;
+using tmcl::Expr;
+using tmcl::parse_expr;
+using tmcl::ProgramInfo;
 
-  std::string place(std::int32_t address) const;         // "prog.tmc:12", or "" when unknown
-  std::string function_of(std::int32_t address) const;   // "loop", "loop+2", or ""
-  std::optional<std::int64_t> symbol(const std::string& name) const;  // label or constant (case-insensitive)
-  const std::string* source_text(std::int32_t address) const;  // that address's source line, if known
-  // `ins` (at `address`) with its targets by label and the operands the source wrote with a
-  // constant by that name ("JC LT, loop", "COMP Limit"); `numbers` gets "loop = 5, ..." for them
-  // (empty when nothing was named). symbolic.cpp.
-  std::string named(const Instruction& ins, std::int32_t address, Vm& vm, std::string* numbers = nullptr) const;
-};
-
-// ---- expressions: registers, v[n], ap(param, motor), gp(bank, n), in(n), ain(n), out(n), time,
-// steps, pc, labels and constants, with C's operators; durations like 2s are microseconds ----
-struct Expr {
-  struct Node {
-    enum Kind : std::uint8_t { Num, Reg, Var, Ap, Gp, In, Ain, Out, Unary, Binary } kind = Num;
-    std::int64_t value = 0;  // Num; Reg: which register; Unary/Binary: the operator
-    int a = -1, b = -1;      // operand nodes
-  };
-  std::vector<Node> nodes;
-  int root = -1;
-  std::string text;
-  bool uses_time() const;    // reads time or motion state: may change between instructions
-  bool assignable() const;   // the root is a register, variable or parameter
-};
-bool parse_expr(const std::string& text, const ProgramInfo& info, Expr& out, std::string& error);
-// Evaluates on the VM; false with `error` (e.g. "no axis parameter 300 on usb-2-sd").
-bool eval_expr(const Expr& e, Vm& vm, std::int64_t& value, std::string& error);
-// Assigns to the expression's root (set var): through the VM's parameter rules.
-bool assign_expr(const Expr& e, Vm& vm, std::int64_t value, std::string& error);
+// `ins` (at `address`) with its targets by label and the operands the source wrote with a
+// constant by that name ("JC LT, loop", "COMP Limit"); `numbers` gets "loop = 5, ..." for them
+// (empty when nothing was named). symbolic.cpp.
+std::string named_instruction(const ProgramInfo& info, const Instruction& ins, std::int32_t address, Vm& vm,
+                              std::string* numbers = nullptr);
 
 // ---- breakpoints and watchpoints (numbered together, as in gdb) ----
 struct Breakpoint {

@@ -113,8 +113,6 @@ struct Profile {
 
 // All bundled profiles, generic first, then by name.
 std::span<const Profile* const> all_profiles();
-// Their -t names, in the same order (the tools' completion and messages).
-std::vector<std::string> profile_names();
 // A bundled profile by -t name or alias, or nullptr. A user's profiles are found with
 // resolve_target (targets.hpp).
 const Profile* find_profile(std::string_view name);

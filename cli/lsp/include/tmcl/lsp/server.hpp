@@ -18,6 +18,7 @@
 #include "tmcl/asm/assembler.hpp"
 #include "tmcl/asm/format.hpp"
 #include "tmcl/json.hpp"
+#include "tmcl/testrun.hpp"
 
 namespace tmcl::lsp {
 
@@ -67,6 +68,7 @@ struct Settings {
 
 class Server {
  public:
+  using Value = json::Value;
   Server();
   // Handles one message body; returns the message bodies to send, in order.
   std::vector<std::string> handle(std::string_view body);
@@ -75,7 +77,6 @@ class Server {
   const Document* document(const std::string& uri) const;
 
  private:
-  using Value = json::Value;
   struct Reply {  // a result, or an error (code != 0)
     Value result;
     int code = 0;
@@ -87,6 +88,7 @@ class Server {
   void open(const Value& params);
   Reply change(const Value& params);
   void check(Document& doc);
+  void publish(const Document& doc, Value diagnostics);  // textDocument/publishDiagnostics
   void check_includers(const std::string& path);
   Value diagnostics_of(const Document& doc) const;
   Value diagnostic_json(const Diagnostic& d, const AsmResult& r) const;
@@ -116,6 +118,13 @@ class Server {
   void watch_settings_file();  // asks the client to report changes (dynamic registration)
   void complete_include(const Document& doc, Value& items) const;
   Reply code_actions(const Value& params);  // actions.cpp
+
+  // Test files, *.tmctest (testfiles.cpp): diagnostics, a "Run test" code lens, tmcl.runTest.
+  static bool is_test_file(const Document& doc);
+  testrun::RunOptions test_options() const;
+  Value test_diagnostics(Document& doc, const std::vector<testrun::Failure>& failures);
+  Reply code_lens(const Value& params);
+  Reply execute_command(const Value& params);
 
   // The prologue every request about a document shares: the document, and with a position
   // the byte offset and the token there; or, when either is missing, the error reply.

@@ -1,16 +1,22 @@
 // The debugger's expressions (print, display, set var, conditions, watchpoints): a small
 // recursive-descent parser into a node vector, evaluated on the live VM. Reads of parameters go
 // through the VM's own access rules, so the debugger can never show a value the module would not.
+#include <algorithm>
 #include <cctype>
 #include <cstdlib>
 
-#include "tmcl/debugger.hpp"
+#include "tmcl/diag_text.hpp"
 #include "tmcl/duration.hpp"
+#include "tmcl/expr.hpp"
 
-namespace tmcl::debug {
+namespace tmcl {
 namespace {
 
-enum Reg : std::int64_t { kA, kX, kFlags, kErrors, kPc, kSp, kTime, kSteps };
+// A Reg node's value: which register ExprReader reads.
+enum Reg : std::int64_t {
+  kA = ExprReader::Acc, kX = ExprReader::X, kFlags = ExprReader::Flags, kErrors = ExprReader::Errors,
+  kPc = ExprReader::Pc, kSp = ExprReader::Sp, kTime = ExprReader::Time, kSteps = ExprReader::Steps
+};
 
 struct RegName {
   const char* name;
@@ -28,12 +34,13 @@ class Parser {
  public:
   Parser(const std::string& text, const ProgramInfo& info, Expr& out) : s_(text), info_(info), e_(out) {}
 
-  bool parse(std::string& error) {
+  bool parse(std::string& error, std::size_t* error_at) {
     int root = binary(0);
     skip();
     if (err_.empty() && pos_ < s_.size()) fail("unexpected '" + s_.substr(pos_, 1) + "'");
     if (!err_.empty()) {
       error = err_ + " in '" + s_ + "'";
+      if (error_at) *error_at = std::min(err_at_, s_.size());
       return false;
     }
     e_.root = root;
@@ -64,8 +71,11 @@ class Parser {
     pos_ += t.size();
     return true;
   }
-  void fail(std::string m) {
-    if (err_.empty()) err_ = std::move(m);
+  // The first error wins; `at` is where it is (default: the current position).
+  void fail(std::string m, std::size_t at = std::string::npos) {
+    if (!err_.empty()) return;
+    err_ = std::move(m);
+    err_at_ = at == std::string::npos ? pos_ : at;
   }
   int node(Expr::Node n) {
     e_.nodes.push_back(n);
@@ -179,8 +189,16 @@ class Parser {
         }
       for (const auto& r : kRegs)
         if (low == r.name) return node({Expr::Node::Reg, r.reg, -1, -1});
+      // `position M` and `velocity M`: the actual position (axis parameter 1) and actual speed
+      // (3) of motor M, the words a test's expectations read best with.
+      if ((low == "position" || low == "velocity") && pos_ < s_.size() &&
+          (std::isalnum(static_cast<unsigned char>(s_[pos_])) || s_[pos_] == '(' || s_[pos_] == '_' || s_[pos_] == '$')) {
+        int param = node({Expr::Node::Num, low == "position" ? 1 : 3, -1, -1});
+        int motor = unary();
+        return node({Expr::Node::Ap, 0, param, motor});
+      }
       if (auto v = info_.symbol(name)) return node({Expr::Node::Num, *v, -1, -1});
-      fail("no register, label or constant named '" + name + "'");
+      fail("no register, label or constant named '" + name + "'" + suggestion(name), start);
       return -1;
     }
     fail("unexpected '" + std::string(1, c) + "'");
@@ -227,21 +245,91 @@ class Parser {
     return node({Expr::Node::Num, v, -1, -1});
   }
 
+  // "; did you mean 'acc'?" when a register, function, label or constant is close to `name`.
+  std::string suggestion(const std::string& name) const {
+    std::vector<std::string_view> names = {"v", "ap", "gp", "in", "ain", "out", "position", "velocity"};
+    for (const auto& r : kRegs) names.emplace_back(r.name);
+    for (const auto& l : info_.labels) names.emplace_back(l.first);
+    for (const auto& c : info_.constants) names.emplace_back(c.first);
+    std::string hint = closest_match(name, names);
+    return hint.empty() ? "" : "; did you mean '" + hint + "'?";
+  }
+
   const std::string& s_;
   const ProgramInfo& info_;
   Expr& e_;
   std::size_t pos_ = 0;
+  std::size_t err_at_ = 0;
   int depth_ = 0;
   std::string err_;
 };
 
 std::int64_t op(const char* s) { return static_cast<std::int64_t>(s[0]) * 256 + (s[1] ? s[1] : 0); }
 
-bool eval_node(const Expr& e, int i, Vm& vm, std::int64_t& out, std::string& error);
+// The VM as expressions read it: parameters through its own access rules, so the debugger can
+// never show a value the module would not.
+class VmReader final : public ExprReader {
+ public:
+  explicit VmReader(Vm& vm) : vm_(vm) {}
+  int motors() const override { return vm_.profile->motors; }
+  bool reg(Reg r, std::int64_t& out, std::string&) override {
+    switch (r) {
+      case Acc: out = vm_.acc; break;
+      case X: out = vm_.x; break;
+      case Flags: out = vm_.flags; break;
+      case Errors: out = vm_.errors; break;
+      case Pc: out = vm_.pc; break;
+      case Sp: out = vm_.sp; break;
+      case Time: out = vm_.now; break;
+      case Steps: out = static_cast<std::int64_t>(vm_.steps); break;
+    }
+    return true;
+  }
+  bool var(int n, std::int64_t& out, std::string&) override {
+    out = vm_.vars[static_cast<std::size_t>(n)];
+    return true;
+  }
+  bool axis(int param, int motor, std::int64_t& out, std::string& error) override {
+    std::int32_t v = 0;
+    if (vm_.get_axis(motor, param, v) != kStatusOk) {
+      error = "axis parameter " + std::to_string(param) + " cannot be read on " + std::string(vm_.profile->name);
+      return false;
+    }
+    out = v;
+    return true;
+  }
+  bool global(int bank, int param, std::int64_t& out, std::string& error) override {
+    std::int32_t v = 0;
+    if (vm_.get_global(bank, param, v) != kStatusOk) {
+      error = "global parameter " + std::to_string(param) + " of bank " + std::to_string(bank) + " cannot be read on " +
+              std::string(vm_.profile->name);
+      return false;
+    }
+    out = v;
+    return true;
+  }
+  bool port(int kind, int n, std::int64_t& out, std::string&) override {
+    auto p = static_cast<std::size_t>(n);
+    out = kind == Expr::Node::In ? vm_.inputs[p] : kind == Expr::Node::Ain ? vm_.analog[p] : vm_.outputs[p];
+    return true;
+  }
 
-bool index_arg(const Expr& e, int i, Vm& vm, std::int64_t lo, std::int64_t hi, const char* what, std::int64_t& out,
+ private:
+  Vm& vm_;
+};
+
+bool eval_node(const Expr& e, int i, ExprReader& m, std::int64_t& out, std::string& error);
+
+// a + b, a - b, a * b in 64 bits, wrapping around as the module's 32-bit arithmetic does instead
+// of overflowing (a test file's expectation may multiply anything).
+std::int64_t wrap(std::int64_t a, std::int64_t b, char o) {
+  const auto x = static_cast<std::uint64_t>(a), y = static_cast<std::uint64_t>(b);
+  return static_cast<std::int64_t>(o == '+' ? x + y : o == '-' ? x - y : x * y);
+}
+
+bool index_arg(const Expr& e, int i, ExprReader& m, std::int64_t lo, std::int64_t hi, const char* what, std::int64_t& out,
                std::string& error) {
-  if (!eval_node(e, i, vm, out, error)) return false;
+  if (!eval_node(e, i, m, out, error)) return false;
   if (out < lo || out > hi) {
     error = std::string(what) + " " + std::to_string(out) + " is out of range (" + std::to_string(lo) + ".." +
             std::to_string(hi) + ")";
@@ -250,78 +338,48 @@ bool index_arg(const Expr& e, int i, Vm& vm, std::int64_t lo, std::int64_t hi, c
   return true;
 }
 
-bool eval_node(const Expr& e, int i, Vm& vm, std::int64_t& out, std::string& error) {
+bool eval_node(const Expr& e, int i, ExprReader& m, std::int64_t& out, std::string& error) {
   const Expr::Node& n = e.nodes[static_cast<std::size_t>(i)];
   std::int64_t a = 0, b = 0;
   switch (n.kind) {
     case Expr::Node::Num: out = n.value; return true;
-    case Expr::Node::Reg:
-      switch (n.value) {
-        case kA: out = vm.acc; break;
-        case kX: out = vm.x; break;
-        case kFlags: out = vm.flags; break;
-        case kErrors: out = vm.errors; break;
-        case kPc: out = vm.pc; break;
-        case kSp: out = vm.sp; break;
-        case kTime: out = vm.now; break;
-        default: out = static_cast<std::int64_t>(vm.steps); break;
-      }
-      return true;
+    case Expr::Node::Reg: return m.reg(static_cast<ExprReader::Reg>(n.value), out, error);
     case Expr::Node::Var:
-      if (!index_arg(e, n.a, vm, 0, 255, "user variable", a, error)) return false;
-      out = vm.vars[static_cast<std::size_t>(a)];
-      return true;
-    case Expr::Node::Ap: {
-      if (!index_arg(e, n.a, vm, 0, 255, "axis parameter", a, error)) return false;
-      if (!index_arg(e, n.b, vm, 0, vm.profile->motors - 1, "motor", b, error)) return false;
-      std::int32_t v = 0;
-      if (vm.get_axis(static_cast<int>(b), static_cast<int>(a), v) != kStatusOk) {
-        error = "axis parameter " + std::to_string(a) + " cannot be read on " + std::string(vm.profile->name);
-        return false;
-      }
-      out = v;
-      return true;
-    }
-    case Expr::Node::Gp: {
-      if (!index_arg(e, n.a, vm, 0, 255, "bank", a, error)) return false;
-      if (!index_arg(e, n.b, vm, 0, 255, "global parameter", b, error)) return false;
-      std::int32_t v = 0;
-      if (vm.get_global(static_cast<int>(a), static_cast<int>(b), v) != kStatusOk) {
-        error = "global parameter " + std::to_string(b) + " of bank " + std::to_string(a) + " cannot be read on " +
-                std::string(vm.profile->name);
-        return false;
-      }
-      out = v;
-      return true;
-    }
+      if (!index_arg(e, n.a, m, 0, 255, "user variable", a, error)) return false;
+      return m.var(static_cast<int>(a), out, error);
+    case Expr::Node::Ap:
+      if (!index_arg(e, n.a, m, 0, 255, "axis parameter", a, error)) return false;
+      if (!index_arg(e, n.b, m, 0, m.motors() - 1, "motor", b, error)) return false;
+      return m.axis(static_cast<int>(a), static_cast<int>(b), out, error);
+    case Expr::Node::Gp:
+      if (!index_arg(e, n.a, m, 0, 255, "bank", a, error)) return false;
+      if (!index_arg(e, n.b, m, 0, 255, "global parameter", b, error)) return false;
+      return m.global(static_cast<int>(a), static_cast<int>(b), out, error);
     case Expr::Node::In:
     case Expr::Node::Ain:
-    case Expr::Node::Out: {
-      if (!index_arg(e, n.a, vm, 0, Vm::kPorts - 1, "port", a, error)) return false;
-      auto p = static_cast<std::size_t>(a);
-      out = n.kind == Expr::Node::In ? vm.inputs[p] : n.kind == Expr::Node::Ain ? vm.analog[p] : vm.outputs[p];
-      return true;
-    }
+    case Expr::Node::Out:
+      if (!index_arg(e, n.a, m, 0, Vm::kPorts - 1, "port", a, error)) return false;
+      return m.port(n.kind, static_cast<int>(a), out, error);
     case Expr::Node::Unary:
-      if (!eval_node(e, n.a, vm, a, error)) return false;
-      out = n.value == op("-") ? -a : n.value == op("~") ? ~a : !a;
+      if (!eval_node(e, n.a, m, a, error)) return false;
+      out = n.value == op("-") ? wrap(0, a, '-') : n.value == op("~") ? ~a : !a;
       return true;
     case Expr::Node::Binary: {
-      if (!eval_node(e, n.a, vm, a, error)) return false;
+      if (!eval_node(e, n.a, m, a, error)) return false;
       // && and || do not evaluate their right side when the left decides.
       if (n.value == op("&&") && !a) return out = 0, true;
       if (n.value == op("||") && a) return out = 1, true;
-      if (!eval_node(e, n.b, vm, b, error)) return false;
+      if (!eval_node(e, n.b, m, b, error)) return false;
       const std::int64_t o = n.value;
       if ((o == op("/") || o == op("%")) && b == 0) {
         error = "division by zero";
         return false;
       }
-      if (o == op("+")) out = a + b;
-      else if (o == op("-")) out = a - b;
-      else if (o == op("*")) out = a * b;
-      else if (o == op("/")) out = a / b;
-      else if (o == op("%")) out = a % b;
+      if (o == op("+")) out = wrap(a, b, '+');
+      else if (o == op("-")) out = wrap(a, b, '-');
+      else if (o == op("*")) out = wrap(a, b, '*');
+      else if (o == op("/")) out = b == -1 ? wrap(0, a, '-') : a / b;  // INT64_MIN / -1 wraps too
+      else if (o == op("%")) out = b == -1 ? 0 : a % b;
       else if (o == op("&")) out = a & b;
       else if (o == op("|")) out = a | b;
       else if (o == op("^")) out = a ^ b;
@@ -361,17 +419,22 @@ bool Expr::assignable() const {
   return k == Node::Var || k == Node::Ap || k == Node::Gp || k == Node::Out;
 }
 
-bool parse_expr(const std::string& text, const ProgramInfo& info, Expr& out, std::string& error) {
+bool parse_expr(const std::string& text, const ProgramInfo& info, Expr& out, std::string& error, std::size_t* error_at) {
   out = Expr{};
-  return Parser(text, info, out).parse(error);
+  return Parser(text, info, out).parse(error, error_at);
 }
 
-bool eval_expr(const Expr& e, Vm& vm, std::int64_t& value, std::string& error) {
+bool eval_expr(const Expr& e, ExprReader& reader, std::int64_t& value, std::string& error) {
   if (e.root < 0) {
     error = "empty expression";
     return false;
   }
-  return eval_node(e, e.root, vm, value, error);
+  return eval_node(e, e.root, reader, value, error);
+}
+
+bool eval_expr(const Expr& e, Vm& vm, std::int64_t& value, std::string& error) {
+  VmReader reader(vm);
+  return eval_expr(e, reader, value, error);
 }
 
 namespace {
@@ -390,6 +453,7 @@ bool assign_expr(const Expr& e, Vm& vm, std::int64_t value, std::string& error) 
   }
   auto v32 = static_cast<std::int32_t>(static_cast<std::uint32_t>(value));
   const Expr::Node& n = e.nodes[static_cast<std::size_t>(e.root)];
+  VmReader reader(vm);
   std::int64_t a = 0, b = 0;
   switch (n.kind) {
     case Expr::Node::Reg:
@@ -399,12 +463,12 @@ bool assign_expr(const Expr& e, Vm& vm, std::int64_t value, std::string& error) 
       else vm.errors = static_cast<std::uint8_t>(v32);
       return true;
     case Expr::Node::Var:
-      if (!index_arg(e, n.a, vm, 0, 255, "user variable", a, error)) return false;
+      if (!index_arg(e, n.a, reader, 0, 255, "user variable", a, error)) return false;
       vm.vars[static_cast<std::size_t>(a)] = v32;
       return true;
     case Expr::Node::Ap:
-      if (!index_arg(e, n.a, vm, 0, 255, "axis parameter", a, error)) return false;
-      if (!index_arg(e, n.b, vm, 0, vm.profile->motors - 1, "motor", b, error)) return false;
+      if (!index_arg(e, n.a, reader, 0, 255, "axis parameter", a, error)) return false;
+      if (!index_arg(e, n.b, reader, 0, vm.profile->motors - 1, "motor", b, error)) return false;
       if (vm.set_axis(static_cast<int>(b), static_cast<int>(a), v32) != kStatusOk) {
         error = "axis parameter " + std::to_string(a) + " cannot be set to " + std::to_string(v32) + " on " +
                 std::string(vm.profile->name) + out_of(vm.range_refusing(true, 0, static_cast<int>(a), v32));
@@ -412,8 +476,8 @@ bool assign_expr(const Expr& e, Vm& vm, std::int64_t value, std::string& error) 
       }
       return true;
     case Expr::Node::Gp:
-      if (!index_arg(e, n.a, vm, 0, 255, "bank", a, error)) return false;
-      if (!index_arg(e, n.b, vm, 0, 255, "global parameter", b, error)) return false;
+      if (!index_arg(e, n.a, reader, 0, 255, "bank", a, error)) return false;
+      if (!index_arg(e, n.b, reader, 0, 255, "global parameter", b, error)) return false;
       if (vm.set_global(static_cast<int>(a), static_cast<int>(b), v32) != kStatusOk) {
         error = "global parameter " + std::to_string(b) + " of bank " + std::to_string(a) + " cannot be set to " +
                 std::to_string(v32) + " on " + std::string(vm.profile->name) +
@@ -422,10 +486,10 @@ bool assign_expr(const Expr& e, Vm& vm, std::int64_t value, std::string& error) 
       }
       return true;
     default:
-      if (!index_arg(e, n.a, vm, 0, Vm::kPorts - 1, "port", a, error)) return false;
+      if (!index_arg(e, n.a, reader, 0, Vm::kPorts - 1, "port", a, error)) return false;
       vm.outputs[static_cast<std::size_t>(a)] = v32 != 0;
       return true;
   }
 }
 
-}  // namespace tmcl::debug
+}  // namespace tmcl

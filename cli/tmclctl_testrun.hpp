@@ -1,0 +1,17 @@
+// tmclctl PORT test FILE|DIR...: the test runner (vm/testrun) on a real or virtual module, over
+// the host protocol (cli/host). Kept out of tmclctl.cpp, which only parses the command line.
+#pragma once
+
+#include <csignal>
+#include <string>
+#include <vector>
+
+#include "tmcl/host/client.hpp"
+#include "tmcl/profile.hpp"
+
+// Runs the test files and folders `paths` on the module behind `client` (module profile `profile`)
+// and prints a line per test and the closing line; writes a JUnit report to `junit` unless empty.
+// Returns tmclctl's exit status: 0 every test passed, 1 a test failed, 65 a bad test file or
+// program, 69/74 the module or port failed, 130 interrupted (`*stop` set by Ctrl-C).
+int tmclctl_test(tmcl::host::Client& client, const tmcl::Profile& profile, const std::vector<std::string>& paths,
+                 const std::vector<std::string>& include_dirs, const std::string& junit, volatile std::sig_atomic_t* stop);

@@ -1,0 +1,195 @@
+// Reading test files (parse_test_file): every line kind, where the program is found, and every
+// mistake reported at once with its place, a caret and a "did you mean", scenario lines through
+// the scenario reader itself.
+#include "check.hpp"
+#include "helpers.hpp"
+
+using namespace tmcl::testrun;
+
+namespace {
+
+TestFile parsed(const std::string& text, const std::string& path = "dir/t.tmctest") {
+  TestFile t;
+  std::vector<tmcl::FileDiag> diags;
+  CHECK(parse_test_file(text, path, "generic", t, diags));
+  CHECK_EQ(tmcl::render_file_diags(diags, 0), "");
+  return t;
+}
+
+std::string errors(const std::string& text, const std::string& target = "generic") {
+  TestFile t;
+  std::vector<tmcl::FileDiag> diags;
+  CHECK(!parse_test_file(text, "t.tmctest", target, t, diags));
+  return tmcl::render_file_diags(diags, 0);
+}
+
+}  // namespace
+
+TEST(file_every_line_kind) {
+  TestFile t = parsed(
+      "# a comment\r\n"
+      "program prog.tmc   # relative to the test file\r\n"
+      "target usb-2-sd\n"
+      "motion linear\n"
+      "instr-time 10us\n"
+      "max-time 1.5s\n"
+      "define SPEED=1000 * 2\n"
+      "at 100ms input 0 = 1\n"
+      "expect at 1.5s position 0 = 0 \xC2\xB1 10\n"
+      "expect at 2.5s v[3] = 7\n"
+      "expect at end acc != 0\n"
+      "expect at end ap(1, 0) >= 100000   # = != < <= > >=\n"
+      "expect at end (acc << 2) < 8\n"
+      "expect at end halted max-time\n"
+      "expect never fault\n"
+      "expect no warnings\n");
+  CHECK_EQ(t.program, "dir/prog.tmc");
+  CHECK_EQ(t.program_line, 2);
+  CHECK_EQ(t.target, "usb-2-sd");
+  CHECK_EQ(t.motion, "linear");
+  CHECK_EQ(t.instr_time, 10);
+  CHECK_EQ(t.max_time, 1'500'000);
+  CHECK(t.max_time_given);
+  CHECK_EQ(t.defines.size(), 1u);
+  CHECK_EQ(t.defines[0].first, "SPEED");
+  CHECK_EQ(t.defines[0].second, "1000 * 2");
+  CHECK_EQ(t.inputs.size(), 1u);
+  CHECK_EQ(t.inputs[0].at, 100'000);
+  CHECK_EQ(t.inputs[0].line, 8);
+  CHECK_EQ(t.expects.size(), 8u);
+  const Expectation& pos = t.expects[0];
+  CHECK(pos.kind == Expectation::At);
+  CHECK_EQ(pos.at, 1'500'000);
+  CHECK_EQ(pos.when, "1.5s");
+  CHECK_EQ(pos.left, "position 0");
+  CHECK(pos.op == Compare::Eq);
+  CHECK_EQ(pos.right, "0");
+  CHECK_EQ(pos.tolerance, "10");
+  CHECK_EQ(pos.left_col, 16);
+  CHECK_EQ(pos.right_col, 29);
+  CHECK(t.expects[2].kind == Expectation::AtEnd);
+  CHECK(t.expects[2].op == Compare::Ne);
+  CHECK(t.expects[3].op == Compare::Ge);
+  CHECK_EQ(t.expects[3].left, "ap(1, 0)");
+  CHECK_EQ(t.expects[3].right, "100000");
+  CHECK(t.expects[4].op == Compare::Lt);  // << is a shift, not a comparison
+  CHECK_EQ(t.expects[4].left, "(acc << 2)");
+  CHECK(t.expects[5].kind == Expectation::Halted);
+  CHECK(t.expects[5].halted == End::MaxTime);
+  CHECK(t.expects[6].kind == Expectation::NeverFault);
+  CHECK(t.expects[7].kind == Expectation::NoWarnings);
+  CHECK(!t.skipped);
+}
+
+TEST(file_tolerance_in_ascii_and_comparisons_in_parentheses) {
+  TestFile t = parsed(
+      "program p.tmc\n"
+      "expect at end x = -5 +/- 2\n"
+      "expect at end (v[1] == 2) == 1\n"
+      "expect at end halted = 3\n",  // a label named 'halted'
+      "t.tmctest");
+  CHECK_EQ(t.program, "p.tmc");
+  CHECK_EQ(t.expects[0].right, "-5");
+  CHECK_EQ(t.expects[0].tolerance, "2");
+  CHECK_EQ(t.expects[1].left, "(v[1] == 2)");
+  CHECK(t.expects[1].op == Compare::Eq);
+  CHECK(t.expects[2].kind == Expectation::AtEnd);
+  CHECK_EQ(t.expects[2].left, "halted");
+}
+
+TEST(file_program_paths_are_relative_to_the_test_file) {
+  CHECK_EQ(parsed("program ../lib/p.tmc\n", "a/b/t.tmctest").program, "a/lib/p.tmc");
+  CHECK_EQ(parsed("program ../../p.tmc\n", "a/t.tmctest").program, "../p.tmc");
+  CHECK_EQ(parsed("program /abs/p.bin\n", "a/t.tmctest").program, "/abs/p.bin");
+  CHECK_EQ(parsed("program my prog.tmc\n", "t.tmctest").program, "my prog.tmc");
+}
+
+TEST(file_skip_needs_no_program) {
+  TestFile t = parsed("skip waits for the TMCM-1110 profile\n");
+  CHECK(t.skipped);
+  CHECK_EQ(t.skip, "waits for the TMCM-1110 profile");
+  CHECK(parsed("program p.tmc\nskip\n").skipped);
+}
+
+TEST(file_every_mistake_at_once) {
+  CHECK_EQ(errors("programm p.tmc\n"
+                  "target usb2sd\n"
+                  "max-tme 10s\n"
+                  "max-time 10\n"
+                  "instr-time -5us\n"
+                  "motion tmc4631\n"
+                  "define SPEED\n"
+                  "expcet never fault\n"
+                  "expect never faults\n"
+                  "expect no\n"
+                  "expect sometimes v[1] = 2\n"
+                  "expect at 2x acc = 3\n"
+                  "expect at ned acc = 3\n"
+                  "expect at 1s\n"
+                  "expect at end acc\n"
+                  "expect at end acc => 3\n"
+                  "expect at end acc = 1 = 2\n"
+                  "expect at end = 3\n"
+                  "expect at end acc =\n"
+                  "expect at end acc < 3 +/- 1\n"
+                  "expect at end acc = 3 +/-\n"
+                  "expect at end halted stpo\n"
+                  "expect at end halted\n"
+                  "expect at end halted stop now\n"
+                  "at 1s inptu 0 = 1\n"
+                  "at 1s left 3 = 1\n"
+                  "target generic\n"
+                  "target generic\n",
+                  "usb-2-sd"),
+           "t.tmctest:1: error: no 'program' line: a test names the program it runs (program FILE)\n"
+           "t.tmctest:1:1: error: unknown line 'programm' (program, target, motion, instr-time, max-time, define, skip, at, "
+           "expect); did you mean 'program'?\n programm p.tmc\n ^~~~~~~~\n"
+           "t.tmctest:2:8: error: unknown target 'usb2sd'; did you mean 'usb-2-sd'? (targets: generic, tmc2300-eval, tmcm-1110, "
+          "tmcm-1140, tmcm-1160, tmcm-1161, tmcm-1260, tmcm-3110, tmcm-351, tmcm-6110, usb-2-sd; or a profile file, "
+          "docs/profiles.md)\n"
+           " target usb2sd\n        ^~~~~~\n"
+           "t.tmctest:3:1: error: unknown line 'max-tme' (program, target, motion, instr-time, max-time, define, skip, at, "
+           "expect); did you mean 'max-time'?\n max-tme 10s\n ^~~~~~~\n"
+           "t.tmctest:4:10: error: bad duration: '10' needs a unit: us, ms, s, min or h (only 0 may go without one)\n max-time 10\n          ^~\n"
+           "t.tmctest:5:12: error: bad duration: '-5us' is negative; a duration is 0 or more\n instr-time -5us\n            ^~~~\n"
+           "t.tmctest:6:8: error: unknown motion core 'tmc4631' (ideal, linear, tmc429, tmc4361); did you mean 'tmc4361'?\n"
+           " motion tmc4631\n        ^~~~~~~\n"
+           "t.tmctest:7:8: error: expected 'define NAME=VALUE', as tmclasm's -D\n define SPEED\n        ^~~~~\n"
+           "t.tmctest:8:1: error: unknown line 'expcet' (program, target, motion, instr-time, max-time, define, skip, at, "
+           "expect); did you mean 'expect'?\n expcet never fault\n ^~~~~~\n"
+           "t.tmctest:9:14: error: expected 'never fault', found 'faults'; did you mean 'fault'?\n"
+           " expect never faults\n              ^~~~~~\n"
+           "t.tmctest:10:10: error: expected 'no warnings'\n expect no\n          ^\n"
+           "t.tmctest:11:8: error: unknown expectation 'sometimes' (at TIME, at end, never fault, no warnings)\n"
+           " expect sometimes v[1] = 2\n        ^~~~~~~~~\n"
+           "t.tmctest:12:11: error: bad instant '2x': unknown unit 'x' in '2x'; use us, ms, s, min or h (or 'end')\n"
+           " expect at 2x acc = 3\n           ^~\n"
+           "t.tmctest:13:11: error: bad instant 'ned': 'ned' has no number before its unit (or 'end'); did you mean 'end'?\n"
+           " expect at ned acc = 3\n           ^~~\n"
+           "t.tmctest:14:13: error: expected a condition after '1s' (e.g. v[3] = 7)\n expect at 1s\n             ^\n"
+           "t.tmctest:15:15: error: expected a comparison: EXPRESSION = VALUE (or !=, <, <=, >, >=)\n"
+           " expect at end acc\n               ^~~\n"
+           "t.tmctest:16:19: error: '=>' is not a comparison; did you mean '>='?\n expect at end acc => 3\n                   ^~\n"
+           "t.tmctest:17:23: error: a second comparison (an expectation compares once; parentheses make a comparison a "
+           "value)\n expect at end acc = 1 = 2\n                       ^\n"
+           "t.tmctest:18:15: error: nothing before '='\n expect at end = 3\n               ^\n"
+           "t.tmctest:19:19: error: no value after '='\n expect at end acc =\n                   ^\n"
+           "t.tmctest:20:23: error: a tolerance goes only with '=' (VALUE ± TOLERANCE)\n"
+           " expect at end acc < 3 +/- 1\n                       ^~~\n"
+           "t.tmctest:21:23: error: a tolerance is missing after '+/-'\n expect at end acc = 3 +/-\n                       ^~~\n"
+           "t.tmctest:22:22: error: unknown end 'stpo' (stop, fault, max-time, blocked); did you mean 'stop'?\n"
+           " expect at end halted stpo\n                      ^~~~\n"
+           "t.tmctest:23:21: error: 'halted' needs how the run ended: stop, fault, max-time or blocked\n"
+           " expect at end halted\n                     ^\n"
+           "t.tmctest:24:27: error: unexpected 'now' after 'stop'\n expect at end halted stop now\n                           ^~~\n"
+           "t.tmctest:25:7: error: unknown input 'inptu' (input, analog, left, right, home, slip); did you mean 'input'?\n"
+           " at 1s inptu 0 = 1\n       ^~~~~\n"
+           "t.tmctest:27:1: error: a second 'target' line (the first is line 2)\n target generic\n ^~~~~~\n"
+           "t.tmctest:28:1: error: a second 'target' line (the first is line 2)\n target generic\n ^~~~~~\n");
+}
+
+TEST(file_scenario_motors_follow_the_target) {
+  // usb-2-sd has one motor: a switch of motor 3 is refused with the module's name.
+  CHECK_EQ(errors("program p.tmc\ntarget usb-2-sd\nat 1s left 3 = 1\n"),
+           "t.tmctest:3:12: error: usb-2-sd has no motor 3 (0..0)\n at 1s left 3 = 1\n            ^\n");
+}
