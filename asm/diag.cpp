@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cctype>
+#include <map>
 #include <cstdint>
 #include <cstring>
 #include <tuple>
@@ -43,8 +44,39 @@ Diagnostic& Diagnostics::error(SourceLoc loc, std::string message) {
   return list_.back();
 }
 
+Diagnostics::Kind& Diagnostics::kind(std::string_view name) {
+  if (last_kind_ < kinds_.size() && kinds_[last_kind_].name == name) return kinds_[last_kind_];
+  for (last_kind_ = 0; last_kind_ < kinds_.size(); ++last_kind_)
+    if (kinds_[last_kind_].name == name) return kinds_[last_kind_];
+  kinds_.push_back({std::string(name), true, false});
+  refresh_kinds();
+  return kinds_.back();
+}
+
+void Diagnostics::refresh_kinds() {
+  for (auto& k : kinds_) {
+    k.enabled = k.name.empty() || flags_.enabled(k.name);
+    k.error = !k.name.empty() && flags_.is_error(k.name);
+  }
+}
+
+bool Diagnostics::take(std::string_view name) {
+  if (kind_limit_ <= 0) return true;
+  Kind& k = kind(name);
+  if (!k.enabled) return false;
+  if (k.error || k.kept < kind_limit_) return true;
+  ++warnings_;
+  ++k.skipped;
+  return false;
+}
+
 Diagnostic& Diagnostics::warning(SourceLoc loc, std::string message) {
   if (flags_.all_errors) return error(loc, std::move(message) + " [-Werror]");
+  if (!take("")) {
+    dropped_ = Diagnostic{Severity::Note, {}, {}, {}, {}, {}};
+    return dropped_;
+  }
+  if (kind_limit_ > 0) ++kind("").kept;
   ++warnings_;
   list_.push_back({Severity::Warning, loc, std::move(message), {}, {}, {}});
   return list_.back();
@@ -59,7 +91,11 @@ Diagnostic& Diagnostics::warning(SourceLoc loc, std::string message, std::string
   if (flags_.is_error(name)) {
     ++errors_;
     list_.push_back({Severity::Error, loc, std::move(message), {}, std::string(name), {}});
+  } else if (!take(name)) {
+    dropped_ = Diagnostic{Severity::Note, {}, {}, {}, {}, {}};
+    return dropped_;
   } else {
+    if (kind_limit_ > 0) ++kind(name).kept;
     ++warnings_;
     list_.push_back({Severity::Warning, loc, std::move(message), {}, std::string(name), {}});
   }
@@ -235,18 +271,30 @@ std::vector<const Diagnostic*> Diagnostics::sorted(const SourceSet& sources) con
 std::string Diagnostics::render(const SourceSet& sources, int error_limit) const {
   // Past the limit (--error-limit) nothing more is shown, only how much was left out: 1 MB of
   // garbage gives 100,000 errors, and the first ones are the ones a user reads.
+  // Warnings of one kind past the limit are summed up in one line per kind: 80,000 unreachable
+  // stretches are one finding to read, not 80,000.
   std::string out;
   int shown = 0;
   long long more_errors = 0, more_warnings = 0;
+  std::map<std::string, long long, std::less<>> shown_of_kind, more_of_kind;
+  for (const auto& k : kinds_)
+    if (k.skipped > 0) more_of_kind[k.name] += k.skipped;
   for (const auto* d : sorted(sources)) {
     if (error_limit > 0 && shown >= error_limit) {
       ++(d->severity == Severity::Error ? more_errors : more_warnings);
+      continue;
+    }
+    if (error_limit > 0 && d->severity == Severity::Warning && ++shown_of_kind[d->name] > error_limit) {
+      ++more_of_kind[d->name];
       continue;
     }
     out += render_diagnostic(*d, sources);
     if (d->severity == Severity::Error) ++shown;
   }
   if (more_errors + more_warnings > 0) out += more_errors_note("", more_errors, more_warnings);
+  for (const auto& [name, count] : more_of_kind)
+    out += "note: " + std::to_string(count) + " more " + (name.empty() ? std::string() : "-W" + name + " ") + "warning" +
+           (count == 1 ? "" : "s") + " not shown (--error-limit N changes the limit, 0 shows all)\n";
   return out;
 }
 
