@@ -60,7 +60,8 @@ void Diagnostics::refresh_kinds() {
   }
 }
 
-bool Diagnostics::take(std::string_view name) {
+bool Diagnostics::take(std::string_view name, SourceLoc loc) {
+  if (!allows_.empty() && allowed(loc, name)) return false;
   if (kind_limit_ <= 0) return true;
   Kind& k = kind(name);
   if (!k.enabled) return false;
@@ -72,7 +73,7 @@ bool Diagnostics::take(std::string_view name) {
 
 Diagnostic& Diagnostics::warning(SourceLoc loc, std::string message) {
   if (flags_.all_errors) return error(loc, std::move(message) + " [-Werror]");
-  if (!take("")) {
+  if (!take("", loc)) {
     dropped_ = Diagnostic{Severity::Note, {}, {}, {}, {}, {}};
     return dropped_;
   }
@@ -84,14 +85,14 @@ Diagnostic& Diagnostics::warning(SourceLoc loc, std::string message) {
 
 Diagnostic& Diagnostics::warning(SourceLoc loc, std::string message, std::string_view name) {
   if (name.empty()) return warning(loc, std::move(message));
-  if (!flags_.enabled(name)) {
+  if (!flags_.enabled(name) || (!allows_.empty() && allowed(loc, name))) {
     dropped_ = Diagnostic{Severity::Note, {}, {}, {}, {}, {}};
     return dropped_;
   }
   if (flags_.is_error(name)) {
     ++errors_;
     list_.push_back({Severity::Error, loc, std::move(message), {}, std::string(name), {}});
-  } else if (!take(name)) {
+  } else if (!take(name, loc)) {
     dropped_ = Diagnostic{Severity::Note, {}, {}, {}, {}, {}};
     return dropped_;
   } else {
@@ -100,6 +101,60 @@ Diagnostic& Diagnostics::warning(SourceLoc loc, std::string message, std::string
     list_.push_back({Severity::Warning, loc, std::move(message), {}, std::string(name), {}});
   }
   return list_.back();
+}
+
+namespace {
+std::uint64_t line_key(int file, int line) {
+  return (static_cast<std::uint64_t>(static_cast<std::uint32_t>(file)) << 32) | static_cast<std::uint32_t>(line);
+}
+bool name_char(char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '-' || c == '_'; }
+}  // namespace
+
+bool Diagnostics::allowed(SourceLoc loc, std::string_view name) const {
+  auto it = allows_.find(line_key(loc.file, loc.line));
+  if (it == allows_.end()) return false;
+  return std::find(it->second.begin(), it->second.end(), name) != it->second.end();
+}
+
+bool Diagnostics::allow_from_comments(const SourceFile& f, int file) {
+  static constexpr std::string_view kMarker = "tmcl: allow";
+  const std::string_view text = f.text;
+  bool ok = true;
+  for (std::size_t p = text.find(kMarker); p != std::string_view::npos; p = text.find(kMarker, p + 1)) {
+    auto line = static_cast<int>(std::upper_bound(f.line_starts.begin(), f.line_starts.end(), p) - f.line_starts.begin());
+    const std::string_view l = f.line(line);
+    const std::size_t col = p - f.line_starts[static_cast<std::size_t>(line - 1)];
+    if (col >= l.size()) continue;  // a line too long to have been read as one
+    // Alone on its line: nothing but blanks before the comment's "//", "/*" or ";".
+    std::size_t opener = l.find_first_of("/;");
+    bool alone = opener != std::string_view::npos && opener < col &&
+                 l.find_first_not_of(" \t") == opener;
+    int target = alone ? line + 1 : line;
+    // The names: one word, then more only after commas; anything after is the reason.
+    std::size_t q = col + kMarker.size();
+    for (;;) {
+      while (q < l.size() && (l[q] == ' ' || l[q] == '\t')) ++q;
+      std::size_t e = q;
+      while (e < l.size() && name_char(l[e])) ++e;
+      std::string_view name = l.substr(q, e - q);
+      if (name.empty()) break;
+      if (find_warning(name)) {
+        allows_[line_key(file, target)].emplace_back(name);
+      } else {
+        std::vector<std::string_view> names;
+        for (const auto& w : warning_table()) names.push_back(w.name);
+        SourceLoc at{file, line, static_cast<int>(q) + 1, static_cast<int>(e - q)};
+        auto& d = warning(at, "'" + std::string(name) + "' in a 'tmcl: allow' comment is not the name of a warning");
+        suggest(d, at, name, closest_match(name, names));
+        ok = false;
+      }
+      q = e;
+      while (q < l.size() && (l[q] == ' ' || l[q] == '\t')) ++q;
+      if (q >= l.size() || l[q] != ',') break;
+      ++q;
+    }
+  }
+  return ok;
 }
 
 const std::vector<WarningInfo>& warning_table() {

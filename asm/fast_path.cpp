@@ -228,7 +228,8 @@ class FastAssembler {
     f.include_line = line;
     drop_bom(f.text);
     int index = out_.sources.add(std::move(f));
-    return !first_long_line(out_.sources.files[static_cast<std::size_t>(index)]) && add_text(index) &&
+    const SourceFile& added = out_.sources.files[static_cast<std::size_t>(index)];
+    return !first_long_line(added) && out_.diags.allow_from_comments(added, index) && add_text(index) &&
            scan_file(index, depth + 1, inc.key);
   }
 
@@ -404,7 +405,9 @@ bool fast_assemble(const std::string& path, const AsmOptions& options, FileReade
   bool bom = drop_bom(f.text);
   int root = out.sources.add(std::move(f));
   const SourceFile& added = out.sources.files[static_cast<std::size_t>(root)];
-  if (ok && !first_long_line(added)) {
+  // `tmcl: allow NAME` comments are read here too, for the analysis after; a wrong name is the
+  // full assembler's to report.
+  if (ok && !first_long_line(added) && out.diags.allow_from_comments(added, root)) {
     fa.reserve(added.line_starts.size());
     ok = fa.pass1(root) && fa.pass2() && fa.finish(root);
   } else {

@@ -157,6 +157,7 @@ class Parser {
       diags_.error(SourceLoc{idx, l, 1, 1}, "line is longer than " + std::to_string(kMaxLineBytes) + " bytes");
       return -1;
     }
+    diags_.allow_from_comments(sources_.files[static_cast<std::size_t>(idx)], idx);  // `tmcl: allow NAME`
     return idx;
   }
 

@@ -6,6 +6,8 @@
 #include <span>
 #include <string>
 #include <string_view>
+#include <unordered_map>
+#include <unordered_set>
 #include <utility>
 #include <vector>
 
@@ -82,6 +84,14 @@ struct RegionGraph {
 
 std::string region_word(const Region& r);
 
+// Who writes which variable, by component of the instruction graph (counters.cpp).
+struct CounterFacts {
+  std::unordered_map<std::uint64_t, std::size_t> writes_in;  // (component, variable) -> writes
+  std::unordered_set<int> calls_in;                          // components with a CSUB or CALL
+  std::unordered_set<std::uint32_t> handler_writes, subroutine_writes;
+  bool regions_done = false;
+};
+
 struct Walker {
   Walker(const AnalysisInput& input, Diagnostics& d, const AnalysisOptions& o) : in(input), diags(d), options(o) {}
   const AnalysisInput& in;
@@ -133,14 +143,18 @@ struct Walker {
   void build();
   void pass();
   void depths();
-  // Whether a warning `name` is worth building: false (and the warning only counted) when the
-  // tool keeps no more of its kind (Diagnostics::take), so 80,000 of one kind cost little.
-  bool want(std::string_view name);
+  // Whether a warning `name` at instruction `address` is worth building: false (and the warning
+  // only counted) when the tool keeps no more of its kind, so 80,000 of one kind cost little; also
+  // false (not counted) when a comment allows it there (Diagnostics::take).
+  bool want(std::string_view name, int address);
   void check_flow();
   void check_interrupts();
   void check_unreachable();
   void check_depth();
   void check_eeprom();
+  // -Weeprom-wear's loops bounded by a counter (counters.cpp).
+  void counter_facts(const std::vector<int>& scc, CounterFacts& cf) const;
+  int counted_exit(int jc, const std::vector<int>& scc, const AddressBits& landing, const CounterFacts& cf) const;
   // Fixes for editors (fixes.cpp): a RETI on its own line after instruction `after`, and the
   // removal of the lines of instructions `first` to `last`.
   void fix_add_reti(Diagnostic& d, int after) const;

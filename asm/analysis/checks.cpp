@@ -82,7 +82,14 @@ void Walker::depths() {
   a.main_depth = a.regions.empty() ? 0 : a.regions[0].depth;
 }
 
-bool Walker::want(std::string_view name) { return diags.take(name); }
+bool Walker::want(std::string_view name, int address) {
+  SourceLoc at;  // file and line are all a suppression comment needs
+  if (address >= 0 && static_cast<std::size_t>(address) < in.lines.size()) {
+    at.file = in.lines[static_cast<std::size_t>(address)].file;
+    at.line = in.lines[static_cast<std::size_t>(address)].line;
+  }
+  return diags.take(name, at);
+}
 
 
 void Walker::check_flow() {
@@ -168,7 +175,7 @@ void Walker::check_flow() {
                        : fr.kind == RegionKind::Subroutine && tr.kind != RegionKind::Subroutine ? "stack-leak"
                        : fr.kind == RegionKind::Handler && tr.kind != RegionKind::Handler      ? "reti"
                                                                                                : nullptr;
-    if (!kind || !seen.emplace(f.from, f.to_region).second || !want(kind)) continue;
+    if (!kind || !seen.emplace(f.from, f.to_region).second || !want(kind, f.from)) continue;
     const Instruction& src = ins(f.from);
     const bool jumps = (src.op == static_cast<std::uint8_t>(Op::JA) || src.op == static_cast<std::uint8_t>(Op::JC) ||
                         src.op == static_cast<std::uint8_t>(Op::DJNZ) || src.op == static_cast<std::uint8_t>(Op::RST)) &&
@@ -203,11 +210,11 @@ void Walker::check_flow() {
     const bool handler_ctx = from_handler[static_cast<std::size_t>(r)] >= 0;
     if (reg.kind == RegionKind::Main)
       for (int i : f.rsubs)
-        if (want("rsub"))
+        if (want("rsub", i))
           diags.warning(loc(i), "RSUB in the main program finds the call stack empty: the module ignores it", "rsub");
     if (reg.kind == RegionKind::Handler)
       for (int i : f.rsubs) {
-        if (!want("reti")) continue;
+        if (!want("reti", i)) continue;
         auto& d = diags.warning(loc(i), "RSUB in " + region_word(reg) +
                                             " has no call of the handler's to return from: the module ignores it "
                                             "and the handler goes on without RETI",
@@ -216,7 +223,7 @@ void Walker::check_flow() {
       }
     if (reg.kind == RegionKind::Main || (reg.kind == RegionKind::Subroutine && from_main[static_cast<std::size_t>(r)]))
       for (int i : f.retis) {
-        if (!want("reti")) continue;
+        if (!want("reti", i)) continue;
         auto& d = diags.warning(loc(i), "RETI outside any interrupt handler: the module ignores it", "reti");
         if (reg.kind == RegionKind::Subroutine) {
           note_start(d, r);
@@ -225,7 +232,7 @@ void Walker::check_flow() {
       }
     if (reg.kind == RegionKind::Handler || (reg.kind == RegionKind::Subroutine && handler_ctx))
       for (int i : f.stops) {
-        if (!want("reti")) continue;
+        if (!want("reti", i)) continue;
         const Region& h = region(from_handler[static_cast<std::size_t>(r)]);
         auto& d = diags.warning(loc(i), "STOP ends the program inside " + region_word(h) + ", without RETI", "reti");
         if (reg.kind == RegionKind::Subroutine) note_called(d, r);
@@ -237,18 +244,18 @@ void Walker::check_flow() {
       bool leaves = flows_out[static_cast<std::size_t>(r)] != 0;
       for (const auto& e : out[static_cast<std::size_t>(r)]) leaves = leaves || e.weight == 0;
       if (!leaves && f.falloffs.empty() && f.rsubs.empty() && f.stops.empty() && !resets[static_cast<std::size_t>(r)] &&
-          want("reti"))
+          want("reti", reg.entry))
         diags.warning(loc(reg.entry), region_word(reg) + " never reaches RETI: once it runs, other interrupts stay blocked",
                       "reti");
     }
     for (int i : f.falloffs)
-      if (want("fall-off"))
+      if (want("fall-off", i))
         diags.warning(loc(i), "execution runs past the last instruction of the program (address " +
                                   std::to_string(n - 1) + "): the module would run whatever its memory holds there",
                       "fall-off");
     if (reg.kind == RegionKind::Handler || (reg.kind == RegionKind::Subroutine && handler_ctx))
       for (int i : f.waits) {
-        if (!want("wait-in-handler")) continue;
+        if (!want("wait-in-handler", i)) continue;
         const Region& h = region(from_handler[static_cast<std::size_t>(r)]);
         auto& d = diags.warning(loc(i), "WAIT inside " + region_word(h) + " blocks every other interrupt until it ends",
                                 "wait-in-handler");
@@ -258,7 +265,7 @@ void Walker::check_flow() {
   }
   if (!in.targets_checked)
     for (int i : bad_jumps)
-      if (want("address"))
+      if (want("address", i))
         diags.warning(loc(i), "address " + std::to_string(ins(i).value) + " is outside the program (addresses 0 to " +
                                   std::to_string(n - 1) + ")",
                       "address");
@@ -268,7 +275,7 @@ void Walker::check_interrupts() {
   const int n = static_cast<int>(in.program.size());
   if (!in.targets_checked)
     for (int i : bad_vects)
-      if (want("vect"))
+      if (want("vect", i))
         diags.warning(loc(i), "VECT " + std::to_string(ins(i).type) + " names address " + std::to_string(ins(i).value) +
                                 ", which is not an instruction of the program (0 to " + std::to_string(n - 1) + ")",
                     "vect");
@@ -282,7 +289,7 @@ void Walker::check_interrupts() {
       continue;
     }
     if (single < 0) single = i;
-    if (!vect_set[static_cast<std::size_t>(v)] && want("vect"))
+    if (!vect_set[static_cast<std::size_t>(v)] && want("vect", i))
       diags.warning(loc(i), "EI " + std::to_string(v) + " enables interrupt " + std::to_string(v) +
                                 ", but no VECT gives it a handler: it is never served",
                     "vect");
@@ -307,7 +314,7 @@ void Walker::check_unreachable() {
     int j = i;
     while (j < last && a.owner[static_cast<std::size_t>(j)] < 0) ++j;
     int count = j - i;
-    if (!want("unreachable")) {
+    if (!want("unreachable", i)) {
       i = j;
       continue;
     }
@@ -342,7 +349,7 @@ void Walker::check_depth() {
       }
     if (!call) continue;
     reported[static_cast<std::size_t>(c)] = 1;
-    if (!want("recursion")) continue;
+    if (!want("recursion", call->site)) continue;
     // The way back from the callee to v inside the component (breadth first, so the shortest).
     for (int x : q) {
       prev_site[static_cast<std::size_t>(x)] = -2;
@@ -398,12 +405,11 @@ void Walker::check_depth() {
   if (!global || main.depth > kCallStackDepth) return;
   for (int h = 0; h < nr; ++h) {
     const Region& reg = region(h);
-    if (reg.kind != RegionKind::Handler || reg.depth >= kUnbounded || main.depth + reg.depth <= kCallStackDepth ||
-        !want("call-depth"))
-      continue;
+    if (reg.kind != RegionKind::Handler || reg.depth >= kUnbounded || main.depth + reg.depth <= kCallStackDepth) continue;
     int idx = kCallStackDepth - main.depth;
     const std::vector<int> chain = deepest_chain(a, h, kCallStackDepth + 1);
     int site = chain[static_cast<std::size_t>(idx)];
+    if (!want("call-depth", site)) continue;
     auto& d = diags.warning(loc(site), mnemonic(site) + " in " + region_word(reg) +
                                            " is the 9th nested call when the interrupt fires while the main program is " +
                                            std::to_string(main.depth) +

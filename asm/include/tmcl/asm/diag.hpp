@@ -9,6 +9,7 @@
 #include <cstdint>
 #include <deque>
 #include <set>
+#include <unordered_map>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -100,10 +101,18 @@ class Diagnostics {
   // not kept (0: all are kept): a tool that shows at most --error-limit of each kind sets it, so
   // that 80,000 warnings of one kind cost neither their messages nor their memory.
   void set_kind_limit(int limit) { kind_limit_ = limit; }
-  // Whether warning(…, name) would keep the next warning of that kind (an error always is): a
-  // check that can warn many times asks first, and builds the message only when true. When
-  // false the warning has been counted, as warning() would (not at all when -Wno-name).
-  bool take(std::string_view name);
+  // Whether warning(…, name) at `loc` would keep the next warning of that kind (an error always
+  // is): a check that can warn many times asks first, and builds the message only when true.
+  // When false the warning has been counted, as warning() would (not at all when -Wno-name or
+  // when a comment allows it there).
+  bool take(std::string_view name, SourceLoc loc);
+
+  // Per-line suppression in the source: a comment `tmcl: allow NAME` (or `NAME, NAME`; words
+  // after the list are the reason) keeps the named warnings from being reported, or counted, on
+  // its line, or on the next line when the comment stands alone on its line. Reads `f`, source
+  // `file` of a run, for such comments; false when one names no warning (then warned about).
+  bool allow_from_comments(const SourceFile& f, int file);
+  bool allowed(SourceLoc loc, std::string_view name) const;
   void note(Diagnostic& d, SourceLoc loc, std::string message);
   // Did-you-mean: the note "did you mean 'HINT'?" at `loc`, and the fix replacing the `wrote`
   // there (the `loc.len` bytes at `loc`, or at `replace` when the word is only part of what the
@@ -149,6 +158,8 @@ class Diagnostics {
   std::vector<Kind> kinds_;
   std::size_t last_kind_ = 0;
   int kind_limit_ = 0;
+  // (file, line) -> the warnings a comment allows there.
+  std::unordered_map<std::uint64_t, std::vector<std::string>> allows_;
   Kind& kind(std::string_view name);
   void refresh_kinds();
 };
