@@ -124,6 +124,8 @@ class Diagnostics {
   int error_count() const { return errors_; }
   int warning_count() const { return warnings_; }
   const std::vector<Diagnostic>& all() const { return list_; }
+  // Diagnostic `index` of all(), to add a note found later (an error is always kept).
+  Diagnostic& at(std::size_t index) { return list_[index]; }
   // -Werror: warnings count as errors from now on, and are shown as errors.
   void set_warnings_are_errors(bool on) {
     flags_.all_errors = on;
