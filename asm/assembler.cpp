@@ -19,6 +19,7 @@ class Encoder {
   // operand that depends on the unit's base or an import becomes a relocation in `relocs` and
   // its field stays 0; its range is checked when linking.
   bool encode(int u, const Stmt& s, Instruction& ins, std::vector<ObjReloc>& relocs) {
+    negative_value_ = false;
     if (s.count < 0) return false;
     bool ok = true;
     if (!s.op) {  // .raw
@@ -95,9 +96,12 @@ class Encoder {
                                   " of " + std::string(s.op->mnemonic), "keyword-value");
       }
       put_field(ins, spec.field, v);
+      if (spec.field == Field::Value) negative_value_ = v < 0;
     }
     return ok;
   }
+  // Whether the last statement encoded wrote a negative number into its value field.
+  bool negative_value() const { return negative_value_; }
 
  private:
   static ObjReloc reloc(const Stmt& s, Field f, Value v) {
@@ -133,6 +137,7 @@ class Encoder {
 
   Resolver& resolver_;
   Diagnostics& diags_;
+  bool negative_value_ = false;
 };
 
 }  // namespace
@@ -218,7 +223,7 @@ AsmResult assemble(const std::vector<std::string>& files, const AsmOptions& opti
         if (s.op)
           for (const auto& spec : s.op->operands)
             if (spec.field == relocs[r].field && spec.role != Role::Address) relocated_operand = true;
-      if (ok && s.op && !relocated_operand) check_against_profile(profile, s, ins, out.diags);
+      if (ok && s.op && !relocated_operand) check_against_profile(profile, s, ins, out.diags, encoder.negative_value());
       out.program.push_back(ok ? ins : Instruction{});
       out.lines.push_back(LineInfo{s.loc.file, s.loc.line});
       raw_flags.push_back(s.op ? 0 : kInsRaw);

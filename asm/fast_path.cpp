@@ -109,9 +109,10 @@ class FastAssembler {
       Instruction& ins = out_.program[i];
       const OpInfo* info = ops_[ins.op];
       const FastText& t = texts_[static_cast<std::size_t>(out_.lines[i].file)];
-      if (!encode(t, *info, t.begin() + operands_[i], ins)) return false;
+      bool negative = false;
+      if (!encode(t, *info, t.begin() + operands_[i], ins, negative)) return false;
       probe.op = info;
-      check_against_profile(profile_, probe, ins, scratch);
+      check_against_profile(profile_, probe, ins, scratch, negative);
       if (!scratch.all().empty()) return false;
     }
     return true;
@@ -332,7 +333,8 @@ class FastAssembler {
   }
 
   // ---- pass 2: one instruction's operands, from just after its mnemonic ----
-  bool encode(const FastText& t, const OpInfo& op, const char* p, Instruction& ins) {
+  // `negative`: whether the value operand is a negative number (the profile check's concern).
+  bool encode(const FastText& t, const OpInfo& op, const char* p, Instruction& ins, bool& negative) {
     for (std::size_t k = 0; k < op.operands.size(); ++k) {
       const OperandSpec& spec = op.operands[k];
       if (!t.skip_space(p)) return false;
@@ -367,6 +369,7 @@ class FastAssembler {
       if (!keyword && spec.keywords != KwSet::None && !keyword_name(spec.keywords, static_cast<std::uint8_t>(v)))
         return false;  // warned about by the full assembler
       put_field(ins, spec.field, v);
+      if (spec.field == Field::Value) negative = v < 0;
     }
     return t.skip_space(p) && t.at_end(p);
   }

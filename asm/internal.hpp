@@ -320,6 +320,9 @@ class Resolver {
 };
 
 // Checks one encoded instruction against the module profile (errors and warnings).
-void check_against_profile(const Profile& profile, const Stmt& stmt, const Instruction& ins, Diagnostics& diags);
+// `negative_value`: the value operand was written as a negative number (the field holds its
+// two's complement), which a parameter that takes no negative values reads as a huge one.
+void check_against_profile(const Profile& profile, const Stmt& stmt, const Instruction& ins, Diagnostics& diags,
+                           bool negative_value = false);
 
 }  // namespace tmcl::detail
