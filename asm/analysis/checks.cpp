@@ -92,6 +92,23 @@ bool Walker::want(std::string_view name, int address) {
 }
 
 
+namespace {
+// Gives `value` to every region `g` leads to from the regions on `stack` (emptied) whose mark is
+// still `unmarked`; the stack's own regions are marked already.
+template <class T>
+void spread(const RegionGraph& g, std::vector<int>& stack, std::vector<T>& mark, T unmarked, T value) {
+  while (!stack.empty()) {
+    int v = stack.back();
+    stack.pop_back();
+    for (const auto& e : g[static_cast<std::size_t>(v)])
+      if (mark[static_cast<std::size_t>(e.to)] == unmarked) {
+        mark[static_cast<std::size_t>(e.to)] = value;
+        stack.push_back(e.to);
+      }
+  }
+}
+}  // namespace
+
 void Walker::check_flow() {
   const int nr = static_cast<int>(a.regions.size());
   const int n = static_cast<int>(in.program.size());
@@ -99,29 +116,13 @@ void Walker::check_flow() {
   std::vector<int> from_main(static_cast<std::size_t>(nr), 0), from_handler(static_cast<std::size_t>(nr), -1);
   std::vector<int> stack{0};
   if (nr > 0) from_main[0] = 1;
-  while (!stack.empty()) {
-    int v = stack.back();
-    stack.pop_back();
-    for (const auto& e : out[static_cast<std::size_t>(v)])
-      if (!from_main[static_cast<std::size_t>(e.to)]) {
-        from_main[static_cast<std::size_t>(e.to)] = 1;
-        stack.push_back(e.to);
-      }
-  }
+  spread(out, stack, from_main, 0, 1);
   for (int h = 0; h < nr; ++h)
     if (region(h).kind == RegionKind::Handler) from_handler[static_cast<std::size_t>(h)] = h;  // each its own
   for (int h = 0; h < nr; ++h) {
     if (region(h).kind != RegionKind::Handler) continue;
     stack.push_back(h);
-    while (!stack.empty()) {
-      int v = stack.back();
-      stack.pop_back();
-      for (const auto& e : out[static_cast<std::size_t>(v)])
-        if (from_handler[static_cast<std::size_t>(e.to)] < 0) {
-          from_handler[static_cast<std::size_t>(e.to)] = h;
-          stack.push_back(e.to);
-        }
-    }
+    spread(out, stack, from_handler, -1, h);
   }
   // Which regions can end in RST, themselves or in a region they call or run into: RST clears the
   // interrupt state (E31), a legitimate way out of a handler, not a handler that never ends (E43).
@@ -138,15 +139,7 @@ void Walker::check_flow() {
         resets[static_cast<std::size_t>(v)] = 1;
         stack.push_back(v);
       }
-    while (!stack.empty()) {
-      int v = stack.back();
-      stack.pop_back();
-      for (const auto& e : into[static_cast<std::size_t>(v)])
-        if (!resets[static_cast<std::size_t>(e.to)]) {
-          resets[static_cast<std::size_t>(e.to)] = 1;
-          stack.push_back(e.to);
-        }
-    }
+    spread(into, stack, resets, char{0}, char{1});
   }
   // Per region: its first call (for "called from here" notes; -1 when none) and whether control
   // flows from it into another region.
