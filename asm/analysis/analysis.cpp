@@ -375,26 +375,30 @@ void Walker::pass() {
   index_facts();
 }
 
-// Groups what the walks met by region, and a region's by kind, each kind in the order met: two
-// stable counting sorts, by kind and then by region.
+// Groups what the walks met by region, and a region's by kind, each kind in the order met: a
+// counting sort by region, placing the kinds one after another (a pass over the list each).
 void Walker::index_facts() {
   const std::size_t nr = a.regions.size();
-  std::vector<FactEvent> by_kind(events.size());
-  std::array<int, kFactKinds + 1> kind_next{};
-  for (const auto& e : events) ++kind_next[static_cast<std::size_t>(e.kind) + 1];
-  for (std::size_t k = 1; k < kind_next.size(); ++k) kind_next[k] += kind_next[k - 1];
-  for (const auto& e : events) by_kind[static_cast<std::size_t>(kind_next[static_cast<std::size_t>(e.kind)]++)] = e;
   fact_begin.assign(nr + 1, 0);
-  for (const auto& e : by_kind) ++fact_begin[static_cast<std::size_t>(e.region) + 1];
+  std::array<bool, kFactKinds> present{};
+  for (const auto& e : events) {
+    ++fact_begin[static_cast<std::size_t>(e.region) + 1];
+    present[static_cast<std::size_t>(e.kind)] = true;
+  }
   for (std::size_t r = 1; r <= nr; ++r) fact_begin[r] += fact_begin[r - 1];
   std::vector<int> next(fact_begin.begin(), fact_begin.end() - 1);
   fact_addresses.resize(events.size());
   fact_kinds.resize(events.size());
-  for (const auto& e : by_kind) {
-    auto k = static_cast<std::size_t>(next[static_cast<std::size_t>(e.region)]++);
-    fact_addresses[k] = e.address;
-    fact_kinds[k] = e.kind;
+  for (int kind = 0; kind < kFactKinds; ++kind) {
+    if (!present[static_cast<std::size_t>(kind)]) continue;
+    for (const auto& e : events) {
+      if (static_cast<int>(e.kind) != kind) continue;
+      auto k = static_cast<std::size_t>(next[static_cast<std::size_t>(e.region)]++);
+      fact_addresses[k] = e.address;
+      fact_kinds[k] = e.kind;
+    }
   }
+  events = {};  // grouped now: its memory serves what comes next
 }
 
 RegionFacts Walker::fact(int r) const {

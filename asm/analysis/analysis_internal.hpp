@@ -84,12 +84,21 @@ struct RegionGraph {
 
 std::string region_word(const Region& r);
 
-// Who writes which variable, by component of the instruction graph (counters.cpp).
+// A JC that tests a counter (counters.cpp): the counter, the JC's component of the instruction
+// graph, its edges that step the counter towards the bound (1: the jump, 2: running on) and, per
+// edge, the writes of the counter found on the way (the only ones the loop may have).
+struct CounterTest {
+  int jc = -1;
+  int component = -1;
+  std::uint32_t var = 0;
+  int towards = 0;
+  std::size_t own[2] = {0, 0};
+};
+// Who writes the counters of some tests, by component (counters.cpp).
 struct CounterFacts {
   std::unordered_map<std::uint64_t, std::size_t> writes_in;  // (component, variable) -> writes
   std::unordered_set<int> calls_in;                          // components with a CSUB or CALL
   std::unordered_set<std::uint32_t> handler_writes, subroutine_writes;
-  bool regions_done = false;
 };
 
 struct Walker {
@@ -153,8 +162,9 @@ struct Walker {
   void check_depth();
   void check_eeprom();
   // -Weeprom-wear's loops bounded by a counter (counters.cpp).
-  void counter_facts(const std::vector<int>& scc, CounterFacts& cf) const;
-  int counted_exit(int jc, const std::vector<int>& scc, const AddressBits& landing, const CounterFacts& cf) const;
+  bool counter_test(int jc, const std::vector<int>& scc, const AddressBits& landing, CounterTest& t) const;
+  void counter_facts(const std::vector<int>& scc, const std::vector<CounterTest>& tests, CounterFacts& cf) const;
+  int counted_edges(const CounterTest& t, const CounterFacts& cf) const;
   // Fixes for editors (fixes.cpp): a RETI on its own line after instruction `after`, and the
   // removal of the lines of instructions `first` to `last`.
   void fix_add_reti(Diagnostic& d, int after) const;

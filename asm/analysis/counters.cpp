@@ -13,7 +13,8 @@
 // and no interrupt handler. The test and the step must run on every way round: they lie on the
 // straight stretch (no jump lands inside it) that ends in the JC, or on the one the edge leads
 // into. Scans are short (kScan instructions), so the recognition is linear.
-#include <unordered_map>
+#include <algorithm>
+#include <unordered_set>
 
 #include "analysis_internal.hpp"
 
@@ -140,17 +141,24 @@ struct Round {
   Acc acc;
   Acc compared;
   int compare = -1;
-  std::unordered_map<std::uint32_t, std::int64_t> stepped;
-  std::vector<std::pair<std::uint32_t, int>> steps;  // (variable, instruction)
+  struct Step {
+    std::uint32_t var;
+    int at;
+    std::int64_t delta;
+  };
+  std::vector<Step> steps;
+
+  std::int64_t stepped(std::uint32_t var) const {
+    std::int64_t sum = 0;
+    for (const auto& st : steps) sum += st.var == var ? st.delta : 0;
+    return sum;
+  }
 
   void run(const Instruction& x, int at) {
     const auto op = static_cast<Op>(x.op);
     if (op == Op::CALC && is_add_sub(x) && acc.var != 0) {
       acc.delta += calc_step(x);
-      if (acc.var == kEntry) {
-        stepped[kEntry] += calc_step(x);
-        steps.push_back({kEntry, at});
-      }
+      if (acc.var == kEntry) steps.push_back({kEntry, at, calc_step(x)});
       compared = acc;
       compare = at;
     } else if (op == Op::GGP || op == Op::GAP) {
@@ -160,13 +168,11 @@ struct Round {
     } else if (op == Op::AGP || op == Op::AAP) {
       std::uint32_t v = op == Op::AGP ? global_var(x.motor, x.type) : axis_var(x.motor, x.type);
       if (acc.var == v && acc.delta != 0) {
-        stepped[v] += acc.delta;
-        steps.push_back({v, at});
+        steps.push_back({v, at, acc.delta});
         acc.delta = 0;  // the accumulator holds the new value
       }
     } else if (op == Op::CALCV && is_add_sub(x)) {
-      stepped[global_var(2, x.motor)] += calc_step(x);
-      steps.push_back({global_var(2, x.motor), at});
+      steps.push_back({global_var(2, x.motor), at, calc_step(x)});
       compared = {global_var(2, x.motor), 0};
       compare = at;
     } else if (op == Op::COMP) {
@@ -184,32 +190,32 @@ struct Round {
 
 }  // namespace
 
-// For the JC at `j`: its edges (1: the jump, 2: running on) that a counter bounds, within its
-// component of `scc`. An edge is bounded when it is taken only while the counter has not reached
-// the bound, and every way from it back to the JC steps the counter towards the bound: the loop
-// it goes round ends (the JC ends a loop), or the branch it leads into runs out (the JC guards a
-// branch of an endless loop, "save at most three times"). Shifted left by 2: the edges that have
-// the pattern but a counter something else in the loop writes too (an outer loop resets it,
-// say): not a bound, but a loop that runs its count each time round the outer one.
-int Walker::counted_exit(int j, const std::vector<int>& scc, const AddressBits& landing, const CounterFacts& cf) const {
+// The JC at `j` as a counter test: whether it tests a counter (`t.var`), and per edge that stays
+// in its component of `scc` whether taking it steps the counter towards the bound: taken only
+// while the counter has not reached the bound, and every way from it back to the JC steps the
+// counter that way. Then the loop it goes round ends (the JC ends a loop), or the branch it leads
+// into runs out (the JC guards a branch of an endless loop, "save at most three times").
+bool Walker::counter_test(int j, const std::vector<int>& scc, const AddressBits& landing, CounterTest& t) const {
   const int n = static_cast<int>(in.program.size());
   const Instruction& jc = ins(j);
   const int c = scc[static_cast<std::size_t>(j)];
   // The condition after a compare: EQ, NE, GT, GE, LT or LE.
   static constexpr int kEq = 2, kNe = 3, kGt = 4, kGe = 5, kLt = 6, kLe = 7;
   const int cond = jc.type == 0 ? kEq : jc.type == 1 ? kNe : jc.type;
-  if (cond < kEq || cond > kLe) return 0;
+  if (cond < kEq || cond > kLe) return false;
   // The stretch that ends in the JC: every way to the JC runs all of it.
   int start = j;
   for (int k = 0; k < kScan && !landing.test(start) && start > 0 && straight(ins(start - 1)); ++k) --start;
   Round before;
   for (int p = start; p < j; ++p) before.run(ins(p), p);
-  if (before.compare < 0) return 0;
+  if (before.compare < 0) return false;
   for (int p = before.compare + 1; p < j; ++p)
-    if (sets_flags(ins(p))) return 0;  // the JC tests something else
-  const std::uint32_t var = before.compared.var;
-  if (var == 0) return 0;
-  int cuts = 0;
+    if (sets_flags(ins(p))) return false;  // the JC tests something else
+  t = CounterTest{};
+  t.jc = j;
+  t.component = c;
+  t.var = before.compared.var;
+  if (t.var == 0) return false;
   for (int edge = 1; edge <= 2; ++edge) {
     const int to = edge == 1 ? jc.value : j + 1;
     if (to < 0 || to >= n || scc[static_cast<std::size_t>(to)] != c) continue;
@@ -222,59 +228,78 @@ int Walker::counted_exit(int j, const std::vector<int>& scc, const AddressBits& 
         round.run(ins(p), p);
         if (!straight(ins(p))) break;
       }
-    const std::int64_t step = round.stepped.count(var) ? round.stepped[var] : 0;
+    const std::int64_t step = round.stepped(t.var);
     // Towards the bound: up while below it, down while above it, or by one while not at it.
     const bool towards = ((taken == kLt || taken == kLe) && step > 0) || ((taken == kGt || taken == kGe) && step < 0) ||
                          (taken == kNe && (step == 1 || step == -1));
     if (!towards) continue;
-    cuts |= edge << 2;
-    // Nothing else may write the counter while the loop runs: its only writers in the loop are
-    // the steps found, no subroutine the loop calls writes it, nor an interrupt handler.
+    t.towards |= edge;
     std::size_t own = 0;
-    for (const auto& [v, at] : round.steps) own += v == var && scc[static_cast<std::size_t>(at)] == c;
-    auto count = [&](std::uint32_t v) {
-      auto it = cf.writes_in.find((static_cast<std::uint64_t>(static_cast<std::uint32_t>(c)) << 32) | v);
-      return it == cf.writes_in.end() ? std::size_t{0} : it->second;
-    };
-    if (count(var) != own || count(kEverything) != 0) continue;
-    if (is_user_var(var) && count(kAnyUserVar) != 0) continue;
-    if (var != kAccumulator && cf.handler_writes.count(var)) continue;  // a handler keeps the accumulator (E41)
-    if (cf.calls_in.count(c) && (var == kAccumulator || cf.subroutine_writes.count(var) ||
-                                (is_user_var(var) && cf.subroutine_writes.count(kAnyUserVar))))
-      continue;
-    cuts |= edge;
+    for (const auto& st : round.steps) own += st.var == t.var && scc[static_cast<std::size_t>(st.at)] == c;
+    t.own[edge - 1] = own;
   }
+  return t.towards != 0;
+}
+
+// Of the edges counter_test found stepping towards the bound, those the counter bounds (1: the
+// jump, 2: running on): nothing else may write the counter while the loop runs, so its only
+// writers in the loop are the steps found, no subroutine the loop calls writes it, nor an
+// interrupt handler.
+int Walker::counted_edges(const CounterTest& t, const CounterFacts& cf) const {
+  const std::uint32_t var = t.var;
+  auto count = [&](std::uint32_t v) {
+    auto it = cf.writes_in.find((static_cast<std::uint64_t>(static_cast<std::uint32_t>(t.component)) << 32) | v);
+    return it == cf.writes_in.end() ? std::size_t{0} : it->second;
+  };
+  if (count(kEverything) != 0 || (is_user_var(var) && count(kAnyUserVar) != 0)) return 0;
+  if (var != kAccumulator && cf.handler_writes.count(var)) return 0;  // a handler keeps the accumulator (E41)
+  if (cf.calls_in.count(t.component) && (var == kAccumulator || cf.subroutine_writes.count(var) ||
+                                         (is_user_var(var) && cf.subroutine_writes.count(kAnyUserVar))))
+    return 0;
+  int cuts = 0;
+  for (int edge = 1; edge <= 2; ++edge)
+    if ((t.towards & edge) && count(var) == t.own[edge - 1]) cuts |= edge;
   return cuts;
 }
 
-// Who writes what, for counted_exit: per component of `scc`, the writes of each variable (and
-// the instructions that write any user variable or everything), the components with a call; and
-// once, the variables subroutines and interrupt handlers write.
-void Walker::counter_facts(const std::vector<int>& scc, CounterFacts& cf) const {
+// Who writes the counters of `tests`: per component of `scc` that has a test, the writes of each
+// such counter (and the instructions that write any user variable or everything), whether the
+// component calls a subroutine; and which of the counters subroutines and handlers write.
+void Walker::counter_facts(const std::vector<int>& scc, const std::vector<CounterTest>& tests, CounterFacts& cf) const {
   const int n = static_cast<int>(in.program.size());
-  cf.writes_in.clear();
-  cf.calls_in.clear();
+  cf = CounterFacts{};
+  std::vector<std::uint32_t> vars;
+  std::unordered_set<int> components;
+  bool any_user_var = false;
+  for (const auto& t : tests) {
+    if (std::find(vars.begin(), vars.end(), t.var) == vars.end()) vars.push_back(t.var);
+    components.insert(t.component);
+    any_user_var = any_user_var || is_user_var(t.var);
+  }
+  const bool acc = std::find(vars.begin(), vars.end(), kAccumulator) != vars.end();
+  auto counted = [&](std::uint32_t v) { return v && std::find(vars.begin(), vars.end(), v) != vars.end(); };
   for (int i = 0; i < n; ++i) {
     const Instruction& x = ins(i);
     Effect e = effect_of(x);
+    const bool user = any_user_var && (e.user_vars || e.all);
+    if (!counted(e.var) && !(acc && e.acc) && !user && !e.all && x.op != static_cast<std::uint8_t>(Op::CSUB) &&
+        x.op != static_cast<std::uint8_t>(Op::CALL))
+      continue;  // nothing any test asks about
     const int c = scc[static_cast<std::size_t>(i)];
-    if (c >= 0) {
+    if (c >= 0 && components.count(c)) {
       auto key = [c](std::uint32_t v) { return (static_cast<std::uint64_t>(static_cast<std::uint32_t>(c)) << 32) | v; };
-      if (e.var) ++cf.writes_in[key(e.var)];
-      if (e.acc) ++cf.writes_in[key(kAccumulator)];
+      if (counted(e.var)) ++cf.writes_in[key(e.var)];
+      if (acc && e.acc) ++cf.writes_in[key(kAccumulator)];
       if (e.user_vars) ++cf.writes_in[key(kAnyUserVar)];
       if (e.all) ++cf.writes_in[key(kEverything)];
       if (x.op == static_cast<std::uint8_t>(Op::CSUB) || x.op == static_cast<std::uint8_t>(Op::CALL)) cf.calls_in.insert(c);
     }
-    if (cf.regions_done) continue;
     int r = a.owner[static_cast<std::size_t>(i)];
     if (r < 0 || region(r).kind == RegionKind::Main) continue;
     auto& into = region(r).kind == RegionKind::Handler ? cf.handler_writes : cf.subroutine_writes;
-    if (e.var) into.insert(e.var);
+    if (counted(e.var)) into.insert(e.var);
     if (e.user_vars || e.all) into.insert(kAnyUserVar);
-    if (e.all) into.insert(kEverything);
   }
-  cf.regions_done = true;
 }
 
 }  // namespace tmcl::detail

@@ -100,6 +100,7 @@ void Walker::check_eeprom() {
   std::vector<int> scc;
   std::vector<int> size;
   CounterFacts facts;
+  std::vector<CounterTest> tests;
   // Cut the counted loops, then look again: an inner loop can show its counter only once the
   // outer loop around it is cut.
   for (int round = 0;; ++round) {
@@ -108,31 +109,34 @@ void Walker::check_eeprom() {
     for (int i = 0; i < n; ++i)
       if (int c = scc[static_cast<std::size_t>(i)]; c >= 0) ++size[static_cast<std::size_t>(c)];
     if (round == kMaxRounds) break;
-    bool cuts = false;
-    bool looked = false;
+    tests.clear();
+    CounterTest t;
     for (int i = 0; i < n; ++i) {
       if (ins(i).op != static_cast<std::uint8_t>(Op::JC) || cut[static_cast<std::size_t>(i)]) continue;
       int c = scc[static_cast<std::size_t>(i)];
-      if (c < 0 || size[static_cast<std::size_t>(c)] < 2) continue;
-      if (!looked) counter_facts(scc, facts), looked = true;
-      if (int e = counted_exit(i, scc, landing, facts)) {
-        counted[static_cast<std::size_t>(i)] = static_cast<std::uint8_t>(e >> 2);
-        if (e & 3) {
-          cut[static_cast<std::size_t>(i)] = static_cast<std::uint8_t>(e & 3);
-          cuts = true;
-        }
+      if (c >= 0 && size[static_cast<std::size_t>(c)] >= 2 && counter_test(i, scc, landing, t)) tests.push_back(t);
+    }
+    if (tests.empty()) break;
+    counter_facts(scc, tests, facts);
+    bool cuts = false;
+    for (const auto& test : tests) {
+      counted[static_cast<std::size_t>(test.jc)] = static_cast<std::uint8_t>(test.towards);
+      if (int e = counted_edges(test, facts)) {
+        cut[static_cast<std::size_t>(test.jc)] = static_cast<std::uint8_t>(e);
+        cuts = true;
       }
     }
     if (!cuts) break;
   }
   // A component is a loop when it has two instructions, or one that jumps to itself.
+  std::vector<int> self;
   auto cyclic = [&](int i) {
     int c = scc[static_cast<std::size_t>(i)];
     if (c < 0) return false;
     if (size[static_cast<std::size_t>(c)] > 1) return true;
-    std::vector<int> s;
-    succ(i, s);
-    return std::find(s.begin(), s.end(), i) != s.end();
+    self.clear();
+    succ(i, self);
+    return std::find(self.begin(), self.end(), i) != self.end();
   };
   // The shortest way round from `at` back to it inside its component (Dijkstra on instruction
   // times: a WAIT TICKS its ticks, any other instruction instr_time_us).
