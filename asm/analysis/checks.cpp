@@ -31,8 +31,9 @@ void Walker::depths() {
   int count = 0;
   comp = strong_components(
       nr, roots,
-      [this](int v, std::vector<int>& s) {
-        for (const auto& e : out[static_cast<std::size_t>(v)]) s.push_back(e.to);
+      [this](int v, int k) {
+        auto edges = out[static_cast<std::size_t>(v)];
+        return static_cast<std::size_t>(k) < edges.size() ? edges[static_cast<std::size_t>(k)].to : -1;
       },
       count);
   recursive.assign(static_cast<std::size_t>(count), 0);

@@ -76,23 +76,35 @@ void Walker::check_eeprom() {
   // The edges of counted loops whose counter is reset around them: the estimate goes round the
   // outer loop when the write is on it too (a burst of writes each time round it).
   std::vector<std::uint8_t> counted(static_cast<std::size_t>(n), 0);
-  auto succ = [this, n, &cut](int i, std::vector<int>& s) {
+  // The successors of instruction i (at most two) into `s`; their number.
+  auto successors = [this, n, &cut](int i, int (&s)[2]) {
     const Instruction& x = ins(i);
     const bool t_ok = x.value >= 0 && x.value < n && !(cut[static_cast<std::size_t>(i)] & 1);
+    int k = 0;
     switch (static_cast<Op>(x.op)) {
       case Op::JA:
       case Op::RST:
-        if (t_ok) s.push_back(x.value);
-        return;
+        if (t_ok) s[k++] = x.value;
+        return k;
       case Op::JC:
-        if (t_ok) s.push_back(x.value);
+        if (t_ok) s[k++] = x.value;
         break;
       case Op::RSUB:
       case Op::RETI:
-      case Op::STOP: return;
+      case Op::STOP: return k;
       default: break;  // DJNZ: only on; CSUB/CALL: on after the return
     }
-    if (i + 1 < n && !(cut[static_cast<std::size_t>(i)] & 2)) s.push_back(i + 1);
+    if (i + 1 < n && !(cut[static_cast<std::size_t>(i)] & 2)) s[k++] = i + 1;
+    return k;
+  };
+  auto succ = [&successors](int i, std::vector<int>& out_list) {
+    int s[2];
+    int k = successors(i, s);
+    out_list.insert(out_list.end(), s, s + k);
+  };
+  auto nth = [&successors](int i, int k) {
+    int s[2];
+    return k < successors(i, s) ? s[k] : -1;
   };
   std::vector<int> roots;
   for (const auto& r : a.regions) roots.push_back(r.entry);
@@ -104,7 +116,7 @@ void Walker::check_eeprom() {
   // Cut the counted loops, then look again: an inner loop can show its counter only once the
   // outer loop around it is cut.
   for (int round = 0;; ++round) {
-    scc = strong_components(n, roots, succ, count);
+    scc = strong_components(n, roots, nth, count);
     size.assign(static_cast<std::size_t>(count), 0);
     for (int i = 0; i < n; ++i)
       if (int c = scc[static_cast<std::size_t>(i)]; c >= 0) ++size[static_cast<std::size_t>(c)];
