@@ -230,7 +230,7 @@ void Walker::walk(int r, int from, int start) {
           if (writes_eeprom(ins)) writes.push_back(i);
           break;
         default:
-          if (!op_info(ins.op)) next = false;  // not an instruction: the VM faults here (E20)
+          if (!is_op[ins.op]) next = false;  // not an instruction: the VM faults here (E20)
           break;
       }
       if (!next) break;
@@ -332,6 +332,7 @@ void Walker::pass() {
   a.regions.reserve(entries);
   last_caller.reserve(entries);
   if (n == 0) return;
+  for (int op = 0; op < 256; ++op) is_op[static_cast<std::size_t>(op)] = op_info(static_cast<std::uint8_t>(op)) != nullptr;
   Region main;
   main.kind = RegionKind::Main;
   main.entry = 0;

@@ -130,6 +130,7 @@ struct Walker {
   std::vector<std::pair<int, int>> restarts;  // RST outside the main program: (site, target)
   std::vector<int> bad_jumps, bad_vects, eis, writes;
   std::array<bool, 256> vect_set{};
+  std::array<bool, 256> is_op{};  // opcodes of the instruction table (op_info, looked up once)
   std::vector<char> noreturn_at;  // per address: a subroutine there never returns (second pass)
   // Per region: the best edge of its deepest chain (-1: none) and its graph edges.
   RegionGraph out;
