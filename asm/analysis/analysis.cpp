@@ -257,7 +257,7 @@ void Walker::build() {
   std::vector<char> returns(static_cast<std::size_t>(nr), 0);
   std::vector<int> stack;
   for (int r = 0; r < nr; ++r)
-    if (region(r).kind == RegionKind::Subroutine && !fact(r).rsubs.empty()) {
+    if (region(r).kind == RegionKind::Subroutine && met_any(r, Fact::Rsub)) {
       returns[static_cast<std::size_t>(r)] = 1;
       stack.push_back(r);
     }
@@ -381,9 +381,11 @@ void Walker::pass() {
 void Walker::index_facts() {
   const std::size_t nr = a.regions.size();
   fact_begin.assign(nr + 1, 0);
+  fact_mask.assign(nr, 0);
   std::array<bool, kFactKinds> present{};
   for (const auto& e : events) {
     ++fact_begin[static_cast<std::size_t>(e.region) + 1];
+    fact_mask[static_cast<std::size_t>(e.region)] |= static_cast<std::uint8_t>(1u << static_cast<int>(e.kind));
     present[static_cast<std::size_t>(e.kind)] = true;
   }
   for (std::size_t r = 1; r <= nr; ++r) fact_begin[r] += fact_begin[r - 1];

@@ -114,6 +114,7 @@ struct Walker {
   // fact_begin[r + 1].
   std::vector<int> fact_begin, fact_addresses;
   std::vector<Fact> fact_kinds;
+  std::vector<std::uint8_t> fact_mask;  // per region: bit k set when it met a fact of kind k
   AddressBits call_target, vect_target;    // per address: a CSUB/CALL or VECT names it
   std::vector<int> queue;                  // regions to walk, in the order found
   std::vector<int> work;                   // the walk's stack of addresses
@@ -173,6 +174,9 @@ struct Walker {
 
   const Region& region(int r) const { return a.regions[static_cast<std::size_t>(r)]; }
   RegionFacts fact(int r) const;
+  bool met_any(int r, Fact kind) const {
+    return (fact_mask[static_cast<std::size_t>(r)] >> static_cast<int>(kind)) & 1u;
+  }
   bool any_reset() const;
   const Instruction& ins(int i) const { return in.program[static_cast<std::size_t>(i)]; }
   std::string mnemonic(int i) const;

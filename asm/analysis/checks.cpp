@@ -136,7 +136,7 @@ void Walker::check_flow() {
         for (const auto& e : out[static_cast<std::size_t>(v)]) add(e.to, RegionEdge{v, e.weight, e.site});
     });
     for (int v = 0; v < nr; ++v)
-      if (!fact(v).resets.empty()) {
+      if (met_any(v, Fact::Reset)) {
         resets[static_cast<std::size_t>(v)] = 1;
         stack.push_back(v);
       }
@@ -200,8 +200,12 @@ void Walker::check_flow() {
 
   for (int r = 0; r < nr; ++r) {
     const Region& reg = region(r);
-    const RegionFacts f = fact(r);
     const bool handler_ctx = from_handler[static_cast<std::size_t>(r)] >= 0;
+    // Most regions are subroutines the main program calls that met nothing but RSUBs (and WAITs):
+    // nothing to look at.
+    if (reg.kind == RegionKind::Subroutine && !handler_ctx && !met_any(r, Fact::Reti) && !met_any(r, Fact::Falloff))
+      continue;
+    const RegionFacts f = fact(r);
     if (reg.kind == RegionKind::Main)
       for (int i : f.rsubs)
         if (want("rsub", i))
