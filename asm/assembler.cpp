@@ -19,6 +19,7 @@ class Encoder {
   // operand that depends on the unit's base or an import becomes a relocation in `relocs` and
   // its field stays 0; its range is checked when linking.
   bool encode(int u, const Stmt& s, Instruction& ins, std::vector<ObjReloc>& relocs) {
+    negative_value_ = false;
     if (s.count < 0) return false;
     bool ok = true;
     if (!s.op) {  // .raw
@@ -95,9 +96,12 @@ class Encoder {
                                   " of " + std::string(s.op->mnemonic), "keyword-value");
       }
       put_field(ins, spec.field, v);
+      if (spec.field == Field::Value) negative_value_ = v < 0;
     }
     return ok;
   }
+  // Whether the last statement encoded wrote a negative number into its value field.
+  bool negative_value() const { return negative_value_; }
 
  private:
   static ObjReloc reloc(const Stmt& s, Field f, Value v) {
@@ -113,6 +117,8 @@ class Encoder {
   bool unknown_name(int u, const Operand& o) { return !resolver_.known(u, upper(resolver_.name_of(u, o.expr))); }
 
   // A name in a keyword position that is neither a keyword nor a symbol: say which keywords fit.
+  // With an #include of the unit missing, a word with no near miss may be a constant the file
+  // defines: named in that error's note instead (Resolver::excuse_undefined).
   void unknown_keyword(int u, KwSet set, const Operand& o) {
     std::string word(resolver_.name_of(u, o.expr));
     std::vector<std::string_view> names;
@@ -122,13 +128,16 @@ class Encoder {
         names.push_back(k.name);
         list += (list.empty() ? "" : ", ") + std::string(k.name);
       }
+    std::string hint = closest_match(word, names);
+    if (hint.empty() && resolver_.closest_def(u, word).empty() && resolver_.excuse_undefined(u, word)) return;
     auto& d = diags_.error(o.loc, "unknown " + std::string(kwset_name(set)) + " '" + word + "'");
-    diags_.suggest(d, o.loc, word, closest_match(word, names));
+    diags_.suggest(d, o.loc, word, hint);
     diags_.note(d, o.loc, "expected one of " + list);
   }
 
   Resolver& resolver_;
   Diagnostics& diags_;
+  bool negative_value_ = false;
 };
 
 }  // namespace
@@ -145,10 +154,19 @@ AsmResult assemble(const std::vector<std::string>& files, const AsmOptions& opti
     return out;
   }
 
+  // An -I folder that cannot be searched is most likely a typo: said once, up front (and the
+  // fast path, which reports nothing, is not taken).
+  bool folder_warned = false;
+  for (const auto& dir : options.include_dirs)
+    if (std::string why = reader.folder_problem(dir); !why.empty()) {
+      out.diags.warning(SourceLoc{}, "include folder '" + dir + "' (-I) " + why);
+      folder_warned = true;
+    }
+
   // one well-formed source: the fast path, unless it gives up (fast_path.cpp)
   std::string first;
   bool preread = false;
-  if (options.fast_path && files.size() == 1 && !reloc) {
+  if (options.fast_path && files.size() == 1 && !reloc && !folder_warned) {
     preread = reader.read(files[0], first);
     if (preread && sniff_file(first) == FileKind::Source) {
       AsmResult fast;
@@ -205,12 +223,14 @@ AsmResult assemble(const std::vector<std::string>& files, const AsmOptions& opti
         if (s.op)
           for (const auto& spec : s.op->operands)
             if (spec.field == relocs[r].field && spec.role != Role::Address) relocated_operand = true;
-      if (ok && s.op && !relocated_operand) check_against_profile(profile, s, ins, out.diags);
+      if (ok && s.op && !relocated_operand) check_against_profile(profile, s, ins, out.diags, encoder.negative_value());
       out.program.push_back(ok ? ins : Instruction{});
       out.lines.push_back(LineInfo{s.loc.file, s.loc.line});
       raw_flags.push_back(s.op ? 0 : kInsRaw);
     }
   }
+
+  resolver.note_excused();
 
   // A program without a single instruction is almost always a mistake (the wrong file, one still
   // to be written): it assembles, to a lone STOP, but says so.

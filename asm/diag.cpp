@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cctype>
+#include <map>
 #include <cstdint>
 #include <cstring>
 #include <tuple>
@@ -43,8 +44,40 @@ Diagnostic& Diagnostics::error(SourceLoc loc, std::string message) {
   return list_.back();
 }
 
+Diagnostics::Kind& Diagnostics::kind(std::string_view name) {
+  if (last_kind_ < kinds_.size() && kinds_[last_kind_].name == name) return kinds_[last_kind_];
+  for (last_kind_ = 0; last_kind_ < kinds_.size(); ++last_kind_)
+    if (kinds_[last_kind_].name == name) return kinds_[last_kind_];
+  kinds_.push_back({std::string(name), true, false});
+  refresh_kinds();
+  return kinds_.back();
+}
+
+void Diagnostics::refresh_kinds() {
+  for (auto& k : kinds_) {
+    k.enabled = k.name.empty() || flags_.enabled(k.name);
+    k.error = !k.name.empty() && flags_.is_error(k.name);
+  }
+}
+
+bool Diagnostics::take(std::string_view name, SourceLoc loc) {
+  if (!allows_.empty() && allowed(loc, name)) return false;
+  if (kind_limit_ <= 0) return true;
+  Kind& k = kind(name);
+  if (!k.enabled) return false;
+  if (k.error || k.kept < kind_limit_) return true;
+  ++warnings_;
+  ++k.skipped;
+  return false;
+}
+
 Diagnostic& Diagnostics::warning(SourceLoc loc, std::string message) {
   if (flags_.all_errors) return error(loc, std::move(message) + " [-Werror]");
+  if (!take("", loc)) {
+    dropped_ = Diagnostic{Severity::Note, {}, {}, {}, {}, {}};
+    return dropped_;
+  }
+  if (kind_limit_ > 0) ++kind("").kept;
   ++warnings_;
   list_.push_back({Severity::Warning, loc, std::move(message), {}, {}, {}});
   return list_.back();
@@ -52,18 +85,76 @@ Diagnostic& Diagnostics::warning(SourceLoc loc, std::string message) {
 
 Diagnostic& Diagnostics::warning(SourceLoc loc, std::string message, std::string_view name) {
   if (name.empty()) return warning(loc, std::move(message));
-  if (!flags_.enabled(name)) {
+  if (!flags_.enabled(name) || (!allows_.empty() && allowed(loc, name))) {
     dropped_ = Diagnostic{Severity::Note, {}, {}, {}, {}, {}};
     return dropped_;
   }
   if (flags_.is_error(name)) {
     ++errors_;
     list_.push_back({Severity::Error, loc, std::move(message), {}, std::string(name), {}});
+  } else if (!take(name, loc)) {
+    dropped_ = Diagnostic{Severity::Note, {}, {}, {}, {}, {}};
+    return dropped_;
   } else {
+    if (kind_limit_ > 0) ++kind(name).kept;
     ++warnings_;
     list_.push_back({Severity::Warning, loc, std::move(message), {}, std::string(name), {}});
   }
   return list_.back();
+}
+
+namespace {
+std::uint64_t line_key(int file, int line) {
+  return (static_cast<std::uint64_t>(static_cast<std::uint32_t>(file)) << 32) | static_cast<std::uint32_t>(line);
+}
+bool name_char(char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '-' || c == '_'; }
+}  // namespace
+
+bool Diagnostics::allowed(SourceLoc loc, std::string_view name) const {
+  auto it = allows_.find(line_key(loc.file, loc.line));
+  if (it == allows_.end()) return false;
+  return std::find(it->second.begin(), it->second.end(), name) != it->second.end();
+}
+
+bool Diagnostics::allow_from_comments(const SourceFile& f, int file) {
+  static constexpr std::string_view kMarker = "tmcl: allow";
+  const std::string_view text = f.text;
+  bool ok = true;
+  for (std::size_t p = text.find(kMarker); p != std::string_view::npos; p = text.find(kMarker, p + 1)) {
+    auto line = static_cast<int>(std::upper_bound(f.line_starts.begin(), f.line_starts.end(), p) - f.line_starts.begin());
+    const std::string_view l = f.line(line);
+    const std::size_t col = p - f.line_starts[static_cast<std::size_t>(line - 1)];
+    if (col >= l.size()) continue;  // a line too long to have been read as one
+    // Alone on its line: nothing but blanks before the comment's "//", "/*" or ";".
+    std::size_t opener = l.find_first_of("/;");
+    bool alone = opener != std::string_view::npos && opener < col &&
+                 l.find_first_not_of(" \t") == opener;
+    int target = alone ? line + 1 : line;
+    // The names: one word, then more only after commas; anything after is the reason.
+    std::size_t q = col + kMarker.size();
+    for (;;) {
+      while (q < l.size() && (l[q] == ' ' || l[q] == '\t')) ++q;
+      std::size_t e = q;
+      while (e < l.size() && name_char(l[e])) ++e;
+      std::string_view name = l.substr(q, e - q);
+      if (name.empty()) break;
+      if (find_warning(name)) {
+        allows_[line_key(file, target)].emplace_back(name);
+      } else {
+        std::vector<std::string_view> names;
+        for (const auto& w : warning_table()) names.push_back(w.name);
+        SourceLoc at{file, line, static_cast<int>(q) + 1, static_cast<int>(e - q)};
+        auto& d = warning(at, "'" + std::string(name) + "' in a 'tmcl: allow' comment is not the name of a warning");
+        suggest(d, at, name, closest_match(name, names));
+        ok = false;
+      }
+      q = e;
+      while (q < l.size() && (l[q] == ' ' || l[q] == '\t')) ++q;
+      if (q >= l.size() || l[q] != ',') break;
+      ++q;
+    }
+  }
+  return ok;
 }
 
 const std::vector<WarningInfo>& warning_table() {
@@ -241,18 +332,30 @@ std::vector<const Diagnostic*> Diagnostics::sorted(const SourceSet& sources) con
 std::string Diagnostics::render(const SourceSet& sources, int error_limit) const {
   // Past the limit (--error-limit) nothing more is shown, only how much was left out: 1 MB of
   // garbage gives 100,000 errors, and the first ones are the ones a user reads.
+  // Warnings of one kind past the limit are summed up in one line per kind: 80,000 unreachable
+  // stretches are one finding to read, not 80,000.
   std::string out;
   int shown = 0;
   long long more_errors = 0, more_warnings = 0;
+  std::map<std::string, long long, std::less<>> shown_of_kind, more_of_kind;
+  for (const auto& k : kinds_)
+    if (k.skipped > 0) more_of_kind[k.name] += k.skipped;
   for (const auto* d : sorted(sources)) {
     if (error_limit > 0 && shown >= error_limit) {
       ++(d->severity == Severity::Error ? more_errors : more_warnings);
+      continue;
+    }
+    if (error_limit > 0 && d->severity == Severity::Warning && ++shown_of_kind[d->name] > error_limit) {
+      ++more_of_kind[d->name];
       continue;
     }
     out += render_diagnostic(*d, sources);
     if (d->severity == Severity::Error) ++shown;
   }
   if (more_errors + more_warnings > 0) out += more_errors_note("", more_errors, more_warnings);
+  for (const auto& [name, count] : more_of_kind)
+    out += "note: " + std::to_string(count) + " more " + (name.empty() ? std::string() : "-W" + name + " ") + "warning" +
+           (count == 1 ? "" : "s") + " not shown (--error-limit N changes the limit, 0 shows all)\n";
   return out;
 }
 

@@ -24,7 +24,19 @@ namespace {
 using detail::upper;
 
 
+// A negative value for a parameter that takes none (a timer period) is written as the unsigned
+// number its 32 bits are, which the assembler takes without the warning a negative one gets.
+bool unsigned_parameter(const Instruction& ins) {
+  const ParamInfo* p = nullptr;
+  if (ins.op == static_cast<std::uint8_t>(Op::SAP) || ins.op == static_cast<std::uint8_t>(Op::SAPX))
+    p = generic_profile().axis_param(ins.type);
+  else if (ins.op == static_cast<std::uint8_t>(Op::SGP))
+    p = generic_profile().global_param(ins.motor, ins.type);
+  return p && p->min >= 0;
+}
+
 std::string number(const Instruction& ins, Field f) {
+  if (f == Field::Value && ins.value < 0 && unsigned_parameter(ins)) return std::to_string(static_cast<std::uint32_t>(ins.value));
   return f == Field::Value ? std::to_string(ins.value) : std::to_string(field_of(ins, f));
 }
 

@@ -144,12 +144,38 @@ void Resolver::report_too_deep(int unit, int index) {
   for (const auto& [bu, bd] : busy_) units_[static_cast<std::size_t>(bu)].defs[static_cast<std::size_t>(bd)].state = EvalState::Failed;
 }
 
+bool Resolver::excuse_undefined(int unit, std::string_view name) {
+  Unit& u = units_[static_cast<std::size_t>(unit)];
+  if (u.missing_include < 0) return false;
+  if (u.unreported.insert(upper(name)).second && u.unreported_shown.size() < 3) u.unreported_shown.emplace_back(name);
+  return true;
+}
+
+void Resolver::note_excused() {
+  for (const Unit& u : units_) {
+    if (u.missing_include < 0 || u.unreported.empty()) continue;
+    Diagnostic& d = diags_.at(static_cast<std::size_t>(u.missing_include));
+    std::string names;
+    for (std::size_t k = 0; k < u.unreported_shown.size(); ++k)
+      names += (k ? ", '" : "'") + u.unreported_shown[k] + "'";
+    std::size_t more = u.unreported.size() - u.unreported_shown.size();
+    if (more) names += " and " + std::to_string(more) + " more";
+    const bool one = u.unreported.size() == 1;
+    diags_.note(d, d.loc, names + (one ? " is" : " are") + " used but defined nowhere: not reported as " +
+                              (one ? "an error of its own, as the missing file may define it"
+                                   : "errors of their own, as the missing file may define them"));
+  }
+}
+
+std::string Resolver::closest_def(int unit, std::string_view name) const {
+  std::vector<std::string_view> names;
+  for (const auto& def : units_[static_cast<std::size_t>(unit)].defs) names.push_back(def.name);
+  return closest_match(name, names);
+}
+
 void Resolver::report_undefined(int unit, const ExprNode& n, const std::string& key) {
   auto& d = diags_.error(n.loc, "use of undefined symbol '" + std::string(n.name) + "'");
-  std::vector<std::string_view> names;
-  const Unit& u = units_[static_cast<std::size_t>(unit)];
-  for (const auto& def : u.defs) names.push_back(def.name);
-  diags_.suggest(d, n.loc, n.name, closest_match(n.name, names));
+  diags_.suggest(d, n.loc, n.name, closest_def(unit, n.name));
   auto ex = exported_.find(key);
   if (ex != exported_.end()) {
     const SymDef& other = units_[static_cast<std::size_t>(ex->second.first)].defs[static_cast<std::size_t>(ex->second.second)];
@@ -165,7 +191,11 @@ std::optional<Value> Resolver::eval_name(int unit, const ExprNode& n, int depth)
   const Unit& u = units_[static_cast<std::size_t>(unit)];
   if (relocatable_)
     if (auto it = u.import_index.find(key); it != u.import_index.end()) return Value{0, it->second};
-  if (!u.failed_imports.count(key)) report_undefined(unit, n, key);
+  // With an #include missing, a name with no near miss among the unit's and no export elsewhere
+  // is most likely one the file defines; a near miss is most likely a typo, and reported.
+  if (!u.failed_imports.count(key) &&
+      !(u.missing_include >= 0 && closest_def(unit, n.name).empty() && !exported_.count(key) && excuse_undefined(unit, n.name)))
+    report_undefined(unit, n, key);
   return std::nullopt;
 }
 

@@ -110,9 +110,10 @@ class FastAssembler {
       Instruction& ins = out_.program[i];
       const OpInfo* info = ops_[ins.op];
       const FastText& t = texts_[static_cast<std::size_t>(out_.lines[i].file)];
-      if (!encode(t, *info, t.begin() + operands_[i], ins)) return false;
+      bool negative = false;
+      if (!encode(t, *info, t.begin() + operands_[i], ins, negative)) return false;
       probe.op = info;
-      check_against_profile(profile_, probe, ins, scratch);
+      check_against_profile(profile_, probe, ins, scratch, negative);
       if (!scratch.all().empty()) return false;
     }
     return true;
@@ -229,7 +230,8 @@ class FastAssembler {
     f.include_line = line;
     drop_bom(f.text);
     int index = out_.sources.add(std::move(f));
-    return !first_long_line(out_.sources.files[static_cast<std::size_t>(index)]) && add_text(index) &&
+    const SourceFile& added = out_.sources.files[static_cast<std::size_t>(index)];
+    return !first_long_line(added) && out_.diags.allow_from_comments(added, index) && add_text(index) &&
            scan_file(index, depth + 1, inc.key);
   }
 
@@ -332,7 +334,8 @@ class FastAssembler {
   }
 
   // ---- pass 2: one instruction's operands, from just after its mnemonic ----
-  bool encode(const FastText& t, const OpInfo& op, const char* p, Instruction& ins) {
+  // `negative`: whether the value operand is a negative number (the profile check's concern).
+  bool encode(const FastText& t, const OpInfo& op, const char* p, Instruction& ins, bool& negative) {
     for (std::size_t k = 0; k < op.operands.size(); ++k) {
       const OperandSpec& spec = op.operands[k];
       if (!t.skip_space(p)) return false;
@@ -367,6 +370,7 @@ class FastAssembler {
       if (!keyword && spec.keywords != KwSet::None && !keyword_name(spec.keywords, static_cast<std::uint8_t>(v)))
         return false;  // warned about by the full assembler
       put_field(ins, spec.field, v);
+      if (spec.field == Field::Value) negative = v < 0;
     }
     return t.skip_space(p) && t.at_end(p);
   }
@@ -414,7 +418,9 @@ bool fast_assemble(const std::string& path, const AsmOptions& options, FileReade
   bool bom = drop_bom(f.text);
   int root = out.sources.add(std::move(f));
   const SourceFile& added = out.sources.files[static_cast<std::size_t>(root)];
-  if (ok && !first_long_line(added)) {
+  // `tmcl: allow NAME` comments are read here too, for the analysis after; a wrong name is the
+  // full assembler's to report.
+  if (ok && !first_long_line(added) && out.diags.allow_from_comments(added, root)) {
     fa.reserve(added.line_starts.size());
     ok = fa.pass1(root) && fa.pass2() && fa.finish(root);
   } else {

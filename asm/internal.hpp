@@ -161,6 +161,12 @@ struct Unit {
   std::vector<std::string> import_order;               // upper-cased names, in #import order
   std::unordered_map<std::string, int> import_index;   // upper-cased name -> import_order index
   std::unordered_set<std::string> failed_imports;      // imported but exported by nobody
+  // An #include that was not found (its error, an index into the run's diagnostics; -1: none):
+  // names used but not defined are then not errors of their own (the file may define them), but
+  // listed in a note of that error.
+  int missing_include = -1;
+  std::unordered_set<std::string> unreported;          // upper-cased names, not reported
+  std::vector<std::string> unreported_shown;           // the first few, as spelt
   int base = 0;  // address of the unit's first instruction after linking
   bool no_append_stop = false;  // #no_append_stop
 
@@ -196,9 +202,10 @@ struct FoundInclude {
 };
 // Searches for `#include name` as the assembler does: an absolute name as it is; otherwise the
 // including file's folder, then the -I folders in order, then the bundled include files (names
-// compared case-insensitively).
+// compared case-insensitively). `searched`, when given, receives what was searched, as a message
+// says it ("'src' (the including file's folder)", "'inc' (-I)").
 bool find_include(const std::string& name, const std::string& including_path, const AsmOptions& options,
-                  FileReader& reader, FoundInclude& found);
+                  FileReader& reader, FoundInclude& found, std::vector<std::string>* searched = nullptr);
 std::string include_key(const std::string& path);
 // The first line of `f` longer than kMaxLineBytes (1-based), or 0 when there is none.
 int first_long_line(const SourceFile& f);
@@ -276,6 +283,13 @@ class Resolver {
   // Whether `unit` can see this name at all (defined or imported).
   bool known(int unit, const std::string& upper_name);
   void check_redefinitions();
+  // A name `unit` uses but nobody defines, when an #include of the unit was not found: recorded
+  // for the include's error instead of reported (true); false when it is to be reported.
+  bool excuse_undefined(int unit, std::string_view name);
+  // The note on each missing #include's error naming the uses it excused.
+  void note_excused();
+  // Did-you-mean for `name` among the unit's own names ("" when none is near).
+  std::string closest_def(int unit, std::string_view name) const;
   std::string_view name_of(int unit, int node) const {
     return units_[static_cast<std::size_t>(unit)].nodes[static_cast<std::size_t>(node)].name;
   }
@@ -307,6 +321,9 @@ class Resolver {
 };
 
 // Checks one encoded instruction against the module profile (errors and warnings).
-void check_against_profile(const Profile& profile, const Stmt& stmt, const Instruction& ins, Diagnostics& diags);
+// `negative_value`: the value operand was written as a negative number (the field holds its
+// two's complement), which a parameter that takes no negative values reads as a huge one.
+void check_against_profile(const Profile& profile, const Stmt& stmt, const Instruction& ins, Diagnostics& diags,
+                           bool negative_value = false);
 
 }  // namespace tmcl::detail

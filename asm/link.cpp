@@ -249,7 +249,7 @@ void link_object(Resolver& resolver, int u, const Unit& unit, const Profile& pro
     SourceLoc at = unit.object_loc(obj.lines[i].file, obj.lines[i].line);
     const OpInfo* info = (obj.code_flags[i] & kInsRaw) ? nullptr : op_info(ins.op);
     if (info && (info->control || info->mnemonic.empty())) info = nullptr;
-    bool ok = true, recheck = false;
+    bool ok = true, recheck = false, negative = false;  // negative: a relocated value below 0
     for (; r < obj.relocs.size() && obj.relocs[r].index == i; ++r) {
       const ObjReloc& x = obj.relocs[r];
       std::int64_t v = x.addend;
@@ -276,6 +276,7 @@ void link_object(Resolver& resolver, int u, const Unit& unit, const Profile& pro
         continue;
       }
       put_field(ins, x.field, v);
+      if (x.field == Field::Value) negative = v < 0;
       bool address = false;
       if (info)
         for (const auto& spec : info->operands)
@@ -290,7 +291,7 @@ void link_object(Resolver& resolver, int u, const Unit& unit, const Profile& pro
       s.loc = at;
       s.count = static_cast<int>(info->operands.size());
       for (auto& o : s.operands) o.loc = at;
-      check_against_profile(profile, s, ins, out.diags);
+      check_against_profile(profile, s, ins, out.diags, negative);
     }
   }
 }

@@ -157,6 +157,7 @@ class Parser {
       diags_.error(SourceLoc{idx, l, 1, 1}, "line is longer than " + std::to_string(kMaxLineBytes) + " bytes");
       return -1;
     }
+    diags_.allow_from_comments(sources_.files[static_cast<std::size_t>(idx)], idx);  // `tmcl: allow NAME`
     return idx;
   }
 
@@ -172,8 +173,11 @@ class Parser {
       return;
     }
     FoundInclude inc;
-    bool found = find_include(name, sources_.files[static_cast<std::size_t>(file_)].path, opts_, reader_, inc);
+    std::vector<std::string> searched;
+    bool found = find_include(name, sources_.files[static_cast<std::size_t>(file_)].path, opts_, reader_, inc, &searched);
     if (!found) {
+      // One error for the one mistake: what the file would have defined is not reported again.
+      if (unit_.missing_include < 0) unit_.missing_include = static_cast<int>(diags_.all().size());
       auto& d = diags_.error(loc(nt), "cannot find include file '" + name + "'");
       std::vector<std::string_view> names;
       for (const auto& b : bundled_includes()) names.push_back(b.first);
@@ -181,6 +185,11 @@ class Parser {
       SourceLoc inner = loc(nt);
       if (nt.text.size() >= 2 && (nt.text[0] == '"' || nt.text[0] == '<')) inner.col += 1, inner.len -= 2;
       diags_.suggest(d, loc(nt), inner, name, closest_match(name, names));
+      std::string where;
+      for (std::size_t k = 0; k < searched.size(); ++k)
+        where += (k == 0 ? "" : ", ") + searched[k];
+      diags_.note(d, loc(nt), "searched " + (where.empty() ? std::string() : where + " and ") +
+                                  "the include files bundled with tmcl; name the file's folder with -I DIR");
       return;
     }
     const std::string& key = inc.key;

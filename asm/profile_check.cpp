@@ -31,7 +31,8 @@ bool writes_immediate(Op op) { return op == Op::SAP || op == Op::SAPX || op == O
 
 class Checker {
  public:
-  Checker(const Profile& p, const Stmt& s, const Instruction& ins, Diagnostics& d) : p_(p), s_(s), ins_(ins), d_(d) {}
+  Checker(const Profile& p, const Stmt& s, const Instruction& ins, Diagnostics& d, bool negative)
+      : p_(p), s_(s), ins_(ins), d_(d), negative_(negative) {}
 
   void run() {
     if (!p_.has_command(ins_.op)) {
@@ -141,18 +142,28 @@ class Checker {
       generic_note(d_.warning(operand_loc(s_, Field::Value),
                               "value " + std::to_string(ins_.value) + " is outside the range of " + what + ": " + range_text(p),
                               "target"));
+    // A negative number for a parameter with no negative values: in range only as the unsigned
+    // number its 32 bits also are. "Unsigned" is what the profile's range says (its minimum).
+    else if (writes_immediate(op) && ((p.access & kWrite) || generic) && negative_ && p.min >= 0)
+      d_.warning(operand_loc(s_, Field::Value),
+                 "value " + std::to_string(ins_.value) + " is negative, but " + what + " takes no negative values (" +
+                     range_text(p) + "): the module reads it as " +
+                     std::to_string(static_cast<std::uint32_t>(ins_.value)),
+                 "target");
   }
 
   const Profile& p_;
   const Stmt& s_;
   const Instruction& ins_;
   Diagnostics& d_;
+  bool negative_;
 };
 
 }  // namespace
 
-void check_against_profile(const Profile& profile, const Stmt& stmt, const Instruction& ins, Diagnostics& diags) {
-  Checker(profile, stmt, ins, diags).run();
+void check_against_profile(const Profile& profile, const Stmt& stmt, const Instruction& ins, Diagnostics& diags,
+                           bool negative_value) {
+  Checker(profile, stmt, ins, diags, negative_value).run();
 }
 
 }  // namespace tmcl::detail

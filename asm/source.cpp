@@ -64,8 +64,11 @@ std::string include_key(const std::string& path) {
 }
 
 bool find_include(const std::string& name, const std::string& including_path, const AsmOptions& options,
-                  FileReader& reader, FoundInclude& found) {
+                  FileReader& reader, FoundInclude& found, std::vector<std::string>* searched) {
   namespace fs = std::filesystem;
+  auto tried = [searched](const std::string& folder, const char* why) {
+    if (searched) searched->push_back("'" + (folder.empty() ? std::string(".") : folder) + "' (" + why + ")");
+  };
   auto try_path = [&](const std::string& p) {
     if (p == "-" || !reader.read(p, found.text)) return false;  // "-" is standard input, never an include
     found.path = p;
@@ -73,11 +76,14 @@ bool find_include(const std::string& name, const std::string& including_path, co
     return true;
   };
   if (fs::path(name).is_absolute()) return try_path(name);
-  if (including_path.rfind("<bundled>/", 0) != 0 && including_path != "-" &&
-      try_path((fs::path(including_path).parent_path() / name).string()))
-    return true;
-  for (const auto& dir : options.include_dirs)
+  if (including_path.rfind("<bundled>/", 0) != 0 && including_path != "-") {
+    if (try_path((fs::path(including_path).parent_path() / name).string())) return true;
+    tried(fs::path(including_path).parent_path().string(), "the including file's folder");
+  }
+  for (const auto& dir : options.include_dirs) {
     if (try_path((fs::path(dir) / name).string())) return true;
+    tried(dir, "-I");
+  }
   for (const auto& [bname, btext] : bundled_includes()) {
     if (upper(bname) == upper(name)) {
       found.text = std::string(btext);
@@ -99,6 +105,18 @@ int first_long_line(const SourceFile& f) {
 }
 
 }  // namespace detail
+
+std::string DiskReader::folder_problem(const std::string& path) {
+  struct stat st {};
+  if (::stat(path.c_str(), &st) != 0) return errno == ENOENT ? "does not exist" : std::strerror(errno);
+  return S_ISDIR(st.st_mode) ? std::string() : "is not a folder";
+}
+
+std::string MemoryReader::folder_problem(const std::string& path) {
+  std::string prefix = path.empty() || path.back() == '/' ? path : path + "/";
+  auto it = files.lower_bound(prefix);
+  return it != files.end() && it->first.rfind(prefix, 0) == 0 ? std::string() : "does not exist";
+}
 
 bool MemoryReader::read(const std::string& path, std::string& out) {
   auto it = files.find(path);

@@ -118,20 +118,6 @@ std::string analyze_program(tmcl::AsmResult& result, Extra extra, bool targets_c
   return {};
 }
 
-// True when the analysis of a program assembled without label names reports nothing: then it
-// reports nothing with them either, and needs no names. Names change only the words of messages,
-// and exported labels nothing calls, which become subroutines with names; without names their
-// code is unreachable, so -Wunreachable is counted here even where -Wno-unreachable is given.
-bool analysis_is_silent(const tmcl::AsmResult& result) {
-  tmcl::AnalysisInput in = tmcl::analysis_input(result, true);
-  tmcl::WarningOptions w = result.diags.warning_options();
-  w.off.erase("unreachable");
-  tmcl::Diagnostics scratch;
-  scratch.set_warning_options(w);
-  tmcl::analyze(in, scratch);
-  return scratch.all().empty();
-}
-
 // Reads the image or object FILE for -d and --analyze, and with --symbols FILE the label names
 // into `names` (pointed to by `o.names`). 0, or the exit status after saying what went wrong.
 int read_input_image(const std::string& file, const std::string& symbols_file, std::string& bytes,
@@ -179,8 +165,9 @@ int analyze_image(const std::string& file, tmcl::AsmOptions opts, const tmcl::Di
   // A final STOP is most likely the one tmclasm and TMCL-IDE append: not reported unreachable.
   if (!result.program.empty() && result.program.back().op == static_cast<std::uint8_t>(tmcl::Op::STOP))
     result.appended_stop = true;
+  result.diags.set_kind_limit(opts.error_limit);
   std::string text = result.ok() ? analyze_program(result, extra, true) : std::string();
-  std::fputs(result.diags.render(result.sources).c_str(), stderr);
+  std::fputs(result.diags.render(result.sources, opts.error_limit).c_str(), stderr);
   if (!result.ok()) {
     print_failure(result.diags.error_count(), result.diags.warning_count());
     return kExitInput;
@@ -483,23 +470,16 @@ int compile(const std::vector<std::string>& files, Settings& s, tmcl::FileReader
 
 // A link into one program (or its analysis' dot graph or stack report).
 int link(const std::vector<std::string>& files, Settings& s, tmcl::FileReader& reader) {
-  // Label names: for the symbols format, the map, the analysis' pictures and its messages. A
-  // million-line program has a hundred thousand labels, and collecting them costs more than the
-  // whole analysis (docs/performance.md), so a plain link first analyses without them and
-  // assembles again with them only when the analysis has something to say. Standard input
-  // cannot be read twice: names up front then.
+  // Label names: for the symbols format, the map, the analysis' pictures and its messages. On a
+  // million-line program they cost the assembler 2 % (docs/performance.md): collected in the one
+  // assembly whenever they may be needed, never by assembling twice.
   tmcl::AsmOptions& opts = s.opts;
-  opts.symbols = s.format == tmcl::OutputFormat::Symbols || !s.map_file.empty() || s.extra != Extra::None ||
-                 (s.analysis && std::find(files.begin(), files.end(), "-") != files.end());
+  opts.symbols = s.format == tmcl::OutputFormat::Symbols || !s.map_file.empty() || s.extra != Extra::None || s.analysis;
   tmcl::AsmResult result = tmcl::assemble(files, opts, reader);
+  // At most --error-limit warnings of each kind are shown: the rest are only counted.
+  result.diags.set_kind_limit(opts.error_limit);
   std::string extra_text;
-  if (s.analysis && result.ok() && !(!opts.symbols && analysis_is_silent(result))) {
-    if (!opts.symbols) {
-      opts.symbols = true;
-      result = tmcl::assemble(files, opts, reader);
-    }
-    if (result.ok()) extra_text = analyze_program(result, s.extra, true);
-  }
+  if (s.analysis && result.ok()) extra_text = analyze_program(result, s.extra, true);
   std::string text = result.diags.render(result.sources, opts.error_limit);
   std::fputs(text.c_str(), stderr);
   if (!result.ok()) {

@@ -8,6 +8,7 @@
 #include "tmcl/analysis.hpp"
 
 #include <algorithm>
+#include <bit>
 #include <string>
 
 #include "analysis_internal.hpp"
@@ -66,7 +67,7 @@ int Walker::region_at(int address) {
   reg.kind = vect_target.test(address) ? RegionKind::Handler : RegionKind::Subroutine;
   reg.entry = address;
   a.regions.push_back(std::move(reg));
-  facts.emplace_back();
+  last_caller.push_back(-1);
   queue.push_back(o);
   return o;
 }
@@ -152,7 +153,6 @@ void Walker::walk(int r, int from, int start) {
     work.pop_back();
     for (;;) {
       const Instruction& ins = in.program[static_cast<std::size_t>(i)];
-      auto f = [this, r]() -> RegionFacts& { return facts[static_cast<std::size_t>(r)]; };  // facts may grow
       const int t = ins.value;
       const bool t_ok = t >= 0 && t < n;
       bool next = true;
@@ -174,7 +174,7 @@ void Walker::walk(int r, int from, int start) {
           if (t_ok) {
             edge(i, t, EdgeKind::Call);
             int q = region_at(t);
-            int& last = facts[static_cast<std::size_t>(q)].last_caller;
+            int& last = last_caller[static_cast<std::size_t>(q)];
             if (last != r) calls.push_back({i, r, q});
             last = r;
             if (keep_call_sites) call_sites.push_back(i);
@@ -193,7 +193,7 @@ void Walker::walk(int r, int from, int start) {
               // A reset leaves any region cleanly for the main program: it clears the call stack
               // and the interrupt state, so it is also a way out of a handler (errata E31, E43).
               restarts.push_back({i, t});
-              f().resets.push_back(i);
+              met(r, Fact::Reset, i);
             }
           } else {
             bad_jumps.push_back(i);
@@ -214,15 +214,15 @@ void Walker::walk(int r, int from, int start) {
         // With nothing to return to, RSUB and RETI are ignored (manual; errata E6, E13) and the
         // program goes on: in the main program and in a handler (RSUB), in the main program (RETI).
         case Op::RSUB:
-          f().rsubs.push_back(i);
+          met(r, Fact::Rsub, i);
           next = a.regions[static_cast<std::size_t>(r)].kind != RegionKind::Subroutine;
           break;
         case Op::RETI:
-          f().retis.push_back(i);
+          met(r, Fact::Reti, i);
           next = a.regions[static_cast<std::size_t>(r)].kind == RegionKind::Main;
           break;
-        case Op::STOP: f().stops.push_back(i); next = false; break;
-        case Op::WAIT: f().waits.push_back(i); break;
+        case Op::STOP: met(r, Fact::Stop, i); next = false; break;
+        case Op::WAIT: met(r, Fact::Wait, i); break;
         case Op::STAP:
         case Op::STGP:
         case Op::SCO:
@@ -230,16 +230,18 @@ void Walker::walk(int r, int from, int start) {
           if (writes_eeprom(ins)) writes.push_back(i);
           break;
         default:
-          if (!op_info(ins.op)) next = false;  // not an instruction: the VM faults here (E20)
+          if (!is_op[ins.op]) next = false;  // not an instruction: the VM faults here (E20)
           break;
       }
       if (!next) break;
       if (i + 1 >= n) {
-        f().falloffs.push_back(i);
+        met(r, Fact::Falloff, i);
         break;
       }
       edge(i, i + 1, EdgeKind::Next);
-      if (!claim(r, i, i + 1)) break;
+      // The common case inline: the next instruction is nobody's yet and no region's entry.
+      if (int& o = a.owner[static_cast<std::size_t>(i) + 1]; o < 0 && !is_target(i + 1)) o = r;
+      else if (!claim(r, i, i + 1)) break;
       ++i;
     }
   }
@@ -255,7 +257,7 @@ void Walker::build() {
   std::vector<char> returns(static_cast<std::size_t>(nr), 0);
   std::vector<int> stack;
   for (int r = 0; r < nr; ++r)
-    if (region(r).kind == RegionKind::Subroutine && !fact(r).rsubs.empty()) {
+    if (region(r).kind == RegionKind::Subroutine && met_any(r, Fact::Rsub)) {
       returns[static_cast<std::size_t>(r)] = 1;
       stack.push_back(r);
     }
@@ -281,7 +283,8 @@ void Walker::build() {
     }
   if (!again) return;
   a = Analysis{};
-  facts.clear();
+  last_caller.clear();
+  events.clear();
   queue.clear();
   flows.clear();
   calls.clear();
@@ -307,19 +310,34 @@ void Walker::pass() {
   // walk stops at a subroutine's label even before the CSUB naming it has been seen.
   for (int i = 0; i < n; ++i) {
     const Instruction& ins = in.program[static_cast<std::size_t>(i)];
-    keep_call_sites = keep_call_sites || writes_eeprom(ins);
-    if (ins.value < 0 || ins.value >= n) continue;
-    if (ins.op == static_cast<std::uint8_t>(Op::CSUB) || ins.op == static_cast<std::uint8_t>(Op::CALL))
-      call_target.set(ins.value);
-    else if (ins.op == static_cast<std::uint8_t>(Op::VECT))
-      vect_target.set(ins.value);
+    switch (static_cast<Op>(ins.op)) {
+      case Op::STAP:
+      case Op::STGP:
+      case Op::SCO:
+      case Op::SGP: keep_call_sites = keep_call_sites || writes_eeprom(ins); break;
+      case Op::CSUB:
+      case Op::CALL:
+        if (ins.value >= 0 && ins.value < n) call_target.set(ins.value);
+        break;
+      case Op::VECT:
+        if (ins.value >= 0 && ins.value < n) vect_target.set(ins.value);
+        break;
+      default: break;
+    }
   }
+  // One region per entry at most (exported labels nothing calls add a few later).
+  std::size_t entries = 1;
+  for (std::size_t k = 0; k < call_target.words.size(); ++k)
+    entries += static_cast<std::size_t>(std::popcount(call_target.words[k] | vect_target.words[k]));
+  a.regions.reserve(entries);
+  last_caller.reserve(entries);
   if (n == 0) return;
+  for (int op = 0; op < 256; ++op) is_op[static_cast<std::size_t>(op)] = op_info(static_cast<std::uint8_t>(op)) != nullptr;
   Region main;
   main.kind = RegionKind::Main;
   main.entry = 0;
   a.regions.push_back(main);
-  facts.emplace_back();
+  last_caller.push_back(-1);
   a.owner[0] = 0;
   // The main program first: it owns its code; then every region in the order found. A program
   // that begins with a run of JAs is a table of entry points a host starts with command 129
@@ -355,9 +373,67 @@ void Walker::pass() {
     }
     if (!more) break;
   }
+  index_facts();
+}
+
+// Groups what the walks met by region, and a region's by kind, each kind in the order met: a
+// counting sort by region, placing the kinds one after another (a pass over the list each).
+void Walker::index_facts() {
+  const std::size_t nr = a.regions.size();
+  fact_begin.assign(nr + 1, 0);
+  fact_mask.assign(nr, 0);
+  std::array<bool, kFactKinds> present{};
+  for (const auto& e : events) {
+    ++fact_begin[static_cast<std::size_t>(e.region) + 1];
+    fact_mask[static_cast<std::size_t>(e.region)] |= static_cast<std::uint8_t>(1u << static_cast<int>(e.kind));
+    present[static_cast<std::size_t>(e.kind)] = true;
+  }
+  for (std::size_t r = 1; r <= nr; ++r) fact_begin[r] += fact_begin[r - 1];
+  std::vector<int> next(fact_begin.begin(), fact_begin.end() - 1);
+  fact_addresses.resize(events.size());
+  fact_kinds.resize(events.size());
+  for (int kind = 0; kind < kFactKinds; ++kind) {
+    if (!present[static_cast<std::size_t>(kind)]) continue;
+    for (const auto& e : events) {
+      if (static_cast<int>(e.kind) != kind) continue;
+      auto k = static_cast<std::size_t>(next[static_cast<std::size_t>(e.region)]++);
+      fact_addresses[k] = e.address;
+      fact_kinds[k] = e.kind;
+    }
+  }
+  events = {};  // grouped now: its memory serves what comes next
+}
+
+RegionFacts Walker::fact(int r) const {
+  RegionFacts f;
+  if (static_cast<std::size_t>(r) + 1 >= fact_begin.size()) return f;
+  const auto begin = static_cast<std::size_t>(fact_begin[static_cast<std::size_t>(r)]);
+  const auto end = static_cast<std::size_t>(fact_begin[static_cast<std::size_t>(r) + 1]);
+  std::span<const int>* of[kFactKinds] = {&f.rsubs, &f.retis, &f.stops, &f.waits, &f.falloffs, &f.resets};
+  for (std::size_t k = begin; k < end;) {
+    std::size_t e = k;
+    while (e < end && fact_kinds[e] == fact_kinds[k]) ++e;
+    *of[static_cast<std::size_t>(fact_kinds[k])] = std::span<const int>(fact_addresses.data() + k, e - k);
+    k = e;
+  }
+  return f;
+}
+
+bool Walker::any_reset() const {
+  return std::find(fact_kinds.begin(), fact_kinds.end(), Fact::Reset) != fact_kinds.end();
 }
 
 }  // namespace detail
+
+std::vector<int> deepest_chain(const Analysis& a, int r, std::size_t limit) {
+  std::vector<int> chain;
+  for (std::size_t steps = 0; r >= 0 && steps <= a.regions.size() && chain.size() < limit; ++steps) {
+    const Region& reg = a.regions[static_cast<std::size_t>(r)];
+    if (reg.chain_site >= 0) chain.push_back(reg.chain_site);
+    r = reg.chain_to;
+  }
+  return chain;
+}
 
 Analysis analyze(const AnalysisInput& in, Diagnostics& diags, const AnalysisOptions& options) {
   detail::Walker w(in, diags, options);

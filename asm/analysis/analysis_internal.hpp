@@ -3,7 +3,11 @@
 
 #include <array>
 #include <cstdint>
+#include <span>
 #include <string>
+#include <string_view>
+#include <unordered_map>
+#include <unordered_set>
 #include <utility>
 #include <vector>
 
@@ -20,11 +24,19 @@ struct AddressBits {
   void set(int i) { words[static_cast<std::size_t>(i) >> 6] |= std::uint64_t{1} << (i & 63); }
 };
 
-// What one region's walk met, by instruction address.
+// What one region's walk met, by instruction address, in the order met: views of
+// Walker::fact_addresses (Walker::fact). All walks record into one list, grouped by region after
+// each pass (index_facts): 100,000 regions cost no 600,000 small vectors, and no table per region.
 struct RegionFacts {
-  std::vector<int> rsubs, retis, stops, waits, falloffs;
-  std::vector<int> resets;  // RSTs (outside the main program): a clean way out of any region (E43)
-  int last_caller = -1;  // the region whose call of this one was recorded last (Walker::calls)
+  std::span<const int> rsubs, retis, stops, waits, falloffs;
+  std::span<const int> resets;  // RSTs (outside the main program): a clean way out of any region (E43)
+};
+enum class Fact : std::uint8_t { Rsub, Reti, Stop, Wait, Falloff, Reset };
+inline constexpr int kFactKinds = 6;
+struct FactEvent {
+  int region;
+  int address;
+  Fact kind;
 };
 
 // Control passes from region `from_region` into `to_region` without a call: a jump or running
@@ -49,7 +61,45 @@ struct RegionEdge {
   int site;
 };
 
+// A graph of regions as one array of edges grouped by the region they leave (compressed rows):
+// one allocation, where a vector per region would be 100,000 on a program of that many.
+struct RegionGraph {
+  std::vector<int> begin;  // per region, and one more: where its edges start in `edges`
+  std::vector<RegionEdge> edges;
+  // From the edges `each(add)` gives by calling add(region, edge), each region's in the order
+  // given; `each` runs twice (to count, then to place), so no list of them is kept.
+  template <class Each>
+  void build(int regions, Each each) {
+    begin.assign(static_cast<std::size_t>(regions) + 1, 0);
+    each([this](int from, const RegionEdge&) { ++begin[static_cast<std::size_t>(from) + 1]; });
+    for (std::size_t k = 1; k < begin.size(); ++k) begin[k] += begin[k - 1];
+    edges.resize(static_cast<std::size_t>(begin.back()));
+    std::vector<int> next(begin.begin(), begin.end() - 1);
+    each([&](int from, const RegionEdge& e) { edges[static_cast<std::size_t>(next[static_cast<std::size_t>(from)]++)] = e; });
+  }
+  std::span<const RegionEdge> operator[](std::size_t v) const {
+    return {edges.data() + begin[v], edges.data() + begin[v + 1]};
+  }
+};
+
 std::string region_word(const Region& r);
+
+// A JC that tests a counter (counters.cpp): the counter, the JC's component of the instruction
+// graph, its edges that step the counter towards the bound (1: the jump, 2: running on) and, per
+// edge, the writes of the counter found on the way (the only ones the loop may have).
+struct CounterTest {
+  int jc = -1;
+  int component = -1;
+  std::uint32_t var = 0;
+  int towards = 0;
+  std::size_t own[2] = {0, 0};
+};
+// Who writes the counters of some tests, by component (counters.cpp).
+struct CounterFacts {
+  std::unordered_map<std::uint64_t, std::size_t> writes_in;  // (component, variable) -> writes
+  std::unordered_set<int> calls_in;                          // components with a CSUB or CALL
+  std::unordered_set<std::uint32_t> handler_writes, subroutine_writes;
+};
 
 struct Walker {
   Walker(const AnalysisInput& input, Diagnostics& d, const AnalysisOptions& o) : in(input), diags(d), options(o) {}
@@ -58,7 +108,13 @@ struct Walker {
   const AnalysisOptions& options;
   Analysis a;
 
-  std::vector<RegionFacts> facts;
+  std::vector<int> last_caller;     // per region: the region whose call of it was recorded last (calls)
+  std::vector<FactEvent> events;    // what the walks met, region by region as they went
+  // The same grouped by region, and in a region by kind: region r's are from fact_begin[r] to
+  // fact_begin[r + 1].
+  std::vector<int> fact_begin, fact_addresses;
+  std::vector<Fact> fact_kinds;
+  std::vector<std::uint8_t> fact_mask;  // per region: bit k set when it met a fact of kind k
   AddressBits call_target, vect_target;    // per address: a CSUB/CALL or VECT names it
   std::vector<int> queue;                  // regions to walk, in the order found
   std::vector<int> work;                   // the walk's stack of addresses
@@ -75,9 +131,10 @@ struct Walker {
   std::vector<std::pair<int, int>> restarts;  // RST outside the main program: (site, target)
   std::vector<int> bad_jumps, bad_vects, eis, writes;
   std::array<bool, 256> vect_set{};
+  std::array<bool, 256> is_op{};  // opcodes of the instruction table (op_info, looked up once)
   std::vector<char> noreturn_at;  // per address: a subroutine there never returns (second pass)
   // Per region: the best edge of its deepest chain (-1: none) and its graph edges.
-  std::vector<std::vector<RegionEdge>> out;
+  RegionGraph out;
   std::vector<int> comp;         // region -> component
   std::vector<RegionEdge> best;  // per component
   std::vector<int> best_from;    // per component: the region the best edge leaves
@@ -92,22 +149,35 @@ struct Walker {
   bool claim(int r, int from, int to);
   void reach(int r, int from, int to);
   void walk(int r, int from, int start);
+  void met(int r, Fact kind, int address) { events.push_back({r, address, kind}); }
+  void index_facts();
   void build();
   void pass();
   void depths();
-  std::vector<int> chain_of(int region) const;
+  // Whether a warning `name` at instruction `address` is worth building: false (and the warning
+  // only counted) when the tool keeps no more of its kind, so 80,000 of one kind cost little; also
+  // false (not counted) when a comment allows it there (Diagnostics::take).
+  bool want(std::string_view name, int address);
   void check_flow();
   void check_interrupts();
   void check_unreachable();
   void check_depth();
   void check_eeprom();
+  // -Weeprom-wear's loops bounded by a counter (counters.cpp).
+  bool counter_test(int jc, const std::vector<int>& scc, const AddressBits& landing, CounterTest& t) const;
+  void counter_facts(const std::vector<int>& scc, const std::vector<CounterTest>& tests, CounterFacts& cf) const;
+  int counted_edges(const CounterTest& t, const CounterFacts& cf) const;
   // Fixes for editors (fixes.cpp): a RETI on its own line after instruction `after`, and the
   // removal of the lines of instructions `first` to `last`.
   void fix_add_reti(Diagnostic& d, int after) const;
   void fix_remove(Diagnostic& d, int first, int last) const;
 
   const Region& region(int r) const { return a.regions[static_cast<std::size_t>(r)]; }
-  const RegionFacts& fact(int r) const { return facts[static_cast<std::size_t>(r)]; }
+  RegionFacts fact(int r) const;
+  bool met_any(int r, Fact kind) const {
+    return (fact_mask[static_cast<std::size_t>(r)] >> static_cast<int>(kind)) & 1u;
+  }
+  bool any_reset() const;
   const Instruction& ins(int i) const { return in.program[static_cast<std::size_t>(i)]; }
   std::string mnemonic(int i) const;
   bool writes_eeprom(const Instruction& x) const;

@@ -3,6 +3,7 @@
 // and RETI where nothing can be returned to, interrupts, unreachable code and EEPROM wear.
 #include <algorithm>
 #include <cstdio>
+#include <set>
 #include <string>
 
 #include "analysis_internal.hpp"
@@ -17,32 +18,34 @@ std::string Walker::mnemonic(int i) const {
 
 void Walker::depths() {
   const int nr = static_cast<int>(a.regions.size());
-  out.assign(static_cast<std::size_t>(nr), {});
-  for (const auto& c : calls) out[static_cast<std::size_t>(c.caller)].push_back({c.callee, 1, c.site});
   // A flow into another subroutine or handler runs there in the same frame (a shared tail);
   // a flow into the main program is a leak (-Wstack-leak) and adds nothing to a depth.
-  for (const auto& f : flows)
-    if (f.from_region != f.to_region && region(f.to_region).kind != RegionKind::Main)
-      out[static_cast<std::size_t>(f.from_region)].push_back({f.to_region, 0, f.from});
+  out.build(nr, [this](auto add) {
+    for (const auto& c : calls) add(c.caller, RegionEdge{c.callee, 1, c.site});
+    for (const auto& f : flows)
+      if (f.from_region != f.to_region && region(f.to_region).kind != RegionKind::Main)
+        add(f.from_region, RegionEdge{f.to_region, 0, f.from});
+  });
   std::vector<int> roots(static_cast<std::size_t>(nr));
   for (int r = 0; r < nr; ++r) roots[static_cast<std::size_t>(r)] = r;
   int count = 0;
   comp = strong_components(
       nr, roots,
-      [this](int v, std::vector<int>& s) {
-        for (const auto& e : out[static_cast<std::size_t>(v)]) s.push_back(e.to);
+      [this](int v, int k) {
+        auto edges = out[static_cast<std::size_t>(v)];
+        return static_cast<std::size_t>(k) < edges.size() ? edges[static_cast<std::size_t>(k)].to : -1;
       },
       count);
   recursive.assign(static_cast<std::size_t>(count), 0);
   best.assign(static_cast<std::size_t>(count), RegionEdge{-1, 0, -1});
   best_from.assign(static_cast<std::size_t>(count), -1);
   std::vector<int> depth(static_cast<std::size_t>(count), 0);
-  // Regions by component, callees' components first (Tarjan's numbering).
-  std::vector<int> order(static_cast<std::size_t>(nr));
-  for (int r = 0; r < nr; ++r) order[static_cast<std::size_t>(r)] = r;
-  std::stable_sort(order.begin(), order.end(), [this](int x, int y) {
-    return comp[static_cast<std::size_t>(x)] < comp[static_cast<std::size_t>(y)];
-  });
+  // Regions by component, callees' components first (Tarjan's numbering; a counting sort).
+  std::vector<int> order(static_cast<std::size_t>(nr)), start(static_cast<std::size_t>(count) + 1, 0);
+  for (int r = 0; r < nr; ++r) ++start[static_cast<std::size_t>(comp[static_cast<std::size_t>(r)]) + 1];
+  for (std::size_t c = 1; c < start.size(); ++c) start[c] += start[c - 1];
+  for (int r = 0; r < nr; ++r)
+    order[static_cast<std::size_t>(start[static_cast<std::size_t>(comp[static_cast<std::size_t>(r)])]++)] = r;
   for (std::size_t k = 0; k < order.size();) {
     int c = comp[static_cast<std::size_t>(order[k])];
     std::size_t end = k;
@@ -70,31 +73,40 @@ void Walker::depths() {
   }
   for (int r = 0; r < nr; ++r) {
     Region& reg = a.regions[static_cast<std::size_t>(r)];
-    reg.depth = depth[static_cast<std::size_t>(comp[static_cast<std::size_t>(r)])];
-    reg.chain = chain_of(r);
+    auto c = static_cast<std::size_t>(comp[static_cast<std::size_t>(r)]);
+    reg.depth = depth[c];
+    if (!recursive[c] && best[c].to >= 0) {
+      reg.chain_to = best[c].to;
+      reg.chain_site = best[c].weight > 0 ? best[c].site : -1;
+    }
   }
   a.main_depth = a.regions.empty() ? 0 : a.regions[0].depth;
 }
 
-std::vector<int> Walker::chain_of(int r) const {
-  std::vector<int> chain;
-  int cur = r;
-  for (std::size_t steps = 0; steps <= a.regions.size(); ++steps) {
-    int c = comp[static_cast<std::size_t>(cur)];
-    const RegionEdge& e = best[static_cast<std::size_t>(c)];
-    if (recursive[static_cast<std::size_t>(c)] || e.to < 0) break;
-    if (e.weight > 0) chain.push_back(e.site);
-    cur = e.to;
+bool Walker::want(std::string_view name, int address) {
+  SourceLoc at;  // file and line are all a suppression comment needs
+  if (address >= 0 && static_cast<std::size_t>(address) < in.lines.size()) {
+    at.file = in.lines[static_cast<std::size_t>(address)].file;
+    at.line = in.lines[static_cast<std::size_t>(address)].line;
   }
-  return chain;
+  return diags.take(name, at);
 }
 
+
 namespace {
-// The first call of region `r`, for "called from here" notes; -1 when none.
-int first_call_of(const std::vector<CallSite>& calls, int r) {
-  for (const auto& c : calls)
-    if (c.callee == r) return c.site;
-  return -1;
+// Gives `value` to every region `g` leads to from the regions on `stack` (emptied) whose mark is
+// still `unmarked`; the stack's own regions are marked already.
+template <class T>
+void spread(const RegionGraph& g, std::vector<int>& stack, std::vector<T>& mark, T unmarked, T value) {
+  while (!stack.empty()) {
+    int v = stack.back();
+    stack.pop_back();
+    for (const auto& e : g[static_cast<std::size_t>(v)])
+      if (mark[static_cast<std::size_t>(e.to)] == unmarked) {
+        mark[static_cast<std::size_t>(e.to)] = value;
+        stack.push_back(e.to);
+      }
+  }
 }
 }  // namespace
 
@@ -105,64 +117,59 @@ void Walker::check_flow() {
   std::vector<int> from_main(static_cast<std::size_t>(nr), 0), from_handler(static_cast<std::size_t>(nr), -1);
   std::vector<int> stack{0};
   if (nr > 0) from_main[0] = 1;
-  while (!stack.empty()) {
-    int v = stack.back();
-    stack.pop_back();
-    for (const auto& e : out[static_cast<std::size_t>(v)])
-      if (!from_main[static_cast<std::size_t>(e.to)]) {
-        from_main[static_cast<std::size_t>(e.to)] = 1;
-        stack.push_back(e.to);
-      }
-  }
+  spread(out, stack, from_main, 0, 1);
   for (int h = 0; h < nr; ++h)
     if (region(h).kind == RegionKind::Handler) from_handler[static_cast<std::size_t>(h)] = h;  // each its own
   for (int h = 0; h < nr; ++h) {
     if (region(h).kind != RegionKind::Handler) continue;
     stack.push_back(h);
-    while (!stack.empty()) {
-      int v = stack.back();
-      stack.pop_back();
-      for (const auto& e : out[static_cast<std::size_t>(v)])
-        if (from_handler[static_cast<std::size_t>(e.to)] < 0) {
-          from_handler[static_cast<std::size_t>(e.to)] = h;
-          stack.push_back(e.to);
-        }
-    }
+    spread(out, stack, from_handler, -1, h);
   }
-  // Whether a handler can end in RST, itself or in a subroutine it calls: RST clears the
+  // Which regions can end in RST, themselves or in a region they call or run into: RST clears the
   // interrupt state (E31), a legitimate way out of a handler, not a handler that never ends (E43).
-  auto resets_from = [&](int h) {
-    std::vector<char> seen_region(static_cast<std::size_t>(nr), 0);
-    std::vector<int> todo{h};
-    seen_region[static_cast<std::size_t>(h)] = 1;
-    while (!todo.empty()) {
-      int v = todo.back();
-      todo.pop_back();
-      if (!fact(v).resets.empty()) return true;
-      for (const auto& e : out[static_cast<std::size_t>(v)])
-        if (!seen_region[static_cast<std::size_t>(e.to)]) {
-          seen_region[static_cast<std::size_t>(e.to)] = 1;
-          todo.push_back(e.to);
-        }
-    }
-    return false;
-  };
+  // Found backwards from the regions with an RST, so each region and edge is looked at once.
+  std::vector<char> resets(static_cast<std::size_t>(nr), 0);
+  if (any_reset()) {
+    RegionGraph into;
+    into.build(nr, [&](auto add) {
+      for (int v = 0; v < nr; ++v)
+        for (const auto& e : out[static_cast<std::size_t>(v)]) add(e.to, RegionEdge{v, e.weight, e.site});
+    });
+    for (int v = 0; v < nr; ++v)
+      if (met_any(v, Fact::Reset)) {
+        resets[static_cast<std::size_t>(v)] = 1;
+        stack.push_back(v);
+      }
+    spread(into, stack, resets, char{0}, char{1});
+  }
+  // Per region: its first call (for "called from here" notes; -1 when none) and whether control
+  // flows from it into another region.
+  std::vector<int> first_call(static_cast<std::size_t>(nr), -1);
+  for (const auto& c : calls)
+    if (first_call[static_cast<std::size_t>(c.callee)] < 0) first_call[static_cast<std::size_t>(c.callee)] = c.site;
+  std::vector<char> flows_out(static_cast<std::size_t>(nr), 0);
+  for (const auto& fl : flows)
+    if (fl.to_region != fl.from_region) flows_out[static_cast<std::size_t>(fl.from_region)] = 1;
   auto note_start = [&](Diagnostic& d, int r) {
     diags.note(d, loc(region(r).entry), region_word(region(r)) + " starts here");
   };
   auto note_called = [&](Diagnostic& d, int r) {
-    int site = first_call_of(calls, r);
+    int site = first_call[static_cast<std::size_t>(r)];
     if (site >= 0) diags.note(d, loc(site), "called from here");
   };
 
-  // Flows between regions.
-  std::vector<std::pair<int, int>> seen;
+  // Flows between regions, each (instruction, region entered) once.
+  std::set<std::pair<int, int>> seen;
   for (const auto& f : flows) {
     if (f.from < 0 || f.from_region == f.to_region) continue;
-    if (std::find(seen.begin(), seen.end(), std::pair{f.from, f.to_region}) != seen.end()) continue;
-    seen.emplace_back(f.from, f.to_region);
     const Region& fr = region(f.from_region);
     const Region& tr = region(f.to_region);
+    const char* kind = fr.kind == RegionKind::Main && tr.kind == RegionKind::Subroutine        ? "rsub"
+                       : fr.kind == RegionKind::Main && tr.kind == RegionKind::Handler         ? "reti"
+                       : fr.kind == RegionKind::Subroutine && tr.kind != RegionKind::Subroutine ? "stack-leak"
+                       : fr.kind == RegionKind::Handler && tr.kind != RegionKind::Handler      ? "reti"
+                                                                                               : nullptr;
+    if (!kind || !seen.emplace(f.from, f.to_region).second || !want(kind, f.from)) continue;
     const Instruction& src = ins(f.from);
     const bool jumps = (src.op == static_cast<std::uint8_t>(Op::JA) || src.op == static_cast<std::uint8_t>(Op::JC) ||
                         src.op == static_cast<std::uint8_t>(Op::DJNZ) || src.op == static_cast<std::uint8_t>(Op::RST)) &&
@@ -175,16 +182,16 @@ void Walker::check_flow() {
       note_start(d, f.to_region);
       if (!fact(f.to_region).rsubs.empty())
         diags.note(d, loc(fact(f.to_region).rsubs.front()), "this RSUB is then ignored and execution goes on after it");
-    } else if (fr.kind == RegionKind::Main && tr.kind == RegionKind::Handler) {
+    } else if (fr.kind == RegionKind::Main) {
       auto& d = diags.warning(loc(f.from), how + " outside an interrupt: its RETI will be ignored", "reti");
       note_start(d, f.to_region);
-    } else if (fr.kind == RegionKind::Subroutine && tr.kind != RegionKind::Subroutine) {
+    } else if (fr.kind == RegionKind::Subroutine) {
       auto& d = diags.warning(loc(f.from),
                               how + " without RSUB: the return address stays on the call stack, one more each time",
                               "stack-leak");
       note_start(d, f.from_region);
       note_called(d, f.from_region);
-    } else if (fr.kind == RegionKind::Handler && tr.kind != RegionKind::Handler) {
+    } else {
       auto& d = diags.warning(loc(f.from), how + " without RETI: other interrupts stay blocked", "reti");
       note_start(d, f.from_region);
       if (!jumps) fix_add_reti(d, f.from);
@@ -193,13 +200,19 @@ void Walker::check_flow() {
 
   for (int r = 0; r < nr; ++r) {
     const Region& reg = region(r);
-    const RegionFacts& f = fact(r);
     const bool handler_ctx = from_handler[static_cast<std::size_t>(r)] >= 0;
+    // Most regions are subroutines the main program calls that met nothing but RSUBs (and WAITs):
+    // nothing to look at.
+    if (reg.kind == RegionKind::Subroutine && !handler_ctx && !met_any(r, Fact::Reti) && !met_any(r, Fact::Falloff))
+      continue;
+    const RegionFacts f = fact(r);
     if (reg.kind == RegionKind::Main)
       for (int i : f.rsubs)
-        diags.warning(loc(i), "RSUB in the main program finds the call stack empty: the module ignores it", "rsub");
+        if (want("rsub", i))
+          diags.warning(loc(i), "RSUB in the main program finds the call stack empty: the module ignores it", "rsub");
     if (reg.kind == RegionKind::Handler)
       for (int i : f.rsubs) {
+        if (!want("reti", i)) continue;
         auto& d = diags.warning(loc(i), "RSUB in " + region_word(reg) +
                                             " has no call of the handler's to return from: the module ignores it "
                                             "and the handler goes on without RETI",
@@ -208,6 +221,7 @@ void Walker::check_flow() {
       }
     if (reg.kind == RegionKind::Main || (reg.kind == RegionKind::Subroutine && from_main[static_cast<std::size_t>(r)]))
       for (int i : f.retis) {
+        if (!want("reti", i)) continue;
         auto& d = diags.warning(loc(i), "RETI outside any interrupt handler: the module ignores it", "reti");
         if (reg.kind == RegionKind::Subroutine) {
           note_start(d, r);
@@ -216,6 +230,7 @@ void Walker::check_flow() {
       }
     if (reg.kind == RegionKind::Handler || (reg.kind == RegionKind::Subroutine && handler_ctx))
       for (int i : f.stops) {
+        if (!want("reti", i)) continue;
         const Region& h = region(from_handler[static_cast<std::size_t>(r)]);
         auto& d = diags.warning(loc(i), "STOP ends the program inside " + region_word(h) + ", without RETI", "reti");
         if (reg.kind == RegionKind::Subroutine) note_called(d, r);
@@ -224,19 +239,21 @@ void Walker::check_flow() {
         if (in.appended_stop && i == n - 1 && i > 0) fix_add_reti(d, i - 1);
       }
     if (reg.kind == RegionKind::Handler && f.retis.empty()) {
-      bool leaves = false;
+      bool leaves = flows_out[static_cast<std::size_t>(r)] != 0;
       for (const auto& e : out[static_cast<std::size_t>(r)]) leaves = leaves || e.weight == 0;
-      for (const auto& fl : flows) leaves = leaves || (fl.from_region == r && fl.to_region != r);
-      if (!leaves && f.falloffs.empty() && f.rsubs.empty() && f.stops.empty() && !resets_from(r))
+      if (!leaves && f.falloffs.empty() && f.rsubs.empty() && f.stops.empty() && !resets[static_cast<std::size_t>(r)] &&
+          want("reti", reg.entry))
         diags.warning(loc(reg.entry), region_word(reg) + " never reaches RETI: once it runs, other interrupts stay blocked",
                       "reti");
     }
     for (int i : f.falloffs)
-      diags.warning(loc(i), "execution runs past the last instruction of the program (address " +
-                                std::to_string(n - 1) + "): the module would run whatever its memory holds there",
-                    "fall-off");
+      if (want("fall-off", i))
+        diags.warning(loc(i), "execution runs past the last instruction of the program (address " +
+                                  std::to_string(n - 1) + "): the module would run whatever its memory holds there",
+                      "fall-off");
     if (reg.kind == RegionKind::Handler || (reg.kind == RegionKind::Subroutine && handler_ctx))
       for (int i : f.waits) {
+        if (!want("wait-in-handler", i)) continue;
         const Region& h = region(from_handler[static_cast<std::size_t>(r)]);
         auto& d = diags.warning(loc(i), "WAIT inside " + region_word(h) + " blocks every other interrupt until it ends",
                                 "wait-in-handler");
@@ -246,16 +263,18 @@ void Walker::check_flow() {
   }
   if (!in.targets_checked)
     for (int i : bad_jumps)
-      diags.warning(loc(i), "address " + std::to_string(ins(i).value) + " is outside the program (addresses 0 to " +
-                                std::to_string(n - 1) + ")",
-                    "address");
+      if (want("address", i))
+        diags.warning(loc(i), "address " + std::to_string(ins(i).value) + " is outside the program (addresses 0 to " +
+                                  std::to_string(n - 1) + ")",
+                      "address");
 }
 
 void Walker::check_interrupts() {
   const int n = static_cast<int>(in.program.size());
   if (!in.targets_checked)
     for (int i : bad_vects)
-      diags.warning(loc(i), "VECT " + std::to_string(ins(i).type) + " names address " + std::to_string(ins(i).value) +
+      if (want("vect", i))
+        diags.warning(loc(i), "VECT " + std::to_string(ins(i).type) + " names address " + std::to_string(ins(i).value) +
                                 ", which is not an instruction of the program (0 to " + std::to_string(n - 1) + ")",
                     "vect");
   int global = -1, single = -1;
@@ -268,7 +287,7 @@ void Walker::check_interrupts() {
       continue;
     }
     if (single < 0) single = i;
-    if (!vect_set[static_cast<std::size_t>(v)])
+    if (!vect_set[static_cast<std::size_t>(v)] && want("vect", i))
       diags.warning(loc(i), "EI " + std::to_string(v) + " enables interrupt " + std::to_string(v) +
                                 ", but no VECT gives it a handler: it is never served",
                     "vect");
@@ -293,6 +312,10 @@ void Walker::check_unreachable() {
     int j = i;
     while (j < last && a.owner[static_cast<std::size_t>(j)] < 0) ++j;
     int count = j - i;
+    if (!want("unreachable", i)) {
+      i = j;
+      continue;
+    }
     auto& d = diags.warning(loc(i),
                             count == 1 ? std::string("unreachable instruction: no path from address 0, a subroutine or an "
                                                      "interrupt handler reaches it")
@@ -309,6 +332,10 @@ void Walker::check_depth() {
   const int nr = static_cast<int>(a.regions.size());
   // -Wrecursion: once per cycle of calls, at one call of the cycle, with the way round as notes.
   std::vector<char> reported(recursive.size(), 0);
+  // The breadth-first search's tables, made once and reset where each search wrote (a program
+  // with thousands of cycles must not clear a table of all regions for each).
+  std::vector<int> prev_site(a.regions.size(), -2), prev_region(a.regions.size(), -1);
+  std::vector<int> q;
   for (int v = 0; v < nr; ++v) {
     int c = comp[static_cast<std::size_t>(v)];
     if (!recursive[static_cast<std::size_t>(c)] || reported[static_cast<std::size_t>(c)]) continue;
@@ -320,9 +347,13 @@ void Walker::check_depth() {
       }
     if (!call) continue;
     reported[static_cast<std::size_t>(c)] = 1;
+    if (!want("recursion", call->site)) continue;
     // The way back from the callee to v inside the component (breadth first, so the shortest).
-    std::vector<int> prev_site(a.regions.size(), -2), prev_region(a.regions.size(), -1);
-    std::vector<int> q{call->to};
+    for (int x : q) {
+      prev_site[static_cast<std::size_t>(x)] = -2;
+      prev_region[static_cast<std::size_t>(x)] = -1;
+    }
+    q.assign(1, call->to);
     prev_site[static_cast<std::size_t>(call->to)] = -1;
     for (std::size_t k = 0; k < q.size() && prev_site[static_cast<std::size_t>(v)] == -2; ++k)
       for (const auto& e : out[static_cast<std::size_t>(q[k])])
@@ -353,8 +384,10 @@ void Walker::check_depth() {
     return to >= 0 ? region_word(region(to)) : std::string("a subroutine");
   };
   const Region& main = region(0);
+  // Only the calls a message names: the 9th, and those below it.
+  const std::vector<int> main_chain = deepest_chain(a, 0, kCallStackDepth + 1);
   if (main.depth < kUnbounded && main.depth > kCallStackDepth) {
-    const auto& ch = main.chain;
+    const auto& ch = main_chain;
     int site = ch[kCallStackDepth];
     auto& d = diags.warning(loc(site), mnemonic(site) + " is the 9th nested call on this path (the chain is " +
                                            std::to_string(main.depth) +
@@ -372,7 +405,9 @@ void Walker::check_depth() {
     const Region& reg = region(h);
     if (reg.kind != RegionKind::Handler || reg.depth >= kUnbounded || main.depth + reg.depth <= kCallStackDepth) continue;
     int idx = kCallStackDepth - main.depth;
-    int site = reg.chain[static_cast<std::size_t>(idx)];
+    const std::vector<int> chain = deepest_chain(a, h, kCallStackDepth + 1);
+    int site = chain[static_cast<std::size_t>(idx)];
+    if (!want("call-depth", site)) continue;
     auto& d = diags.warning(loc(site), mnemonic(site) + " in " + region_word(reg) +
                                            " is the 9th nested call when the interrupt fires while the main program is " +
                                            std::to_string(main.depth) +
@@ -380,11 +415,11 @@ void Walker::check_depth() {
                                            "ignores it",
                             "call-depth");
     for (int k = idx - 1; k >= 0; --k)
-      diags.note(d, loc(reg.chain[static_cast<std::size_t>(k)]), callee_word(reg.chain[static_cast<std::size_t>(k)]) +
-                                                                  " called from here, in the handler");
+      diags.note(d, loc(chain[static_cast<std::size_t>(k)]), callee_word(chain[static_cast<std::size_t>(k)]) +
+                                                              " called from here, in the handler");
     for (int k = main.depth - 1; k >= 0; --k)
-      diags.note(d, loc(main.chain[static_cast<std::size_t>(k)]),
-                 k == main.depth - 1 ? "the interrupt can fire inside " + callee_word(main.chain[static_cast<std::size_t>(k)]) +
+      diags.note(d, loc(main_chain[static_cast<std::size_t>(k)]),
+                 k == main.depth - 1 ? "the interrupt can fire inside " + callee_word(main_chain[static_cast<std::size_t>(k)]) +
                                            ", called from here " + std::to_string(main.depth) + " calls deep"
                                      : "call " + std::to_string(k + 1) + " of the main program's deepest chain");
   }

@@ -9,10 +9,11 @@
 
 namespace tmcl::detail {
 
-// Calls succ(v, out) for the successors of v: succ appends them to `out` (cleared first).
-// Returns the component of every vertex of `roots`' reach (-1 elsewhere); components are
-// numbered in the order Tarjan completes them, so every edge leads to a component with a
-// number no larger than its own (callees before callers).
+// succ(v, k) gives the k-th successor of v (k = 0, 1, ...), or -1 after the last: no list of
+// successors is built (an instruction has at most two). Returns the component of every vertex
+// of `roots`' reach (-1 elsewhere); components are numbered in the order Tarjan completes them,
+// so every edge leads to a component with a number no larger than its own (callees before
+// callers).
 template <class Succ>
 std::vector<int> strong_components(int n, const std::vector<int>& roots, Succ succ, int& count) {
   std::vector<int> index(static_cast<std::size_t>(n), -1), low(static_cast<std::size_t>(n), 0),
@@ -20,32 +21,24 @@ std::vector<int> strong_components(int n, const std::vector<int>& roots, Succ su
   std::vector<int> stack;
   struct Frame {
     int v;
-    std::size_t begin;
-    std::size_t next;  // position in `edges` of the next successor to look at
-    std::size_t end;
+    int next;  // the successor to look at next
   };
   std::vector<Frame> frames;
-  std::vector<int> edges;  // successors of every open frame, one block per frame
-  std::vector<int> scratch;
   int counter = 0;
   count = 0;
   auto open = [&](int v) {
     index[static_cast<std::size_t>(v)] = low[static_cast<std::size_t>(v)] = counter++;
     stack.push_back(v);
-    scratch.clear();
-    succ(v, scratch);
-    std::size_t begin = edges.size();
-    edges.insert(edges.end(), scratch.begin(), scratch.end());
-    frames.push_back({v, begin, begin, edges.size()});
+    frames.push_back({v, 0});
   };
   for (int root : roots) {
     if (root < 0 || root >= n || index[static_cast<std::size_t>(root)] >= 0) continue;
     open(root);
     while (!frames.empty()) {
       Frame& f = frames.back();
-      if (f.next < f.end) {
-        int w = edges[f.next++];
-        if (w < 0 || w >= n) continue;
+      if (int w = succ(f.v, f.next); w >= 0) {
+        ++f.next;
+        if (w >= n) continue;
         if (index[static_cast<std::size_t>(w)] < 0) {
           open(w);
         } else if (comp[static_cast<std::size_t>(w)] < 0) {
@@ -54,7 +47,6 @@ std::vector<int> strong_components(int n, const std::vector<int>& roots, Succ su
         continue;
       }
       int v = f.v;
-      edges.resize(f.begin);  // a finished frame's block is the last one
       frames.pop_back();
       if (low[static_cast<std::size_t>(v)] == index[static_cast<std::size_t>(v)]) {
         for (;;) {

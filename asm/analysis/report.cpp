@@ -29,16 +29,28 @@ const char* kind_word(RegionKind k) {
   return "?";
 }
 
-std::string callee_name(const Analysis& a, const AnalysisInput& in, int site) {
-  int to = in.program[static_cast<std::size_t>(site)].value;
-  for (const auto& r : a.regions)
-    if (r.entry == to) return r.name;
-  return "address " + std::to_string(to);
+// The region that starts at `address`, or -1: a region owns its entry (analysis.cpp).
+int region_at_entry(const Analysis& a, std::int64_t address) {
+  if (address < 0 || static_cast<std::size_t>(address) >= a.owner.size()) return -1;
+  int r = a.owner[static_cast<std::size_t>(address)];
+  return r >= 0 && a.regions[static_cast<std::size_t>(r)].entry == address ? r : -1;
 }
 
-std::string chain_text(const Analysis& a, const AnalysisInput& in, const Region& r) {
-  std::string s = r.name;
-  for (int site : r.chain) s += " > " + callee_name(a, in, site);
+std::string callee_name(const Analysis& a, const AnalysisInput& in, int site) {
+  int to = in.program[static_cast<std::size_t>(site)].value;
+  int r = region_at_entry(a, to);
+  return r >= 0 ? a.regions[static_cast<std::size_t>(r)].name : "address " + std::to_string(to);
+}
+
+// Its deepest chain, to the first call past the call stack's room: every region's whole chain
+// would make a chain of n subroutines n * n names long.
+std::string chain_text(const Analysis& a, const AnalysisInput& in, int r) {
+  const Region& reg = a.regions[static_cast<std::size_t>(r)];
+  std::vector<int> chain = deepest_chain(a, r, kCallStackDepth + 1);
+  std::string s = reg.name;
+  for (int site : chain) s += " > " + callee_name(a, in, site);
+  if (reg.depth < kUnbounded && static_cast<std::size_t>(reg.depth) > chain.size())
+    s += " > ... (" + std::to_string(static_cast<std::size_t>(reg.depth) - chain.size()) + " more calls)";
   return s;
 }
 
@@ -95,21 +107,24 @@ std::string stack_usage_report(const Analysis& a, const AnalysisInput& in) {
                     std::to_string(kCallStackDepth) + "), deepest chain\n";
   std::size_t w = 6;
   for (const auto& r : a.regions) w = std::max(w, r.name.size());
-  for (const auto& r : a.regions) {
+  // Columns padded to their width, never cut: an address or depth of 7 digits pushes on.
+  auto pad = [](std::string& s, std::size_t width) { s.resize(std::max(width, s.size() + 1), ' '); };
+  for (std::size_t k = 0; k < a.regions.size(); ++k) {
+    const Region& r = a.regions[k];
     std::string line = r.name;
-    line.resize(w + 2, ' ');
+    pad(line, w + 2);
     std::string kind = kind_word(r.kind);
     kind.resize(12, ' ');
     line += kind + "address " + std::to_string(r.entry);
-    line.resize(w + 2 + 12 + 14, ' ');
+    pad(line, w + 2 + 12 + 14);
     if (r.depth >= kUnbounded) {
       line += "unbounded (recursion)";
     } else {
       // A subroutine's own return address is a frame; entering a handler pushes none (E39).
       int frames = r.depth + (r.kind == RegionKind::Subroutine ? 1 : 0);
       line += "depth " + std::to_string(frames);
-      line.resize(w + 2 + 12 + 14 + 10, ' ');
-      line += chain_text(a, in, r);
+      pad(line, w + 2 + 12 + 14 + 10);
+      line += chain_text(a, in, static_cast<int>(k));
       if (r.kind == RegionKind::Handler && a.regions[0].depth < kUnbounded && a.regions[0].depth > 0)
         line += "  (" + std::to_string(frames + a.regions[0].depth) + " when it fires at the main program's deepest point)";
     }
@@ -150,11 +165,16 @@ std::string cfg_dot(const Analysis& a, const AnalysisInput& in) {
     if (it == labels.end()) return dot_quoted("a" + std::to_string(s));
     return dot_quoted(uses[it->second] > 1 ? it->second + "@" + std::to_string(s) : it->second);
   };
-  std::set<int> chain_sites(a.regions.empty() ? std::set<int>{} : std::set<int>(a.regions[0].chain.begin(), a.regions[0].chain.end()));
+  std::vector<int> main_chain = a.regions.empty() ? std::vector<int>{} : deepest_chain(a, 0);
+  std::set<int> chain_sites(main_chain.begin(), main_chain.end());
   std::set<int> chain_regions;
   for (int site : chain_sites)
-    for (std::size_t r = 0; r < a.regions.size(); ++r)
-      if (a.regions[r].entry == in.program[static_cast<std::size_t>(site)].value) chain_regions.insert(static_cast<int>(r));
+    if (int r = region_at_entry(a, in.program[static_cast<std::size_t>(site)].value); r >= 0) chain_regions.insert(r);
+  // The blocks of each region, in address order (each region's cluster lists its own).
+  std::vector<std::vector<int>> blocks_of(a.regions.size());
+  for (int b = 0; b < static_cast<int>(starts.size()); ++b)
+    if (int o = a.owner[static_cast<std::size_t>(starts[static_cast<std::size_t>(b)])]; o >= 0)
+      blocks_of[static_cast<std::size_t>(o)].push_back(b);
 
   std::string out = "digraph program {\n  node [shape=box, fontname=\"monospace\"];\n";
   auto emit_block = [&](std::string& o, int b, const char* indent) {
@@ -180,9 +200,7 @@ std::string cfg_dot(const Analysis& a, const AnalysisInput& in) {
     }
     out += "  subgraph cluster_" + std::to_string(r) + " {\n    label=" + dot_quoted(title) + ";\n";
     if (chain_regions.count(static_cast<int>(r)) || (r == 0 && !chain_sites.empty())) out += "    color=red;\n";
-    for (int b = 0; b < static_cast<int>(starts.size()); ++b)
-      if (a.owner[static_cast<std::size_t>(starts[static_cast<std::size_t>(b)])] == static_cast<int>(r))
-        emit_block(out, b, "    ");
+    for (int b : blocks_of[r]) emit_block(out, b, "    ");
     out += "  }\n";
   }
   for (int b = 0; b < static_cast<int>(starts.size()); ++b)

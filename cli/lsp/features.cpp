@@ -147,13 +147,21 @@ Server::Reply Server::hover(const Value& params) {
   if (value && c.op && c.operand >= 0 && static_cast<std::size_t>(c.operand) < c.op->operands.size()) {
     Role role = c.op->operands[static_cast<std::size_t>(c.operand)].role;
     const ParamInfo* p = nullptr;
+    // A number the profile has no entry for: the target does not have it, except generic, which
+    // accepts every number (as the assembler does) but has no name or range for it.
+    auto unknown = [&](const std::string& what) {
+      text += (text.empty() ? "" : "\n\n") + what + ": " +
+              (prof.any_parameter ? "no name or range known; " + std::string(prof.name) +
+                                        " accepts every parameter number (the target setting picks a module's table)"
+                                  : "not a parameter of " + std::string(prof.name));
+    };
     if (role == Role::AxisParam) {
       p = prof.axis_param(static_cast<int>(*value));
-      if (!p) text += (text.empty() ? "" : "\n\n") + std::string("axis parameter ") + std::to_string(*value) + ": not a parameter of " + std::string(prof.name);
+      if (!p) unknown("axis parameter " + std::to_string(*value));
     } else if (role == Role::GlobalParam) {
       int bank = bank_of(c);
       p = prof.global_param(bank, static_cast<int>(*value));
-      if (!p) text += (text.empty() ? "" : "\n\n") + std::string("global parameter ") + std::to_string(*value) + " of bank " + std::to_string(bank) + ": not in " + std::string(prof.name);
+      if (!p) unknown("global parameter " + std::to_string(*value) + " of bank " + std::to_string(bank));
     }
     if (p) text += (text.empty() ? "" : "\n\n") + param_text(*p) + " (" + std::string(prof.name) + ")";
   }

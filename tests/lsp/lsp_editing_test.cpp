@@ -261,6 +261,25 @@ TEST(initialization_options_override_the_project_file) {
   CHECK(hover_text(c, main, 1, 6).find("(generic)") != std::string::npos);
 }
 
+// Hover agrees with the assembler: generic accepts every parameter number (no warning), so a
+// number its tables do not name is not "not a parameter"; a module's unknown number is.
+TEST(hover_on_a_parameter_number_the_tables_do_not_name) {
+  Client c;
+  start(c, R"({"target":"generic"})");
+  const std::string uri = "file:///work/unknown.tmc";
+  c.open(uri, "SAP 6, 0, 1\nSAP 193, 0, 1\nSGP 200, 0, 1\n");
+  CHECK_EQ(c.last_diagnostics(uri).size(), 0u);
+  CHECK_EQ(hover_text(c, uri, 0, 4), "axis parameter 6: no name or range known; generic accepts every parameter number "
+                                     "(the target setting picks a module's table)");
+  CHECK(hover_text(c, uri, 1, 5).find("generic accepts every parameter number") != std::string::npos);
+  CHECK_EQ(hover_text(c, uri, 2, 5).substr(0, 37), "global parameter 200 of bank 0: no na");
+  Client d;
+  start(d, R"({"target":"usb-2-sd"})");
+  d.open(uri, "SAP 6, 0, 1\n");
+  CHECK_EQ(d.last_diagnostics(uri).size(), 1u);  // -Wtarget: the module has no axis parameter 6
+  CHECK_EQ(hover_text(d, uri, 0, 4), "axis parameter 6: not a parameter of usb-2-sd");
+}
+
 TEST(bad_project_file_is_reported_and_ignored) {
   TempDir dir;
   dir.write(".tmcl-lsp.json", "{\"target\": \"usb-2-sd\",\n \"includeDirs\": [\"lib\",]}\n");

@@ -67,6 +67,20 @@ TEST(diagnostics_on_open_and_incremental_change) {
   CHECK(c.server.document(kUri) == nullptr);
 }
 
+// The language server runs the same analysis, and honours the same per-line suppressions.
+TEST(analysis_warnings_and_allow_comments) {
+  Client c;
+  start(c);
+  const char* uri = "file:///work/wear.tmc";
+  c.open(uri, "loop: STGP 0, 2\n  WAIT TICKS, 0, 1\n  JA loop\n");
+  Value d = c.last_diagnostics(uri);
+  CHECK_EQ(d.size(), 1u);
+  CHECK_EQ(d.at(0)["code"].as_string(), "eeprom-wear");
+  c.notify("textDocument/didChange", R"({"textDocument":{"uri":"file:///work/wear.tmc","version":2},"contentChanges":[)"
+                                     R"({"text":"loop: STGP 0, 2 // tmcl: allow eeprom-wear\n  WAIT TICKS, 0, 1\n  JA loop\n"}]})");
+  CHECK_EQ(c.last_diagnostics(uri).size(), 0u);
+}
+
 TEST(hover) {
   Client c;
   start(c);

@@ -60,8 +60,12 @@ struct Region {
   std::vector<int> vectors;   // handlers: the interrupt numbers whose VECT names it
   // Frames its calls can push at most below its own (kUnbounded when it can recurse).
   int depth = 0;
-  // The call sites (instruction addresses) of its deepest chain, outermost first.
-  std::vector<int> chain;
+  // The first step of its deepest chain: the region it leads into (-1: none, or it recurses) and
+  // the call there (its address; -1 when control runs or jumps on into that region's code without
+  // a call). deepest_chain() follows the steps; a list per region would make a chain of n
+  // subroutines cost n * n.
+  int chain_to = -1;
+  int chain_site = -1;
 };
 
 // One control-flow edge between instructions: the next instruction, a jump, a call, a VECT.
@@ -87,6 +91,10 @@ struct AnalysisOptions {
 // Builds the graph and reports every warning into `diags` (named, so -Wno-NAME and -Werror=NAME
 // apply). Notes carry the path: the chain of calls, where a subroutine starts, and so on.
 Analysis analyze(const AnalysisInput& in, Diagnostics& diags, const AnalysisOptions& options = {});
+
+// The call sites (instruction addresses) of region `r`'s deepest chain, outermost first, at most
+// `limit` of them.
+std::vector<int> deepest_chain(const Analysis& a, int r, std::size_t limit = static_cast<std::size_t>(-1));
 
 // tmclasm --stack-usage: per region, its maximum depth and deepest chain, as text.
 std::string stack_usage_report(const Analysis& a, const AnalysisInput& in);

@@ -30,6 +30,12 @@ class FileReader {
   virtual bool read(const std::string& path, std::string& out) = 0;
   // Why the last read failed ("No such file or directory"), for messages.
   virtual std::string last_error() const { return "cannot be read"; }
+  // Why `path` cannot be searched as an -I folder ("does not exist", "is not a folder"); empty
+  // when it can, or when the reader cannot tell.
+  virtual std::string folder_problem(const std::string& path) {
+    (void)path;
+    return {};
+  }
 };
 
 // Reads from the file system; "-" is standard input.
@@ -37,6 +43,7 @@ class DiskReader final : public FileReader {
  public:
   bool read(const std::string& path, std::string& out) override;
   std::string last_error() const override { return error_; }
+  std::string folder_problem(const std::string& path) override;
 
  private:
   std::string error_;
@@ -48,6 +55,8 @@ class MemoryReader final : public FileReader {
   std::map<std::string, std::string> files;
   bool read(const std::string& path, std::string& out) override;
   std::string last_error() const override { return "No such file or directory"; }
+  // A folder exists when some file is in it ("dir/name").
+  std::string folder_problem(const std::string& path) override;
 };
 
 // A valid name for a label or constant: a letter or '_', then letters, digits and '_'; at most

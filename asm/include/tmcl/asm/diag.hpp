@@ -9,6 +9,7 @@
 #include <cstdint>
 #include <deque>
 #include <set>
+#include <unordered_map>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -98,6 +99,22 @@ class Diagnostics {
   // off, an error when -Werror or -Werror=name made it one.
   Diagnostic& warning(SourceLoc loc, std::string message, std::string_view name);
   bool enabled(std::string_view name) const { return flags_.enabled(name); }
+  // Warnings of one kind (one name; the unnamed ones are a kind too) beyond `limit` are counted,
+  // not kept (0: all are kept): a tool that shows at most --error-limit of each kind sets it, so
+  // that 80,000 warnings of one kind cost neither their messages nor their memory.
+  void set_kind_limit(int limit) { kind_limit_ = limit; }
+  // Whether warning(…, name) at `loc` would keep the next warning of that kind (an error always
+  // is): a check that can warn many times asks first, and builds the message only when true.
+  // When false the warning has been counted, as warning() would (not at all when -Wno-name or
+  // when a comment allows it there).
+  bool take(std::string_view name, SourceLoc loc);
+
+  // Per-line suppression in the source: a comment `tmcl: allow NAME` (or `NAME, NAME`; words
+  // after the list are the reason) keeps the named warnings from being reported, or counted, on
+  // its line, or on the next line when the comment stands alone on its line. Reads `f`, source
+  // `file` of a run, for such comments; false when one names no warning (then warned about).
+  bool allow_from_comments(const SourceFile& f, int file);
+  bool allowed(SourceLoc loc, std::string_view name) const;
   void note(Diagnostic& d, SourceLoc loc, std::string message);
   // Did-you-mean: the note "did you mean 'HINT'?" at `loc`, and the fix replacing the `wrote`
   // there (the `loc.len` bytes at `loc`, or at `replace` when the word is only part of what the
@@ -109,15 +126,24 @@ class Diagnostics {
   int error_count() const { return errors_; }
   int warning_count() const { return warnings_; }
   const std::vector<Diagnostic>& all() const { return list_; }
+  // Diagnostic `index` of all(), to add a note found later (an error is always kept).
+  Diagnostic& at(std::size_t index) { return list_[index]; }
   // -Werror: warnings count as errors from now on, and are shown as errors.
-  void set_warnings_are_errors(bool on) { flags_.all_errors = on; }
-  void set_warning_options(const WarningOptions& flags) { flags_ = flags; }
+  void set_warnings_are_errors(bool on) {
+    flags_.all_errors = on;
+    refresh_kinds();
+  }
+  void set_warning_options(const WarningOptions& flags) {
+    flags_ = flags;
+    refresh_kinds();
+  }
   const WarningOptions& warning_options() const { return flags_; }
 
   // Every diagnostic in source order (location-less ones last), as render() shows them.
   std::vector<const Diagnostic*> sorted(const SourceSet& sources) const;
   // Renders the diagnostics in source order, stopping after `error_limit` errors (0: no limit,
-  // --error-limit) with a last line saying how many more errors and warnings there were.
+  // --error-limit) with a line saying how many more errors and warnings there were; of each kind
+  // of warning at most `error_limit` are shown, and one line per kind says how many more.
   std::string render(const SourceSet& sources, int error_limit = kDefaultErrorLimit) const;
 
  private:
@@ -126,6 +152,20 @@ class Diagnostics {
   int warnings_ = 0;
   WarningOptions flags_;
   Diagnostic dropped_{Severity::Note, {}, {}, {}, {}, {}};
+  // Per kind of warning met: how many were kept and how many only counted, and what the -W
+  // options say of it (looked up once: a check may ask 80,000 times in a row).
+  struct Kind {
+    std::string name;
+    bool enabled, error;
+    long long kept = 0, skipped = 0;
+  };
+  std::vector<Kind> kinds_;
+  std::size_t last_kind_ = 0;
+  int kind_limit_ = 0;
+  // (file, line) -> the warnings a comment allows there.
+  std::unordered_map<std::uint64_t, std::vector<std::string>> allows_;
+  Kind& kind(std::string_view name);
+  void refresh_kinds();
 };
 
 // Renders one diagnostic (with its notes).
