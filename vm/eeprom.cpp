@@ -34,7 +34,7 @@ std::uint32_t fnv1a(std::string_view s) {
 
 // EEPROM numbers are decimal integers in range, read by the one decimal reader, written as
 // eeprom_to_text writes them: a minus sign, never a plus.
-bool parse_int(const std::string& s, long long lo, long long hi, long long& out) {
+bool parse_eeprom_int(const std::string& s, long long lo, long long hi, long long& out) {
   std::int64_t v = 0;
   if (!s.empty() && s[0] == '+') return false;
   if (!tmcl::parse_int(s, lo, hi, v)) return false;
@@ -147,7 +147,7 @@ bool eeprom_from_text(const std::string& text, const std::string& file, EepromIm
         bool ok = true;
         for (std::size_t i = 1; i < w.size(); ++i) {
           const bool value = i + 1 == w.size();
-          if (!parse_int(w[i].text, value ? INT32_MIN : 0, value ? INT32_MAX : 255, n[i - 1])) {
+          if (!parse_eeprom_int(w[i].text, value ? INT32_MIN : 0, value ? INT32_MAX : 255, n[i - 1])) {
             at_word(i, "malformed EEPROM record '" + source + "': bad " + kind->fields[i - 1] + " '" + w[i].text + "' (" +
                            (value ? "a 32-bit integer" : "0..255") + ")");
             ok = false;

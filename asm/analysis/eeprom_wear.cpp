@@ -39,7 +39,7 @@ std::string ms_text(std::int64_t us) {
 }
 
 // One way round a loop: its time and what makes it up.
-struct Round {
+struct WearRound {
   std::int64_t us = 0;
   std::int64_t ticks = 0;  // of WAIT TICKS
   int waits = 0;
@@ -165,7 +165,7 @@ void Walker::check_eeprom() {
     std::priority_queue<Item, std::vector<Item>, std::greater<>> open;
     for (int v : touched) dist[static_cast<std::size_t>(v)] = -1, parent[static_cast<std::size_t>(v)] = -1;
     touched.clear();
-    Round way;
+    WearRound way;
     int last = -1;  // the instruction that goes back to `at` on the best way found
     std::int64_t best_us = -1;
     open.push({time_of(at), at});
@@ -250,7 +250,7 @@ void Walker::check_eeprom() {
     std::string what = mnemonic(i) + " writes the EEPROM";
     std::string msg;
     if (loop_at >= 0) {
-      Round way = shortest_round(loop_at, true);
+      WearRound way = shortest_round(loop_at, true);
       if (way.us < 0) way = shortest_round(loop_at, false);
       std::string parts = way.waits > 1   ? "WAITs of " + std::to_string(way.ticks) + " ticks in all"
                           : way.waits == 1 ? "a WAIT of " + std::to_string(way.ticks) + " ticks"

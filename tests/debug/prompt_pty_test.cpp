@@ -26,9 +26,9 @@ using namespace srvtest;
 
 namespace {
 
-constexpr int kDeadlineMs = 60000;
+constexpr int kPromptDeadlineMs = 60000;
 
-const char* kProgram = R"(        SGP 1, 2, 0
+const char* kPromptProgram = R"(        SGP 1, 2, 0
 loop:   CSUB bump
         JA loop
 bump:   GGP 1, 2
@@ -56,12 +56,12 @@ struct OnPty {
     keys(bytes);
   }
   // Reads until `what` occurs `count` times on the screen (or the deadline passes, or the end).
-  bool wait_for(const std::string& what, int count = 1) { return dbgtest::read_until(master, screen, what, count, kDeadlineMs); }
+  bool wait_for(const std::string& what, int count = 1) { return dbgtest::read_until(master, screen, what, count, kPromptDeadlineMs); }
   // Waits until the terminal is in the mode a command runs in (its own: Ctrl-C a signal), or in
   // the editor's raw mode (keys typed before it would be taken by the terminal's line
   // discipline): read from the pseudo-terminal's settings.
   bool mode(bool raw) {
-    const auto end = Clock::now() + std::chrono::milliseconds(kDeadlineMs);
+    const auto end = Clock::now() + std::chrono::milliseconds(kPromptDeadlineMs);
     termios tio{};
     auto is_raw = [&] { return (tio.c_lflag & (ISIG | ICANON)) == 0; };
     while (::tcgetattr(master, &tio) == 0 && is_raw() != raw && Clock::now() < end) ::poll(nullptr, 0, 1);
@@ -73,7 +73,7 @@ struct OnPty {
     while (wait_for("\x01")) {
     }
     int st = 0;
-    const auto end = Clock::now() + std::chrono::milliseconds(kDeadlineMs);
+    const auto end = Clock::now() + std::chrono::milliseconds(kPromptDeadlineMs);
     while (::waitpid(pid, &st, WNOHANG) == 0) {
       if (Clock::now() > end) {  // still running after the deadline
         ::kill(pid, SIGKILL);
@@ -126,7 +126,7 @@ std::string read_all(const std::string& path) {
 
 TEST(the_prompt_edits_completes_and_keeps_history_on_a_terminal) {
   const std::string prog = "prompt_pty_prog.tmc", history = "prompt_pty_history";
-  std::ofstream(prog) << kProgram;
+  std::ofstream(prog) << kPromptProgram;
   std::ofstream(history) << "print 41 + 1\n";  // from an earlier session
   OnPty t;
   CHECK(spawn(t, {"--debug", prog.c_str()}, history));
@@ -180,7 +180,7 @@ TEST(the_prompt_edits_completes_and_keeps_history_on_a_terminal) {
 TEST(server_notes_are_printed_above_the_prompt_not_inside_the_line_being_typed) {
   ::signal(SIGPIPE, SIG_IGN);
   const std::string prog = "prompt_pty_serve.tmc", history = "prompt_pty_serve_history";
-  std::ofstream(prog) << kProgram;
+  std::ofstream(prog) << kPromptProgram;
   OnPty t;
   CHECK(spawn(t, {"--serve", "tcp:127.0.0.1:0", "--debug", prog.c_str()}, history));
   CHECK(t.wait_for("listening on 127.0.0.1:"));

@@ -27,7 +27,6 @@ const ParamInfo* find_param(std::span<const ParamInfo> table, int number) {
   return it != table.end() && it->number == number ? &*it : nullptr;
 }
 
-constexpr std::string_view kExtension = ".profile";
 
 struct Bundled {
   std::recursive_mutex lock;  // based-on loads its base while loading
@@ -46,7 +45,7 @@ Bundled& bundled() {
 const Profile* load_bundled(std::string_view name) {
   Bundled& b = bundled();
   std::lock_guard<std::recursive_mutex> g(b.lock);
-  const std::string file = std::string(name) + std::string(kExtension);
+  const std::string file = std::string(name) + std::string(kProfileExtension);
   if (auto it = b.by_file.find(file); it != b.by_file.end()) return it->second ? &it->second->profile : nullptr;
   const auto& files = bundled_profile_files();
   auto text = files.find(file);
@@ -114,7 +113,7 @@ std::span<const Profile* const> all_profiles() {
   if (b.all.empty()) {
     if (const Profile* g0 = load_bundled("generic")) b.all.push_back(g0);
     for (const auto& [file, text] : bundled_profile_files()) {
-      const std::string_view name = std::string_view(file).substr(0, file.size() - kExtension.size());
+      const std::string_view name = std::string_view(file).substr(0, file.size() - kProfileExtension.size());
       if (name == "generic") continue;
       if (const Profile* p = load_bundled(name)) b.all.push_back(p);
     }

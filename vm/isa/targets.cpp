@@ -21,11 +21,10 @@ namespace tmcl {
 namespace {
 
 constexpr std::size_t kMaxProfileBytes = 1u << 20;
-constexpr std::string_view kExtension = ".profile";
 
 bool is_path(std::string_view v) {
   return v.find('/') != std::string_view::npos ||
-         (v.size() > kExtension.size() && v.substr(v.size() - kExtension.size()) == kExtension);
+         (v.size() > kProfileExtension.size() && v.substr(v.size() - kProfileExtension.size()) == kProfileExtension);
 }
 
 bool file_exists(const std::string& path, struct stat& st) { return ::stat(path.c_str(), &st) == 0 && S_ISREG(st.st_mode); }
@@ -93,7 +92,7 @@ const Loaded& load_file(const std::string& path, const TargetSearch& search) {
 // read, which has no profile yet.
 const Profile* lookup_name(std::string_view name, const TargetSearch& search, const std::string& skip) {
   for (const auto& dir : search.dirs) {
-    const std::string path = dir + "/" + std::string(name) + std::string(kExtension);
+    const std::string path = dir + "/" + std::string(name) + std::string(kProfileExtension);
     struct stat st{};
     if (path == skip || !file_exists(path, st)) continue;
     const Loaded& l = load_file(path, search);
@@ -157,7 +156,7 @@ TargetResult resolve_target(std::string_view value, const TargetSearch& search) 
     return r;
   }
   for (const auto& dir : search.dirs) {
-    const std::string path = dir + "/" + std::string(value) + std::string(kExtension);
+    const std::string path = dir + "/" + std::string(value) + std::string(kProfileExtension);
     struct stat st{};
     if (!file_exists(path, st)) continue;
     const Loaded& l = load_file(path, search);
@@ -202,7 +201,7 @@ std::vector<TargetEntry> list_targets(const TargetSearch& search) {
     std::vector<std::string> files;
     while (dirent* ent = ::readdir(d)) {
       std::string f = ent->d_name;
-      if (f.size() > kExtension.size() && f.compare(f.size() - kExtension.size(), kExtension.size(), kExtension) == 0)
+      if (f.size() > kProfileExtension.size() && f.compare(f.size() - kProfileExtension.size(), kProfileExtension.size(), kProfileExtension) == 0)
         files.push_back(f);
     }
     ::closedir(d);
@@ -210,7 +209,7 @@ std::vector<TargetEntry> list_targets(const TargetSearch& search) {
     for (const auto& f : files) {
       TargetEntry e;
       e.origin = dir + "/" + f;
-      e.name = f.substr(0, f.size() - kExtension.size());
+      e.name = f.substr(0, f.size() - kProfileExtension.size());
       const Loaded& l = load_file(e.origin, search);
       if (l.store && l.store->profile.name != e.name)
         e.error = "names itself '" + std::string(l.store->profile.name) + "'";

@@ -111,6 +111,9 @@ struct Profile {
   std::int64_t motion_constant(std::string_view constant, std::int64_t otherwise) const;
 };
 
+// A profile file's extension: NAME.profile, bundled or on the search path.
+inline constexpr std::string_view kProfileExtension = ".profile";
+
 // All bundled profiles, generic first, then by name.
 std::span<const Profile* const> all_profiles();
 // A bundled profile by -t name or alias, or nullptr. A user's profiles are found with
