@@ -143,20 +143,20 @@ TEST(file_every_mistake_at_once) {
                   "usb-2-sd"),
            "t.tmctest:1: error: no 'program' line: a test names the program it runs (program FILE)\n"
            "t.tmctest:1:1: error: unknown line 'programm' (program, target, motion, instr-time, max-time, define, skip, at, "
-           "expect); did you mean 'program'?\n programm p.tmc\n ^~~~~~~~\n"
+           "switch, expect); did you mean 'program'?\n programm p.tmc\n ^~~~~~~~\n"
            "t.tmctest:2:8: error: unknown target 'usb2sd'; did you mean 'usb-2-sd'? (targets: generic, tmc2300-eval, tmcm-1110, "
-          "tmcm-1140, tmcm-1160, tmcm-1161, tmcm-1260, tmcm-3110, tmcm-351, tmcm-6110, usb-2-sd; or a profile file, "
-          "docs/profiles.md)\n"
+           "tmcm-1140, tmcm-1160, tmcm-1161, tmcm-1260, tmcm-3110, tmcm-351, tmcm-6110, usb-2-sd; or a profile file, "
+           "docs/profiles.md)\n"
            " target usb2sd\n        ^~~~~~\n"
            "t.tmctest:3:1: error: unknown line 'max-tme' (program, target, motion, instr-time, max-time, define, skip, at, "
-           "expect); did you mean 'max-time'?\n max-tme 10s\n ^~~~~~~\n"
+           "switch, expect); did you mean 'max-time'?\n max-tme 10s\n ^~~~~~~\n"
            "t.tmctest:4:10: error: bad duration: '10' needs a unit: us, ms, s, min or h (only 0 may go without one)\n max-time 10\n          ^~\n"
            "t.tmctest:5:12: error: bad duration: '-5us' is negative; a duration is 0 or more\n instr-time -5us\n            ^~~~\n"
            "t.tmctest:6:8: error: unknown motion core 'tmc4631' (ideal, linear, tmc429, tmc4361); did you mean 'tmc4361'?\n"
            " motion tmc4631\n        ^~~~~~~\n"
            "t.tmctest:7:8: error: expected 'define NAME=VALUE', as tmclasm's -D\n define SPEED\n        ^~~~~\n"
            "t.tmctest:8:1: error: unknown line 'expcet' (program, target, motion, instr-time, max-time, define, skip, at, "
-           "expect); did you mean 'expect'?\n expcet never fault\n ^~~~~~\n"
+           "switch, expect); did you mean 'expect'?\n expcet never fault\n ^~~~~~\n"
            "t.tmctest:9:14: error: expected 'never fault', found 'faults'; did you mean 'fault'?\n"
            " expect never faults\n              ^~~~~~\n"
            "t.tmctest:10:10: error: expected 'no warnings'\n expect no\n          ^\n"
@@ -192,4 +192,36 @@ TEST(file_scenario_motors_follow_the_target) {
   // usb-2-sd has one motor: a switch of motor 3 is refused with the module's name.
   CHECK_EQ(errors("program p.tmc\ntarget usb-2-sd\nat 1s left 3 = 1\n"),
            "t.tmctest:3:12: error: usb-2-sd has no motor 3 (0..0)\n at 1s left 3 = 1\n            ^\n");
+}
+
+// Switches at positions are scenario lines of a test file too, read by the scenario reader
+// (its errors included); they are placed switches, not timed inputs.
+TEST(file_switch_lines_are_scenario_lines) {
+  const TestFile t = parsed("program p.tmc\ntarget tmcm-1110\nswitch left 0 at -20000\nswitch home 0 from -150 to 150\n");
+  CHECK_EQ(t.inputs.size(), std::size_t{2});
+  CHECK_EQ(errors("program p.tmc\ntarget tmcm-1110\nswitch left 0 at far\n"),
+           "t.tmctest:3:18: error: bad position 'far' (microsteps, a 32-bit integer)\n switch left 0 at far\n"
+           "                  ^~~\n");
+}
+
+// `target` takes what -t takes: a profile file too, a relative path from the test file's folder.
+TEST(file_target_may_be_a_profile_file) {
+  char dir[] = "/tmp/tmcl-testrun-XXXXXX";
+  CHECK(::mkdtemp(dir) != nullptr);
+  const std::string folder = dir;
+  {
+    std::FILE* f = std::fopen((folder + "/mine.profile").c_str(), "w");
+    CHECK(f != nullptr);
+    std::fputs("tmcl-profile 1\nname mine\ntitle \"mine\"\nbased-on usb-2-sd\n", f);
+    std::fclose(f);
+  }
+  std::string why;
+  const tmcl::Profile* p = test_profile("./mine.profile", folder + "/t.tmctest", &why);
+  CHECK(p != nullptr);
+  CHECK_EQ(why, "");
+  if (p) CHECK_EQ(std::string(p->name), "mine");
+  CHECK(test_profile("./none.profile", folder + "/t.tmctest", &why) == nullptr);
+  CHECK(why.find("none.profile") != std::string::npos);
+  std::remove((folder + "/mine.profile").c_str());
+  ::rmdir(dir);
 }

@@ -23,31 +23,26 @@ class CoreSkeleton : public MotionCore {
  public:
   // `owned`: the axis parameters the core owns (a static table); `home`: the profile of the
   // module the core models, whose rows stand in where the active profile has none. A core whose
-  // parameters are in its chip's units (tmc429) also names `stand_in` rows, used where neither
-  // profile has the row, and takes no default from a profile that checks nothing (generic: its
-  // rows are the USB-2-SD's, in pps).
-  CoreSkeleton(std::span<const int> owned, std::string_view home, std::span<const ParamInfo> stand_in = {})
-      : owned_(owned), home_(home), stand_in_(stand_in) {}
+  // parameters are in its chip's units (tmc429: `chip_units`) takes no row from a profile that
+  // checks nothing (generic: its rows are the USB-2-SD's, in pps), only from its home profile.
+  CoreSkeleton(std::span<const int> owned, std::string_view home, bool chip_units = false)
+      : owned_(owned), home_(home), chip_units_(chip_units) {}
 
   // Power-on: every owned parameter at the profile's default, else the home profile's, else 0.
   void reset(const Profile& profile, int motors) override {
     const Profile* home = find_profile(home_);
     motors_.assign(static_cast<std::size_t>(motors), M{});
     range_.fill(nullptr);
-    const bool chip_units = !stand_in_.empty();
     for (int n : owned_) {
-      const ParamInfo* own = nullptr;
-      for (const auto& row : stand_in_) own = row.number == n ? &row : own;
-      const ParamInfo* info = chip_units && profile.any_parameter ? nullptr : profile.axis_param(n);
+      const ParamInfo* info = chip_units_ && profile.any_parameter ? nullptr : profile.axis_param(n);
       if (!info && home) info = home->axis_param(n);
-      if (!info) info = own;
       for (auto& m : motors_) m.p[static_cast<std::size_t>(n)] = info ? info->default_value : 0;
       // The VM checks a write against the active profile's range before the core sees it, except
       // under a profile that stands for any module (generic): there the module the core models
       // decides, from its own profile's row, so the core never holds a value its module would refuse.
       const ParamInfo* rule = profile.any_parameter ? nullptr : profile.axis_param(n);
       if (!rule && home) rule = home->axis_param(n);
-      range_[static_cast<std::size_t>(n)] = rule ? rule : own;
+      range_[static_cast<std::size_t>(n)] = rule;
     }
     now_ = 0;
     pending_.clear();
@@ -81,7 +76,7 @@ class CoreSkeleton : public MotionCore {
 
   std::span<const int> owned_;
   std::string_view home_;
-  std::span<const ParamInfo> stand_in_;
+  bool chip_units_;
   std::vector<M> motors_;
   SimTime now_ = 0;
 

@@ -27,7 +27,6 @@ using ramp::EventKind;
 using ramp::Limits;
 using ramp::SwitchHit;
 
-constexpr double kTmc429Clock = 16e6;  // fCLK, Hz (TMCM-1110 manual 5.5)
 constexpr int kChipMax = 2047;         // velocity and acceleration registers: 11 bits
 
 // The parameters of the TMC429 modules this core gives a meaning (TMCM-1110 manual, chapter 5).
@@ -56,35 +55,6 @@ constexpr int kTmc429Owned[] = {kApTargetPosition, kApActualPosition, kApTargetS
                                 kApMicrostepResolution, kSoftStop, kRampDivisor, kPulseDivisor, kRfsMode,
                                 kRfsSpeed, kRfsSwitchSpeed, kRfsDistance};
 
-// Stand-ins for the TMCM-1110 profile's rows, used while no profile names these parameters (the
-// generic profile's rows are the USB-2-SD's, in pps). Ranges and access: TMCM-1110 manual,
-// chapter 5. Defaults the manual does not give are marked: they are ours (docs/errata.md).
-constexpr std::int64_t kI32Min = INT32_MIN, kI32Max = INT32_MAX;
-constexpr ParamInfo kTmc429Rows[] = {
-    {0, "target (next) position", kI32Min, kI32Max, kRead | kWrite, 0, "µsteps"},
-    {1, "actual position", kI32Min, kI32Max, kRead | kWrite, 0, "µsteps"},
-    {2, "target (next) speed", -kChipMax, kChipMax, kRead | kWrite, 0, ""},
-    {3, "actual speed", -kChipMax, kChipMax, kRead, 0, ""},
-    {4, "maximum positioning speed", 0, kChipMax, kRead | kWrite | kEeprom, 1000, ""},  // default: ours
-    {5, "maximum acceleration", 0, kChipMax, kRead | kWrite | kEeprom, 1000, ""},       // default: ours
-    {8, "target pos. reached", 0, 1, kRead, 0, ""},
-    {9, "ref. switch status", 0, 1, kRead, 0, ""},
-    {10, "right limit switch status", 0, 1, kRead, 0, ""},
-    {11, "left limit switch status", 0, 1, kRead, 0, ""},
-    {12, "right limit switch disable", 0, 1, kRead | kWrite | kEeprom, 0, ""},
-    {13, "left limit switch disable", 0, 1, kRead | kWrite | kEeprom, 0, ""},
-    {130, "minimum speed", 0, kChipMax, kRead | kWrite | kEeprom, 1, ""},  // "should always be set 1"
-    {135, "actual acceleration", 0, kChipMax, kRead, 0, ""},
-    {138, "ramp mode", 0, 2, kRead | kWrite | kEeprom, 0, ""},
-    {140, "microstep resolution", 0, 8, kRead | kWrite | kEeprom, 6, ""},  // default: ours
-    {149, "soft stop flag", 0, 1, kRead | kWrite | kEeprom, 0, ""},        // default: ours
-    {153, "ramp divisor", 0, 13, kRead | kWrite | kEeprom, 7, ""},         // default: ours
-    {154, "pulse divisor", 0, 13, kRead | kWrite | kEeprom, 3, ""},        // default: ours
-    {193, "ref. search mode", 1, 136, kRead | kWrite | kEeprom, 1, ""},    // 1-8 and 129-136
-    {194, "referencing search speed", 0, kChipMax, kRead | kWrite | kEeprom, 0, ""},  // 0: as 4 (ours)
-    {195, "referencing switch speed", 0, kChipMax, kRead | kWrite | kEeprom, 0, ""},  // 0: 4 / 4 (ours)
-    {196, "distance end switches", 0, kI32Max, kRead, 0, "µsteps"},
-};
 
 enum class Tmc429Goal : std::uint8_t { Idle, Position, Velocity, Halt, Search };
 
@@ -125,7 +95,17 @@ class Tmc429Core final : public ramp::RampCore<Tmc429Motor> {
   std::string_view name() const override { return "tmc429"; }
   std::unique_ptr<MotionCore> clone() const override { return std::make_unique<Tmc429Core>(*this); }
 
-  Tmc429Core() : RampCore(kTmc429Owned, "tmcm-1110", kTmc429Rows) {}
+  // Its parameters are in the chip's units: their rows and defaults come from the TMCM-1110's
+  // profile wherever the active one (generic) has them in pps or not at all.
+  Tmc429Core() : RampCore(kTmc429Owned, "tmcm-1110", true) {}
+
+  void reset(const Profile& profile, int motors) override {
+    RampCore::reset(profile, motors);
+    const Profile* units = profile.any_parameter ? find_profile("tmcm-1110") : &profile;  // generic: the TMC429's
+    clock_ = static_cast<double>(units ? units->motion_constant("clock", 16'000'000) : 16'000'000);
+    velocity_divisor_ = static_cast<double>(units ? units->motion_constant("velocity-divisor", 65536) : 65536);
+    acceleration_shift_ = static_cast<int>(units ? units->motion_constant("acceleration-shift", 29) : 29);
+  }
 
   void advance(SimTime to, std::vector<MotionEvent>& out) override {
     collect(
@@ -271,7 +251,7 @@ class Tmc429Core final : public ramp::RampCore<Tmc429Motor> {
   }
   std::string units_note() const override {
     std::string note = "TMC429 units";
-    auto one = [](const Tmc429Motor& m) {
+    auto one = [this](const Tmc429Motor& m) {
       char buf[160];
       std::snprintf(buf, sizeof buf, "pulse divisor %d, ramp divisor %d: velocity 1 = %.6g pps, acceleration 1 = %.6g pps²",
                     m.p[kPulseDivisor], m.p[kRampDivisor], vunit(m), aunit(m));
@@ -288,10 +268,13 @@ class Tmc429Core final : public ramp::RampCore<Tmc429Motor> {
 
  private:
   // pps per velocity unit and pps² per acceleration unit (TMCM-1110 manual 5.5).
-  static double vunit(const Tmc429Motor& m) { return std::ldexp(kTmc429Clock, -(m.p[kPulseDivisor] + 16)); }
-  static double aunit(const Tmc429Motor& m) {
-    return std::ldexp(kTmc429Clock * kTmc429Clock, -(m.p[kPulseDivisor] + m.p[kRampDivisor] + 29));
+  // The constants are the profile's (motion-constant lines), the manual's where it gives none.
+  double vunit(const Tmc429Motor& m) const { return std::ldexp(clock_ / velocity_divisor_, -m.p[kPulseDivisor]); }
+  double aunit(const Tmc429Motor& m) const {
+    return std::ldexp(clock_ * clock_, -(m.p[kPulseDivisor] + m.p[kRampDivisor] + acceleration_shift_));
   }
+  double clock_ = 16e6, velocity_divisor_ = 65536;  // fCLK (Hz), 2048 · 32: TMCM-1110 manual 5.5
+  int acceleration_shift_ = 29;
   // A reading in whole units, toward zero as the chip's registers hold it.
   static std::int32_t units(double v) { return static_cast<std::int32_t>(std::trunc(v + (v > 0 ? 1e-9 : -1e-9))); }
   static double clamp_units(std::int32_t v) { return std::clamp(v, 0, kChipMax); }
