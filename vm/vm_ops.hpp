@@ -483,6 +483,15 @@ template <bool D> R op_RETI(Vm& vm, const Instruction& i) {
   Internal::recheck(vm);
   return ok();  // the traced run loop reports leaving the handler
 }
+// SAC (TMCM-351 manual, 4.6.24): TYPE the chip select (0, 2, 3; +128 sends the accumulator
+// instead of VALUE), MOTOR the number of bytes (1 to 4). No SPI device is attached to the
+// virtual module: the bus reads back 0, into the accumulator (docs/errata.md).
+template <bool D> R op_SAC(Vm& vm, const Instruction& i) {
+  const int select = i.type & 127;
+  if (select != 0 && select != 2 && select != 3) return done<D>(vm, kStatusWrongType);
+  if (i.motor < 1 || i.motor > 4) return done<D>(vm, kStatusInvalidValue);
+  return load<D>(vm, kStatusOk, 0);
+}
 template <bool D> R op_CLE(Vm& vm, const Instruction& i) {
   static constexpr std::uint8_t kMask[] = {0x1F, kErrTimeout, kErrAlarm, kErrDeviation, kErrPosition, kErrShutdown};
   if (i.type > 5) return done<D>(vm, kStatusWrongType);

@@ -187,7 +187,7 @@ TEST(bad_values_are_errors_at_their_column) {
       {3, "name my/module", "3:6: error: a profile name is letters, digits"},
       {5, "title \"A\"\"B\"", "5:10: error: too many values for 'title'"},
       {6, "source MAN \"again\"", "7:8: error: source MAN is already declared at line 6"},
-      {16, "commands 29", "16:10: error: opcode 29 is not a TMCL command"},
+      {16, "commands 75", "16:10: error: opcode 75 is not a TMCL command"},
       {22, "vector 0 TI_TIMER0 \"again\"", "22:8: error: vector 0 is already defined at line 21"},
       {22, "name other", "22:1: error: a second 'name' line (the first is line 3)"},
       {22, "default=1", "22:1: error: a line starts with a key, not an attribute"},

@@ -82,3 +82,20 @@ TEST(generic_profile_runs) {
   m.run();
   CHECK_EQ(m.vm.acc, 5);
 }
+
+// SAC (SPI bus access, TMCM-351): no SPI device is attached to the virtual module, so the bus
+// reads back 0 into the accumulator; a chip select or byte count the manual does not list is
+// refused (status 3, 4 in direct mode). A module without SAC refuses it (status 6).
+TEST(sac_reads_zero_from_the_bus) {
+  Machine m({I(Op::CALC, 0, 0, 0), I(Op::CALC, 1, 0, 5), I(Op::SAC, 0, 2, 0x1234), I(Op::STOP)},
+            *tmcl::find_profile("tmcm-351"));
+  m.run();
+  CHECK_EQ(m.vm.acc, 0);
+  auto r = m.vm.execute_direct(I(Op::SAC, 128 + 3, 4, 0));
+  CHECK_EQ(r.status, 100);
+  CHECK_EQ(r.value, 0);
+  CHECK_EQ(m.vm.execute_direct(I(Op::SAC, 1, 1, 0)).status, 3);  // no chip select 1 (0, 2, 3)
+  CHECK_EQ(m.vm.execute_direct(I(Op::SAC, 0, 5, 0)).status, 4);  // 1 to 4 bytes
+  Machine other({I(Op::STOP)}, *tmcl::find_profile("tmcm-1110"));
+  CHECK_EQ(other.vm.execute_direct(I(Op::SAC, 0, 1, 0)).status, 6);
+}

@@ -19,8 +19,8 @@ motion-constant clock 16000000 src=M:5  # fCLK, Hz
 motion-constant velocity-divisor 65536 src=M:5  # µsteps/s = clock * 2^pulse_div ... / 65536 (section 5)
 motion-constant acceleration-shift 29 src=M:5  # 536870912 = 2^29 in the unit of acceleration
 # Commands: table 4.4.1, CLE 36 (4.6.32), UF0..UF7 (4.6.37), 138 (4.6.38) and the control commands
-# (4.4.2.9). SAC 29 (SPI bus access) and 139 (ASCII mode) are not in tmcl's instruction table.
-commands 1-15 19-28 30-39 64-71 src=M:4.4.1,M:4.6.32,M:4.6.37
+# (4.4.2.9), SAC 29 (4.6.24). 139 (enter ASCII mode) is a control command tmcl does not have.
+commands 1-15 19-39 64-71 src=M:4.4.1,M:4.6.24,M:4.6.32,M:4.6.37
 commands 128-138 src=M:4.4.2.9,M:4.6.38
 commands 255 unverified
 
