@@ -74,7 +74,7 @@ int open_tcp(const std::string& spec, int connect_ms, std::string& error) {
       }
     }
     if (rc != 0) {
-      error = spec + ": cannot connect: " + std::strerror(errno);
+      error = spec + ": cannot connect: " + os::error_text(errno);
       os::close_socket(fd);
       fd = -1;
       continue;
@@ -119,7 +119,7 @@ bool Port::write_all(const std::uint8_t* data, std::size_t n, Clock::time_point 
       continue;
     }
     if (w < 0 && errno != EAGAIN && errno != EWOULDBLOCK && errno != EINTR) {
-      error = "cannot write to " + name_ + ": " + std::strerror(errno);
+      error = "cannot write to " + name_ + ": " + os::error_text(errno);
       return false;
     }
     if (cancelled()) {
@@ -189,7 +189,7 @@ long Port::read_raw(std::uint8_t* data, std::size_t n, Clock::time_point deadlin
       return -1;
     }
     if (r < 0 && errno != EAGAIN && errno != EWOULDBLOCK && errno != EINTR) {
-      error = "cannot read from " + name_ + ": " + std::strerror(errno);
+      error = "cannot read from " + name_ + ": " + os::error_text(errno);
       return -1;
     }
     if (cancelled()) return -2;

@@ -12,6 +12,9 @@
 #include <cctype>
 #include <cerrno>
 #include <chrono>
+#include <cstring>
+
+#include "tmcl/os_files.hpp"
 
 namespace tmcl::host::serial {
 namespace {
@@ -20,13 +23,13 @@ constexpr long kBauds[] = {9600, 19200, 38400, 57600, 115200, 230400, 460800, 50
 
 HANDLE handle(std::intptr_t port) { return reinterpret_cast<HANDLE>(port); }
 
-// "COM3", "com12" -> "\\.\COM12"; anything else as it is.
+// "COM3", "com12" -> "\\.\COM12"; "/dev/null" -> "NUL" (os_files.hpp); anything else as it is.
 std::string device_path(const std::string& name) {
   if (name.size() > 3 && (name[0] == 'C' || name[0] == 'c') && (name[1] == 'O' || name[1] == 'o') &&
       (name[2] == 'M' || name[2] == 'm') &&
       std::all_of(name.begin() + 3, name.end(), [](char c) { return std::isdigit(static_cast<unsigned char>(c)) != 0; }))
     return "\\\\.\\COM" + name.substr(3);
-  return name;
+  return os::native_path(name);
 }
 
 std::string last_error_text() {
@@ -48,7 +51,7 @@ std::intptr_t open(const std::string& path, long baud, std::string& error) {
   if (h == INVALID_HANDLE_VALUE) {
     const DWORD code = ::GetLastError();
     if (code == ERROR_ACCESS_DENIED || code == ERROR_SHARING_VIOLATION) error = path + ": port in use by another program";
-    else if (code == ERROR_FILE_NOT_FOUND || code == ERROR_PATH_NOT_FOUND) error = path + ": no such port";
+    else if (code == ERROR_FILE_NOT_FOUND || code == ERROR_PATH_NOT_FOUND) error = path + ": " + std::strerror(ENOENT);
     else error = path + ": " + last_error_text();
     return -1;
   }
@@ -60,7 +63,7 @@ std::intptr_t open(const std::string& path, long baud, std::string& error) {
   DCB dcb{};
   dcb.DCBlength = sizeof dcb;
   if (::GetFileType(h) != FILE_TYPE_CHAR || !::GetCommState(h, &dcb))
-    return fail("not a serial port (COM3, \\\\.\\COM12 or tcp:HOST:PORT is needed)");
+    return fail("not a serial port (a tty device or tcp:HOST:PORT is needed)");  // the words of serial_posix.cpp
   dcb.BaudRate = static_cast<DWORD>(baud);
   dcb.ByteSize = 8;
   dcb.Parity = NOPARITY;

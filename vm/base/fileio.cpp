@@ -35,7 +35,7 @@ std::vector<std::string> split_lines(const std::string& text) {
 }
 
 bool read_file(const std::string& path, std::vector<std::uint8_t>& out, std::string& error, std::size_t max_bytes) {
-  int fd = path == "-" ? 0 : ::open(path.c_str(), O_RDONLY | os::kOpenFlags);
+  int fd = path == "-" ? 0 : ::open(os::native_path(path).c_str(), O_RDONLY | os::kOpenFlags);
   if (fd < 0) {
     error = "cannot open '" + path + "': " + std::strerror(errno);
     return false;
@@ -96,14 +96,16 @@ bool write_file_atomic(const std::string& path, const std::vector<std::uint8_t>&
     }
     return true;
   }
-  // A device or pipe (-o /dev/null, a FIFO) is written into, never replaced by a regular file.
+  // A device or pipe (-o /dev/null, a FIFO; NUL on Windows) is written into, never replaced by a
+  // regular file.
+  const std::string native = os::native_path(path);
   struct stat st {};
-  if (::stat(path.c_str(), &st) == 0 && !S_ISREG(st.st_mode)) {
+  if (native != path || (::stat(native.c_str(), &st) == 0 && !S_ISREG(st.st_mode))) {
     if (S_ISDIR(st.st_mode)) {
       error = "cannot write '" + path + "': it is a directory";
       return false;
     }
-    int dev = ::open(path.c_str(), O_WRONLY | os::kOpenFlags);
+    int dev = ::open(native.c_str(), O_WRONLY | os::kOpenFlags);
     bool ok = dev >= 0 && write_all(dev, data);
     if (!ok) error = "cannot write '" + path + "': " + std::strerror(errno);
     if (dev >= 0) ::close(dev);

@@ -2,6 +2,7 @@
 #include <fcntl.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <cstdlib>
 
@@ -16,8 +17,18 @@ namespace tmcl {
 namespace os {
 
 const int kOpenFlags = O_CLOEXEC;
-const char kPathListSeparator = ':';
 
+std::string native_path(const std::string& path) { return path; }
+
+std::vector<std::string> split_path_list(const std::string& list) {
+  std::vector<std::string> dirs;
+  for (std::size_t p = 0; p <= list.size();) {
+    std::size_t q = std::min(list.find(':', p), list.size());
+    if (q > p) dirs.push_back(list.substr(p, q - p));
+    p = q + 1;
+  }
+  return dirs;
+}
 bool sync_file(int fd) { return ::fsync(fd) == 0; }
 
 bool replace_file(const std::string& from, const std::string& to) { return std::rename(from.c_str(), to.c_str()) == 0; }

@@ -6,6 +6,7 @@
 #include <io.h>
 #include <windows.h>
 
+#include <cctype>
 #include <cerrno>
 #include <cstdlib>
 
@@ -16,8 +17,24 @@ namespace tmcl {
 namespace os {
 
 const int kOpenFlags = O_BINARY | O_NOINHERIT;
-const char kPathListSeparator = ';';
 
+std::string native_path(const std::string& path) { return path == "/dev/null" ? "NUL" : path; }
+
+std::vector<std::string> split_path_list(const std::string& list) {
+  std::vector<std::string> dirs;
+  std::string cur;
+  for (char c : list) {
+    const bool drive = c == ':' && cur.size() == 1 && std::isalpha(static_cast<unsigned char>(cur[0]));
+    if (c == ';' || (c == ':' && !drive)) {
+      if (!cur.empty()) dirs.push_back(cur);
+      cur.clear();
+    } else {
+      cur += c;
+    }
+  }
+  if (!cur.empty()) dirs.push_back(cur);
+  return dirs;
+}
 bool sync_file(int fd) { return ::_commit(fd) == 0; }
 
 bool replace_file(const std::string& from, const std::string& to) {

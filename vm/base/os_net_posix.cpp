@@ -2,6 +2,8 @@
 #include <fcntl.h>
 #include <unistd.h>
 
+#include <cstring>
+
 #include "tmcl/os_net.hpp"
 
 namespace tmcl::os {
@@ -38,6 +40,8 @@ bool wake_pair(int fds[2]) {
 void wake(int fd, char byte) { [[maybe_unused]] ssize_t n = ::write(fd, &byte, 1); }
 
 int pollable_input(int fd) { return fd; }
+
+std::string error_text(int err) { return std::strerror(err); }
 
 std::string resolve_error_text(int rc) { return ::gai_strerror(rc); }
 

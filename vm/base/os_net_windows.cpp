@@ -4,6 +4,7 @@
 #include <io.h>
 
 #include <cerrno>
+#include <cstring>
 #include <mutex>
 #include <thread>
 
@@ -126,8 +127,9 @@ void wake(int fd, char byte) { ::send(static_cast<SOCKET>(fd), &byte, 1, 0); }
 int pollable_input(int fd) {
   int pair[2];
   if (!wake_pair(pair)) return -1;
-  u_long off = 0;  // the thread's end blocks: it waits for the reader rather than dropping input
-  ::ioctlsocket(static_cast<SOCKET>(pair[1]), FIONBIO, &off);
+  u_long off = 0;  // both ends block: the thread waits for the reader, the reader for input,
+  ::ioctlsocket(static_cast<SOCKET>(pair[1]), FIONBIO, &off);  // as they do on a POSIX stdin
+  ::ioctlsocket(static_cast<SOCKET>(pair[0]), FIONBIO, &off);
   std::thread([fd, out = pair[1]] {
     char buf[65536];
     for (int n; (n = ::_read(fd, buf, sizeof buf)) > 0;) {
@@ -140,6 +142,22 @@ int pollable_input(int fd) {
     ::shutdown(static_cast<SOCKET>(out), SD_SEND);  // end of input: the reader sees it as such
   }).detach();
   return pair[0];
+}
+
+std::string error_text(int err) {
+  switch (err) {
+    case EWOULDBLOCK: return "Resource temporarily unavailable";
+    case EINPROGRESS: return "Operation now in progress";
+    case ECONNREFUSED: return "Connection refused";
+    case ECONNRESET: return "Connection reset by peer";
+    case ECONNABORTED: return "Software caused connection abort";
+    case ETIMEDOUT: return "Connection timed out";
+    case EADDRINUSE: return "Address already in use";
+    case EADDRNOTAVAIL: return "Cannot assign requested address";
+    case ENETUNREACH: return "Network is unreachable";
+    case EHOSTUNREACH: return "No route to host";
+    default: return std::strerror(err);
+  }
 }
 
 std::string resolve_error_text(int rc) {

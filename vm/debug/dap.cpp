@@ -174,6 +174,11 @@ class Dap {
     event("stopped", std::move(body));
   }
 
+#if defined(_WIN32)
+  static constexpr const char* kPathSeparators = "/\\";  // a Windows path takes either
+#else
+  static constexpr const char* kPathSeparators = "/";
+#endif
   Value source_of(std::int32_t address) const {
     const ProgramInfo& info = engine_->info();
     if (address < 0 || static_cast<std::size_t>(address) >= info.lines.size()) return Value();
@@ -181,7 +186,7 @@ class Dap {
     if (f < 0) return Value();
     const auto& file = info.files[static_cast<std::size_t>(f)];
     const std::string& name = file.path.empty() ? file.name : file.path;  // a .bin's source as found
-    std::string base = name.substr(name.find_last_of('/') + 1);
+    std::string base = name.substr(name.find_last_of(kPathSeparators) + 1);
     return obj({{"name", base}, {"path", name}});
   }
   int line_of(std::int32_t address) const {

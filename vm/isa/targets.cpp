@@ -118,12 +118,7 @@ std::vector<std::string> known_names(const TargetSearch& search) {
 TargetSearch TargetSearch::from_environment() {
   TargetSearch s;
   if (const char* path = std::getenv("TMCL_PROFILE_PATH")) {
-    std::string_view v = path;
-    for (std::size_t p = 0; p <= v.size();) {
-      std::size_t q = std::min(v.find(os::kPathListSeparator, p), v.size());
-      if (q > p) s.dirs.emplace_back(v.substr(p, q - p));
-      p = q + 1;
-    }
+    for (std::string& dir : os::split_path_list(path)) s.dirs.push_back(std::move(dir));
   }
   for (std::string& dir : os::config_dirs("profiles")) s.dirs.push_back(std::move(dir));
   return s;

@@ -129,7 +129,7 @@ int open_listener(const ServeOptions& opt, std::string& where, bool& loopback, s
     ::setsockopt(fd, SOL_SOCKET, SO_REUSEADDR, on, sizeof one);
     if (ai->ai_family == AF_INET6) ::setsockopt(fd, IPPROTO_IPV6, IPV6_V6ONLY, on, sizeof one);
     if (::bind(fd, ai->ai_addr, static_cast<socklen_t>(ai->ai_addrlen)) == 0 && ::listen(fd, 8) == 0) break;
-    error = "cannot listen on " + opt.host + ":" + port + ": " + std::strerror(errno);
+    error = "cannot listen on " + opt.host + ":" + port + ": " + os::error_text(errno);
     os::close_socket(fd);
     fd = -1;
   }
@@ -263,7 +263,7 @@ struct ServeLoop::Impl {
 
 int ServeLoop::Impl::open() {
   if (opt.handle_signals && !signals.install()) {
-    log << "tmclrun: error: cannot install signal handlers: " << std::strerror(errno) << std::endl;
+    log << "tmclrun: error: cannot install signal handlers: " << os::error_text(errno) << std::endl;
     return 71;
   }
   module.set_on_message([this](const std::string& s) { note(s); });
@@ -456,7 +456,7 @@ bool ServeLoop::Impl::poll_once(int max_wait_ms, int extra_fd) {
   int rc = os::poll(fds, nfds, static_cast<int>(timeout_ms));
   if (rc < 0) {
     if (errno == EINTR) return true;
-    log << "tmclrun: error: poll: " << std::strerror(errno) << std::endl;
+    log << "tmclrun: error: poll: " << os::error_text(errno) << std::endl;
     return false;
   }
   if (rc == 0) return true;

@@ -14,10 +14,14 @@ namespace tmcl::os {
 // Flags added to every open(): bytes as they are (Windows' C library would otherwise turn
 // "\n" into "\r\n"), and not inherited by child processes.
 extern const int kOpenFlags;
-// Separates the folders of a search path such as TMCL_PROFILE_PATH: ':' on POSIX, ';' on
-// Windows (where ':' follows a drive letter).
-extern const char kPathListSeparator;
 
+// The name to open for `path`: on Windows "/dev/null" is "NUL" (what scripts written for a
+// POSIX shell, and the tests, pass); elsewhere `path` itself.
+std::string native_path(const std::string& path);
+// Splits a search path such as TMCL_PROFILE_PATH into its folders (empty ones dropped): at ':'
+// on POSIX; on Windows at ';' and at a ':' that does not follow a drive letter ("C:\a;D:\b",
+// "lib:C:/x").
+std::vector<std::string> split_path_list(const std::string& list);
 // Flushes the file's data to the disk (fsync). False with errno set.
 bool sync_file(int fd);
 // Renames `from` to `to`, replacing `to` if it exists, in one step a reader never sees half of.

@@ -66,6 +66,9 @@ void wake(int fd, char byte);
 // descriptor itself on POSIX; on Windows a socket that a thread fills with what it reads from
 // `fd`, closed at its end of input. -1 with errno set.
 int pollable_input(int fd);
+// strerror(): on Windows also the names its C library has no text for (ECONNREFUSED, ...), in
+// glibc's words.
+std::string error_text(int err);
 // The text of a getaddrinfo() error.
 std::string resolve_error_text(int rc);
 
