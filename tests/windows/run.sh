@@ -68,8 +68,8 @@ fi
 
 # ---- Wine: a prefix of our own, started once, no desktop integration ----
 export WINEPREFIX="$win/wine-prefix" WINEDEBUG=-all WINEDLLOVERRIDES="winemenubuilder.exe=d"
-wineboot -i >/dev/null 2>&1
-wineserver -p 60 >/dev/null 2>&1  # stays up between the many short runs
+wineserver -p 120 >/dev/null 2>&1  # one server, up between the many short runs (and not
+wineboot -i >/dev/null 2>&1        # going away under one of them, as a server started by it may)
 trap 'wineserver -k >/dev/null 2>&1; [[ -n "${servers:-}" ]] && kill $servers 2>/dev/null' EXIT
 
 # ---- 2. the golden cases ----
