@@ -85,6 +85,17 @@ g_pass=$(sed -E 's/^([0-9]+) passed.*/\1/' <<<"$summary")
 g_fail=$(sed -E 's/^[0-9]+ passed, ([0-9]+) failed.*/\1/' <<<"$summary")
 g_skip=$(grep -c '^SKIP ' "$win/golden.log")
 [[ -n "$g_pass" && -n "$g_fail" ]] || { g_pass=0; g_fail=1; tail -30 "$win/golden.log"; }
+# A case that failed runs once more, alone, and counts as passed (said so) if it passes then: Wine
+# under a loaded machine has failed a tool's start now and then (exit 1, no output), seen once in
+# twenty whole runs, never on the case run again.
+if [[ -n "$g_fail" && "$g_fail" != 0 ]]; then
+  for c in $(sed -n 's/^FAIL \([^ ]*\) (expected.*/\1/p' "$win/golden.log" | sort -u); do
+    if (cd "$src" && "$linux/tests/golden_runner" "${tools[@]}" --emulator "$(command -v wine)" "$c") >"$win/again.log" 2>&1; then
+      echo "== windows: $c failed once under Wine and passed when run again"
+      g_fail=$((g_fail - 1)) g_pass=$((g_pass + 1))
+    fi
+  done
+fi
 [[ "$g_fail" != 0 ]] && grep -v -E '^(SKIP|ok)' "$win/golden.log" | head -200
 passed=$((passed + g_pass)) failed=$((failed + g_fail)) skipped=$((skipped + g_skip))
 echo "== windows: golden cases under Wine: $summary ($(( $(date +%s) - t2 )) s)"
