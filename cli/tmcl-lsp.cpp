@@ -12,6 +12,7 @@
 
 #include "tmcl/lsp/server.hpp"
 #include "tmcl/options.hpp"
+#include "tmcl/os_console.hpp"
 
 namespace {
 
@@ -49,7 +50,8 @@ int usage_error(const std::string& msg) {
 bool write_all(const std::string& s) {
   std::size_t done = 0;
   while (done < s.size()) {
-    ssize_t n = ::write(1, s.data() + done, s.size() - done);
+    const auto chunk = static_cast<unsigned>(std::min<std::size_t>(s.size() - done, 1u << 30));  // Windows: unsigned
+    ssize_t n = ::write(1, s.data() + done, chunk);
     if (n < 0 && errno == EINTR) continue;
     if (n <= 0) return false;
     done += static_cast<std::size_t>(n);
@@ -60,6 +62,7 @@ bool write_all(const std::string& s) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  tmcl::os::init_console();  // Windows: bytes as they are, UTF-8 (os_console.hpp)
   const tmcl::cli::Result cl = tmcl::cli::parse(command_line(), argc, argv);
   if (cl.status == tmcl::cli::Result::Status::Done) return 0;
   if (cl.status == tmcl::cli::Result::Status::Error) return usage_error(cl.error);

@@ -24,6 +24,7 @@
 #include "tmcl/fileio.hpp"
 #include "tmcl/numbers.hpp"
 #include "tmcl/options.hpp"
+#include "tmcl/os_console.hpp"
 #include "tmcl/targets.hpp"
 
 namespace {
@@ -565,6 +566,7 @@ int run(int argc, char** argv) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  tmcl::os::init_console();  // Windows: bytes as they are, UTF-8 (os_console.hpp)
 #if defined(__GLIBC__)
   // tmclasm is a short process whose big buffers come and go in phases (the assembler's, then
   // the analysis', then the output's). Kept in the heap instead of unmapped at each free, a later

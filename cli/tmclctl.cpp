@@ -6,7 +6,6 @@
 // 2 error status from the module, 64 usage, 65 bad input, 69 no reply, 74 port, output file or
 // standard output error, 130 interrupted.
 #include <dirent.h>
-#include <signal.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -36,6 +35,7 @@
 #include "tmcl/host/transfer.hpp"
 #include "tmcl/image.hpp"
 #include "tmcl/options.hpp"
+#include "tmcl/os_console.hpp"
 #include "tmcl/plot.hpp"
 #include "tmcl/program_image.hpp"
 #include "tmcl/targets.hpp"
@@ -930,16 +930,13 @@ int run(int argc, char** argv) {
   Options o;
   if (int r = parse_args(argc, argv, o); r >= 0) return r;
 
-  struct sigaction sa{};
-  sa.sa_handler = on_sigint;
-  sigemptyset(&sa.sa_mask);
-  sa.sa_flags = 0;  // no SA_RESTART: a blocked poll returns and the flag is seen at once
-  ::sigaction(SIGINT, &sa, nullptr);
-  ::sigaction(SIGTERM, &sa, nullptr);
+  // No restart: a blocked poll returns and the flag is seen at once.
+  tmcl::os::catch_signal(SIGINT, on_sigint, false);
+  tmcl::os::catch_signal(SIGTERM, on_sigint, false);
   // A reader that goes away (`monitor ... | head`) is a failed write, which ends the command with
   // status 74 once it has kept what it has (monitor's --csv and --plot), instead of a death by
   // SIGPIPE that loses them.
-  ::signal(SIGPIPE, SIG_IGN);
+  tmcl::os::ignore_broken_pipe();
   host::Port::set_cancel_flag(&g_stop);
 
   bool known = false;
@@ -986,6 +983,7 @@ int run(int argc, char** argv) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  tmcl::os::init_console();  // Windows: bytes as they are, UTF-8 (os_console.hpp)
   const int status = run(argc, argv);
   return stdout_written() ? status : kExitPort;
 }

@@ -28,6 +28,7 @@
 #include "tmcl/motion_recording.hpp"
 #include "tmcl/numbers.hpp"
 #include "tmcl/options.hpp"
+#include "tmcl/os_console.hpp"
 #include "tmcl/program_image.hpp"
 #include "tmcl/run_control.hpp"
 #include "tmcl/scenario.hpp"
@@ -654,6 +655,7 @@ int run(int argc, char** argv) {
 
 
 int main(int argc, char** argv) {
+  tmcl::os::init_console();  // Windows: bytes as they are, UTF-8 (os_console.hpp)
   // --json is known before any other option is read, so even a bad option is reported as JSON.
   for (int i = 1; i < argc; ++i)
     if (std::strcmp(argv[i], "--json") == 0) g_failure.json = true;

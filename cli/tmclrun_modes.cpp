@@ -144,7 +144,7 @@ int tmclrun::run_mode(Options& o, const tmcl::Profile& profile, std::unique_ptr<
   // the traffic live, and a killed server loses nothing).
   std::FILE* log = stderr;
   if (o.trace && !o.log.empty()) {
-    log = std::fopen(o.log.c_str(), "w");
+    log = std::fopen(o.log.c_str(), "wb");
     if (!log) return input_error("", "cannot open log file '" + o.log + "': " + std::strerror(errno), kExitIo);
   }
   if (o.trace)

@@ -2,14 +2,12 @@
 // polls the one it is given, and run() reads the others when the VM has stopped.
 #include "tmcl/run_control.hpp"
 
-#include <sys/time.h>
-
 #include <atomic>
 #include <csignal>
 #include <string>
-#include <unistd.h>
 
 #include "tmcl/duration.hpp"
+#include "tmcl/os_console.hpp"
 
 namespace tmcl {
 namespace {
@@ -20,7 +18,7 @@ volatile std::sig_atomic_t g_signal = 0;    // SIGINT or SIGTERM that asked for 
 volatile std::sig_atomic_t g_note_due = 0;  // the wall-clock note's timer went off
 volatile std::sig_atomic_t g_closed = 0;    // a trace could not write
 
-struct sigaction g_old_int {}, g_old_term {}, g_old_alrm {};
+os::SavedSignal g_old_int, g_old_term;
 bool g_note = false;
 int g_note_ms = 0;
 std::FILE* g_note_to = nullptr;
@@ -35,26 +33,8 @@ extern "C" void on_alarm(int) {
   g_stop = true;
 }
 
-void install(int sig, void (*handler)(int), struct sigaction* old) {
-  struct sigaction sa {};
-  sa.sa_handler = handler;
-  sigemptyset(&sa.sa_mask);
-  sa.sa_flags = SA_RESTART;  // the trace's writes go on
-  ::sigaction(sig, &sa, old);
-}
-
-void default_action(int sig) {
-  struct sigaction sa {};
-  sa.sa_handler = SIG_DFL;
-  sigemptyset(&sa.sa_mask);
-  ::sigaction(sig, &sa, nullptr);
-}
-
-void set_timer(int ms) {
-  itimerval t{};
-  t.it_value.tv_sec = ms / 1000;
-  t.it_value.tv_usec = (ms % 1000) * 1000;
-  ::setitimer(ITIMER_REAL, &t, nullptr);
+void install(int sig, void (*handler)(int), os::SavedSignal* old) {
+  os::catch_signal(sig, handler, true, old);  // restart: the trace's writes go on
 }
 
 }  // namespace
@@ -66,27 +46,22 @@ RunControl::RunControl(bool note, std::FILE* note_to, int note_after_ms) {
   g_closed = 0;
   install(SIGINT, on_signal, &g_old_int);
   install(SIGTERM, on_signal, &g_old_term);
-  struct sigaction ign {};
-  ign.sa_handler = SIG_IGN;
-  sigemptyset(&ign.sa_mask);
-  ::sigaction(SIGPIPE, &ign, nullptr);
+  os::ignore_broken_pipe();
   g_note = note;
   g_note_ms = note_after_ms;
   g_note_to = note_to;
   if (note) {
-    install(SIGALRM, on_alarm, &g_old_alrm);
-    set_timer(note_after_ms > 0 ? note_after_ms : 1);
+    os::arm_timer(note_after_ms > 0 ? note_after_ms : 1, on_alarm);
   }
 }
 
 RunControl::~RunControl() {
   if (g_note) {
-    set_timer(0);
-    ::sigaction(SIGALRM, &g_old_alrm, nullptr);
+    os::arm_timer(0, nullptr);
   }
   if (g_signal == 0) {  // after a signal, the default action stays (end_by_signal)
-    ::sigaction(SIGINT, &g_old_int, nullptr);
-    ::sigaction(SIGTERM, &g_old_term, nullptr);
+    os::restore_signal(SIGINT, g_old_int);
+    os::restore_signal(SIGTERM, g_old_term);
   }
 }
 
@@ -97,8 +72,8 @@ RunResult RunControl::run(Vm& vm, Limits limits) {
     if (r.halt != Halt::Interrupted) return r;
     if (g_signal != 0) {
       // A second Ctrl-C while the outputs are written ends tmclrun at once.
-      default_action(SIGINT);
-      default_action(SIGTERM);
+      os::default_signal(SIGINT);
+      os::default_signal(SIGTERM);
       r.message = g_signal == SIGINT ? "interrupted by SIGINT (Ctrl-C)" : "interrupted by SIGTERM";
       return r;
     }
@@ -132,13 +107,7 @@ int RunControl::ended_by() { return g_signal; }
 void RunControl::end_by_signal() {
   const int sig = g_signal;
   if (sig == 0) return;
-  default_action(sig);
-  sigset_t set;
-  sigemptyset(&set);
-  sigaddset(&set, sig);
-  ::sigprocmask(SIG_UNBLOCK, &set, nullptr);
-  std::raise(sig);
-  ::_exit(128 + sig);  // not reached: the default action of SIGINT and SIGTERM ends the process
+  os::die_by_signal(sig);
 }
 
 }  // namespace tmcl

@@ -1,14 +1,16 @@
-// Whole-file reading and crash-safe writing (temporary file + rename, fsync on request), and
-// huge pages for large buffers.
+// Whole-file reading and crash-safe writing (temporary file + rename, fsync on request). What
+// differs between systems is in the platform layer (os_files.hpp).
 #include "tmcl/fileio.hpp"
 
+#include <algorithm>
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
 #include <fcntl.h>
-#include <sys/mman.h>
 #include <sys/stat.h>
 #include <unistd.h>
+
+#include "tmcl/os_files.hpp"
 
 namespace tmcl {
 
@@ -33,7 +35,7 @@ std::vector<std::string> split_lines(const std::string& text) {
 }
 
 bool read_file(const std::string& path, std::vector<std::uint8_t>& out, std::string& error, std::size_t max_bytes) {
-  int fd = path == "-" ? 0 : ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
+  int fd = path == "-" ? 0 : ::open(os::native_path(path).c_str(), O_RDONLY | os::kOpenFlags);
   if (fd < 0) {
     error = "cannot open '" + path + "': " + std::strerror(errno);
     return false;
@@ -69,7 +71,9 @@ bool read_file(const std::string& path, std::vector<std::uint8_t>& out, std::str
 static bool write_all(int fd, const std::vector<std::uint8_t>& data) {
   std::size_t done = 0;
   while (done < data.size()) {
-    ssize_t n = ::write(fd, data.data() + done, data.size() - done);
+    // At most 1 GiB a call: Windows' write() counts in an unsigned int.
+    const auto chunk = static_cast<unsigned>(std::min<std::size_t>(data.size() - done, 1u << 30));
+    ssize_t n = ::write(fd, data.data() + done, chunk);
     if (n < 0 && errno == EINTR) continue;
     if (n <= 0) return false;
     done += static_cast<std::size_t>(n);
@@ -92,48 +96,37 @@ bool write_file_atomic(const std::string& path, const std::vector<std::uint8_t>&
     }
     return true;
   }
-  // A device or pipe (-o /dev/null, a FIFO) is written into, never replaced by a regular file.
+  // A device or pipe (-o /dev/null, a FIFO; NUL on Windows) is written into, never replaced by a
+  // regular file.
+  const std::string native = os::native_path(path);
   struct stat st {};
-  if (::stat(path.c_str(), &st) == 0 && !S_ISREG(st.st_mode)) {
+  if (native != path || (::stat(native.c_str(), &st) == 0 && !S_ISREG(st.st_mode))) {
     if (S_ISDIR(st.st_mode)) {
       error = "cannot write '" + path + "': it is a directory";
       return false;
     }
-    int dev = ::open(path.c_str(), O_WRONLY | O_CLOEXEC);
+    int dev = ::open(native.c_str(), O_WRONLY | os::kOpenFlags);
     bool ok = dev >= 0 && write_all(dev, data);
     if (!ok) error = "cannot write '" + path + "': " + std::strerror(errno);
     if (dev >= 0) ::close(dev);
     return ok;
   }
   std::string tmp = path + ".tmp." + std::to_string(::getpid());
-  int fd = ::open(tmp.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0666);
+  int fd = ::open(tmp.c_str(), O_WRONLY | O_CREAT | O_TRUNC | os::kOpenFlags, 0666);
   if (fd < 0) {
     error = "cannot write '" + path + "': " + std::strerror(errno);
     return false;
   }
-  bool ok = write_all(fd, data) && (!durable || ::fsync(fd) == 0);
+  bool ok = write_all(fd, data) && (!durable || os::sync_file(fd));
   int saved = errno;
   ok = (::close(fd) == 0) && ok;
-  if (!ok || ::rename(tmp.c_str(), path.c_str()) != 0) {
+  if (!ok || !os::replace_file(tmp, path)) {
     if (ok) saved = errno;
     ::unlink(tmp.c_str());
     error = "cannot write '" + path + "': " + std::strerror(saved);
     return false;
   }
   return true;
-}
-
-void prefer_huge_pages(const void* data, std::size_t bytes) {
-#ifdef MADV_HUGEPAGE
-  constexpr std::uintptr_t kHuge = 2u << 20;
-  if (bytes < 2 * kHuge) return;  // smaller buffers hold at most one huge page
-  auto begin = (reinterpret_cast<std::uintptr_t>(data) + kHuge - 1) & ~(kHuge - 1);
-  auto end = (reinterpret_cast<std::uintptr_t>(data) + bytes) & ~(kHuge - 1);
-  if (end > begin) ::madvise(reinterpret_cast<void*>(begin), end - begin, MADV_HUGEPAGE);  // advice: failure is harmless
-#else
-  (void)data;
-  (void)bytes;
-#endif
 }
 
 }  // namespace tmcl

@@ -971,11 +971,8 @@ int run_cli(Engine& engine, const CliOptions& options, std::FILE* in, std::FILE*
     editor = std::make_unique<TerminalPrompt>(::fileno(src), ::fileno(out), "(tmdb) ",
                                               [&cli](const std::string& l, std::size_t at) { return cli.completions(l, at); });
   g_engine = &engine;
-  struct sigaction sa {};
-  sa.sa_handler = on_sigint;
-  sigemptyset(&sa.sa_mask);
-  struct sigaction old {};
-  sigaction(SIGINT, &sa, &old);
+  os::SavedSignal old;
+  os::catch_signal(SIGINT, on_sigint, false, &old);
   std::size_t next_line = 0;
   for (;;) {
     std::string line;
@@ -1001,7 +998,7 @@ int run_cli(Engine& engine, const CliOptions& options, std::FILE* in, std::FILE*
     }
     if (!cli.line(line)) break;
   }
-  sigaction(SIGINT, &old, nullptr);
+  os::restore_signal(SIGINT, old);
   g_engine = nullptr;
   std::fflush(out);
   return cli.status();

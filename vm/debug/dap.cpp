@@ -6,8 +6,6 @@
 // `terminate` and the breakpoint setters are answered while it runs, anything else gets an
 // error response until it stops. Every request it does not support gets an error response.
 // docs/debugger.md, "Debug Adapter Protocol".
-#include <poll.h>
-#include <unistd.h>
 
 #include <cerrno>
 #include <cstring>
@@ -17,6 +15,7 @@
 #include "tmcl/debug_cli.hpp"
 #include "tmcl/duration.hpp"
 #include "tmcl/json.hpp"
+#include "tmcl/os_net.hpp"
 #include "tmcl/targets.hpp"
 
 namespace tmcl::debug {
@@ -26,7 +25,7 @@ using json::Value;
 
 class Dap {
  public:
-  Dap(const DapSetup& setup, std::FILE* in, std::FILE* out) : setup_(setup), in_fd_(::fileno(in)), out_(out) {}
+  Dap(const DapSetup& setup, std::FILE* in, std::FILE* out) : setup_(setup), in_fd_(os::pollable_input(::fileno(in))), out_(out) {}
 
   int serve() {
     for (;;) {
@@ -52,11 +51,11 @@ class Dap {
   bool fill(bool wait) {
     if (eof_) return false;
     if (!wait) {
-      pollfd p{in_fd_, POLLIN, 0};
-      if (::poll(&p, 1, 0) <= 0) return false;
+      pollfd p = os::poll_entry(in_fd_, POLLIN);
+      if (os::poll(&p, 1, 0) <= 0) return false;
     }
     char buf[1 << 16];
-    ssize_t n = ::read(in_fd_, buf, sizeof buf);
+    long n = os::read_some(in_fd_, buf, sizeof buf);
     if (n > 0) return inbuf_.append(buf, static_cast<std::size_t>(n)), true;
     if (n < 0 && errno == EINTR) return true;
     eof_ = true;  // end of input, or an error reading it: the client is gone
@@ -175,6 +174,11 @@ class Dap {
     event("stopped", std::move(body));
   }
 
+#if defined(_WIN32)
+  static constexpr const char* kPathSeparators = "/\\";  // a Windows path takes either
+#else
+  static constexpr const char* kPathSeparators = "/";
+#endif
   Value source_of(std::int32_t address) const {
     const ProgramInfo& info = engine_->info();
     if (address < 0 || static_cast<std::size_t>(address) >= info.lines.size()) return Value();
@@ -182,7 +186,7 @@ class Dap {
     if (f < 0) return Value();
     const auto& file = info.files[static_cast<std::size_t>(f)];
     const std::string& name = file.path.empty() ? file.name : file.path;  // a .bin's source as found
-    std::string base = name.substr(name.find_last_of('/') + 1);
+    std::string base = name.substr(name.find_last_of(kPathSeparators) + 1);
     return obj({{"name", base}, {"path", name}});
   }
   int line_of(std::int32_t address) const {

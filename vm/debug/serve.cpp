@@ -15,6 +15,7 @@
 
 #include "terminal.hpp"
 #include "tmcl/debug_cli.hpp"
+#include "tmcl/os_net.hpp"
 
 namespace tmcl::debug {
 namespace {
@@ -59,7 +60,13 @@ class LineSink final : public std::streambuf {
 class Served {
  public:
   Served(Engine& engine, const ServeOptions& options, std::FILE* in, std::FILE* out)
-      : e_(engine), opt_(options), in_fd_(::fileno(in)), tty_(::isatty(in_fd_) != 0), out_(out), cli_(engine, out, !tty_, true) {
+      : e_(engine),
+        opt_(options),
+        in_fd_(::fileno(in)),
+        poll_fd_(os::pollable_input(in_fd_)),
+        tty_(::isatty(in_fd_) != 0),
+        out_(out),
+        cli_(engine, out, !tty_, true) {
     if (tty_ && TerminalPrompt::usable(in_fd_, ::fileno(out))) {
       editor_ = std::make_unique<TerminalPrompt>(in_fd_, ::fileno(out), "(tmdb) ", [this](const std::string& l, std::size_t at) {
         return cli_.completions(l, at);
@@ -103,7 +110,7 @@ class Served {
         prompt(true);  // with the line the user was typing
         continue;
       }
-      if (!loop_->poll_once(-1, in_fd_)) break;
+      if (!loop_->poll_once(-1, poll_fd_)) break;
       if (loop_->extra_ready()) read_commands();
     }
     int rc = loop_->close();
@@ -145,7 +152,7 @@ class Served {
   // Reads what standard input has; every whole line is a command. End of input quits.
   void read_commands() {
     char buf[4096];
-    ssize_t n = ::read(in_fd_, buf, sizeof buf);
+    long n = os::read_some(poll_fd_, buf, sizeof buf);
     if (n < 0 && (errno == EINTR || errno == EAGAIN)) return;
     if (editor_ && n > 0) return edit(buf, static_cast<std::size_t>(n));
     if (n <= 0) {
@@ -263,6 +270,7 @@ class Served {
   Engine& e_;
   ServeOptions opt_;
   int in_fd_;
+  int poll_fd_;  // what the server's loop waits on for in_fd_'s input (os_net.hpp, pollable_input)
   bool tty_;
   std::FILE* out_;
   CommandLine cli_;

@@ -1,11 +1,11 @@
-// The prompt on a terminal (terminal.hpp): termios raw mode for the line editor, the window's
+// The prompt on a terminal (terminal.hpp): raw mode (os_console.hpp) for the line editor, the window's
 // width, and the history file (one line per command, appended as each is entered, the newest
 // kHistoryKept read back at the start).
 #include "terminal.hpp"
 
-#include <sys/ioctl.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <cstdlib>
 #include <fstream>
@@ -41,25 +41,15 @@ TerminalPrompt::TerminalPrompt(int in_fd, int out_fd, std::string prompt, LineEd
 TerminalPrompt::~TerminalPrompt() { stop(); }
 
 void TerminalPrompt::start(bool keep) {
-  if (!have_saved_ && ::tcgetattr(in_, &saved_) == 0) have_saved_ = true;
-  if (have_saved_) {
-    termios raw = saved_;
-    // No echo, no line buffering, Ctrl-C/Ctrl-Z/Ctrl-S as keys, Enter as \r; output unchanged.
-    raw.c_lflag &= static_cast<tcflag_t>(~(ECHO | ICANON | ISIG | IEXTEN));
-    raw.c_iflag &= static_cast<tcflag_t>(~(IXON | ICRNL | INLCR | IGNCR));
-    raw.c_cc[VMIN] = 1;
-    raw.c_cc[VTIME] = 0;
-    ::tcsetattr(in_, TCSADRAIN, &raw);
-  }
-  winsize ws{};
-  editor_.set_width(::ioctl(out_, TIOCGWINSZ, &ws) == 0 && ws.ws_col > 0 ? ws.ws_col : 80);
+  os::terminal_raw(in_, saved_, have_saved_);
+  editor_.set_width(os::terminal_width(out_));
   editor_.begin(keep);
   editing_ = true;
   flush();
 }
 
 void TerminalPrompt::stop() {
-  if (have_saved_) ::tcsetattr(in_, TCSADRAIN, &saved_);
+  if (have_saved_) os::terminal_restore(in_, saved_);
   editing_ = false;
 }
 
@@ -121,7 +111,7 @@ void TerminalPrompt::above(const std::function<void()>& print) {
 void TerminalPrompt::flush() {
   std::string out = editor_.take_output();
   for (std::size_t at = 0; at < out.size();) {
-    ssize_t n = ::write(out_, out.data() + at, out.size() - at);
+    ssize_t n = ::write(out_, out.data() + at, static_cast<unsigned>(std::min<std::size_t>(out.size() - at, 1u << 30)));
     if (n < 0 && errno == EINTR) continue;
     if (n <= 0) break;
     at += static_cast<std::size_t>(n);

@@ -1,11 +1,9 @@
 // The debugger's prompt on a terminal (docs/debugger.md, "The prompt"): the line editor
-// (line_editor.hpp) on a terminal in raw mode (termios) while a line is typed, and in the
+// (line_editor.hpp) on a terminal in raw mode (os_console.hpp) while a line is typed, and in the
 // terminal's own mode while a command runs, so Ctrl-C still pauses a running program. The
 // history is kept in a file, $TMCLRUN_HISTORY or ~/.tmclrun_history. Used only when standard
 // input and output are both terminals; piped commands are read as they always were.
 #pragma once
-
-#include <termios.h>
 
 #include <functional>
 #include <optional>
@@ -13,6 +11,7 @@
 #include <vector>
 
 #include "line_editor.hpp"
+#include "tmcl/os_console.hpp"
 
 namespace tmcl::debug {
 
@@ -54,7 +53,7 @@ class TerminalPrompt {
   LineEditor editor_;
   std::string pending_;  // typed ahead of the line being handled
   std::string history_file_;
-  termios saved_{};
+  os::SavedTerminal saved_;
   bool have_saved_ = false;
   bool editing_ = false;
 };

@@ -15,6 +15,7 @@
 #include <mutex>
 
 #include "tmcl/fileio.hpp"
+#include "tmcl/os_files.hpp"
 #include "tmcl/profile_file.hpp"
 
 namespace tmcl {
@@ -57,12 +58,11 @@ const Loaded& load_file(const std::string& path, const TargetSearch& search) {
   struct stat st{};
   const bool exists = file_exists(path, st);
   // Cached by the file itself: the same relative path from another folder is another file.
-  char* real = exists ? ::realpath(path.c_str(), nullptr) : nullptr;
-  const std::string key = real ? real : path;
-  std::free(real);
+  const std::string real = exists ? os::real_path(path) : std::string();
+  const std::string key = real.empty() ? path : real;
   Loaded& entry = u.by_path[key];
   if (entry.loading) return entry;  // no profile yet: the based-on line that asked says so
-  const long long mtime = exists ? static_cast<long long>(st.st_mtim.tv_sec) * 1000000000LL + st.st_mtim.tv_nsec : -1;
+  const long long mtime = exists ? os::modified_ns(st) : -1;
   const long long size = exists ? static_cast<long long>(st.st_size) : -1;
   if (entry.size == size && entry.mtime == mtime && (entry.store || !entry.diags.empty() || !entry.error.empty())) return entry;
   if (entry.store) u.retired.push_back(std::move(entry.store));
@@ -118,17 +118,9 @@ std::vector<std::string> known_names(const TargetSearch& search) {
 TargetSearch TargetSearch::from_environment() {
   TargetSearch s;
   if (const char* path = std::getenv("TMCL_PROFILE_PATH")) {
-    std::string_view v = path;
-    for (std::size_t p = 0; p <= v.size();) {
-      std::size_t q = std::min(v.find(':', p), v.size());
-      if (q > p) s.dirs.emplace_back(v.substr(p, q - p));
-      p = q + 1;
-    }
+    for (std::string& dir : os::split_path_list(path)) s.dirs.push_back(std::move(dir));
   }
-  const char* xdg = std::getenv("XDG_CONFIG_HOME");
-  const char* home = std::getenv("HOME");
-  if (xdg && *xdg == '/') s.dirs.push_back(std::string(xdg) + "/tmcl/profiles");
-  else if (home && *home) s.dirs.push_back(std::string(home) + "/.config/tmcl/profiles");
+  for (std::string& dir : os::config_dirs("profiles")) s.dirs.push_back(std::move(dir));
   return s;
 }
 

@@ -10,18 +10,6 @@
 // once and what it sends is read and dropped until it closes (closing with unread data would
 // reset the connection and could destroy the refusal before the client reads it). A new
 // connection after the first one closed is served.
-#include <fcntl.h>
-#include <netdb.h>
-#include <netinet/in.h>
-#include <netinet/tcp.h>
-#include <poll.h>
-#include <signal.h>
-#include <sys/socket.h>
-#include <termios.h>
-#include <unistd.h>
-
-#include <arpa/inet.h>
-
 #include <atomic>
 #include <cerrno>
 #include <chrono>
@@ -30,7 +18,10 @@
 
 #include "tmcl/bus.hpp"
 #include "tmcl/eeprom.hpp"
+#include "tmcl/os_console.hpp"
+#include "tmcl/os_net.hpp"
 #include "tmcl/server.hpp"
+#include "pty.hpp"
 
 namespace tmcl {
 namespace {
@@ -49,43 +40,32 @@ extern "C" void on_stop_signal(int sig) {
   int fd = g_signal_fd.load();
   if (fd >= 0) {
     const char c = sig == SIGINT ? 'i' : 's';  // a debugger sharing the loop pauses on SIGINT
-    [[maybe_unused]] ssize_t n = ::write(fd, &c, 1);
+    os::wake(fd, c);
   }
 }
 
 struct SignalGuard {
   bool active = false;
   int pipe_fds[2] = {-1, -1};
-  struct sigaction old_int{}, old_term{}, old_pipe{};
+  os::SavedSignal old_int, old_term;
 
   bool install() {
-    if (::pipe(pipe_fds) != 0) return false;
-    for (int fd : pipe_fds) {
-      ::fcntl(fd, F_SETFD, FD_CLOEXEC);
-      ::fcntl(fd, F_SETFL, ::fcntl(fd, F_GETFL) | O_NONBLOCK);
-    }
+    if (!os::wake_pair(pipe_fds)) return false;
     g_signal_fd.store(pipe_fds[1]);
-    struct sigaction sa{};
-    sa.sa_handler = on_stop_signal;
-    sigemptyset(&sa.sa_mask);
-    sa.sa_flags = 0;  // no SA_RESTART: a blocked write returns EINTR and the loop sees the stop
-    ::sigaction(SIGINT, &sa, &old_int);
-    ::sigaction(SIGTERM, &sa, &old_term);
-    struct sigaction ign{};
-    ign.sa_handler = SIG_IGN;
-    sigemptyset(&ign.sa_mask);
-    ::sigaction(SIGPIPE, &ign, &old_pipe);  // a vanished reader is an error code, not a death
+    // No restart: a blocked write returns EINTR and the loop sees the stop.
+    os::catch_signal(SIGINT, on_stop_signal, false, &old_int);
+    os::catch_signal(SIGTERM, on_stop_signal, false, &old_term);
+    os::ignore_broken_pipe();  // a vanished reader is an error code, not a death
     active = true;
     return true;
   }
   ~SignalGuard() {
     if (!active) return;
-    ::sigaction(SIGINT, &old_int, nullptr);
-    ::sigaction(SIGTERM, &old_term, nullptr);
-    ::sigaction(SIGPIPE, &old_pipe, nullptr);
+    os::restore_signal(SIGINT, old_int);
+    os::restore_signal(SIGTERM, old_term);
     g_signal_fd.store(-1);
-    ::close(pipe_fds[0]);
-    ::close(pipe_fds[1]);
+    os::close_socket(pipe_fds[0]);
+    os::close_socket(pipe_fds[1]);
   }
 };
 
@@ -97,7 +77,7 @@ struct Fd {
   Fd& operator=(const Fd&) = delete;
   ~Fd() { reset(); }
   void reset(int f = -1) {
-    if (fd >= 0) ::close(fd);
+    if (fd >= 0) os::close_socket(fd);
     fd = f;
   }
   int release() {
@@ -106,8 +86,6 @@ struct Fd {
     return f;
   }
 };
-
-void set_nonblocking(int fd) { ::fcntl(fd, F_SETFL, ::fcntl(fd, F_GETFL) | O_NONBLOCK); }
 
 std::string address_text(const sockaddr_storage& ss) {
   char buf[INET6_ADDRSTRLEN] = "?";
@@ -139,19 +117,20 @@ int open_listener(const ServeOptions& opt, std::string& where, bool& loopback, s
   addrinfo* res = nullptr;
   const std::string port = std::to_string(opt.port);
   if (int rc = ::getaddrinfo(opt.host.c_str(), port.c_str(), &hints, &res); rc != 0) {
-    error = "cannot resolve '" + opt.host + "': " + ::gai_strerror(rc);
+    error = "cannot resolve '" + opt.host + "': " + os::resolve_error_text(rc);
     return -1;
   }
   int fd = -1;
   for (addrinfo* ai = res; ai; ai = ai->ai_next) {
-    fd = ::socket(ai->ai_family, ai->ai_socktype | SOCK_CLOEXEC, ai->ai_protocol);
+    fd = os::open_socket(ai->ai_family, ai->ai_socktype, ai->ai_protocol);
     if (fd < 0) continue;
     int one = 1;
-    ::setsockopt(fd, SOL_SOCKET, SO_REUSEADDR, &one, sizeof one);
-    if (ai->ai_family == AF_INET6) ::setsockopt(fd, IPPROTO_IPV6, IPV6_V6ONLY, &one, sizeof one);
-    if (::bind(fd, ai->ai_addr, ai->ai_addrlen) == 0 && ::listen(fd, 8) == 0) break;
-    error = "cannot listen on " + opt.host + ":" + port + ": " + std::strerror(errno);
-    ::close(fd);
+    const auto* on = reinterpret_cast<const char*>(&one);  // Winsock's options are char*
+    ::setsockopt(fd, SOL_SOCKET, SO_REUSEADDR, on, sizeof one);
+    if (ai->ai_family == AF_INET6) ::setsockopt(fd, IPPROTO_IPV6, IPV6_V6ONLY, on, sizeof one);
+    if (::bind(fd, ai->ai_addr, static_cast<socklen_t>(ai->ai_addrlen)) == 0 && ::listen(fd, 8) == 0) break;
+    error = "cannot listen on " + opt.host + ":" + port + ": " + os::error_text(errno);
+    os::close_socket(fd);
     fd = -1;
   }
   ::freeaddrinfo(res);
@@ -164,51 +143,16 @@ int open_listener(const ServeOptions& opt, std::string& where, bool& loopback, s
   ::getsockname(fd, reinterpret_cast<sockaddr*>(&ss), &len);
   where = address_text(ss);
   loopback = is_loopback(ss);
-  set_nonblocking(fd);
+  os::set_nonblocking(fd);
   return fd;
-}
-
-// A pseudo-terminal whose slave side behaves like a raw serial port. The server keeps the slave
-// open itself, so the master never sees a hang-up between two clients.
-bool open_pty(Fd& master, Fd& slave, std::string& path, std::string& error) {
-  master.reset(::posix_openpt(O_RDWR | O_NOCTTY));
-  if (master.fd < 0 || ::grantpt(master.fd) != 0 || ::unlockpt(master.fd) != 0) {
-    error = std::string("cannot create a pseudo-terminal: ") + std::strerror(errno);
-    return false;
-  }
-  char name[256];
-  if (::ptsname_r(master.fd, name, sizeof name) != 0) {
-    error = std::string("cannot name the pseudo-terminal: ") + std::strerror(errno);
-    return false;
-  }
-  path = name;
-  slave.reset(::open(name, O_RDWR | O_NOCTTY | O_CLOEXEC));
-  if (slave.fd < 0) {
-    error = "cannot open " + path + ": " + std::strerror(errno);
-    return false;
-  }
-  termios t{};
-  if (::tcgetattr(slave.fd, &t) == 0) {  // raw: 8 data bits, no echo, no line editing, no CR/LF mapping
-    t.c_iflag &= ~static_cast<tcflag_t>(IGNBRK | BRKINT | PARMRK | ISTRIP | INLCR | IGNCR | ICRNL | IXON | IXOFF);
-    t.c_oflag &= ~static_cast<tcflag_t>(OPOST);
-    t.c_lflag &= ~static_cast<tcflag_t>(ECHO | ECHONL | ICANON | ISIG | IEXTEN);
-    t.c_cflag &= ~static_cast<tcflag_t>(CSIZE | PARENB);
-    t.c_cflag |= CS8 | CREAD | CLOCAL;
-    t.c_cc[VMIN] = 1;
-    t.c_cc[VTIME] = 0;
-    ::tcsetattr(slave.fd, TCSANOW, &t);
-  }
-  ::fcntl(master.fd, F_SETFD, FD_CLOEXEC);
-  set_nonblocking(master.fd);
-  return true;
 }
 
 // Writes as much of `out` as the descriptor takes now; removes it. False: the peer is gone.
 bool flush_some(int fd, std::vector<std::uint8_t>& out, bool socket) {
   std::size_t done = 0;
   while (done < out.size()) {
-    ssize_t n = socket ? ::send(fd, out.data() + done, out.size() - done, MSG_NOSIGNAL | MSG_DONTWAIT)
-                       : ::write(fd, out.data() + done, out.size() - done);
+    long n = socket ? os::send_socket(fd, out.data() + done, out.size() - done, true)
+                    : write_fd(fd, out.data() + done, out.size() - done);
     if (n > 0) {
       done += static_cast<std::size_t>(n);
       continue;
@@ -226,7 +170,7 @@ enum class ReadResult { Data, Again, Closed };
 
 ReadResult read_into(int fd, Line& module, std::vector<std::uint8_t>& buf) {
   for (;;) {
-    ssize_t n = ::read(fd, buf.data(), buf.size());
+    long n = os::read_some(fd, buf.data(), buf.size());
     if (n > 0) {
       module.receive(buf.data(), static_cast<std::size_t>(n));
       return ReadResult::Data;
@@ -271,7 +215,7 @@ struct ServeLoop::Impl {
         module(v, o),
         spin(o.spin_us) {}
   ~Impl() {
-    for (const Refused& r : refused) ::close(r.fd);
+    for (const Refused& r : refused) os::close_socket(r.fd);
   }
   Impl(const Impl&) = delete;
   Impl& operator=(const Impl&) = delete;
@@ -309,7 +253,7 @@ struct ServeLoop::Impl {
   void flush();
   void refuse(int fd, const sockaddr_storage& from);
   void drop_refused(std::size_t i) {
-    ::close(refused[i].fd);
+    os::close_socket(refused[i].fd);
     refused.erase(refused.begin() + static_cast<std::ptrdiff_t>(i));
   }
   int open();
@@ -319,7 +263,7 @@ struct ServeLoop::Impl {
 
 int ServeLoop::Impl::open() {
   if (opt.handle_signals && !signals.install()) {
-    log << "tmclrun: error: cannot install signal handlers: " << std::strerror(errno) << std::endl;
+    log << "tmclrun: error: cannot install signal handlers: " << os::error_text(errno) << std::endl;
     return 71;
   }
   module.set_on_message([this](const std::string& s) { note(s); });
@@ -340,12 +284,16 @@ int ServeLoop::Impl::open() {
       if (!loopback) note("warning: listening on a non-loopback address; anyone who reaches it can move the motors");
       break;
     }
-    case Transport::Pty:
-      if (!open_pty(pty_master, pty_slave, ready, error)) {
+    case Transport::Pty: {
+      int master = -1, slave = -1;
+      if (!open_pty(master, slave, ready, error)) {
         log << "tmclrun: error: " << error << std::endl;
         return 71;
       }
+      pty_master.reset(master);
+      pty_slave.reset(slave);
       break;
+    }
     case Transport::Stdio: ready = "stdio"; break;
   }
   if (!opt.quiet && opt.transport != Transport::Stdio) {
@@ -358,7 +306,7 @@ int ServeLoop::Impl::open() {
   scale = opt.time_scale > 0 ? opt.time_scale : 1.0;
   wall0 = started = last_rx = last_write = spin_until = Clock::now();
   sim0 = vm.now;
-  in_fd = opt.transport == Transport::Stdio ? opt.in_fd : -1;
+  in_fd = opt.transport == Transport::Stdio ? os::pollable_input(opt.in_fd) : -1;
   out_fd = opt.transport == Transport::Stdio ? opt.out_fd : -1;
   return 0;
 }
@@ -368,12 +316,12 @@ void ServeLoop::Impl::refuse(int fd, const sockaddr_storage& from) {
   note("refused a second client from " + address_text(from) + ": one client at a time");
   if (refused.size() >= kMaxRefused) {
     linger lg{1, 0};  // a flood of them: a reset is all they get
-    ::setsockopt(fd, SOL_SOCKET, SO_LINGER, &lg, sizeof lg);
-    ::close(fd);
+    ::setsockopt(fd, SOL_SOCKET, SO_LINGER, reinterpret_cast<const char*>(&lg), sizeof lg);
+    os::close_socket(fd);
     return;
   }
-  [[maybe_unused]] ssize_t n = ::send(fd, kBusyRefusal.data(), kBusyRefusal.size(), MSG_NOSIGNAL | MSG_DONTWAIT);
-  ::shutdown(fd, SHUT_WR);
+  os::send_socket(fd, kBusyRefusal.data(), kBusyRefusal.size(), true);
+  ::shutdown(fd, os::kShutWrite);
   refused.push_back({fd, Clock::now() + kRefusedHold});
 }
 
@@ -473,38 +421,42 @@ bool ServeLoop::Impl::poll_once(int max_wait_ms, int extra_fd) {
   int i_signal = -1, i_stop = -1, i_listen = -1, i_data = -1, i_out = -1, i_extra = -1;
   if (signals.active) {
     i_signal = static_cast<int>(nfds);
-    fds[nfds++] = {signals.pipe_fds[0], POLLIN, 0};
+    fds[nfds++] = os::poll_entry(signals.pipe_fds[0], POLLIN);
   }
   if (opt.stop_fd >= 0) {
     i_stop = static_cast<int>(nfds);
-    fds[nfds++] = {opt.stop_fd, POLLIN, 0};
+    fds[nfds++] = os::poll_entry(opt.stop_fd, POLLIN);
   }
   if (listener.fd >= 0) {
     i_listen = static_cast<int>(nfds);
-    fds[nfds++] = {listener.fd, POLLIN, 0};
+    fds[nfds++] = os::poll_entry(listener.fd, POLLIN);
   }
   const bool backlog = out.size() >= kMaxPendingOutput;
   if (data_fd() >= 0) {
     i_data = static_cast<int>(nfds);
     short ev = backlog ? 0 : POLLIN;
     if (!out.empty() && write_fd() == data_fd()) ev |= POLLOUT;
-    fds[nfds++] = {data_fd(), ev, 0};
+    fds[nfds++] = os::poll_entry(data_fd(), ev);
   }
   if (out_fd >= 0 && out_fd != in_fd && !out.empty()) {
-    i_out = static_cast<int>(nfds);
-    fds[nfds++] = {out_fd, POLLOUT, 0};
+    if (os::kPollsFiles) {
+      i_out = static_cast<int>(nfds);
+      fds[nfds++] = os::poll_entry(out_fd, POLLOUT);
+    } else {
+      flush();  // Windows: a file or a pipe takes a blocking write
+    }
   }
   if (extra_fd >= 0) {
     i_extra = static_cast<int>(nfds);
-    fds[nfds++] = {extra_fd, POLLIN, 0};
+    fds[nfds++] = os::poll_entry(extra_fd, POLLIN);
   }
   const int i_refused = static_cast<int>(nfds);
-  for (const Refused& r : refused) fds[nfds++] = {r.fd, POLLIN, 0};
+  for (const Refused& r : refused) fds[nfds++] = os::poll_entry(r.fd, POLLIN);
 
-  int rc = ::poll(fds, nfds, static_cast<int>(timeout_ms));
+  int rc = os::poll(fds, nfds, static_cast<int>(timeout_ms));
   if (rc < 0) {
     if (errno == EINTR) return true;
-    log << "tmclrun: error: poll: " << std::strerror(errno) << std::endl;
+    log << "tmclrun: error: poll: " << os::error_text(errno) << std::endl;
     return false;
   }
   if (rc == 0) return true;
@@ -512,8 +464,8 @@ bool ServeLoop::Impl::poll_once(int max_wait_ms, int extra_fd) {
     // SIGINT with on_interrupt (a debugger's Ctrl-C) pauses the program; anything else stops.
     char c[64];
     bool terminate = !opt.on_interrupt, interrupt = false;
-    for (ssize_t n; (n = ::read(signals.pipe_fds[0], c, sizeof c)) > 0;)
-      for (ssize_t i = 0; i < n; ++i) (c[i] == 'i' ? interrupt : terminate) = true;
+    for (long n; (n = os::read_some(signals.pipe_fds[0], c, sizeof c)) > 0;)
+      for (long i = 0; i < n; ++i) (c[i] == 'i' ? interrupt : terminate) = true;
     if (terminate) {
       note("stopping on signal");
       return false;
@@ -526,8 +478,8 @@ bool ServeLoop::Impl::poll_once(int max_wait_ms, int extra_fd) {
   for (std::size_t i = refused.size(); i-- > 0;) {
     if (!fds[static_cast<std::size_t>(i_refused) + i].revents) continue;
     char sink[512];
-    ssize_t n;
-    while ((n = ::read(refused[i].fd, sink, sizeof sink)) > 0) {
+    long n;
+    while ((n = os::read_some(refused[i].fd, sink, sizeof sink)) > 0) {
     }
     if (n == 0 || (errno != EAGAIN && errno != EWOULDBLOCK && errno != EINTR)) drop_refused(i);
   }
@@ -557,7 +509,7 @@ bool ServeLoop::Impl::poll_once(int max_wait_ms, int extra_fd) {
   if (i_listen >= 0 && (fds[i_listen].revents & POLLIN)) {
     sockaddr_storage ss{};
     socklen_t len = sizeof ss;
-    int fd = ::accept4(listener.fd, reinterpret_cast<sockaddr*>(&ss), &len, SOCK_NONBLOCK | SOCK_CLOEXEC);
+    int fd = os::accept_socket(listener.fd, reinterpret_cast<sockaddr*>(&ss), &len);
     if (fd >= 0) {
       if (client.fd >= 0) {
         // The current client may have closed an instant ago: read what it left first.
@@ -568,7 +520,7 @@ bool ServeLoop::Impl::poll_once(int max_wait_ms, int extra_fd) {
         refuse(fd, ss);
       } else {
         int one = 1;
-        ::setsockopt(fd, IPPROTO_TCP, TCP_NODELAY, &one, sizeof one);
+        ::setsockopt(fd, IPPROTO_TCP, TCP_NODELAY, reinterpret_cast<const char*>(&one), sizeof one);
         client.reset(fd);
         module.drop_partial();
         note("client connected from " + address_text(ss));

@@ -32,7 +32,7 @@ std::string absolute_path(const std::string& path) {
   if (path.empty() || path[0] == '<') return "";
   std::error_code ec;
   auto p = std::filesystem::absolute(path, ec);
-  return ec ? path : p.lexically_normal().string();
+  return ec ? path : p.lexically_normal().generic_string();  // '/' on Windows too, as shown()
 }
 
 // Loads `path` into `p`; false with the rendered diagnostics in `error`.

@@ -46,10 +46,12 @@ class Port {
   static void set_cancel_flag(const volatile std::sig_atomic_t* flag);
 
  private:
-  Port(int fd, std::string name, bool serial) : fd_(fd), name_(std::move(name)), serial_(serial) {}
+  Port(std::intptr_t fd, std::string name, bool serial) : fd_(fd), name_(std::move(name)), serial_(serial) {}
   long read_raw(std::uint8_t* data, std::size_t n, Clock::time_point deadline, std::string& error);
   bool refused(std::uint8_t* data, long& got, std::size_t n, Clock::time_point deadline);
-  int fd_;
+  // Waits at most `ms` for POLLIN or POLLOUT; the poll() events that came (0: none).
+  short wait(short events, int ms);
+  std::intptr_t fd_;  // a socket, a serial device's descriptor, or (Windows) its HANDLE
   std::string name_;
   bool serial_;
   bool first_read_ = true;  // TCP: nothing received yet (the busy refusal comes first or never)

@@ -1,0 +1,138 @@
+// The platform layer, serial ports, on Windows (serial.hpp): a COM port by its name ("COM3") or
+// its device path ("\\.\COM12"; COM10 and above need it in Windows' own calls, the short name is
+// turned into it here). Opened without sharing (a second program gets "port in use"), raw 8N1
+// with no flow control, reads that return at once with what has arrived, stale input purged.
+// Waiting for input looks at the driver's queue every millisecond: simpler than overlapped I/O,
+// and a request/reply protocol at 9600 to 1000000 baud loses nothing to it.
+#include "serial.hpp"
+
+#include <windows.h>
+
+#include <algorithm>
+#include <cctype>
+#include <cerrno>
+#include <chrono>
+#include <cstring>
+
+#include "tmcl/os_files.hpp"
+
+namespace tmcl::host::serial {
+namespace {
+
+constexpr long kBauds[] = {9600, 19200, 38400, 57600, 115200, 230400, 460800, 500000, 576000, 921600, 1000000};
+
+HANDLE handle(std::intptr_t port) { return reinterpret_cast<HANDLE>(port); }
+
+// "COM3", "com12" -> "\\.\COM12"; "/dev/null" -> "NUL" (os_files.hpp); anything else as it is.
+std::string device_path(const std::string& name) {
+  if (name.size() > 3 && (name[0] == 'C' || name[0] == 'c') && (name[1] == 'O' || name[1] == 'o') &&
+      (name[2] == 'M' || name[2] == 'm') &&
+      std::all_of(name.begin() + 3, name.end(), [](char c) { return std::isdigit(static_cast<unsigned char>(c)) != 0; }))
+    return "\\\\.\\COM" + name.substr(3);
+  return os::native_path(name);
+}
+
+std::string last_error_text() {
+  const DWORD code = ::GetLastError();
+  char text[256] = "";
+  ::FormatMessageA(FORMAT_MESSAGE_FROM_SYSTEM | FORMAT_MESSAGE_IGNORE_INSERTS, nullptr, code, 0, text, sizeof text, nullptr);
+  std::string s = text;
+  while (!s.empty() && (s.back() == '\n' || s.back() == '\r' || s.back() == '.' || s.back() == ' ')) s.pop_back();
+  return s.empty() ? "error " + std::to_string(code) : s;
+}
+
+}  // namespace
+
+bool valid_baud(long baud) { return std::find(std::begin(kBauds), std::end(kBauds), baud) != std::end(kBauds); }
+
+std::intptr_t open(const std::string& path, long baud, std::string& error) {
+  const std::string device = device_path(path);
+  HANDLE h = ::CreateFileA(device.c_str(), GENERIC_READ | GENERIC_WRITE, 0, nullptr, OPEN_EXISTING, 0, nullptr);
+  if (h == INVALID_HANDLE_VALUE) {
+    const DWORD code = ::GetLastError();
+    if (code == ERROR_ACCESS_DENIED || code == ERROR_SHARING_VIOLATION) error = path + ": port in use by another program";
+    else if (code == ERROR_FILE_NOT_FOUND || code == ERROR_PATH_NOT_FOUND) error = path + ": " + std::strerror(ENOENT);
+    else error = path + ": " + last_error_text();
+    return -1;
+  }
+  auto fail = [&](const std::string& what) {
+    error = path + ": " + what;
+    ::CloseHandle(h);
+    return std::intptr_t{-1};
+  };
+  DCB dcb{};
+  dcb.DCBlength = sizeof dcb;
+  if (::GetFileType(h) != FILE_TYPE_CHAR || !::GetCommState(h, &dcb))
+    return fail("not a serial port (a tty device or tcp:HOST:PORT is needed)");  // the words of serial_posix.cpp
+  dcb.BaudRate = static_cast<DWORD>(baud);
+  dcb.ByteSize = 8;
+  dcb.Parity = NOPARITY;
+  dcb.StopBits = ONESTOPBIT;
+  dcb.fBinary = TRUE;
+  dcb.fParity = FALSE;
+  dcb.fOutxCtsFlow = FALSE;
+  dcb.fOutxDsrFlow = FALSE;
+  dcb.fDsrSensitivity = FALSE;
+  dcb.fOutX = FALSE;
+  dcb.fInX = FALSE;
+  dcb.fNull = FALSE;
+  dcb.fAbortOnError = FALSE;
+  dcb.fDtrControl = DTR_CONTROL_ENABLE;
+  dcb.fRtsControl = RTS_CONTROL_ENABLE;
+  if (!::SetCommState(h, &dcb)) return fail("cannot set raw 8N1 at " + std::to_string(baud) + " baud: " + last_error_text());
+  DCB back{};  // the driver may take a setting and keep another: read back what matters
+  back.DCBlength = sizeof back;
+  if (!::GetCommState(h, &back) || back.ByteSize != 8 || back.BaudRate != static_cast<DWORD>(baud))
+    return fail("the driver refused raw 8N1 at " + std::to_string(baud) + " baud");
+  COMMTIMEOUTS t{};
+  t.ReadIntervalTimeout = MAXDWORD;  // with both totals 0: a read returns at once
+  t.WriteTotalTimeoutConstant = 1000;  // a line that takes nothing: the write returns short
+  if (!::SetCommTimeouts(h, &t)) return fail("cannot set the timeouts: " + last_error_text());
+  ::PurgeComm(h, PURGE_RXCLEAR | PURGE_TXCLEAR | PURGE_RXABORT | PURGE_TXABORT);
+  return reinterpret_cast<std::intptr_t>(h);
+}
+
+void close(std::intptr_t port) { ::CloseHandle(handle(port)); }
+
+long write(std::intptr_t port, const std::uint8_t* data, std::size_t n) {
+  DWORD done = 0;
+  const DWORD chunk = static_cast<DWORD>(std::min<std::size_t>(n, 1u << 20));
+  if (!::WriteFile(handle(port), data, chunk, &done, nullptr)) {
+    errno = EIO;
+    return -1;
+  }
+  if (done == 0) {
+    errno = EAGAIN;
+    return -1;
+  }
+  return static_cast<long>(done);
+}
+
+long read(std::intptr_t port, std::uint8_t* data, std::size_t n) {
+  DWORD got = 0;
+  const DWORD chunk = static_cast<DWORD>(std::min<std::size_t>(n, 1u << 20));
+  if (!::ReadFile(handle(port), data, chunk, &got, nullptr)) {
+    errno = EIO;
+    return -1;
+  }
+  if (got == 0) {
+    errno = EAGAIN;
+    return -1;
+  }
+  return static_cast<long>(got);
+}
+
+short wait(std::intptr_t port, short events, int ms) {
+  if (events & POLLOUT) return POLLOUT;  // writes wait in WriteFile, up to its timeout
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::milliseconds(ms);
+  for (;;) {
+    DWORD errors = 0;
+    COMSTAT stat{};
+    if (!::ClearCommError(handle(port), &errors, &stat)) return POLLHUP;
+    if (stat.cbInQue > 0) return POLLIN;
+    if (std::chrono::steady_clock::now() >= deadline) return 0;
+    ::Sleep(1);
+  }
+}
+
+}  // namespace tmcl::host::serial

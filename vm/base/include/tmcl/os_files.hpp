@@ -1,0 +1,38 @@
+// The platform layer, files: what opening, syncing and replacing a file, and finding the user's
+// configuration folder, mean on this system. One implementation per system, chosen when CMake
+// configures (os_files_posix.cpp, os_files_windows.cpp); the callers (fileio.cpp, targets.cpp)
+// stay the same everywhere.
+#pragma once
+
+#include <sys/stat.h>
+
+#include <string>
+#include <vector>
+
+namespace tmcl::os {
+
+// Flags added to every open(): bytes as they are (Windows' C library would otherwise turn
+// "\n" into "\r\n"), and not inherited by child processes.
+extern const int kOpenFlags;
+
+// The name to open for `path`: on Windows "/dev/null" is "NUL" (what scripts written for a
+// POSIX shell, and the tests, pass); elsewhere `path` itself.
+std::string native_path(const std::string& path);
+// Splits a search path such as TMCL_PROFILE_PATH into its folders (empty ones dropped): at ':'
+// on POSIX; on Windows at ';' and at a ':' that does not follow a drive letter ("C:\a;D:\b",
+// "lib:C:/x").
+std::vector<std::string> split_path_list(const std::string& list);
+// Flushes the file's data to the disk (fsync). False with errno set.
+bool sync_file(int fd);
+// Renames `from` to `to`, replacing `to` if it exists, in one step a reader never sees half of.
+// False with errno set.
+bool replace_file(const std::string& from, const std::string& to);
+// The file's absolute name with links resolved (realpath), or "" when it cannot be had.
+std::string real_path(const std::string& path);
+// A file's modification time in nanoseconds since the epoch (as precise as the system keeps it).
+long long modified_ns(const struct stat& st);
+// The user's folders for tmcl's configuration `leaf` (e.g. "profiles"), in search order:
+// $XDG_CONFIG_HOME/tmcl/LEAF or ~/.config/tmcl/LEAF; on Windows %APPDATA%\tmcl\LEAF first.
+std::vector<std::string> config_dirs(const std::string& leaf);
+
+}  // namespace tmcl::os

@@ -1,0 +1,75 @@
+// The platform layer, files, on Windows (os_files.hpp): binary, non-inherited opens, MoveFileEx
+// for the atomic replace (rename() there fails when the target exists), %APPDATA% for the
+// configuration. File names are UTF-8 throughout: the tools' manifest
+// (cli/windows/utf8.manifest) makes UTF-8 the process's code page for every narrow call.
+#include <fcntl.h>
+#include <io.h>
+#include <windows.h>
+
+#include <cctype>
+#include <cerrno>
+#include <cstdlib>
+
+#include "tmcl/fileio.hpp"
+#include "tmcl/os_files.hpp"
+
+namespace tmcl {
+namespace os {
+
+const int kOpenFlags = O_BINARY | O_NOINHERIT;
+
+std::string native_path(const std::string& path) { return path == "/dev/null" ? "NUL" : path; }
+
+std::vector<std::string> split_path_list(const std::string& list) {
+  std::vector<std::string> dirs;
+  std::string cur;
+  for (char c : list) {
+    const bool drive = c == ':' && cur.size() == 1 && std::isalpha(static_cast<unsigned char>(cur[0]));
+    if (c == ';' || (c == ':' && !drive)) {
+      if (!cur.empty()) dirs.push_back(cur);
+      cur.clear();
+    } else {
+      cur += c;
+    }
+  }
+  if (!cur.empty()) dirs.push_back(cur);
+  return dirs;
+}
+bool sync_file(int fd) { return ::_commit(fd) == 0; }
+
+bool replace_file(const std::string& from, const std::string& to) {
+  if (::MoveFileExA(from.c_str(), to.c_str(), MOVEFILE_REPLACE_EXISTING | MOVEFILE_WRITE_THROUGH)) return true;
+  switch (::GetLastError()) {
+    case ERROR_FILE_NOT_FOUND:
+    case ERROR_PATH_NOT_FOUND: errno = ENOENT; break;
+    case ERROR_ACCESS_DENIED:
+    case ERROR_SHARING_VIOLATION: errno = EACCES; break;
+    case ERROR_DISK_FULL: errno = ENOSPC; break;
+    default: errno = EIO; break;
+  }
+  return false;
+}
+
+std::string real_path(const std::string& path) {
+  char full[MAX_PATH * 4];
+  return ::_fullpath(full, path.c_str(), sizeof full) ? std::string(full) : std::string();
+}
+
+long long modified_ns(const struct stat& st) { return static_cast<long long>(st.st_mtime) * 1000000000LL; }
+
+std::vector<std::string> config_dirs(const std::string& leaf) {
+  std::vector<std::string> dirs;
+  if (const char* appdata = std::getenv("APPDATA"); appdata && *appdata) dirs.push_back(std::string(appdata) + "\\tmcl\\" + leaf);
+  const char* xdg = std::getenv("XDG_CONFIG_HOME");
+  const char* home = std::getenv("HOME");  // ~ is %USERPROFILE% where HOME is not set
+  if (!home || !*home) home = std::getenv("USERPROFILE");
+  if (xdg && *xdg) dirs.push_back(std::string(xdg) + "/tmcl/" + leaf);
+  else if (home && *home) dirs.push_back(std::string(home) + "/.config/tmcl/" + leaf);
+  return dirs;
+}
+
+}  // namespace os
+
+void prefer_huge_pages(const void*, std::size_t) {}  // large pages need a privilege users lack
+
+}  // namespace tmcl
