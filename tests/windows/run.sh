@@ -140,7 +140,14 @@ cp "$src/tests/golden/profiles/my-module.profile" "$appdata_unix/tmcl/profiles/"
 got=$(cd "$src/tests/golden/profiles" && wine "$win/cli/tmclasm.exe" --list-targets 2>&1 | tr -d '\r')
 [[ "$got" == *"my-module"*"AppData"*"tmcl"*"profiles"* ]] && ok "%APPDATA%\\tmcl\\profiles searched" ||
   bad "%APPDATA%\\tmcl\\profiles not searched: [$got]"
-rm -rf "$appdata_unix/tmcl" "$work"
+# File names are UTF-8, as on Linux (the tools' manifest, cli/windows/utf8.manifest): a source
+# named with a non-ASCII letter is found, and its listing names it in the same bytes.
+u8="$win/utf8-names"
+name=$(printf 'bewegung-\xc3\xa4.tmc')
+mkdir -p "$u8" && printf 'SAP 4, 0, 1000\nSTOP\n' > "$u8/$name"
+got=$(cd "$u8" && wine "$win/cli/tmclasm.exe" -f listing -o - "$name" 2>&1)
+[[ "$got" == *"$name:1"* ]] && ok "a UTF-8 file name" || bad "a UTF-8 file name: [$got]"
+rm -rf "$appdata_unix/tmcl" "$work" "$u8"
 
 echo "== windows: $(( $(date +%s) - t0 )) s in all"
 line="windows: $passed passed, $failed failed"
