@@ -19,6 +19,7 @@
 #include "internal.hpp"
 #include "syntax.hpp"
 #include "tmcl/fileio.hpp"
+#include "tmcl/os_files.hpp"
 #include "tmcl/targets.hpp"
 
 namespace tmcl::detail {
@@ -223,7 +224,7 @@ class FastAssembler {
     included_.push_back(inc.key);
     if (inc.text.size() > kMaxFileBytes) return false;
     SourceFile f;
-    f.name = inc.path.rfind("<bundled>/", 0) == 0 ? inc.path : inc.key;
+    f.name = inc.path.rfind("<bundled>/", 0) == 0 ? inc.path : os::normal_path(inc.path);
     f.path = inc.path;
     f.text = std::move(inc.text);
     f.includer = file;

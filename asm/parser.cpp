@@ -6,6 +6,7 @@
 
 #include "internal.hpp"
 #include "syntax.hpp"
+#include "tmcl/os_files.hpp"
 
 namespace tmcl::detail {
 namespace {
@@ -208,7 +209,7 @@ class Parser {
       return;
     }
     SourceFile f;
-    f.name = inc.path.rfind("<bundled>/", 0) == 0 ? inc.path : key;
+    f.name = inc.path.rfind("<bundled>/", 0) == 0 ? inc.path : os::normal_path(inc.path);
     f.path = inc.path;
     f.text = std::move(inc.text);
     f.includer = file_;

@@ -10,6 +10,7 @@
 
 #include "internal.hpp"
 #include "tmcl/fileio.hpp"
+#include "tmcl/os_files.hpp"
 
 namespace tmcl {
 
@@ -63,9 +64,11 @@ std::string include_key(const std::string& path) {
   return std::filesystem::path(path).lexically_normal().generic_string();
 }
 
-bool find_include(const std::string& name, const std::string& including_path, const AsmOptions& options,
+bool find_include(const std::string& written, const std::string& including_path, const AsmOptions& options,
                   FileReader& reader, FoundInclude& found, std::vector<std::string>* searched) {
   namespace fs = std::filesystem;
+  // TMCL-IDE programs are written on Windows: "lib\motor.inc" names a folder on every system.
+  const std::string name = os::portable_path(written);
   auto tried = [searched](const std::string& folder, const char* why) {
     if (searched) searched->push_back("'" + (folder.empty() ? std::string(".") : folder) + "' (" + why + ")");
   };
@@ -75,13 +78,15 @@ bool find_include(const std::string& name, const std::string& including_path, co
     found.key = include_key(p);
     return true;
   };
-  if (fs::path(name).is_absolute()) return try_path(name);
+  if (os::is_absolute(name)) return try_path(name);
   if (including_path.rfind("<bundled>/", 0) != 0 && including_path != "-") {
-    if (try_path((fs::path(including_path).parent_path() / name).string())) return true;
-    tried(fs::path(including_path).parent_path().string(), "the including file's folder");
+    const std::size_t sep = os::last_separator(including_path);
+    const std::string folder = sep == std::string::npos ? "" : including_path.substr(0, sep == 0 ? 1 : sep);
+    if (try_path(os::join_path(folder, name))) return true;
+    tried(folder, "the including file's folder");
   }
   for (const auto& dir : options.include_dirs) {
-    if (try_path((fs::path(dir) / name).string())) return true;
+    if (try_path(os::join_path(dir, name))) return true;
     tried(dir, "-I");
   }
   for (const auto& [bname, btext] : bundled_includes()) {

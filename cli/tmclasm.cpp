@@ -26,6 +26,7 @@
 #include "tmcl/options.hpp"
 #include "tmcl/os_console.hpp"
 #include "tmcl/targets.hpp"
+#include "tmcl/os_files.hpp"
 
 namespace {
 
@@ -68,7 +69,7 @@ exit status: 0 success, 65 errors in the input, 64 usage error, 74 output (a fil
 // with its only dot, or for "." and "..") replaced by EXT, as std::filesystem::path's
 // replace_extension does: "prog.tmc" -> "prog.bin", "dir.v2/prog" -> "dir.v2/prog.bin".
 std::string with_extension(const std::string& path, const char* ext) {
-  const std::size_t slash = path.rfind('/');
+  const std::size_t slash = tmcl::os::last_separator(path);
   const std::size_t name = slash == std::string::npos ? 0 : slash + 1;
   const std::size_t dot = path.rfind('.');
   const bool dots_only = path.compare(name, std::string::npos, ".") == 0 || path.compare(name, std::string::npos, "..") == 0;

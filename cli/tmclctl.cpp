@@ -39,6 +39,7 @@
 #include "tmcl/plot.hpp"
 #include "tmcl/program_image.hpp"
 #include "tmcl/targets.hpp"
+#include "tmcl/os_files.hpp"
 #include "tmclctl_testrun.hpp"
 
 namespace {
@@ -463,7 +464,8 @@ struct Session {
     if (o.output.empty() || !o.args.empty()) return usage_error("probe takes -o FILE.profile and no arguments");
     const bool tty = !o.quiet && ::isatty(2);
     Bar bar{"Probing  ", tty};
-    std::string name = o.output.substr(o.output.rfind('/') == std::string::npos ? 0 : o.output.rfind('/') + 1);
+    const std::size_t sep = tmcl::os::last_separator(o.output);
+    std::string name = o.output.substr(sep == std::string::npos ? 0 : sep + 1);
     if (name.size() > 8 && name.compare(name.size() - 8, 8, ".profile") == 0) name.resize(name.size() - 8);
     const host::ProbeResult r = host::probe(client, name.empty() ? "probed" : name, std::ref(bar));
     bar.end();

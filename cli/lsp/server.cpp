@@ -13,6 +13,7 @@
 
 #if __has_include("tmcl/analysis.hpp")
 #include "tmcl/analysis.hpp"
+#include "tmcl/os_files.hpp"
 #define TMCL_LSP_ANALYSIS 1
 #endif
 
@@ -144,12 +145,17 @@ std::string uri_to_path(std::string_view uri) {
       out += uri[i];
     }
   }
+  // "file:///C:/work/a.tmc" (VS Code: "file:///c%3A/work/a.tmc") names C:/work/a.tmc on Windows.
+  if (out.size() > 1 && out[0] == '/' && out[1] != '/' && !tmcl::os::is_separator(out[1]) && tmcl::os::is_absolute(out.substr(1)))
+    out.erase(0, 1);
   return out;
 }
 
 std::string path_to_uri(std::string_view path) {
   std::string out = "file://";
+  if (!path.empty() && !tmcl::os::is_separator(path[0]) && tmcl::os::is_absolute(path)) out += '/';  // file:///C:/...
   for (char c : path) {
+    if (c != '/' && tmcl::os::is_separator(c)) c = '/';  // Windows' '\'
     auto u = static_cast<unsigned char>(c);
     if (std::isalnum(u) || c == '/' || c == '-' || c == '_' || c == '.' || c == '~') {
       out += c;

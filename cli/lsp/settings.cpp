@@ -12,6 +12,7 @@
 #include "context.hpp"
 #include "tmcl/lsp/server.hpp"
 #include "tmcl/targets.hpp"
+#include "tmcl/os_files.hpp"
 
 namespace tmcl::lsp {
 
@@ -33,7 +34,7 @@ json::Value show_message(int type, std::string text) {
 }
 
 std::string folder_of(const std::string& path) {
-  std::size_t slash = path.rfind('/');
+  std::size_t slash = tmcl::os::last_separator(path);
   return slash == std::string::npos ? "." : slash == 0 ? "/" : path.substr(0, slash);
 }
 
@@ -67,7 +68,7 @@ bool read_project_file(const std::string& path, Settings& s, std::string& error,
     if (key == "target") {
       // A profile file named by a relative path is found from the project file's folder.
       std::string target = item.is_string() ? item.as_string() : std::string();
-      if (target.find('/') != std::string::npos && target.front() != '/') target = folder_of(path) + "/" + target;
+      if (tmcl::os::has_separator(target) && !tmcl::os::is_absolute(target)) target = tmcl::os::join_path(folder_of(path), target);
       const TargetResult t = resolve_target(target);
       if (!item.is_string() || !t.profile) {
         error = path + ": error: \"target\": " + (item.is_string() ? t.message(1) : "a target name or a profile file, not " + json::write(item));
@@ -85,7 +86,7 @@ bool read_project_file(const std::string& path, Settings& s, std::string& error,
           return false;
         }
         const std::string& d = dir.as_string();
-        s.include_dirs.push_back(d.front() == '/' ? d : folder_of(path) + "/" + d);
+        s.include_dirs.push_back(tmcl::os::is_absolute(d) ? d : tmcl::os::join_path(folder_of(path), d));
       }
     } else {
       warnings.push_back(path + ": warning: unknown setting \"" + key + "\" (known: target, includeDirs)");
@@ -104,8 +105,8 @@ Server::Reply Server::configure(const Value& params) {
   if (params["rootUri"].is_string()) root = uri_to_path(params["rootUri"].as_string());
   else if (params["workspaceFolders"].at(0)["uri"].is_string()) root = uri_to_path(params["workspaceFolders"].at(0)["uri"].as_string());
   else if (params["rootPath"].is_string()) root = params["rootPath"].as_string();
-  while (root.size() > 1 && root.back() == '/') root.pop_back();
-  settings_file_ = root.empty() ? "" : root + "/" + kProjectFile;
+  while (root.size() > 1 && tmcl::os::is_separator(root.back())) root.pop_back();
+  settings_file_ = root.empty() ? "" : tmcl::os::join_path(root, kProjectFile);
   can_watch_ = params["capabilities"]["workspace"]["didChangeWatchedFiles"]["dynamicRegistration"].as_bool();
   return load_settings();
 }
@@ -186,11 +187,11 @@ void Server::complete_include(const Document& doc, Value& items) const {
     for (std::filesystem::directory_iterator it(dir, ec), end; !ec && it != end; it.increment(ec)) {
       std::string name = it->path().filename().string();
       std::string ext = lower(it->path().extension().string());
-      if ((ext == ".inc" || ext == ".tmc" || ext == ".tmcl") && it->is_regular_file(ec) && it->path().string() != doc.path)
+      if ((ext == ".inc" || ext == ".tmc" || ext == ".tmcl") && it->is_regular_file(ec) && it->path() != std::filesystem::path(doc.path))
         names.push_back(name);
     }
     std::sort(names.begin(), names.end());
-    for (const std::string& n : names) add(n, dir + "/" + n);
+    for (const std::string& n : names) add(n, tmcl::os::join_path(dir, n));
   }
   for (const auto& [name, text] : bundled_includes()) add(name, "bundled include file");
 }

@@ -271,7 +271,7 @@ TEST(seeded_mutations_never_fool_the_fast_path) {
   const std::string alphabet = "\n;/*%$#.,:=()+-~<>&|^019abfxXLqZ_ \t\r\xE9\"";
   int tried = 0, accepted_count = 0;
   for (const auto& path : repository_sources()) {
-    std::string base = read_text(path);
+    std::string base = read_text(path.string());
     bool accepted = false;
     Input plain;
     plain.memory.files[plain.path] = base;

@@ -3,8 +3,8 @@
 // beside the symbols file or in a --source-dir folder (with their absolute path, which DAP clients
 // send back in setBreakpoints); a missing source is a warning, not a failure.
 #include "check.hpp"
+#include "os_test.hpp"
 
-#include <unistd.h>
 
 #include <filesystem>
 #include <fstream>
@@ -23,8 +23,7 @@ const char* kSource = "// t.tmc\nstart:  SAP 4, 0, 100\n        CSUB sub\n      
 struct TempDir {
   std::filesystem::path path;
   TempDir() {
-    std::string t = (std::filesystem::temp_directory_path() / "tmcl-source-test.XXXXXX").string();
-    if (::mkdtemp(t.data())) path = t;
+    path = tmcl_test::make_temp_dir("tmcl-source-test");
   }
   ~TempDir() {
     std::error_code ec;

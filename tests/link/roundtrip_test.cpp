@@ -63,7 +63,7 @@ TEST(every_program_round_trips) {
       auto rd = reassemble(dd.source);
       ok = ok && dd.ok() && (a.program.empty() || dd.source.find("--address 7") != std::string::npos) &&
            tmcl::format_datagrams(rd.program, 7) == dgm;
-      if (!ok) std::fprintf(stderr, "round trip failed: %s (append STOP %d)\n", path.c_str(), append);
+      if (!ok) std::fprintf(stderr, "round trip failed: %s (append STOP %d)\n", path.string().c_str(), append);
       CHECK(ok);
       passed += ok;
     }
@@ -87,7 +87,7 @@ TEST(every_object_round_trips) {
     auto r = reassemble(d.source, true);
     CHECK(r.ok() && r.object);
     if (!r.ok() || !r.object) {
-      std::fprintf(stderr, "object round trip failed: %s\n", path.c_str());
+      std::fprintf(stderr, "object round trip failed: %s\n", path.string().c_str());
       continue;
     }
     // The same code, relocations, exports and imports (labels may gain generated names).

@@ -53,7 +53,7 @@ TEST(every_repository_source_is_idempotent_and_assembles_identically) {
   std::sort(files.begin(), files.end());
   int formatted = 0, assembled = 0;
   for (const auto& f : files) {
-    std::string text = read_text(f);
+    std::string text = read_text(f.string());
     tmcl::FormatResult once = tmcl::format_source(text);
     if (!once.ok) continue;  // sources with lexical errors (golden error cases) are refused
     ++formatted;

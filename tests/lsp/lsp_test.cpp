@@ -1,11 +1,10 @@
 // Protocol tests of the language server (cli/lsp/): a scripted client sends every request the
 // server offers and every kind of bad input, and checks the exact replies. The Reader is tested
 // on a pipe with good, bad and truncated frames.
-#include <unistd.h>
-
 #include <cstdio>
 
 #include "lsp_client.hpp"
+#include "os_test.hpp"
 
 using tmcl::json::Value;
 using namespace tmcl_lsp_test;
@@ -201,11 +200,11 @@ TEST(includers_are_rechecked) {
 
 TEST(framing_on_a_pipe) {
   int fds[2];
-  CHECK(pipe(fds) == 0);
+  CHECK(tmcl_test::make_pipe(fds));
   std::string input = tmcl::lsp::frame("{}") + "Content-Length: x\r\n\r\n" + "Content-Type: a\r\ncontent-length: 2\r\n\r\n[]" +
                       "Content-Length: 10\r\n\r\n{";
-  CHECK(write(fds[1], input.data(), input.size()) == static_cast<ssize_t>(input.size()));
-  close(fds[1]);
+  CHECK(tmcl_test::write_all(fds[1], input));
+  tmcl_test::close_fd(fds[1]);
   tmcl::lsp::Reader reader(fds[0]);
   std::string body, error;
   CHECK(reader.next(body, error) == tmcl::lsp::Reader::Status::Message);
@@ -216,7 +215,7 @@ TEST(framing_on_a_pipe) {
   CHECK_EQ(body, "[]");
   CHECK(reader.next(body, error) == tmcl::lsp::Reader::Status::End);
   CHECK_EQ(error, "input ended inside a message body");
-  close(fds[0]);
+  tmcl_test::close_fd(fds[0]);
 }
 
 TEST(positions_count_utf16) {
@@ -224,4 +223,13 @@ TEST(positions_count_utf16) {
   CHECK_EQ(tmcl::lsp::utf16_column("// \xF0\x9F\x98\x80x", 7), 5u);
   CHECK_EQ(tmcl::lsp::uri_to_path("file:///a%20b/c.tmc"), "/a b/c.tmc");
   CHECK_EQ(tmcl::lsp::path_to_uri("/a b/c.tmc"), "file:///a%20b/c.tmc");
+#ifdef _WIN32
+  // A drive's path: VS Code writes the colon as %3A; both spellings name the file.
+  CHECK_EQ(tmcl::lsp::uri_to_path("file:///c%3A/work/a.tmc"), "c:/work/a.tmc");
+  CHECK_EQ(tmcl::lsp::uri_to_path("file:///C:/work/a.tmc"), "C:/work/a.tmc");
+  CHECK_EQ(tmcl::lsp::path_to_uri("C:\\work\\a b.tmc"), "file:///C%3A/work/a%20b.tmc");
+#else
+  CHECK_EQ(tmcl::lsp::uri_to_path("file:///c%3A/work/a.tmc"), "/c:/work/a.tmc");  // a folder named "c:"
+  CHECK_EQ(tmcl::lsp::path_to_uri("/a\\b"), "file:///a%5Cb");
+#endif
 }

@@ -2,11 +2,11 @@
 // open and on change, the program's problems on the program line, the "Run test" code lens, the
 // tmcl.runTest command with its outcome as diagnostics and a message, and TMCL requests on a test
 // file answered with nothing instead of a crash.
-#include <unistd.h>
 
 #include <cstdlib>
 #include <fstream>
 
+#include "os_test.hpp"
 #include "lsp_client.hpp"
 
 using tmcl::json::Value;
@@ -17,15 +17,14 @@ namespace {
 // A folder with prog.tmc in it (test files name their program relative to themselves).
 std::string folder() {
   static const std::string dir = [] {
-    char t[] = "/tmp/tmcl-lsp-testfiles-XXXXXX";
-    std::string d = ::mkdtemp(t);
+    std::string d = tmcl_test::make_temp_dir("tmcl-lsp-testfiles");
     std::ofstream(d + "/prog.tmc") << "        CALC LOAD, 5\nloop:   SGP 1, 2, 7\n        STOP\n";
     return d;
   }();
   return dir;
 }
 
-std::string uri(const std::string& name) { return "file://" + folder() + "/" + name; }
+std::string uri(const std::string& name) { return tmcl::lsp::path_to_uri(folder() + "/" + name); }
 
 void open_test(Client& c, const std::string& name, const std::string& text) {
   c.notify("textDocument/didOpen", R"({"textDocument":{"uri":")" + uri(name) + R"(","languageId":"tmcltest","version":1,"text":)" +

@@ -2,8 +2,8 @@
 // profile read again when it changes, based-on a hidden profile of the same name, cycles of
 // based-on lines, the list of targets and the first-line comment.
 #include "check.hpp"
+#include "os_test.hpp"
 
-#include <unistd.h>
 
 #include <cstdlib>
 #include <fstream>
@@ -16,12 +16,11 @@ namespace {
 struct TempDir {
   std::string path;
   TempDir() {
-    char templ[] = "/tmp/tmcl-targets-XXXXXX";
-    path = ::mkdtemp(templ) ? templ : "/tmp";
+    path = tmcl_test::make_temp_dir("tmcl-targets");
   }
   ~TempDir() {
-    const std::string rm = "rm -rf '" + path + "'";
-    if (std::system(rm.c_str()) != 0) std::fprintf(stderr, "could not remove %s\n", path.c_str());
+    std::error_code ec;
+    std::filesystem::remove_all(path, ec);
   }
   std::string write(const std::string& name, const std::string& text) const {
     const std::string p = path + "/" + name;
@@ -99,20 +98,39 @@ TEST(the_file_name_and_the_name_inside_agree) {
   CHECK(r.error.find("says 'name other'") != std::string::npos);
 }
 
+#ifndef _WIN32
 TEST(the_search_path_comes_from_the_environment) {
-  ::setenv("TMCL_PROFILE_PATH", "/a::/b", 1);
-  ::setenv("HOME", "/home/u", 1);
-  ::unsetenv("XDG_CONFIG_HOME");
+  tmcl_test::set_env("TMCL_PROFILE_PATH", "/a::/b");
+  tmcl_test::set_env("HOME", "/home/u");
+  tmcl_test::unset_env("XDG_CONFIG_HOME");
   auto s = tmcl::TargetSearch::from_environment();
   CHECK(s.dirs == (std::vector<std::string>{"/a", "/b", "/home/u/.config/tmcl/profiles"}));
-  ::setenv("XDG_CONFIG_HOME", "/x", 1);
-  ::unsetenv("TMCL_PROFILE_PATH");
+  tmcl_test::set_env("XDG_CONFIG_HOME", "/x");
+  tmcl_test::unset_env("TMCL_PROFILE_PATH");
   s = tmcl::TargetSearch::from_environment();
   CHECK(s.dirs == (std::vector<std::string>{"/x/tmcl/profiles"}));
-  ::setenv("XDG_CONFIG_HOME", "relative", 1);  // not absolute: ignored, as the XDG rules say
+  tmcl_test::set_env("XDG_CONFIG_HOME", "relative");  // not absolute: ignored, as the XDG rules say
   s = tmcl::TargetSearch::from_environment();
   CHECK(s.dirs == (std::vector<std::string>{"/home/u/.config/tmcl/profiles"}));
 }
+#else
+// Windows: the list is separated by ';' (or ':' that does not follow a drive letter), and
+// %APPDATA%\tmcl\profiles comes before the folder of HOME or XDG_CONFIG_HOME (docs/profiles.md).
+TEST(the_search_path_comes_from_the_environment) {
+  tmcl_test::set_env("TMCL_PROFILE_PATH", "C:\\a;;D:\\b:E:/c");
+  tmcl_test::set_env("APPDATA", "C:\\Users\\u\\AppData\\Roaming");
+  tmcl_test::set_env("HOME", "C:/home/u");
+  tmcl_test::unset_env("XDG_CONFIG_HOME");
+  auto s = tmcl::TargetSearch::from_environment();
+  CHECK(s.dirs == (std::vector<std::string>{"C:\\a", "D:\\b", "E:/c", "C:\\Users\\u\\AppData\\Roaming\\tmcl\\profiles",
+                                            "C:/home/u/.config/tmcl/profiles"}));
+  tmcl_test::unset_env("APPDATA");
+  tmcl_test::unset_env("TMCL_PROFILE_PATH");
+  tmcl_test::set_env("XDG_CONFIG_HOME", "C:/x");
+  s = tmcl::TargetSearch::from_environment();
+  CHECK(s.dirs == (std::vector<std::string>{"C:/x/tmcl/profiles"}));
+}
+#endif
 
 TEST(list_targets_shows_every_profile_and_what_hides_what) {
   TempDir d;

@@ -206,9 +206,8 @@ TEST(file_switch_lines_are_scenario_lines) {
 
 // `target` takes what -t takes: a profile file too, a relative path from the test file's folder.
 TEST(file_target_may_be_a_profile_file) {
-  char dir[] = "/tmp/tmcl-testrun-XXXXXX";
-  CHECK(::mkdtemp(dir) != nullptr);
-  const std::string folder = dir;
+  const std::string folder = tmcl_test::make_temp_dir("tmcl-testrun");
+  CHECK(!folder.empty());
   {
     std::FILE* f = std::fopen((folder + "/mine.profile").c_str(), "w");
     CHECK(f != nullptr);
@@ -222,6 +221,6 @@ TEST(file_target_may_be_a_profile_file) {
   if (p) CHECK_EQ(std::string(p->name), "mine");
   CHECK(test_profile("./none.profile", folder + "/t.tmctest", &why) == nullptr);
   CHECK(why.find("none.profile") != std::string::npos);
-  std::remove((folder + "/mine.profile").c_str());
-  ::rmdir(dir);
+  std::error_code ec;
+  std::filesystem::remove_all(folder, ec);
 }

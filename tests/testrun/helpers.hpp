@@ -2,7 +2,6 @@
 // running a test file's text against a program's text through the library (tmcl/testrun.hpp).
 #pragma once
 
-#include <unistd.h>
 
 #include <cstdlib>
 #include <filesystem>
@@ -10,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "os_test.hpp"
 #include "tmcl/testrun.hpp"
 
 namespace runtest {
@@ -17,9 +17,10 @@ namespace runtest {
 // The scratch folder, made the current folder on first use so that paths in messages are short.
 inline std::string scratch() {
   static const std::string dir = [] {
-    char t[] = "/tmp/tmcl-testrun-XXXXXX";
-    std::string d = ::mkdtemp(t);
-    if (::chdir(d.c_str()) != 0) return std::string();
+    std::string d = tmcl_test::make_temp_dir("tmcl-testrun");
+    std::error_code ec;
+    std::filesystem::current_path(d, ec);
+    if (d.empty() || ec) return std::string();
     return d;
   }();
   return dir;

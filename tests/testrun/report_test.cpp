@@ -4,6 +4,7 @@
 #include <cstdio>
 
 #include "check.hpp"
+#include "os_test.hpp"
 #include "helpers.hpp"
 #include "text_file.hpp"
 
@@ -46,16 +47,9 @@ SuiteResult sample() {
 
 // Runs run_command and returns what it printed on standard output.
 std::string command(const std::vector<std::string>& paths, const SuiteOptions& o, int& status) {
-  char* text = nullptr;
-  std::size_t size = 0;
-  std::FILE* out = ::open_memstream(&text, &size);
-  std::FILE* err = std::tmpfile();
-  status = run_command(paths, o, out, err);
-  std::fclose(out);
-  std::fclose(err);
-  std::string s(text, size);
-  std::free(text);
-  return s;
+  tmcl_test::CapturedFile out, err;
+  status = run_command(paths, o, out.get(), err.get());
+  return out.text();
 }
 
 }  // namespace

@@ -9,18 +9,32 @@
 #include "check_core.hpp"
 
 #ifdef TMCL_TEST_MAIN
+#ifndef _WIN32
 #include <sys/wait.h>
 #include <unistd.h>
+#endif
 
 #include <cstdlib>
 #include <optional>
 
 namespace tmcl_test {
 
+// Counts a finished case and names it when it failed: the one tally of a serial and a --jobs run.
+inline void tally(const Case& c, bool ok, int& passed, int& failed) {
+  if (ok) {
+    ++passed;
+  } else {
+    ++failed;
+    std::fprintf(stderr, "FAILED: %s\n", c.name);
+  }
+}
+
+#ifndef _WIN32
 // --jobs N: the cases of a suite that mostly waits (on ports, timeouts, other processes) run N
 // at a time, each in a child process of its own (fork) with its output in a temporary file.
 // The outputs are printed in the cases' order, so the log reads as that of a serial run; a case
-// that crashes is a failed case, not a lost run.
+// that crashes is a failed case, not a lost run. Windows has no fork: there (the cross build,
+// tests/windows/run.sh) the cases run one after another, as without --jobs.
 struct Outcome {
   bool passed;
   std::string output;
@@ -36,16 +50,6 @@ inline Outcome finish_child(pid_t pid, int status, std::FILE* out) {
   if (WIFSIGNALED(status))
     text += "case process " + std::to_string(pid) + " killed by signal " + std::to_string(WTERMSIG(status)) + "\n";
   return {passed, text};
-}
-
-// Counts a finished case and names it when it failed: the one tally of a serial and a --jobs run.
-inline void tally(const Case& c, bool ok, int& passed, int& failed) {
-  if (ok) {
-    ++passed;
-  } else {
-    ++failed;
-    std::fprintf(stderr, "FAILED: %s\n", c.name);
-  }
 }
 
 inline int run_in_children(const std::vector<const Case*>& cases, int jobs, int& passed, int& failed) {
@@ -100,6 +104,7 @@ inline int run_in_children(const std::vector<const Case*>& cases, int jobs, int&
   }
   return 0;
 }
+#endif
 
 }  // namespace tmcl_test
 
@@ -129,8 +134,13 @@ int main(int argc, char** argv) {
     selected.push_back(&c);
   }
   int passed = 0, failed = 0;
+#ifdef _WIN32
+  jobs = 1;
+#endif
   if (jobs > 1) {
+#ifndef _WIN32
     if (::tmcl_test::run_in_children(selected, jobs, passed, failed) != 0) return 1;
+#endif
   } else {
     for (const auto* c : selected) {
       int before = ::tmcl_test::failures();

@@ -1,11 +1,12 @@
 // The EEPROM: STGP/RSGP, STAP/RSAP, SCO/GCO bank-255 forms, global 84/85, auto-stored bank 0,
 // power-up restore, the file format (round trip, corruption, atomic save) (E16).
 #include <cstdio>
+#include <filesystem>
 #include <fstream>
 #include <sstream>
-#include <unistd.h>
 
 #include "check.hpp"
+#include "os_test.hpp"
 #include "machine.hpp"
 #include "tmcl/eeprom.hpp"
 
@@ -128,9 +129,9 @@ TEST(text_reports_every_error) {
 }
 
 TEST(file_save_is_atomic_and_loads) {
-  char dir[] = "/tmp/tmcl-eeprom-XXXXXX";
-  CHECK(mkdtemp(dir) != nullptr);
-  std::string path = std::string(dir) + "/e.eeprom";
+  const std::string dir = tmcl_test::make_temp_dir("tmcl-eeprom");
+  CHECK(!dir.empty());
+  std::string path = dir + "/e.eeprom";
   tmcl::EepromImage img, back;
   bool existed = true;
   std::string err;
@@ -141,10 +142,10 @@ TEST(file_save_is_atomic_and_loads) {
   CHECK(tmcl::load_eeprom_file(path, back, existed, err));
   CHECK(existed);
   CHECK_EQ(back.vars.at(1), 7);
-  CHECK(access((path + ".tmp").c_str(), F_OK) != 0);  // no temporary left behind
-  CHECK(!tmcl::save_eeprom_file(std::string(dir) + "/no/such/dir/e", img, err));
-  std::remove(path.c_str());
-  rmdir(dir);
+  CHECK(!std::filesystem::exists(path + ".tmp"));  // no temporary left behind
+  CHECK(!tmcl::save_eeprom_file(dir + "/no/such/dir/e", img, err));
+  std::error_code ec;
+  std::filesystem::remove_all(dir, ec);
 }
 
 // Bank 0 in direct mode: only parameters the module auto-stores have an EEPROM copy to store

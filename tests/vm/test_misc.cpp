@@ -2,6 +2,7 @@
 #include <cstdio>
 
 #include "check.hpp"
+#include "os_test.hpp"
 #include "machine.hpp"
 #include "tmcl/duration.hpp"
 #include "tmcl/scenario.hpp"
@@ -63,15 +64,13 @@ TEST(json_has_every_documented_key) {
 }
 
 TEST(trace_lines) {
-  char buf[4096] = {};
-  std::FILE* f = fmemopen(buf, sizeof buf - 1, "w");
+  tmcl_test::CapturedFile f;
   tmcl::SourceMap src = {"p.tmc:1", "p.tmc:2"};
-  tmcl::TextTrace t(f, &src);
+  tmcl::TextTrace t(f.get(), &src);
   Machine m({I(Op::MVP, 0, 0, 10), I(Op::STOP)}, test_profile(), 20);
   m.vm.trace = &t;
   m.run();
-  std::fclose(f);
-  std::string out = buf;
+  const std::string out = f.text();
   CHECK(out.find("0.000000s     0 p.tmc:1          MVP ABS, 0, 10") != std::string::npos);
   CHECK(out.find("motion: motor 0 target reached at position 10") != std::string::npos);
   CHECK(out.find("0.000020s     1 p.tmc:2          STOP") != std::string::npos);

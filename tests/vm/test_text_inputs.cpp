@@ -2,11 +2,12 @@
 // files reporting every error with its column, and EEPROM files sealed after a hand edit.
 #include <cstdio>
 #include <cstdlib>
+#include <filesystem>
 #include <fstream>
 #include <sstream>
-#include <unistd.h>
 
 #include "check.hpp"
+#include "os_test.hpp"
 #include "tmcl/duration.hpp"
 #include "tmcl/eeprom.hpp"
 #include "tmcl/numbers.hpp"
@@ -105,9 +106,9 @@ TEST(scenario_reports_every_error_with_its_column) {
 }
 
 TEST(eeprom_seal_mends_a_hand_edited_file) {
-  char dir[] = "/tmp/tmcl-seal-XXXXXX";
-  CHECK(mkdtemp(dir) != nullptr);
-  std::string path = std::string(dir) + "/e.eeprom";
+  const std::string dir = tmcl_test::make_temp_dir("tmcl-seal");
+  CHECK(!dir.empty());
+  std::string path = dir + "/e.eeprom";
   tmcl::EepromImage img;
   img.profile = "usb-2-sd";
   img.vars[1] = 5;
@@ -133,6 +134,6 @@ TEST(eeprom_seal_mends_a_hand_edited_file) {
   std::ofstream(path, std::ios::app) << "var x 1\n";
   CHECK(!tmcl::seal_eeprom_file(path, err));
   CHECK(err.find("malformed EEPROM record 'var x 1'") != std::string::npos);
-  std::remove(path.c_str());
-  ::rmdir(dir);
+  std::error_code ec;
+  std::filesystem::remove_all(dir, ec);
 }

@@ -4,8 +4,12 @@
 #   tests/windows/run.sh LINUX_BUILD WINDOWS_BUILD
 #
 # 1. Cross-compiles tmclasm.exe, tmclrun.exe, tmclctl.exe and tmcl-lsp.exe with MinGW-w64
-#    (cli/windows/mingw-w64.cmake) into WINDOWS_BUILD, and packs them with `cpack -G ZIP`.
-# 2. Runs every golden case with the Windows tools under Wine, through the Linux build's
+#    (cli/windows/mingw-w64.cmake) into WINDOWS_BUILD, with the unit-test programs, and packs the
+#    tools with `cpack -G ZIP`.
+# 2. Runs the unit tests under Wine (`ctest -L unit`; the toolchain file makes Wine CTest's
+#    emulator). A test that needs what Windows lacks (fork, pseudo-terminals) says so on a
+#    NOT-ON-WINDOWS: line and is skipped (tmcl_not_on_windows in tests/CMakeLists.txt).
+#    Then runs every golden case with the Windows tools under Wine, through the Linux build's
 #    golden_runner (--emulator): the golden files are the Linux ones, byte for byte. A case that
 #    needs what Windows lacks says so on a NOT-ON-WINDOWS: line and is skipped with that reason.
 # 3. tmclctl.exe talks to a Linux `tmclrun --serve` over TCP, and over COM5, which Wine maps to
@@ -41,9 +45,9 @@ bad() { failed=$((failed + 1)); echo "FAIL: $*"; }
 
 # ---- 1. the cross build and the zip ----
 t0=$(date +%s)
-cmake -S "$src" -B "$win" -DCMAKE_TOOLCHAIN_FILE="$src/cli/windows/mingw-w64.cmake" -DBUILD_TESTING=OFF >/dev/null ||
+cmake -S "$src" -B "$win" -DCMAKE_TOOLCHAIN_FILE="$src/cli/windows/mingw-w64.cmake" -DBUILD_TESTING=ON >/dev/null ||
   { echo "== windows: configuring the cross build failed"; exit 1; }
-cmake --build "$win" -j2 --target tmclasm tmclrun tmclctl tmcl-lsp >"$win/build.log" 2>&1 ||
+cmake --build "$win" -j2 >"$win/build.log" 2>&1 ||
   { tail -40 "$win/build.log"; echo "== windows: the cross build failed"; exit 1; }
 t1=$(date +%s)
 echo "== windows: cross build $((t1 - t0)) s"
@@ -72,7 +76,26 @@ wineserver -p 120 >/dev/null 2>&1  # one server, up between the many short runs 
 wineboot -i >/dev/null 2>&1        # going away under one of them, as a server started by it may)
 trap 'wineserver -k >/dev/null 2>&1; [[ -n "${servers:-}" ]] && kill $servers 2>/dev/null' EXIT
 
-# ---- 2. the golden cases ----
+# ---- 2. the unit tests, then the golden cases ----
+t2=$(date +%s)
+(cd "$win" && ctest -L unit -j2 --timeout 300) >"$win/unit.log" 2>&1
+u_total=$(sed -n 's/.*tests passed, \([0-9]*\) tests failed out of \([0-9]*\).*/\2/p' "$win/unit.log")
+u_fail=$(sed -n 's/.*tests passed, \([0-9]*\) tests failed out of.*/\1/p' "$win/unit.log")
+u_skip=$(grep -c -- '\*\*\*Skipped' "$win/unit.log")
+if [[ -z "$u_total" ]]; then
+  u_total=1 u_fail=1 u_skip=0
+  tail -30 "$win/unit.log"
+fi
+# The reasons, from the skipped tests' own output.
+grep -o 'NOT-ON-WINDOWS: [^"]*' "$win/Testing/Temporary/LastTest.log" 2>/dev/null | sort -u | sed 's/^/SKIP unit: /'
+if [[ "$u_fail" != 0 ]]; then
+  grep -E '\*\*\*(Failed|Timeout|Exception)' "$win/unit.log"
+  (cd "$win" && ctest -L unit --rerun-failed --output-on-failure) 2>&1 | tail -60
+fi
+passed=$((passed + u_total - u_fail - u_skip)) failed=$((failed + u_fail)) skipped=$((skipped + u_skip))
+echo "== windows: unit tests under Wine: $((u_total - u_fail - u_skip)) passed, $u_fail failed, $u_skip skipped ($(( $(date +%s) - t2 )) s)"
+
+t2=$(date +%s)
 t2=$(date +%s)
 tools=()
 for exe in tmclasm tmclrun tmclctl tmcl-lsp; do tools+=(--tool "$exe=$win/cli/$exe.exe"); done
@@ -147,7 +170,28 @@ name=$(printf 'bewegung-\xc3\xa4.tmc')
 mkdir -p "$u8" && printf 'SAP 4, 0, 1000\nSTOP\n' > "$u8/$name"
 got=$(cd "$u8" && wine "$win/cli/tmclasm.exe" -f listing -o - "$name" 2>&1)
 [[ "$got" == *"$name:1"* ]] && ok "a UTF-8 file name" || bad "a UTF-8 file name: [$got]"
-rm -rf "$appdata_unix/tmcl" "$work" "$u8"
+# Paths as Windows users write them: a drive letter and '\' on the command line, `#include
+# "lib\motor.inc"`, `-I ..\common`; the diagnostics name the files in the same spelling.
+wp="$win/win-paths"
+rm -rf "$wp" && mkdir -p "$wp/main/lib" "$wp/common"
+printf '#include "lib\\motor.inc"\n#include common.inc\nCALC LOAD, Speed + Other\n' > "$wp/main/prog.tmc"
+printf 'Speed = 1000\nFOO 1\n' > "$wp/main/lib/motor.inc"
+printf 'Other = 2\n' > "$wp/common/common.inc"
+prog=$(winepath -w "$wp/main/prog.tmc")  # Z:\...\win-paths\main\prog.tmc
+got=$(cd "$wp/main" && wine "$win/cli/tmclasm.exe" -I '..\common' -o NUL "$prog" 2>&1; echo "exit $?")
+want="In file included from $prog:1:
+${prog%prog.tmc}lib\motor.inc:2:1: error: unknown instruction mnemonic 'FOO'
+ FOO 1
+ ^~~
+tmclasm: 1 error, 0 warnings; nothing written
+exit 65"
+[[ "$got" == "$want" ]] && ok "a drive letter, '\\' and #include \"lib\\motor.inc\" in diagnostics" ||
+  bad "Windows paths in diagnostics: got [$got], wanted [$want]"
+printf 'Speed = 1000\n' > "$wp/main/lib/motor.inc"
+got=$(cd "$wp/main" && wine "$win/cli/tmclrun.exe" -I '..\common' --json "$prog" 2>&1)
+[[ "$got" == *'"halt":"stop"'* && "$got" == *'"acc":1002'* ]] && ok "tmclrun.exe runs a program given by its drive and '\\' path" ||
+  bad "tmclrun.exe with a Windows path: [$got]"
+rm -rf "$appdata_unix/tmcl" "$work" "$u8" "$wp"
 
 echo "== windows: $(( $(date +%s) - t0 )) s in all"
 line="windows: $passed passed, $failed failed"

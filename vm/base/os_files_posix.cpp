@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cstdio>
 #include <cstdlib>
+#include <filesystem>
 
 #include "tmcl/fileio.hpp"
 #include "tmcl/os_files.hpp"
@@ -29,6 +30,23 @@ std::vector<std::string> split_path_list(const std::string& list) {
   }
   return dirs;
 }
+bool is_separator(char c) { return c == '/'; }
+bool has_separator(std::string_view path) { return path.find('/') != std::string_view::npos; }
+bool is_absolute(std::string_view path) { return !path.empty() && path[0] == '/'; }
+std::size_t last_separator(std::string_view path) { return path.rfind('/'); }
+
+std::string join_path(const std::string& folder, const std::string& name) {
+  if (folder.empty()) return name;
+  return folder.back() == '/' ? folder + name : folder + "/" + name;
+}
+
+std::string portable_path(std::string path) {
+  std::replace(path.begin(), path.end(), '\\', '/');
+  return path;
+}
+
+std::string normal_path(const std::string& path) { return std::filesystem::path(path).lexically_normal().generic_string(); }
+
 bool sync_file(int fd) { return ::fsync(fd) == 0; }
 
 bool replace_file(const std::string& from, const std::string& to) { return std::rename(from.c_str(), to.c_str()) == 0; }

@@ -9,6 +9,7 @@
 #include <cctype>
 #include <cerrno>
 #include <cstdlib>
+#include <filesystem>
 
 #include "tmcl/fileio.hpp"
 #include "tmcl/os_files.hpp"
@@ -35,6 +36,28 @@ std::vector<std::string> split_path_list(const std::string& list) {
   if (!cur.empty()) dirs.push_back(cur);
   return dirs;
 }
+bool is_separator(char c) { return c == '/' || c == '\\'; }
+bool has_separator(std::string_view path) { return path.find_first_of("/\\") != std::string_view::npos; }
+bool is_absolute(std::string_view path) {
+  if (!path.empty() && is_separator(path[0])) return true;  // "\\a" (the current drive) and "\\\\server\\share"
+  return path.size() >= 2 && path[1] == ':' && std::isalpha(static_cast<unsigned char>(path[0]));
+}
+std::size_t last_separator(std::string_view path) { return path.find_last_of("/\\"); }
+
+std::string join_path(const std::string& folder, const std::string& name) {
+  if (folder.empty()) return name;
+  if (is_separator(folder.back()) || (folder.size() == 2 && folder[1] == ':')) return folder + name;  // "C:" + "a" is C:a
+  const bool backslashes = folder.find('\\') != std::string::npos && folder.find('/') == std::string::npos;
+  return folder + (backslashes ? "\\" : "/") + name;
+}
+
+std::string portable_path(std::string path) { return path; }
+
+std::string normal_path(const std::string& path) {
+  const std::filesystem::path normal = std::filesystem::path(path).lexically_normal();  // '\\' throughout
+  return path.find('\\') != std::string::npos ? normal.string() : normal.generic_string();
+}
+
 bool sync_file(int fd) { return ::_commit(fd) == 0; }
 
 bool replace_file(const std::string& from, const std::string& to) {

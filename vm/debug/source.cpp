@@ -6,6 +6,7 @@
 
 #include "tmcl/asm/symbols.hpp"
 #include "tmcl/fileio.hpp"
+#include "tmcl/os_files.hpp"
 
 namespace tmcl::debug {
 
@@ -22,14 +23,16 @@ bool apply_symbols(const std::string& symbols, const std::vector<std::string>& s
   if (table.empty()) return true;
   // Relative names are looked up beside the symbols file first (the two travel together), then
   // in the current folder (where tmclasm was most likely run), then in the --source-dir folders.
-  std::string folder = symbols.substr(0, symbols.find_last_of('/') + 1);
+  const std::size_t sep = os::last_separator(symbols);
+  const std::string folder = sep == std::string::npos ? "" : symbols.substr(0, sep + 1);
   for (const auto& name : table.files) {
     ProgramInfo::File f;
     f.name = name;
     std::vector<std::string> tried = {name};
-    if (name[0] != '/') {
+    const bool relative = !os::is_absolute(name);
+    if (relative) {
       if (!folder.empty()) tried.insert(tried.begin(), folder + name);
-      for (const auto& dir : source_dirs) tried.push_back(dir.back() == '/' ? dir + name : dir + "/" + name);
+      for (const auto& dir : source_dirs) tried.push_back(os::join_path(dir, name));
     }
     for (const auto& path : tried) {
       std::vector<std::uint8_t> bytes;
@@ -43,7 +46,7 @@ bool apply_symbols(const std::string& symbols, const std::vector<std::string>& s
     }
     if (f.path.empty())
       messages += symbols + ": warning: source file '" + name + "' not found" +
-                  (name[0] != '/' ? std::string(source_dirs.empty()
+                  (relative ? std::string(source_dirs.empty()
                                                     ? " (looked beside the symbols file and in the current folder)"
                                                     : " (looked beside the symbols file, in the current folder and in the "
                                                       "--source-dir folders)")

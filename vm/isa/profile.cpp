@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "tmcl/profile_file.hpp"
+#include "tmcl/os_files.hpp"
 
 namespace tmcl {
 
@@ -122,7 +123,7 @@ std::span<const Profile* const> all_profiles() {
 }
 
 const Profile* find_profile(std::string_view name) {
-  if (name.empty() || name.find('/') != std::string_view::npos) return nullptr;
+  if (name.empty() || os::has_separator(name)) return nullptr;
   if (const Profile* p = load_bundled(name)) return p;
   for (const Profile* p : all_profiles())
     if (std::find(p->aliases.begin(), p->aliases.end(), name) != p->aliases.end()) return p;

@@ -10,6 +10,7 @@
 
 #include "tmcl/isa.hpp"
 #include "tmcl/numbers.hpp"
+#include "tmcl/os_files.hpp"
 
 namespace tmcl {
 namespace {
@@ -429,7 +430,7 @@ struct Reader {
     } else if (k == "include-file") {
       // The module's own include file among the bundled ones (tmclctl's console predefines it).
       const std::string_view f = w[1].text;
-      if (f.empty() || f.find('/') != std::string_view::npos)
+      if (f.empty() || os::has_separator(f))
         return error(w[1], "include-file names a bundled include file such as USB-2-SD.inc, not '" + std::string(f) + "'");
       p.include_file = f;
     } else if (k == "standalone") {

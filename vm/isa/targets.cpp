@@ -24,7 +24,7 @@ namespace {
 constexpr std::size_t kMaxProfileBytes = 1u << 20;
 
 bool is_path(std::string_view v) {
-  return v.find('/') != std::string_view::npos ||
+  return os::has_separator(v) ||
          (v.size() > kProfileExtension.size() && v.substr(v.size() - kProfileExtension.size()) == kProfileExtension);
 }
 
@@ -92,7 +92,7 @@ const Loaded& load_file(const std::string& path, const TargetSearch& search) {
 // read, which has no profile yet.
 const Profile* lookup_name(std::string_view name, const TargetSearch& search, const std::string& skip) {
   for (const auto& dir : search.dirs) {
-    const std::string path = dir + "/" + std::string(name) + std::string(kProfileExtension);
+    const std::string path = os::join_path(dir, std::string(name) + std::string(kProfileExtension));
     struct stat st{};
     if (path == skip || !file_exists(path, st)) continue;
     const Loaded& l = load_file(path, search);
@@ -148,7 +148,7 @@ TargetResult resolve_target(std::string_view value, const TargetSearch& search) 
     return r;
   }
   for (const auto& dir : search.dirs) {
-    const std::string path = dir + "/" + std::string(value) + std::string(kProfileExtension);
+    const std::string path = os::join_path(dir, std::string(value) + std::string(kProfileExtension));
     struct stat st{};
     if (!file_exists(path, st)) continue;
     const Loaded& l = load_file(path, search);
@@ -200,7 +200,7 @@ std::vector<TargetEntry> list_targets(const TargetSearch& search) {
     std::sort(files.begin(), files.end());
     for (const auto& f : files) {
       TargetEntry e;
-      e.origin = dir + "/" + f;
+      e.origin = os::join_path(dir, f);
       e.name = f.substr(0, f.size() - kProfileExtension.size());
       const Loaded& l = load_file(e.origin, search);
       if (l.store && l.store->profile.name != e.name)

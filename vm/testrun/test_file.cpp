@@ -14,6 +14,7 @@
 #include "tmcl/scenario.hpp"
 #include "tmcl/targets.hpp"
 #include "tmcl/testrun.hpp"
+#include "tmcl/os_files.hpp"
 
 namespace tmcl::testrun {
 
@@ -313,8 +314,8 @@ class LineReader {
 
 const Profile* test_profile(const std::string& target, const std::string& test_path, std::string* error) {
   std::string value = target;
-  if (value.find('/') != std::string::npos && value[0] != '/') {
-    const std::size_t slash = test_path.rfind('/');
+  if (os::has_separator(value) && !os::is_absolute(value)) {
+    const std::size_t slash = os::last_separator(test_path);
     if (slash != std::string::npos) value = test_path.substr(0, slash + 1) + value;
   }
   const TargetResult r = resolve_target(value);
@@ -349,8 +350,8 @@ bool parse_test_file(const std::string& text, const std::string& path, const std
                    [](const FileDiag& a, const FileDiag& b) { return a.line != b.line ? a.line < b.line : a.col < b.col; });
   diags.insert(diags.end(), mine.begin(), mine.end());
   // The program is found relative to the test file ("tests/../prog.tmc" is "prog.tmc").
-  if (!out.program.empty() && out.program[0] != '/') {
-    const auto slash = path.find_last_of('/');
+  if (!out.program.empty() && !os::is_absolute(out.program)) {
+    const auto slash = os::last_separator(path);
     if (slash != std::string::npos)
       out.program = std::filesystem::path(path.substr(0, slash + 1) + out.program).lexically_normal().generic_string();
   }
