@@ -257,7 +257,8 @@ tmcl::cli::Tool command_line(Options& o) {
        }},
       {"--serve", "SPEC",
        "act as a virtual module: tcp:HOST:PORT (loopback unless told\n"
-       "otherwise; [::1]:PORT for IPv6), pty, or stdio (docs/virtual-module.md).\n"
+       "otherwise; [::1]:PORT for IPv6), pty, stdio, or a serial port\n"
+       "(COM3, /dev/ttyUSB0; PORT:BAUD, default 9600) (docs/virtual-module.md).\n"
        "PROGRAM is then optional (a host can download one)",
        [&o](const std::string& v) {
          o.serving = true;
@@ -265,7 +266,7 @@ tmcl::cli::Tool command_line(Options& o) {
          tmcl::parse_serve_spec(v, o.serve_opts, error);
          return error;
        },
-       Values::words({"tcp:127.0.0.1:2001", "pty", "stdio"}), "tcp:HOST:PORT, pty or stdio"},
+       Values::words({"tcp:127.0.0.1:2001", "pty", "stdio"}), "tcp:HOST:PORT, pty, stdio or a serial port"},
       {"--autostart", "", "with --serve: start the program at once (also: global 77 = 1)",
        flag(o.serve_opts.autostart)},
       {"--time-scale", "X", "with --serve: simulated seconds per real second (default 1)",

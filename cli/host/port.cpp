@@ -8,7 +8,7 @@
 #include <cstring>
 #include <string_view>
 
-#include "serial.hpp"
+#include "tmcl/os_serial.hpp"
 #include "tmcl/codec.hpp"
 #include "tmcl/os_net.hpp"
 
@@ -88,20 +88,20 @@ int open_tcp(const std::string& spec, int connect_ms, std::string& error) {
 
 }  // namespace
 
-bool valid_baud(long baud) { return serial::valid_baud(baud); }
+bool valid_baud(long baud) { return os::serial::valid_baud(baud); }
 
 void Port::set_cancel_flag(const volatile std::sig_atomic_t* flag) { g_cancel = flag; }
 
 std::unique_ptr<Port> Port::open(const std::string& spec, long baud, int connect_ms, std::string& error) {
   const bool tcp = spec.rfind("tcp:", 0) == 0;
-  const std::intptr_t fd = tcp ? open_tcp(spec, connect_ms, error) : serial::open(spec, baud, error);
+  const std::intptr_t fd = tcp ? open_tcp(spec, connect_ms, error) : os::serial::open(spec, baud, error);
   if (fd < 0) return nullptr;
   return std::unique_ptr<Port>(new Port(fd, spec, !tcp));
 }
 
 Port::~Port() {
   if (fd_ < 0) return;
-  if (serial_) serial::close(fd_);
+  if (serial_) os::serial::close(fd_);
   else os::close_socket(static_cast<int>(fd_));
 }
 
@@ -112,7 +112,7 @@ bool Port::write_all(const std::uint8_t* data, std::size_t n, Clock::time_point 
   }
   std::size_t done = 0;
   while (done < n) {
-    const long w = serial_ ? serial::write(fd_, data + done, n - done)
+    const long w = serial_ ? os::serial::write(fd_, data + done, n - done)
                            : os::send_socket(static_cast<int>(fd_), data + done, n - done, false);
     if (w > 0) {
       done += static_cast<std::size_t>(w);
@@ -181,7 +181,7 @@ bool Port::refused(std::uint8_t* data, long& got, std::size_t n, Clock::time_poi
 long Port::read_raw(std::uint8_t* data, std::size_t n, Clock::time_point deadline, std::string& error) {
   bool hung_up = false;
   for (;;) {
-    const long r = serial_ ? serial::read(fd_, data, n) : os::read_some(static_cast<int>(fd_), data, n);
+    const long r = serial_ ? os::serial::read(fd_, data, n) : os::read_some(static_cast<int>(fd_), data, n);
     if (r > 0) return static_cast<long>(r);
     if ((r == 0 && !serial_) || (r <= 0 && hung_up)) {
       error = name_ + (serial_ ? ": the line was hung up (device unplugged or server gone)"
@@ -206,7 +206,7 @@ long Port::read_raw(std::uint8_t* data, std::size_t n, Clock::time_point deadlin
 }
 
 short Port::wait(short events, int ms) {
-  if (serial_) return serial::wait(fd_, events, ms);
+  if (serial_) return os::serial::wait(fd_, events, ms);
   pollfd p = os::poll_entry(static_cast<int>(fd_), events);
   return os::poll(&p, 1, ms) > 0 ? p.revents : 0;
 }

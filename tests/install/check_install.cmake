@@ -54,7 +54,7 @@ endforeach()
 
 # tmclrun is one program: it serves and debugs itself, and nothing else is installed to run.
 execute_process(COMMAND "${prefix}/bin/tmclrun" --serve bogus RESULT_VARIABLE rc ERROR_VARIABLE err)
-if(NOT rc EQUAL 64 OR NOT err MATCHES "^tmclrun: --serve takes tcp:HOST:PORT, pty or stdio, not 'bogus'")
+if(NOT rc EQUAL 64 OR NOT err MATCHES "^tmclrun: --serve takes tcp:HOST:PORT, pty, stdio or a serial port \\(COM3, /dev/ttyUSB0\\), not 'bogus'")
   problem("installed tmclrun --serve bogus: exit ${rc}, '${err}'")
 endif()
 if(EXISTS "${prefix}/libexec")

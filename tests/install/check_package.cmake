@@ -82,7 +82,7 @@ foreach(tool IN LISTS TOOLS)
 endforeach()
 # tmclrun is one program: it serves and debugs itself, and nothing else is installed to run.
 execute_process(COMMAND "${root}/usr/bin/tmclrun" --serve bogus RESULT_VARIABLE rc ERROR_VARIABLE err)
-if(NOT rc EQUAL 64 OR NOT err MATCHES "^tmclrun: --serve takes tcp:HOST:PORT, pty or stdio, not 'bogus'")
+if(NOT rc EQUAL 64 OR NOT err MATCHES "^tmclrun: --serve takes tcp:HOST:PORT, pty, stdio or a serial port \\(COM3, /dev/ttyUSB0\\), not 'bogus'")
   message(FATAL_ERROR "tmclrun --serve bogus from the .deb: exit ${rc}, '${err}'")
 endif()
 if(EXISTS "${root}/usr/libexec")

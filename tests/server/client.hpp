@@ -207,6 +207,7 @@ struct Server {
   std::thread thread;
   int stop_pipe[2] = {-1, -1};
   int pair[2] = {-1, -1};  // stdio: [0] client end, [1] server end
+  int line_master = -1;    // serial: a pseudo-terminal whose slave the server opens as its port
   std::mutex mu;
   std::condition_variable cv;
   std::string ready;
@@ -236,6 +237,15 @@ struct Server {
     if (cfg.transport == tmcl::Transport::Stdio) {
       if (::socketpair(AF_UNIX, SOCK_STREAM | SOCK_CLOEXEC, 0, pair) != 0) return;
       opt.in_fd = opt.out_fd = pair[1];
+    }
+    if (cfg.transport == tmcl::Transport::Serial) {  // a serial line: the host at the master end
+      line_master = ::posix_openpt(O_RDWR | O_NOCTTY | O_CLOEXEC);
+      if (line_master < 0 || ::grantpt(line_master) != 0 || ::unlockpt(line_master) != 0) return;
+      opt.serial_port = ::ptsname(line_master);
+      termios t{};
+      ::tcgetattr(line_master, &t);
+      ::cfmakeraw(&t);
+      ::tcsetattr(line_master, TCSANOW, &t);
     }
     opt.on_ready = [this](const std::string& s) {
       std::lock_guard<std::mutex> g(mu);
@@ -292,6 +302,7 @@ struct Server {
         int fd = ::dup(pair[0]);
         return Link(fd, true);
       }
+      case tmcl::Transport::Serial: return Link(::dup(line_master), false);
     }
     return {};
   }
@@ -306,7 +317,7 @@ struct Server {
 
   ~Server() {
     stop();
-    for (int fd : {stop_pipe[0], stop_pipe[1], pair[0], pair[1]})
+    for (int fd : {stop_pipe[0], stop_pipe[1], pair[0], pair[1], line_master})
       if (fd >= 0) ::close(fd);
   }
 };

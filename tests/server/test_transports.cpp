@@ -1,5 +1,6 @@
-// The virtual module over its three transports (TCP on loopback, a pseudo-terminal, a
-// socketpair standing in for stdio): every scenario runs against a fresh server on each.
+// The virtual module over its four transports (TCP on loopback, a pseudo-terminal, a
+// socketpair standing in for stdio, a serial port: the slave of a pseudo-terminal, the host at
+// its master): every scenario runs against a fresh server on each.
 // Covers the manual's direct-mode reply table byte for byte, download/run/poll/stop/read-back,
 // standalone + direct mode on shared variables, every status code, 138 events, reply
 // suppression, addresses, 134/135/136 layouts, 137/255, a seeded random byte stream, torn
@@ -387,7 +388,8 @@ void run(Transport t, Scenario sc) {
 #define ON_ALL_TRANSPORTS(name)                                 \
   TEST(tcp_##name) { run(Transport::Tcp, name); }               \
   TEST(pty_##name) { run(Transport::Pty, name); }               \
-  TEST(stdio_##name) { run(Transport::Stdio, name); }
+  TEST(stdio_##name) { run(Transport::Stdio, name); }          \
+  TEST(serial_##name) { run(Transport::Serial, name); }
 
 ON_ALL_TRANSPORTS(conformance_rows)
 ON_ALL_TRANSPORTS(download_run_poll_stop_readback)

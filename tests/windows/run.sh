@@ -14,7 +14,7 @@
 #    needs what Windows lacks says so on a NOT-ON-WINDOWS: line and is skipped with that reason.
 # 3. tmclctl.exe talks to a Linux `tmclrun --serve` over TCP, and over COM5, which Wine maps to
 #    the pseudo-terminal of `tmclrun --serve pty` (a dosdevices/com5 link); its output must be
-#    the Linux tmclctl's.
+#    the Linux tmclctl's. tmclrun.exe serves on COM7, a pseudo-terminal's slave (com_serve.py).
 # 4. What Windows has in its own way: %APPDATA%\tmcl\profiles is searched; `--serve pty` says
 #    there are no pseudo-terminals, exit 71; -o /dev/null writes to NUL.
 # The compiler and Wine come from Debian (g++-mingw-w64-x86-64-posix, wine64); without them, and
@@ -151,6 +151,13 @@ got=$(wine "$win/cli/tmclctl.exe" COM9 get ap 4 2>&1; echo "exit $?")
 kill $servers 2>/dev/null
 wait $servers 2>/dev/null
 servers=""
+# The other way round: tmclrun.exe serves on COM7 (a pseudo-terminal's slave to Wine), the host
+# at the master end; its reply to GAP 4 is the Linux tmclrun's over stdio, byte for byte.
+want=$(printf '\x01\x06\x04\x00\x00\x00\x00\x00\x0b' | "$linux/cli/tmclrun" --serve stdio "$src/examples/quickstart.tmc" |
+       od -An -tx1 | tr -s ' \n' ' ' | sed 's/^ //; s/ $//')
+got=$(python3 "$src/tests/windows/com_serve.py" "$WINEPREFIX" "$win/cli/tmclrun.exe" "$src/examples/quickstart.tmc" 2>&1)
+[[ "$got" == *"ready: serving on COM7 at 9600 baud"*"reply: $want" ]] && ok "tmclrun.exe --serve COM7 (pty)" ||
+  bad "tmclrun.exe --serve COM7: [$got], Linux reply [$want]"
 
 # ---- 4. Windows' own ways ----
 got=$(wine "$win/cli/tmclrun.exe" --serve pty "$src/examples/quickstart.tmc" 2>&1; echo "exit $?")

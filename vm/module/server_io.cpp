@@ -19,7 +19,9 @@
 #include "tmcl/bus.hpp"
 #include "tmcl/eeprom.hpp"
 #include "tmcl/os_console.hpp"
+#include "tmcl/os_files.hpp"
 #include "tmcl/os_net.hpp"
+#include "tmcl/os_serial.hpp"
 #include "tmcl/server.hpp"
 #include "pty.hpp"
 
@@ -192,6 +194,8 @@ struct ServeLoop::Impl {
   SignalGuard signals;
   Line module;  // one module, or a bus of them, with faults if asked (bus.hpp)
   Fd listener, client, pty_master, pty_slave;
+  std::intptr_t serial_port = -1;  // Serial: the open port (os_serial.hpp)
+  int serial_fd = -1;              // ... and the descriptor the loop polls for it
   struct Refused {  // a second client that was told it is refused, until it closes
     int fd;
     Clock::time_point until;
@@ -240,10 +244,14 @@ struct ServeLoop::Impl {
       case Transport::Tcp: return client.fd;
       case Transport::Pty: return pty_master.fd;
       case Transport::Stdio: return in_fd;
+      case Transport::Serial: return serial_fd;
     }
     return -1;
   }
   int write_fd() const { return opt.transport == Transport::Stdio ? out_fd : data_fd(); }
+  bool writes_to_socket() const {
+    return opt.transport == Transport::Tcp || (opt.transport == Transport::Serial && os::serial::kPollableIsSocket);
+  }
   void close_client(const char* why) {
     note(std::string("client disconnected") + why);
     client.reset();
@@ -295,9 +303,20 @@ int ServeLoop::Impl::open() {
       break;
     }
     case Transport::Stdio: ready = "stdio"; break;
+    case Transport::Serial: {
+      serial_port = os::serial::open(opt.serial_port, opt.serial_baud, error);
+      if (serial_port >= 0) serial_fd = os::serial::pollable(serial_port, error);
+      if (serial_fd < 0) {
+        log << "tmclrun: error: " << error << std::endl;
+        return 71;
+      }
+      ready = opt.serial_port;
+      break;
+    }
   }
   if (!opt.quiet && opt.transport != Transport::Stdio) {
     if (opt.transport == Transport::Tcp) announce << "listening on " << ready << std::endl;
+    else if (opt.transport == Transport::Serial) announce << "serving on " << ready << " at " << opt.serial_baud << " baud" << std::endl;
     else announce << ready << std::endl;
   }
   if (opt.on_ready) opt.on_ready(ready);
@@ -337,14 +356,14 @@ void ServeLoop::Impl::flush() {
     return;
   }
   const std::size_t before = out.size();
-  if (!flush_some(fd, out, opt.transport == Transport::Tcp)) {
+  if (!flush_some(fd, out, writes_to_socket())) {
     if (opt.transport == Transport::Tcp) close_client("");
     else if (opt.transport == Transport::Stdio) stop = true;
     else out.clear();
   }
-  if (opt.transport != Transport::Pty) return;
-  // A pseudo-terminal has no "disconnected": replies nobody reads for a second are dropped,
-  // as a serial line drops them, so the next client does not receive stale answers.
+  if (opt.transport != Transport::Pty && opt.transport != Transport::Serial) return;
+  // A pseudo-terminal or serial line has no "disconnected": replies nobody reads for a second are
+  // dropped, as a serial line drops them, so the next client does not receive stale answers.
   const Clock::time_point t = Clock::now();
   if (out.empty() || out.size() < before) {
     last_write = t;
@@ -499,6 +518,9 @@ bool ServeLoop::Impl::poll_once(int max_wait_ms, int extra_fd) {
         } else if (opt.transport == Transport::Stdio) {
           flush();
           return false;  // end of input ends the session
+        } else if (opt.transport == Transport::Serial) {
+          note("the serial line " + opt.serial_port + " is gone (unplugged?): stopping");
+          return false;
         }
       }
     }
@@ -532,12 +554,16 @@ bool ServeLoop::Impl::poll_once(int max_wait_ms, int extra_fd) {
 
 int ServeLoop::Impl::close() {
   std::vector<std::uint8_t>& out = module.output();
-  if (!out.empty() && write_fd() >= 0) flush_some(write_fd(), out, opt.transport == Transport::Tcp);
+  if (!out.empty() && write_fd() >= 0) flush_some(write_fd(), out, writes_to_socket());
   client.reset();
   while (!refused.empty()) drop_refused(refused.size() - 1);
   listener.reset();
   pty_master.reset();
   pty_slave.reset();
+  if (serial_fd >= 0 && os::serial::kPollableIsSocket) os::close_socket(serial_fd);
+  if (serial_port >= 0) os::serial::close(serial_port);
+  serial_fd = -1;
+  serial_port = -1;
   if (!opt.eeprom_path.empty()) {
     std::string err;
     if (!save_eeprom_file(opt.eeprom_path, vm.eeprom, err)) {
@@ -572,8 +598,30 @@ bool parse_serve_spec(std::string_view spec, ServeOptions& options, std::string&
     options.transport = Transport::Stdio;
     return true;
   }
+  // A serial line: "COM5", "\\.\COM12" (Windows) or a device path ("/dev/ttyUSB0"), and
+  // ":BAUD" after it for another rate than the modules' default 9600.
+  const bool com = spec.size() > 3 && (spec.substr(0, 3) == "COM" || spec.substr(0, 3) == "com") &&
+                   spec[3] >= '0' && spec[3] <= '9';
+  if (com || spec.substr(0, 4) == "\\\\.\\" || os::is_absolute(spec)) {
+    std::string_view port = spec;
+    long baud = 9600;
+    if (const std::size_t colon = spec.rfind(':'); colon != std::string_view::npos && colon + 1 < spec.size() &&
+                                                   spec.find_first_not_of("0123456789", colon + 1) == std::string_view::npos) {
+      port = spec.substr(0, colon);
+      baud = spec.size() - colon - 1 > 7 ? 0 : std::stol(std::string(spec.substr(colon + 1)));
+      if (!os::serial::valid_baud(baud)) {
+        error = "--serve PORT:BAUD: '" + std::string(spec.substr(colon + 1)) +
+                "' is not a baud rate (9600, 19200, 38400, 57600, 115200, 230400, 460800, 500000, 576000, 921600 or 1000000)";
+        return false;
+      }
+    }
+    options.transport = Transport::Serial;
+    options.serial_port = std::string(port);
+    options.serial_baud = baud;
+    return true;
+  }
   if (spec.substr(0, 4) != "tcp:") {
-    error = "--serve takes tcp:HOST:PORT, pty or stdio, not '" + std::string(spec) + "'";
+    error = "--serve takes tcp:HOST:PORT, pty, stdio or a serial port (COM3, /dev/ttyUSB0), not '" + std::string(spec) + "'";
     return false;
   }
   std::string_view rest = spec.substr(4);

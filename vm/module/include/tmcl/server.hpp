@@ -153,7 +153,7 @@ class TmclModule {
 
 // ---- the I/O loop ----
 
-enum class Transport : std::uint8_t { Tcp, Pty, Stdio };
+enum class Transport : std::uint8_t { Tcp, Pty, Stdio, Serial };
 
 // A further module on the same line (tmclrun --module): its own VM (profile, program, EEPROM)
 // and protocol options, the address above all (bus.hpp).
@@ -167,6 +167,8 @@ struct ServeOptions {
   std::string host = "127.0.0.1";  // Tcp: address to listen on (IPv4 or IPv6 literal or name)
   int port = 2001;                 // Tcp: 0 picks a free port (announced)
   int in_fd = 0, out_fd = 1;       // Stdio: where frames come from and replies go
+  std::string serial_port;         // Serial: the device ("COM5", "\\.\COM12", "/dev/ttyUSB0")
+  long serial_baud = 9600;         // Serial: raw 8N1 at this rate
   ProtocolOptions protocol;
   double time_scale = 1.0;         // simulated seconds per wall-clock second (> 0)
   bool autostart = false;          // start the program at address 0 (also: global 77 = 1)
@@ -177,7 +179,7 @@ struct ServeOptions {
   int stop_fd = -1;                // readable (or closed) => stop, for embedders and tests
   std::int64_t max_wall_ms = 0;    // > 0: stop by itself after this long (tests, CI)
   // Called once when the transport is ready: "127.0.0.1:2001", "[::1]:2001", the pty's path,
-  // or "stdio". serve() also prints it (see `announce`).
+  // the serial port's name, or "stdio". serve() also prints it (see `announce`).
   std::function<void(const std::string&)> on_ready;
   std::ostream* announce = nullptr;  // where the ready line goes; nullptr: stdout (stderr for stdio)
   std::ostream* log = nullptr;       // notes and errors; nullptr: stderr

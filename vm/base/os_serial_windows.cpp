@@ -1,10 +1,10 @@
-// The platform layer, serial ports, on Windows (serial.hpp): a COM port by its name ("COM3") or
+// The platform layer, serial ports, on Windows (os_serial.hpp): a COM port by its name ("COM3") or
 // its device path ("\\.\COM12"; COM10 and above need it in Windows' own calls, the short name is
 // turned into it here). Opened without sharing (a second program gets "port in use"), raw 8N1
 // with no flow control, reads that return at once with what has arrived, stale input purged.
 // Waiting for input looks at the driver's queue every millisecond: simpler than overlapped I/O,
 // and a request/reply protocol at 9600 to 1000000 baud loses nothing to it.
-#include "serial.hpp"
+#include "tmcl/os_serial.hpp"
 
 #include <windows.h>
 
@@ -13,10 +13,11 @@
 #include <cerrno>
 #include <chrono>
 #include <cstring>
+#include <thread>
 
 #include "tmcl/os_files.hpp"
 
-namespace tmcl::host::serial {
+namespace tmcl::os::serial {
 namespace {
 
 constexpr long kBauds[] = {9600, 19200, 38400, 57600, 115200, 230400, 460800, 500000, 576000, 921600, 1000000};
@@ -135,4 +136,47 @@ short wait(std::intptr_t port, short events, int ms) {
   }
 }
 
-}  // namespace tmcl::host::serial
+// Two threads between the port and a socket pair, so the server's WSAPoll loop sees the line as
+// it sees a TCP client: one copies what arrives (waiting as wait() does), one writes what the
+// server sends. Both end when the port is closed or the server's end of the pair goes.
+int pollable(std::intptr_t port, std::string& error) {
+  int pair[2];
+  if (!os::wake_pair(pair)) {
+    error = "cannot make a socket pair for the serial line: " + os::error_text(errno);
+    return -1;
+  }
+  u_long blocking = 0;
+  ::ioctlsocket(static_cast<SOCKET>(pair[1]), FIONBIO, &blocking);
+  os::set_nonblocking(pair[0]);
+  const SOCKET host_end = static_cast<SOCKET>(pair[1]);
+  std::thread([port, host_end] {
+    std::uint8_t buf[4096];
+    for (;;) {
+      const short ev = wait(port, POLLIN, 50);
+      if (ev & (POLLHUP | POLLERR)) break;
+      if (!(ev & POLLIN)) continue;
+      const long n = read(port, buf, sizeof buf);
+      if (n < 0 && errno != EAGAIN) break;
+      for (long done = 0; done < n;) {
+        const int w = ::send(host_end, reinterpret_cast<const char*>(buf) + done, static_cast<int>(n - done), 0);
+        if (w <= 0) return;  // the server is gone
+        done += w;
+      }
+    }
+    ::shutdown(host_end, SD_SEND);  // the line is gone: the server reads its end
+  }).detach();
+  std::thread([port, host_end] {
+    char buf[4096];
+    for (int n; (n = ::recv(host_end, buf, sizeof buf, 0)) > 0;) {
+      for (long done = 0; done < n;) {
+        const long w = write(port, reinterpret_cast<const std::uint8_t*>(buf) + done, static_cast<std::size_t>(n - done));
+        if (w < 0 && errno != EAGAIN) return;
+        if (w > 0) done += w;
+      }
+    }
+  }).detach();
+  return pair[0];
+}
+const bool kPollableIsSocket = true;
+
+}  // namespace tmcl::os::serial

@@ -1,8 +1,8 @@
-// The platform layer, serial ports, on POSIX systems (serial.hpp): termios, opened the way
+// The platform layer, serial ports, on POSIX systems (os_serial.hpp): termios, opened the way
 // pyserial does it (shared/reference/protocols.md 5.1): non-blocking, exclusive (TIOCEXCL and
 // flock, so a second program gets "port in use"), raw 8N1, modem lines ignored, stale input
 // flushed.
-#include "serial.hpp"
+#include "tmcl/os_serial.hpp"
 
 #include <fcntl.h>
 #include <poll.h>
@@ -14,7 +14,7 @@
 #include <cerrno>
 #include <cstring>
 
-namespace tmcl::host::serial {
+namespace tmcl::os::serial {
 namespace {
 
 struct BaudEntry {
@@ -84,4 +84,7 @@ short wait(std::intptr_t port, short events, int ms) {
   return ::poll(&p, 1, ms) > 0 ? p.revents : 0;
 }
 
-}  // namespace tmcl::host::serial
+int pollable(std::intptr_t port, std::string&) { return static_cast<int>(port); }
+const bool kPollableIsSocket = false;
+
+}  // namespace tmcl::os::serial
