@@ -117,6 +117,27 @@ bool spawn(OnPty& t, std::vector<const char*> args, const std::string& history) 
   return t.pid > 0;
 }
 
+// Connects a client to the server while "print 4" is half typed at the prompt: its note (up to
+// `end`) must come out on a line of its own, the typed line erased before it ("\r", erase to the
+// end of the line) and drawn again after it (the `redraws`th time the line shows).
+Link note_above_the_line(OnPty& t, int port, const std::string& note, const std::string& end, int redraws) {
+  const std::size_t typed = t.screen.size();
+  Link client = connect_loopback(port);
+  CHECK(client.ok());
+  CHECK(t.wait_for(note));
+  CHECK(t.wait_for("(tmdb) print 4", redraws));
+  const std::string after = t.screen.substr(typed);
+  const std::size_t at = after.find("\r\x1b[Ktmclrun: " + note);
+  if (at == std::string::npos) {
+    ::tmcl_test::fail(__FILE__, __LINE__, "the note was not printed after erasing the line: " + note);
+    return client;
+  }
+  const std::size_t line_end = after.find(end + "\r\n", at), redraw = after.find("\r(tmdb) print 4", at);
+  CHECK(line_end != std::string::npos && redraw != std::string::npos && line_end < redraw);
+  CHECK(after.find("(tmdb)") == redraw + 1);  // no prompt drawn before the note
+  return client;
+}
+
 std::string read_all(const std::string& path) {
   std::ifstream f(path);
   std::stringstream s;
@@ -202,36 +223,9 @@ TEST(server_notes_are_printed_above_the_prompt_not_inside_the_line_being_typed) 
   const int port = std::atoi(t.screen.c_str() + at + 23);
   t.type("print 4");
   CHECK(t.wait_for("(tmdb) print 4"));
-  const std::size_t typed = t.screen.size();
-  Link host = connect_loopback(port);
-  CHECK(host.ok());
-  CHECK(t.wait_for("client connected from"));
-  CHECK(t.wait_for("(tmdb) print 4", 2));
-  // The line was erased, the note printed on a line of its own, then the line drawn again.
-  const std::string after = t.screen.substr(typed);
-  const std::size_t note = after.find("tmclrun: client connected from");
-  CHECK(note != std::string::npos && note >= 4);
-  if (note != std::string::npos && note >= 4) {
-    CHECK_EQ(after.substr(note - 4, 4), std::string("\r\x1b[K"));
-    const std::size_t redraw = after.find("\r(tmdb) print 4", note);
-    CHECK(redraw != std::string::npos);
-    CHECK(after.find("\r\n", note) < redraw);
-  }
-  // A second client is refused: that note too above the line, and the line drawn again after it.
-  const std::size_t typed2 = t.screen.size();
-  Link second = connect_loopback(port);
-  CHECK(second.ok());
-  CHECK(t.wait_for("refused a second client from"));
-  CHECK(t.wait_for("(tmdb) print 4", 3));
-  const std::string after2 = t.screen.substr(typed2);
-  const std::size_t refused = after2.find("\r\x1b[Ktmclrun: refused a second client from 127.0.0.1:");
-  CHECK(refused != std::string::npos);
-  if (refused != std::string::npos) {
-    const std::size_t end = after2.find(": one client at a time\r\n", refused);
-    const std::size_t redraw = after2.find("\r(tmdb) print 4", refused);
-    CHECK(end != std::string::npos && redraw != std::string::npos && end < redraw);
-    CHECK(after2.find("(tmdb)") == after2.find("\r(tmdb) print 4", refused) + 1);  // no prompt inside the note
-  }
+  // The first client's note and a second one's refusal: each above the line being typed.
+  Link host = note_above_the_line(t, port, "client connected from 127.0.0.1:", "", 2);
+  Link second = note_above_the_line(t, port, "refused a second client from 127.0.0.1:", ": one client at a time", 3);
   t.type("\r");
   CHECK(t.wait_for("$1 = 4"));
   t.type("quit\r");
