@@ -1,11 +1,14 @@
 // A DAP test client: drives run_dap through every request the adapter supports, a refused
 // request, a runtime fault and reverse steps, and checks the responses and events (type,
-// success, reasons, values) as a client would see them.
+// success, reasons, values) as a client would see them; and checks that the stepping rules'
+// DAP golden transcripts stop where their command-line twins stop.
 #include "check.hpp"
 
 #include <cstdio>
 #include <cstdlib>
 #include <fstream>
+#include <regex>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -49,6 +52,8 @@ struct Session {
   }
 };
 
+Session parse_session(const std::string& all);
+
 Session run(const std::vector<std::string>& requests) {
   std::FILE* in = std::tmpfile();
   std::FILE* out = std::tmpfile();
@@ -67,8 +72,13 @@ Session run(const std::vector<std::string>& requests) {
   for (std::size_t n; (n = std::fread(buf, 1, sizeof buf, out)) > 0;) all.append(buf, n);
   std::fclose(in);
   std::fclose(out);
-  Session s;
   if (std::getenv("DAP_TEST_DUMP")) std::fputs(all.c_str(), stderr);
+  return parse_session(all);
+}
+
+// The messages of an adapter's output (Content-Length framed JSON), in order.
+Session parse_session(const std::string& all) {
+  Session s;
   for (std::size_t pos = 0; (pos = all.find("Content-Length: ", pos)) != std::string::npos;) {
     std::size_t len = std::stoul(all.substr(pos + 16));
     std::size_t body = all.find("\r\n\r\n", pos) + 4;
@@ -376,4 +386,70 @@ TEST(dap_steps_stop_where_the_command_line_steps_stop) {
   CHECK_EQ(text_of(dap), text_of(expected));
   CHECK_EQ(text_of(cli_places(path, cli_moves)), text_of(expected));
   std::remove(path.c_str());
+}
+
+// The stepping rules' golden transcripts (tests/golden/debug/stepping/): each NAME-dap.golden
+// (stackTrace, then evaluate time, at every stop) stops at the lines and instants its NAME.golden
+// (the command line's) stops at, in the same order. The command line makes a few stops more
+// (`until`, `run` again, reverse-next), so the DAP stops are a subsequence of them; both golden
+// files are pinned byte for byte, and this keeps an update of one from leaving the other behind.
+namespace {
+
+std::string golden_stdout(const std::string& name) {
+  std::ifstream f(std::string(TMCL_GOLDEN_DIR) + "/debug/stepping/" + name + ".golden", std::ios::binary);
+  std::stringstream text;
+  text << f.rdbuf();
+  const std::string all = text.str();
+  const std::size_t from = all.find("--- stdout\n");
+  CHECK(from != std::string::npos);
+  return from == std::string::npos ? std::string() : all.substr(from + 11);
+}
+
+// "address 5 at interrupt.tmc:8, time 0.000100s", "Breakpoint 1, Count (address 11) at ...".
+std::vector<Place> cli_golden_stops(const std::string& name) {
+  static const std::regex stop(R"(^(?:Breakpoint \d+, )?[^\[(#].* at [^ ]+:(\d+), time (\d+)\.(\d{6})s$)");
+  std::vector<Place> out;
+  std::istringstream lines(golden_stdout(name));
+  for (std::string l; std::getline(lines, l);)
+    if (std::smatch m; std::regex_match(l, m, stop))
+      out.push_back({std::stoll(m[1].str()), std::to_string(std::stoll(m[2].str()) * 1000000 + std::stoll(m[3].str()))});
+  return out;
+}
+
+std::vector<Place> dap_golden_stops(const std::string& name) {
+  Session s = parse_session(golden_stdout(name));
+  std::vector<Place> out;
+  for (std::size_t i = 0; i < s.messages.size(); ++i) {
+    const Value& m = s.messages[i];
+    if (m["type"].as_string() != "response" || m["command"].as_string() != "stackTrace") continue;
+    const Value& next = i + 1 < s.messages.size() ? s.messages[i + 1] : m;
+    CHECK(next["command"].as_string() == "evaluate");  // the time, right after
+    out.push_back({m["body"]["stackFrames"].at(0)["line"].as_int(), next["body"]["result"].as_string()});
+  }
+  return out;
+}
+
+bool in_order_within(const std::vector<Place>& part, const std::vector<Place>& whole) {
+  std::size_t at = 0;
+  for (const auto& p : part) {
+    while (at < whole.size() && !(whole[at] == p)) ++at;
+    if (at++ >= whole.size()) return false;
+  }
+  return true;
+}
+
+}  // namespace
+
+TEST(dap_stepping_goldens_stop_where_the_command_line_goldens_stop) {
+  const struct {
+    const char* name;
+    std::size_t stops;  // at least this many in the DAP transcript
+    bool same;          // the command line makes exactly these stops
+  } kPairs[] = {{"step-wait", 11, true}, {"breakpoint-once", 7, false}, {"step-interrupt", 15, true}};
+  for (const auto& pair : kPairs) {
+    const std::vector<Place> cli = cli_golden_stops(pair.name), dap = dap_golden_stops(std::string(pair.name) + "-dap");
+    CHECK(dap.size() >= pair.stops);
+    if (pair.same) CHECK_EQ(text_of(dap), text_of(cli));
+    if (!in_order_within(dap, cli)) CHECK_EQ(text_of(dap), text_of(cli));
+  }
 }

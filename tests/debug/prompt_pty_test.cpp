@@ -1,11 +1,12 @@
 // The prompt on a real terminal: tmclrun --debug as a process on a pseudo-terminal (its
 // controlling terminal, TERM=xterm), fed the bytes a terminal sends for the keys (escape
-// sequences for arrows and Home, control characters), the screen read back. Completion, history
-// (and its file, here a temporary one through TMCLRUN_HISTORY), Ctrl-R, the editing keys, Ctrl-C
-// at the prompt and Ctrl-C pausing a running program (the terminal's own mode while a command
-// runs), Ctrl-D; and while serving, the server's note "client connected" printed above the
-// prompt, with the half-typed line drawn again after it. Each wait is for text with a generous
-// deadline, never a sleep.
+// sequences for arrows, Home/End, Delete and Ctrl-arrows, control characters), the screen read
+// back. Completion (commands, labels, the parameter names of the included USB-2-SD.inc), history
+// (and its file, here a temporary one through TMCLRUN_HISTORY), Ctrl-R and Ctrl-G, the editing
+// keys, Ctrl-L, Ctrl-C at the prompt and Ctrl-C pausing a running program (the terminal's own
+// mode while a command runs), Ctrl-D; and while serving, the server's notes "client connected"
+// and "refused a second client" printed above the prompt, with the half-typed line drawn again
+// after each. Each wait is for text with a generous deadline, never a sleep.
 #include "check.hpp"
 
 #include <fcntl.h>
@@ -28,7 +29,8 @@ namespace {
 
 constexpr int kPromptDeadlineMs = 60000;
 
-const char* kPromptProgram = R"(        SGP 1, 2, 0
+const char* kPromptProgram = R"(#include USB-2-SD.inc
+        SGP 1, 2, 0
 loop:   CSUB bump
         JA loop
 bump:   GGP 1, 2
@@ -115,6 +117,27 @@ bool spawn(OnPty& t, std::vector<const char*> args, const std::string& history) 
   return t.pid > 0;
 }
 
+// Connects a client to the server while "print 4" is half typed at the prompt: its note (up to
+// `end`) must come out on a line of its own, the typed line erased before it ("\r", erase to the
+// end of the line) and drawn again after it (the `redraws`th time the line shows).
+Link note_above_the_line(OnPty& t, int port, const std::string& note, const std::string& end, int redraws) {
+  const std::size_t typed = t.screen.size();
+  Link client = connect_loopback(port);
+  CHECK(client.ok());
+  CHECK(t.wait_for(note));
+  CHECK(t.wait_for("(tmdb) print 4", redraws));
+  const std::string after = t.screen.substr(typed);
+  const std::size_t at = after.find("\r\x1b[Ktmclrun: " + note);
+  if (at == std::string::npos) {
+    ::tmcl_test::fail(__FILE__, __LINE__, "the note was not printed after erasing the line: " + note);
+    return client;
+  }
+  const std::size_t line_end = after.find(end + "\r\n", at), redraw = after.find("\r(tmdb) print 4", at);
+  CHECK(line_end != std::string::npos && redraw != std::string::npos && line_end < redraw);
+  CHECK(after.find("(tmdb)") == redraw + 1);  // no prompt drawn before the note
+  return client;
+}
+
 std::string read_all(const std::string& path) {
   std::ifstream f(path);
   std::stringstream s;
@@ -149,17 +172,28 @@ TEST(the_prompt_edits_completes_and_keeps_history_on_a_terminal) {
       {"nonsense\x15p 8\r", "$4 = 8"},                               // Ctrl-U
       {"p 9\x01\x0bp 10\r", "$5 = 10"},                               // Ctrl-A, Ctrl-K
       {"p 1\x01\x05 + 10\x1bOH\x1bOF * 2\r", "$6 = 21"},              // Ctrl-E, Home and End (ESC O H, ESC O F)
+      {"p 12\x1b[D\x1b[3~\r", "$7 = 1\r\n"},                         // Left, Delete (ESC [ 3 ~): the 2 goes
+      {"p 2\x01\x1b[F * 3\r", "$8 = 6\r\n"},                         // End as ESC [ F
+      {"p 56\x02+\x06" "0\r", "$9 = 65\r\n"},                         // Ctrl-B, Ctrl-F: p 5+60
+      {"p 7 * 8\x1b[1;5D\x1b[1;5D-\x1b[1;5C" "0\r", "$10 = -560\r\n"}, // Ctrl-Left twice, Ctrl-Right: p -70 * 8
+      {"\x1b[A\x1b[A\x1b[B\r", "$11 = -560\r\n"},                     // Up, Up, Down: the newest entry again
+      {"p 4\x0c", "\x1b[H\x1b[2J\r(tmdb) p 4\x1b[K"},                  // Ctrl-L: the screen cleared, the line drawn again
+      {"\r", "$12 = 4\r\n"},
+      {"p 6\x12" "brea\x07\r", "$13 = 6\r\n"},                        // Ctrl-G ends Ctrl-R with the line as it was
+      {"p AP_Act\t", "(tmdb) p AP_Actual\x1b[K"},                      // a parameter name of the included USB-2-SD.inc
+      {"\t\t", "AP_ActualPosition  AP_ActualSpeed"},                  // ... and the candidates
+      {"Pos\t* 100\r", "$14 = 100\r\n"},                             // completed with a blank after it
       {"i\t\t", "ignore  info"},                                     // a second Tab lists the candidates
   };
   for (const auto& k : kTyped) {
     t.type(k.keys);
-    CHECK(t.wait_for(k.shows));
+    if (!t.wait_for(k.shows)) ::tmcl_test::fail(__FILE__, __LINE__, std::string("not shown after typing them: ") + k.shows);
   }
   CHECK(t.screen.find("(reverse-i-search)`brea': break bump") != std::string::npos);
   // Ctrl-C at the prompt drops the line; the next one runs.
   t.type("\x03p 3\r");
   CHECK(t.wait_for("^C"));
-  CHECK(t.wait_for("$7 = 3"));
+  CHECK(t.wait_for("$15 = 3"));
   // While a command runs the terminal is in its own mode: Ctrl-C pauses the program.
   t.type("delete\rcontinue\r");
   CHECK(t.wait_for("continue\x1b[K\r\x1b[15C\r\r\n"));  // Enter taken: the program runs
@@ -189,21 +223,9 @@ TEST(server_notes_are_printed_above_the_prompt_not_inside_the_line_being_typed) 
   const int port = std::atoi(t.screen.c_str() + at + 23);
   t.type("print 4");
   CHECK(t.wait_for("(tmdb) print 4"));
-  const std::size_t typed = t.screen.size();
-  Link host = connect_loopback(port);
-  CHECK(host.ok());
-  CHECK(t.wait_for("client connected from"));
-  CHECK(t.wait_for("(tmdb) print 4", 2));
-  // The line was erased, the note printed on a line of its own, then the line drawn again.
-  const std::string after = t.screen.substr(typed);
-  const std::size_t note = after.find("tmclrun: client connected from");
-  CHECK(note != std::string::npos && note >= 4);
-  if (note != std::string::npos && note >= 4) {
-    CHECK_EQ(after.substr(note - 4, 4), std::string("\r\x1b[K"));
-    const std::size_t redraw = after.find("\r(tmdb) print 4", note);
-    CHECK(redraw != std::string::npos);
-    CHECK(after.find("\r\n", note) < redraw);
-  }
+  // The first client's note and a second one's refusal: each above the line being typed.
+  Link host = note_above_the_line(t, port, "client connected from 127.0.0.1:", "", 2);
+  Link second = note_above_the_line(t, port, "refused a second client from 127.0.0.1:", ": one client at a time", 3);
   t.type("\r");
   CHECK(t.wait_for("$1 = 4"));
   t.type("quit\r");
