@@ -1,7 +1,7 @@
 // Checks an encoded instruction against a module profile. A command the module lacks is an
 // error (the module would answer "invalid command"); everything the module would accept but
-// probably not as meant — an unknown parameter, a write to a read-only one, a value outside the
-// documented range, a motor or variable that does not exist — is a warning.
+// probably not as meant — an unknown parameter, a write to a read-only one, a store or restore of
+// one the EEPROM does not keep, a value outside the documented range, a motor or variable that does not exist — is a warning.
 #include "internal.hpp"
 #include "tmcl/params.hpp"
 
@@ -138,6 +138,11 @@ class Checker {
     if (!generic && writes(op) && !(p.access & kWrite)) d_.warning(at, what + " is read-only", "target");
     if (!generic && (op == Op::GAP || op == Op::GGP || op == Op::GAPX) && !(p.access & kRead))
       d_.warning(at, what + " cannot be read", "target");
+    // STAP/RSAP need E; STGP/RSGP take E or A (an auto-stored parameter has its EEPROM copy too),
+    // as the VM and the module answer: else "wrong type" (status 3).
+    const bool axis_store = op == Op::STAP || op == Op::RSAP, global_store = op == Op::STGP || op == Op::RSGP;
+    if (!generic && ((axis_store && !(p.access & kEeprom)) || (global_store && !(p.access & (kEeprom | kAutoStore)))))
+      d_.warning(at, what + " is not stored in the EEPROM of " + std::string(p_.title), "target");
     if (writes_immediate(op) && ((p.access & kWrite) || generic) && !accepts(p, ins_.value))
       generic_note(d_.warning(operand_loc(s_, Field::Value),
                               "value " + std::to_string(ins_.value) + " is outside the range of " + what + ": " + range_text(p),

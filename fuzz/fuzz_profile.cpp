@@ -20,7 +20,7 @@ bool consistent(std::span<const tmcl::ParamInfo> table) {
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   std::string text(reinterpret_cast<const char*>(data), size);
   std::vector<tmcl::FileDiag> diags;
-  auto lookup = [](std::string_view name) { return tmcl::find_profile(name); };
+  auto lookup = [](std::string_view name, std::string&) { return tmcl::find_profile(name); };
   auto store = tmcl::parse_profile(text, "f.profile", "f.profile", diags, lookup);
   if (!store) {
     if (diags.empty()) __builtin_trap();  // a refused file must say why

@@ -400,6 +400,19 @@ TEST(hover_completion_and_diagnostics_follow_the_module) {
   CHECK(divisor);
 }
 
+// The assembler's check of what the module's EEPROM keeps (STAP/RSAP/STGP/RSGP) is the server's too.
+TEST(a_store_of_what_the_eeprom_does_not_keep_is_a_diagnostic) {
+  Client c;
+  start(c, R"({"target":"tmcm-1110"})");
+  c.open(kEditUri, "  STAP 4, 0\n  RSAP 8, 0\n  STGP 77, 0\n  STGP 132, 0\n");
+  Value d = c.last_diagnostics(kEditUri);
+  CHECK_EQ(d.size(), 2u);  // 8 and 132; 4 has E, 77 is A
+  CHECK_EQ(d.at(0)["range"]["start"]["line"].as_int(), 1);
+  CHECK(d.at(0)["message"].as_string().find("axis parameter 8 (Target position reached) is not stored in the EEPROM of TMCM-1110") == 0);
+  CHECK_EQ(d.at(1)["range"]["start"]["line"].as_int(), 3);
+  CHECK(d.at(1)["message"].as_string().find("global parameter 132 (TMCL tick timer) is not stored in the EEPROM") == 0);
+}
+
 TEST(first_line_target_wins_over_the_settings) {
   Client c;
   start(c, R"({"target":"usb-2-sd"})");

@@ -43,7 +43,7 @@ struct Parsed {
   std::string text;  // rendered
 };
 
-const Profile* bundled(std::string_view name) { return tmcl::find_profile(name); }
+const Profile* bundled(std::string_view name, std::string&) { return tmcl::find_profile(name); }
 
 Parsed parse(const std::string& text, int limit = 0) {
   Parsed r;

@@ -151,6 +151,115 @@ TEST(the_manuals_own_facts_of_each_module) {
   CHECK(c->vector(4) == nullptr);
 }
 
+// The TMCL reference's tables (tests/data/modules/TMCL-reference-2.22.tsv: sections 4.1, 4.2 and
+// 5.1, for every TMCL stepper module) against the five profiles without a manual of their own,
+// fact by fact. A row for every module (scope `all`) that gives the profile's access or range
+// confirms it: the profile names the reference's section and does not mark the fact unverified. A
+// row that gives another access or range (older firmware) leaves the fact unverified (docs/errata.md
+// M15). And in every TMCM profile a fact that names the reference as its source is the reference's.
+namespace {
+
+struct RefRow {
+  std::string kind;  // axis, global0
+  int number = 0;
+  std::string access;  // "" where the table gives none
+  bool has_range = false;
+  std::int64_t min = 0, max = 0;
+  std::string scope, section;  // all/only/reserved; 4.1, 4.2, 5.1
+};
+
+std::vector<RefRow> reference_rows() {
+  std::vector<RefRow> out;
+  for (const std::string& line : DATA_LINES("modules/TMCL-reference-2.22.tsv")) {
+    const auto f = tmcl_test::tsv_fields(line);
+    if (f.size() < 7) {
+      ::tmcl_test::fail(__FILE__, __LINE__, "TMCL-reference-2.22.tsv: a row is KIND NUMBER ACCESS MIN MAX SCOPE SECTION [NOTE]: " + line);
+      continue;
+    }
+    RefRow r{f[0], std::stoi(f[1]), f[2] == "-" ? "" : f[2], f[3] != "-", 0, 0, f[5], f[6]};
+    if (r.has_range) r.min = std::stoll(f[3]), r.max = std::stoll(f[4]);
+    // In our letters: E on 64 ... 127 of bank 0 is "stored at every SGP" (section 5.1; errata M1).
+    if (r.kind == "global0" && r.number >= 64 && r.number < 128 && r.access == "RWE") r.access = "RWA";
+    out.push_back(r);
+  }
+  return out;
+}
+
+// The source ID a profile gives the TMCL reference ("R"), or "" when it names it not.
+std::string reference_id(const Profile& p) {
+  std::istringstream in{std::string(p.text)};
+  std::string line;
+  while (std::getline(in, line)) {
+    std::istringstream words(line);
+    std::string key, id, rest;
+    if (words >> key >> id && key == "source" && std::getline(words, rest) && rest.find("\"TMCL reference") != std::string::npos) return id;
+  }
+  return "";
+}
+
+bool cites(const ParamInfo& info, const std::string& id, const std::string& section) {
+  const std::string src = "," + std::string(info.source) + ",";
+  return src.find("," + id + ":" + section + ",") != std::string::npos;
+}
+
+}  // namespace
+
+TEST(the_tmcl_reference_confirms_or_leaves_unverified) {
+  const std::vector<RefRow> ref = reference_rows();
+  CHECK(ref.size() > 100u);
+  for (const char* name : {"tmcm-3110", "tmcm-6110", "tmcm-1140", "tmcm-1160", "tmcm-1161"}) {
+    const Profile* p = tmcl::find_profile(name);
+    CHECK(p != nullptr);
+    if (!p) continue;
+    CHECK_EQ(reference_id(*p), "R");
+    int confirmed = 0;
+    for (const RefRow& r : ref) {
+      if (r.scope != "all") continue;
+      const ParamInfo* info = param(*p, Row{r.kind, r.number, ""});
+      if (!info) continue;  // the reference lists parameters of other modules and older firmware too
+      const std::string what = std::string(name) + " " + r.kind + " " + std::to_string(r.number);
+      bool any = false;
+      if (!r.access.empty()) {
+        const bool same = tmcl::access_letters(info->access) == r.access;
+        const bool marked = (info->unverified & tmcl::kFactAccess) != 0;
+        if (same && marked) ::tmcl_test::fail(__FILE__, __LINE__, what + ": the reference (" + r.section + ") confirms access " + r.access + ", yet it is marked unverified");
+        if (!same && !marked) ::tmcl_test::fail(__FILE__, __LINE__, what + ": access " + tmcl::access_letters(info->access) + ", the reference " + r.access + ", and it is not marked unverified");
+        any = any || same;
+      }
+      if (r.has_range) {
+        const bool same = info->min == r.min && info->max == r.max;
+        const bool marked = (info->unverified & tmcl::kFactRange) != 0;
+        const std::string range = std::to_string(r.min) + ".." + std::to_string(r.max);
+        if (same && marked) ::tmcl_test::fail(__FILE__, __LINE__, what + ": the reference (" + r.section + ") confirms range " + range + ", yet it is marked unverified");
+        if (!same && !marked) ::tmcl_test::fail(__FILE__, __LINE__, what + ": range " + std::to_string(info->min) + ".." + std::to_string(info->max) + ", the reference " + range + ", and it is not marked unverified");
+        any = any || same;
+      }
+      if (any && !cites(*info, "R", r.section)) ::tmcl_test::fail(__FILE__, __LINE__, what + ": the reference confirms it, but src= does not name R:" + r.section);
+      confirmed += any;
+    }
+    CHECK(confirmed >= 25);  // the basic and advanced parameters and the interface settings
+  }
+  // Every TMCM profile: a fact sourced from the reference, and not marked unverified, is its row's.
+  for (const Module& m : kModules) {
+    const Profile* p = tmcl::find_profile(m.name);
+    if (!p) continue;
+    const std::string id = reference_id(*p);
+    if (id.empty()) continue;
+    for (const RefRow& r : ref) {
+      const ParamInfo* info = param(*p, Row{r.kind, r.number, ""});
+      if (!info || std::string(info->source).find(id + ":") == std::string::npos) continue;
+      const std::string what = std::string(m.name) + " " + r.kind + " " + std::to_string(r.number);
+      const bool any_section = std::string("," + std::string(info->source)).find("," + id + ":4.") != std::string::npos ||
+                               std::string("," + std::string(info->source)).find("," + id + ":5.") != std::string::npos;
+      if (any_section && !cites(*info, id, r.section)) ::tmcl_test::fail(__FILE__, __LINE__, what + ": the reference has it in section " + r.section + ", not where src= says: " + std::string(info->source));
+      if (!(info->unverified & tmcl::kFactAccess) && !r.access.empty() && tmcl::access_letters(info->access) != r.access)
+        ::tmcl_test::fail(__FILE__, __LINE__, what + ": access " + tmcl::access_letters(info->access) + " from the reference, which says " + r.access);
+      if (!(info->unverified & tmcl::kFactRange) && r.has_range && (info->min != r.min || info->max != r.max))
+        ::tmcl_test::fail(__FILE__, __LINE__, what + ": a range from the reference, which says " + std::to_string(r.min) + ".." + std::to_string(r.max));
+    }
+  }
+}
+
 // Every statement of a bundled profile that states a fact names its source (src=) or says it is
 // unverified.
 TEST(every_fact_names_its_source) {

@@ -84,9 +84,28 @@ TEST(based_on_its_own_name_means_the_hidden_one) {
   tmcl::TargetSearch s{{d.path}};
   auto r = tmcl::resolve_target("usb-2-sd", s);
   CHECK(r.profile && r.profile->motors == 3 && r.profile->program_memory == 577);
-  r = tmcl::resolve_target("a", s);  // a cycle: an error, not a hang
+  r = tmcl::resolve_target("a", s);  // a cycle: an error at the based-on line, not a hang
   CHECK(!r.profile);
-  CHECK(r.message().find("unknown profile") != std::string::npos);
+  CHECK(r.message().find("a.profile:3:10: error: based-on cycle: a -> b -> a\n") != std::string::npos);
+  r = tmcl::resolve_target("b", s);  // told from b
+  CHECK(r.message().find("b.profile:3:10: error: based-on cycle: b -> a -> b\n") != std::string::npos);
+}
+
+// A file's error that came from a cycle depends on the other files: once a is mended, b (which
+// did not change) is read again and is fine. The language server asks again at every edit.
+TEST(a_mended_cycle_is_read_again) {
+  TempDir d;
+  d.write("a.profile", "tmcl-profile 1\nname a\nbased-on b\n");
+  d.write("b.profile", "tmcl-profile 1\nname b\nbased-on a\nmotors 2\n");
+  tmcl::TargetSearch s{{d.path}};
+  CHECK(!tmcl::resolve_target("b", s).profile);
+  d.write("a.profile", "tmcl-profile 1\nname a\nbased-on usb-2-sd\n# no longer based on b\n");
+  auto r = tmcl::resolve_target("b", s);
+  CHECK(r.profile && r.profile->motors == 2 && r.profile->program_memory == 577);
+  // Based on itself, with no other profile of that name to mean: a cycle of one.
+  d.write("self.profile", "tmcl-profile 1\nname self\nbased-on self\n");
+  r = tmcl::resolve_target("self", s);
+  CHECK(!r.profile && r.message().find("self.profile:3:10: error: based-on cycle: self -> self (") != std::string::npos);
 }
 
 TEST(the_file_name_and_the_name_inside_agree) {

@@ -53,7 +53,8 @@ const Profile* load_bundled(std::string_view name) {
   if (text == files.end()) return nullptr;
   std::vector<FileDiag> diags;
   b.by_file[file] = nullptr;  // a based-on cycle ends here
-  auto store = parse_profile(std::string(text->second), "<bundled>/" + file, "bundled", diags, load_bundled);
+  auto store = parse_profile(std::string(text->second), "<bundled>/" + file, "bundled", diags,
+                             [](std::string_view base, std::string&) { return load_bundled(base); });
   if (!store) std::fputs(render_file_diags(diags, 0).c_str(), stderr);
   const Profile* p = store ? &store->profile : nullptr;
   b.by_file[file] = std::move(store);

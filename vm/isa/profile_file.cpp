@@ -384,8 +384,13 @@ struct Reader {
         s.aliases.push_back(w[i].text);
       }
     } else if (k == "based-on") {
-      const Profile* base = lookup ? lookup(w[1].text) : nullptr;
-      if (!base) return error(w[1], "unknown profile '" + std::string(w[1].text) + "' for based-on");
+      std::string why;
+      const Profile* base = lookup ? lookup(w[1].text, why) : nullptr;
+      // Its own name means the profile this file hides (docs/profiles.md); without one, a cycle.
+      if (!base && why.empty() && !p.name.empty() && w[1].text == p.name)
+        why = "based-on cycle: " + std::string(p.name) + " -> " + std::string(p.name) + " (based-on its own name means the profile '" +
+              std::string(p.name) + "' this file hides, and there is none)";
+      if (!base) return error(w[1], why.empty() ? "unknown profile '" + std::string(w[1].text) + "' for based-on" : why);
       inherit(*base);
     } else if (k == "source") {
       if (!valid_name(w[1].text) || w[1].quoted) return error(w[1], "a source ID is a short name such as M or TMCM1110");

@@ -33,14 +33,23 @@ bool file_exists(const std::string& path, struct stat& st) { return ::stat(path.
 struct Loaded {
   long long mtime = 0, size = -1;
   bool loading = false;  // being read: a based-on line that comes back to it is a cycle
+  // The files of a based-on cycle this one is in (by their names), read again at the next request:
+  // its error depends on the other files, which may be mended meanwhile.
+  std::vector<std::string> cycle;
   std::unique_ptr<ProfileStore> store;
   std::vector<FileDiag> diags;
   std::string error;
 };
 
+struct Reading {
+  std::string key;   // by_path's
+  std::string name;  // the file's name without .profile, as cycles are told
+};
+
 struct UserProfiles {
   std::recursive_mutex lock;
   std::map<std::string, Loaded> by_path;
+  std::vector<Reading> reading;  // the files being read, each the base of the one before
   std::vector<std::unique_ptr<ProfileStore>> retired;  // replaced by a newer read; kept alive
 };
 
@@ -49,7 +58,46 @@ UserProfiles& user_profiles() {
   return u;
 }
 
-const Profile* lookup_name(std::string_view name, const TargetSearch& search, const std::string& skip);
+const Profile* lookup_name(std::string_view name, const TargetSearch& search, const std::string& skip, std::string& why);
+
+// "a.profile" and "dir/a.profile" are "a".
+std::string file_stem(const std::string& path) {
+  std::string s = path.substr(path.find_last_of('/') + 1);
+  if (s.size() > kProfileExtension.size() && s.substr(s.size() - kProfileExtension.size()) == kProfileExtension)
+    s.resize(s.size() - kProfileExtension.size());
+  return s;
+}
+
+// "based-on cycle: a -> b -> a", told from `from`: one of the cycle's files, or one based on it
+// ("c -> a -> b -> a").
+std::string cycle_text(const std::vector<std::string>& cycle, const std::string& from) {
+  std::size_t start = 0;
+  while (start < cycle.size() && cycle[start] != from) ++start;
+  std::string out = "based-on cycle: ";
+  if (start == cycle.size()) out += from + " -> ", start = 0;
+  for (std::size_t i = 0; i <= cycle.size(); ++i) out += cycle[(start + i) % cycle.size()] + (i < cycle.size() ? " -> " : "");
+  return out;
+}
+
+// The based-on line of the file read last names `base`, a file that is in a cycle or being read
+// (then every file from it on is in the cycle). Returns the message for that line; the file read
+// last is read again at the next request too.
+std::string based_on_cycle(UserProfiles& u, const Loaded& base) {
+  if (u.reading.empty()) return {};
+  if (base.loading) {
+    std::size_t from = 0;
+    while (from < u.reading.size() && &u.by_path[u.reading[from].key] != &base) ++from;
+    std::vector<std::string> cycle;
+    for (std::size_t i = from; i < u.reading.size(); ++i) cycle.push_back(u.reading[i].name);
+    for (std::size_t i = from; i < u.reading.size(); ++i) u.by_path[u.reading[i].key].cycle = cycle;
+  }
+  const std::vector<std::string>& cycle = base.cycle;
+  if (cycle.empty()) return {};
+  Loaded& reader = u.by_path[u.reading.back().key];
+  const std::string text = cycle_text(cycle, u.reading.back().name);
+  if (reader.cycle.empty()) reader.cycle = cycle;
+  return text;
+}
 
 // Reads the profile file at `path` (cached by path, modification time and size).
 const Loaded& load_file(const std::string& path, const TargetSearch& search) {
@@ -64,7 +112,9 @@ const Loaded& load_file(const std::string& path, const TargetSearch& search) {
   if (entry.loading) return entry;  // no profile yet: the based-on line that asked says so
   const long long mtime = exists ? os::modified_ns(st) : -1;
   const long long size = exists ? static_cast<long long>(st.st_size) : -1;
-  if (entry.size == size && entry.mtime == mtime && (entry.store || !entry.diags.empty() || !entry.error.empty())) return entry;
+  if (entry.size == size && entry.mtime == mtime && entry.cycle.empty() &&
+      (entry.store || !entry.diags.empty() || !entry.error.empty()))
+    return entry;
   if (entry.store) u.retired.push_back(std::move(entry.store));
   entry = Loaded{};
   entry.mtime = mtime;
@@ -77,10 +127,12 @@ const Loaded& load_file(const std::string& path, const TargetSearch& search) {
   }
   // `based-on NAME` in a file NAME.profile means the NAME it hides (a user's own usb-2-sd based on
   // the bundled one): the file itself is skipped.
-  auto based_on = [&search, &path](std::string_view name) { return lookup_name(name, search, path); };
+  auto based_on = [&search, &path](std::string_view name, std::string& reason) { return lookup_name(name, search, path, reason); };
   entry.loading = true;
+  u.reading.push_back({key, file_stem(path)});
   std::vector<FileDiag> diags;
   auto store = parse_profile(std::string(bytes.begin(), bytes.end()), path, path, diags, based_on);
+  u.reading.pop_back();
   entry.loading = false;
   entry.store = std::move(store);
   entry.diags = std::move(diags);
@@ -89,14 +141,15 @@ const Loaded& load_file(const std::string& path, const TargetSearch& search) {
 
 // A target by name for a based-on line of the file `skip`: NAME.profile in the search path (but
 // `skip`), then the bundled ones. A cycle of based-on lines between files ends at a file being
-// read, which has no profile yet.
-const Profile* lookup_name(std::string_view name, const TargetSearch& search, const std::string& skip) {
+// read, which has no profile yet: `why` tells the cycle, to every file in it.
+const Profile* lookup_name(std::string_view name, const TargetSearch& search, const std::string& skip, std::string& why) {
   for (const auto& dir : search.dirs) {
     const std::string path = os::join_path(dir, std::string(name) + std::string(kProfileExtension));
     struct stat st{};
     if (path == skip || !file_exists(path, st)) continue;
     const Loaded& l = load_file(path, search);
     if (l.store && l.store->profile.name == name) return &l.store->profile;
+    why = based_on_cycle(user_profiles(), l);
     return nullptr;
   }
   return find_profile(name);

@@ -1,8 +1,10 @@
 # TMCM-1161: a one-axis controller/driver (TMC429, TMC262), 10..30 V.
 # Its parameters are those the vendor's host libraries list for the module; ranges, access and
 # defaults come from the TMCM-1110 manual (the same TMC429 + TMC262 firmware family) and are
-# marked unverified, as is every default no manual gives. Every unverified fact is listed in
-# docs/profiles.md.
+# marked unverified unless the TMCL reference (R, sections 4.1, 4.2 and 5.1: every TMCL stepper
+# module) confirms them, as is every default no manual gives. Where the reference (older firmware)
+# differs, the TMCM-1110 manual's value stays, unverified (docs/errata.md, M15). Every unverified
+# fact is listed in docs/profiles.md.
 tmcl-profile 1
 name tmcm-1161
 title "TMCM-1161 (1 axis)"
@@ -26,29 +28,29 @@ commands 1-15 19-28 30-39 64-71 128-138 src=F:4.4.1 unverified
 commands 255 unverified
 
 # Axis parameters. The access E of the TMCM-1110's tables means STAP/RSAP.
-axis 0 "Target (next) position" -2147483648..2147483647 RW default=0 unit=μsteps src=F:5,P unverified=range,access
-axis 1 "Actual position" -2147483648..2147483647 RW default=0 unit=μsteps src=F:5,P unverified=range,access
-axis 2 "Target (next) speed" -2047..2047 RW default=0 src=F:5,P unverified=range,access  # the table prints '2047' for ±2047 (the TMC429's range)
-axis 3 "Actual speed" -2047..2047 R default=0 src=F:5,P unverified=range,access  # as 2; the table says RW for a measurement, the TMCL reference R (errata)
-axis 4 "Maximum positioning speed" 0..2047 RWE default=1000 src=F:5,P unverified=range,access,default
-axis 5 "Maximum acceleration" 0..2047 RWE default=1000 src=F:5,P unverified=range,access,default
-axis 6 "Absolute max. current" 0..255 RWE default=128 src=F:5,P unverified=range,access,default
-axis 7 "Standby current" 0..255 RWE default=8 src=F:5,P unverified=range,access,default
-axis 8 "Target position reached" 0..1 R default=1 src=F:5,P unverified=range,access
-axis 9 "Reference switch status" 0..1 R default=0 src=F:5,P unverified=range,access
-axis 10 "Right limit switch status" 0..1 R default=0 src=F:5,P unverified=range,access
-axis 11 "Left limit switch status" 0..1 R default=0 src=F:5,P unverified=range,access
+axis 0 "Target (next) position" -2147483648..2147483647 RW default=0 unit=μsteps src=F:5,R:4.1,P unverified=range
+axis 1 "Actual position" -2147483648..2147483647 RW default=0 unit=μsteps src=F:5,R:4.1,P unverified=range
+axis 2 "Target (next) speed" -2047..2047 RW default=0 src=F:5,R:4.1,P  # the table prints '2047' for ±2047 (the TMC429's range)
+axis 3 "Actual speed" -2047..2047 R default=0 src=F:5,R:4.1,P  # as 2; the table says RW for a measurement, the TMCL reference R (errata)
+axis 4 "Maximum positioning speed" 0..2047 RWE default=1000 src=F:5,R:4.1,P unverified=default
+axis 5 "Maximum acceleration" 0..2047 RWE default=1000 src=F:5,R:4.1,P unverified=default
+axis 6 "Absolute max. current" 0..255 RWE default=128 src=F:5,R:4.1,P unverified=default
+axis 7 "Standby current" 0..255 RWE default=8 src=F:5,R:4.1,P unverified=default
+axis 8 "Target position reached" 0..1 R default=1 src=F:5,R:4.1,P
+axis 9 "Reference switch status" 0..1 R default=0 src=F:5,R:4.1,P
+axis 10 "Right limit switch status" 0..1 R default=0 src=F:5,R:4.1,P
+axis 11 "Left limit switch status" 0..1 R default=0 src=F:5,R:4.1,P
 axis 12 "Right limit switch disable" 0..1 RWE default=0 src=R:4.1,P unverified=default  # range/access: the TMCL reference
 axis 13 "Left limit switch disable" 0..1 RWE default=0 src=R:4.1,P unverified=default
-axis 130 "Minimum speed" 0..2047 RWE default=1 src=F:5,P unverified=range,access  # 'should always be set 1'
-axis 135 "Actual acceleration" 0..2047 R default=0 src=F:5,P unverified=range,access
-axis 138 "Ramp mode" 0..2 RWE default=0 src=F:5,P unverified=range,access,default
-axis 140 "Microstep resolution" 0..8 RWE default=8 src=F:5,P unverified=range,access,default
+axis 130 "Minimum speed" 0..2047 RWE default=1 src=F:5,R:4.2,P  # 'should always be set 1'
+axis 135 "Actual acceleration" 0..2047 R default=0 src=F:5,R:4.2,P
+axis 138 "Ramp mode" 0..2 RWE default=0 src=F:5,R:4.2,P unverified=default
+axis 140 "Microstep resolution" 0..8 RWE default=8 src=F:5,R:4.2,P unverified=range,default
 axis 141 "Reference switch tolerance" 0..4095 RW default=0 unit=μsteps src=R:4.2,P unverified=default
 axis 149 "Soft stop flag" 0..1 RWE default=0 src=R:4.2,P unverified=default
 axis 150 "End switch power down" 0..1 RWE default=0 src=P unverified=range,access,default  # use the standby current when stopped at an end switch
-axis 153 "Ramp divisor" 0..13 RWE default=7 src=F:5,P unverified=range,access,default  # section 5.5 says 'Default: 0' for both divisors in cells copied from one another; see errata
-axis 154 "Pulse divisor" 0..13 RWE default=3 src=F:5,P unverified=range,access,default  # as 153
+axis 153 "Ramp divisor" 0..13 RWE default=7 src=F:5,R:4.2,P unverified=default  # section 5.5 says 'Default: 0' for both divisors in cells copied from one another; see errata
+axis 154 "Pulse divisor" 0..13 RWE default=3 src=F:5,R:4.2,P unverified=default  # as 153
 axis 160 "Step interpolation enable" 0..1 RW default=0 src=F:5,P unverified=range,access,default
 axis 161 "Double step enable" 0..1 RW default=0 src=F:5,P unverified=range,access,default
 axis 162 "Chopper blank time" 0..3 RW default=2 src=F:5,P unverified=range,access,default
@@ -74,9 +76,9 @@ axis 181 "Stop on stall" 0..2047 RW default=0 src=F:5,P unverified=range,access,
 axis 182 "SmartEnergy threshold speed" 0..2047 RW default=0 src=F:5,P unverified=range,access,default
 axis 183 "SmartEnergy slow run current" 0..255 RW default=0 src=F:5,P unverified=range,access,default
 axis 184 "Random TOff mode" 0..1 RW default=0 src=P unverified=range,access,default
-axis 193 "Reference search mode" 1..136 RWE default=1 src=F:5,P unverified=range,access,default  # 1..8, +128 inverts the home switch
-axis 194 "Reference search speed" 0..2047 RWE default=100 src=F:5,P unverified=range,access,default
-axis 195 "Reference switch speed" 0..2047 RWE default=50 src=F:5,P unverified=range,access,default
+axis 193 "Reference search mode" 1..136 RWE default=1 src=F:5,R:4.2,P unverified=range,default  # 1..8, +128 inverts the home switch
+axis 194 "Reference search speed" 0..2047 RWE default=100 src=F:5,R:4.2,P unverified=range,default
+axis 195 "Reference switch speed" 0..2047 RWE default=50 src=F:5,R:4.2,P unverified=range,default
 axis 196 "Distance end switches" 0..2147483647 R default=0 unit=μsteps src=F:5,P unverified=range,access
 axis 197 "Last reference position" -2147483648..2147483647 R default=0 unit=μsteps src=P unverified=range,access
 axis 200 "Boost current" 0..255 RWE default=0 src=P unverified=range,access,default  # 0: the current of parameter 6
@@ -92,24 +94,24 @@ axis 215 "Absolute resolver value" 0..1023 R default=0 src=P unverified=range,ac
 axis 254 "Step/direction mode" 0..1 RWE default=0 src=F:5,P unverified=range,access,default
 
 # Global parameters, bank 0. Numbers 64..127 are stored in the EEPROM at every SGP (F:6.1): access A.
-global 0 65 "RS485 baud rate" 0..11 RWA default=0 src=F:6.1,P unverified=range,access  # 0 = 9600 baud
-global 0 66 "Serial address" 0..255 RWA default=1 src=F:6.1,P unverified=range,access,default
-global 0 67 "ASCII mode" 0..255 RWA default=0 src=P unverified=range,access,default  # bit 0: start in ASCII mode; bits 4, 5: echo
+global 0 65 "RS485 baud rate" 0..11 RWA default=0 src=F:6.1,R:5.1,P unverified=range  # 0 = 9600 baud
+global 0 66 "Serial address" 0..255 RWA default=1 src=F:6.1,R:5.1,P unverified=default
+global 0 67 "ASCII mode" 0..255 RWA default=0 src=R:5.1,P unverified=range,default  # bit 0: start in ASCII mode; bits 4, 5: echo
 global 0 68 "Serial heartbeat" 0..65535 RWA default=0 unit=ms src=F:6.1,P unverified=range,access,default  # 0: off; the range is not in the table
-global 0 75 "Telegram pause time" 0..255 RWA default=0 src=F:6.1,P unverified=range,access,default
-global 0 76 "Serial host address" 0..255 RWA default=2 src=F:6.1,P unverified=range,access,default
-global 0 77 "Auto start mode" 0..1 RWA default=0 src=F:6.1,P unverified=range,access
+global 0 75 "Telegram pause time" 0..255 RWA default=0 src=F:6.1,R:5.1,P unverified=default
+global 0 76 "Serial host address" 0..255 RWA default=2 src=F:6.1,R:5.1,P unverified=default
+global 0 77 "Auto start mode" 0..1 RWA default=0 src=F:6.1,R:5.1,P
 global 0 79 "End switch polarity" 0..3 RWA default=0 src=P unverified=range,access,default
-global 0 81 "TMCL code protection" 0..3 RWA default=0 src=F:6.1,P unverified=range,access,default
+global 0 81 "TMCL code protection" 0..3 RWA default=0 src=F:6.1,R:5.1,P unverified=default
 global 0 84 "Coordinate storage" 0..1 RWA default=0 src=F:6.1,P unverified=range,access  # 0: RAM only (the default, SCO)
 global 0 85 "Do not restore user variables" 0..1 RWA default=0 src=F:6.1,P unverified=range,access
 global 0 87 "Serial secondary address" 0..255 RWA default=0 src=P unverified=range,access,default  # 0: off
 global 0 90 "Reverse shaft direction" 0..255 RWA default=0 src=P unverified=range,access,default  # a bit per motor
-global 0 128 "TMCL application status" 0..3 R default=0 src=F:6.1,P unverified=range,access
-global 0 129 "Download mode" 0..1 R default=0 src=F:6.1,P unverified=range,access
-global 0 130 "TMCL program counter" 0..2047 R default=0 src=F:6.1,P unverified=range,access  # the range: the 2048 instructions of program memory
+global 0 128 "TMCL application status" 0..3 R default=0 src=F:6.1,R:5.1,P
+global 0 129 "Download mode" 0..1 R default=0 src=F:6.1,R:5.1,P
+global 0 130 "TMCL program counter" 0..2047 R default=0 src=F:6.1,R:5.1,P unverified=range  # the range: the 2048 instructions of program memory
 global 0 131 "Last TMCL error" 0..255 R default=0 src=P unverified=range,access
-global 0 132 "TMCL tick timer" 0..2147483647 RW default=0 unit=ms src=F:6.1,P unverified=range,access
+global 0 132 "TMCL tick timer" 0..2147483647 RW default=0 unit=ms src=F:6.1,R:5.1,P unverified=range
 global 0 133 "Random number" 0..2147483647 R default=0 src=F:6.1,P unverified=range,access
 global 0 255 "Suppress reply" 0..1 RW default=0 src=P unverified=range,access,default
 

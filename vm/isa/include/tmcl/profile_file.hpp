@@ -34,8 +34,9 @@ struct ProfileStore {
   ProfileStore& operator=(const ProfileStore&) = delete;
 };
 
-// Finds the profile a `based-on NAME` line names; nullptr when there is none.
-using ProfileLookup = std::function<const Profile*(std::string_view name)>;
+// Finds the profile a `based-on NAME` line names; nullptr when there is none, with `why` set when
+// there is a better reason to give than "unknown profile" (a based-on cycle).
+using ProfileLookup = std::function<const Profile*(std::string_view name, std::string& why)>;
 
 // Parses a profile file. `file` names it in messages; `origin` becomes Profile::origin. Returns
 // the profile, or nullptr with every error in `diags`.
