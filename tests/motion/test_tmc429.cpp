@@ -11,6 +11,8 @@
 
 using mt::Bench;
 using mt::near;
+using mt::move_time;
+using mt::run_time;
 using mt::us;
 using tmcl::MotionEventKind;
 using tmcl::SwitchInput;
@@ -23,39 +25,13 @@ double aunit(int pulse_div, int ramp_div) { return std::ldexp(kClock * kClock, -
 
 // The generic profile accepts every number; the core takes the TMCM-1110's rows. The settings
 // the tests count on are set here, whatever the profile's defaults.
-struct Chip : Bench {
-  Chip() : Bench("tmc429", "generic", 1) {
+struct Chip : mt::SwitchBench {
+  Chip() : SwitchBench("tmc429", "generic", 1) {
     for (auto [param, value] : {std::pair{154, 3}, {153, 7}, {4, 1000}, {5, 1000}, {130, 1}, {149, 0}, {12, 0}, {13, 0},
                                 {193, 1}, {194, 0}, {195, 0}, {138, 0}})
       set(param, value);
   }
-  void left_at(std::int64_t p) { CHECK(core->place_switch(0, SwitchInput::StopLeft, INT64_MIN, p)); }
-  void right_at(std::int64_t p) { CHECK(core->place_switch(0, SwitchInput::StopRight, p, INT64_MAX)); }
-  void place(SwitchInput in, std::int64_t lo, std::int64_t hi) { CHECK(core->place_switch(0, in, lo, hi)); }
-  // Runs until an event of `kind` (or nothing more can happen); true when it came.
-  bool until(MotionEventKind kind, int limit = 100) {
-    for (int i = 0; i < limit; ++i) {
-      std::size_t n = events.size();
-      if (next() == tmcl::kNever) return false;
-      for (std::size_t k = n; k < events.size(); ++k)
-        if (events[k].kind == kind) return true;
-    }
-    return false;
-  }
-  int count(MotionEventKind kind) const {
-    int n = 0;
-    for (const auto& e : events) n += e.kind == kind;
-    return n;
-  }
 };
-
-// From rest, accelerating with a up to v: the time to cover `dist` steps.
-double run_time(double dist, double v, double a) {
-  if (dist <= v * v / (2 * a)) return std::sqrt(2 * dist / a);
-  return v / a + (dist - v * v / (2 * a)) / v;
-}
-// A rest-to-rest move (trapezoid or triangle) with the same acceleration both ways.
-double move_time(double dist, double v, double a) { return dist >= v * v / a ? dist / v + v / a : 2 * std::sqrt(dist / a); }
 
 }  // namespace
 
@@ -423,39 +399,10 @@ namespace {
 
 // Hard stops (149 = 0), minimum speed 0, the defaults otherwise: search speed 1000 units (194 = 0:
 // as 4), switch speed 250 (195 = 0: 4 / 4), a_max 1000, pulse divisor 3, ramp divisor 7.
-struct Search : Chip {
-  double vs = 1000 * vunit(3), vc = 250 * vunit(3), a = 1000 * aunit(3, 7);
-  tmcl::SimTime t = 0;
-  explicit Search(int mode) {
+struct Search : mt::Searching<Chip> {
+  explicit Search(int mode) : Searching(1000 * vunit(3), 250 * vunit(3), 1000 * aunit(3, 7)) {
     set(130, 0);
     set(193, mode);
-  }
-  // The expected instants, step by step: each step starts from rest at the microsecond the last
-  // one was reported.
-  void run(double dist, bool fast) { t += us(run_time(dist, fast ? vs : vc, a)); }
-  void move(double dist) { t += us(move_time(dist, vc, a)); }
-  void start() {
-    to(now);  // the switches' state at power-on, as the VM collects it before a program runs
-    CHECK_EQ(core->reference_search(0, tmcl::RfsAction::Start), 0);
-    CHECK(!core->reference_done(0));
-    CHECK_EQ(core->reference_search(0, tmcl::RfsAction::Status), 1);
-  }
-  void done() {
-    CHECK(until(MotionEventKind::ReferenceDone));
-    CHECK(core->reference_done(0));
-    CHECK_EQ(core->reference_search(0, tmcl::RfsAction::Status), 0);
-    CHECK_EQ(core->position(0), 0);
-    CHECK_EQ(get(0), 0);
-    CHECK_EQ(get(3), 0);
-    CHECK(core->target_reached(0));
-    if (std::llabs(now - t) > 3) std::fprintf(stderr, "done at %lld us, expected %lld\n", (long long)now, (long long)t);
-    CHECK(std::llabs(now - t) <= 3);
-  }
-  // Where the reference point is: the first switch change of a move from it.
-  std::int32_t edge_moving(std::int32_t target) {
-    core->move_absolute(0, target);
-    CHECK(until(MotionEventKind::SwitchChanged));
-    return last().position;
   }
 };
 
