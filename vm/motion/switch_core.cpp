@@ -159,6 +159,10 @@ void SwitchCore::replan(Motor& m, double vscale) {
     case Goal::Halt: return switch_stop(m, b, lim);
     default: break;
   }
+  // An arrival within the nanosecond after a whole microsecond is reported at that microsecond:
+  // there the motor must read the target, not the step before it (at a stop speed VSTOP or 130 of
+  // a few thousand pps the last nanosecond is more than the step tolerance).
+  m.rm.rest_on_grid();
   scan_trips(m, lim);
 }
 
@@ -250,6 +254,7 @@ void SwitchCore::search_step(Motor& m, bool stop_first, double vscale) {
     b.plan_position(search_limits(m, switch_speed(m), true), static_cast<double>(-m.rm.base));
     auto& ev = m.rm.plan.events;  // none when the ramp cannot move (an acceleration or the speed 0)
     if (!ev.empty()) ev.back().kind = EventKind::ReferenceDone;  // the arrival ends the search
+    m.rm.rest_on_grid();
     return;
   }
   const bool fast = s.step == SearchStep::Find || s.step == SearchStep::FindFar;
