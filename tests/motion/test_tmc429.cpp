@@ -456,6 +456,39 @@ TEST(rfs_mode3_right_then_reference_switch_from_both_sides) {
   CHECK_EQ(b.edge_moving(1000), 151);
 }
 
+// 196 is "the distance between the end switches" (TMCM-1110 manual, 5.3): with a left stop
+// switch at one position its middle is that position (docs/errata.md, "196 after mode 3").
+TEST(rfs_mode3_tmc429_distance_between_the_end_switches) {
+  Search b(3);
+  b.left_at(-20000);
+  b.right_at(30000);
+  b.start();
+  b.run(30000, true);
+  b.run(50000, true);
+  b.run(1, false);
+  b.run(1, false);
+  b.done();
+  CHECK_EQ(b.get(196), 50000);
+  CHECK_EQ(b.get(11), 1);
+}
+
+// 138 has no "hold" mode in any manual (0 position, 1 soft, 2 velocity): every TMC429 profile's
+// range is 0..2 and the core refuses 3 (docs/errata.md, "Ramp mode 138 'hold'").
+TEST(tmc429_ramp_mode_has_no_hold) {
+  for (const char* name : {"tmcm-1110", "tmcm-3110", "tmcm-6110", "tmcm-351"}) {
+    const tmcl::Profile* p = tmcl::find_profile(name);
+    CHECK(p != nullptr && p->axis_param(138) != nullptr);
+    if (!p || !p->axis_param(138)) continue;
+    CHECK_EQ(p->axis_param(138)->max, 2);
+    Bench m("tmc429", name, 1);
+    CHECK(m.core->set_param(0, 138, 3) == tmcl::ParamWrite::OutOfRange);
+    CHECK(m.core->set_param(0, 138, 2) == tmcl::ParamWrite::Ok);
+  }
+  Chip b;  // generic: the TMCM-1110's row
+  CHECK(b.core->set_param(0, 138, 3) == tmcl::ParamWrite::OutOfRange);
+  CHECK_EQ(b.get(138), 0);
+}
+
 TEST(rfs_mode4_left_switch_from_both_sides) {
   Search b(4);
   b.place(SwitchInput::StopLeft, -20300, -20000);  // a cam on the left input

@@ -270,6 +270,21 @@ TEST(tmc5160_rfs_modes_3_and_67_the_zero_switch_from_both_sides) {
   CHECK_EQ(c.edge_moving(-1000), -151);
 }
 
+// With a left stop switch at one position, "the middle of the left end switch" is that position:
+// 196 is the distance between the end switches (docs/errata.md, "196 after mode 3").
+TEST(rfs_mode3_tmc5160_distance_between_the_end_switches) {
+  Search b(3);
+  b.left_at(-20000);
+  b.right_at(30000);
+  b.start();
+  b.run(30000, true);
+  b.run(50000, true);
+  b.run(1, false);
+  b.run(1, false);
+  b.done();
+  CHECK_EQ(b.get(196), 50000);
+}
+
 TEST(tmc5160_rfs_modes_4_and_68_one_switch_from_both_sides) {
   for (int mode : {4, 68}) {
     const int d = mode == 4 ? -1 : 1;  // toward the switch
