@@ -92,6 +92,45 @@ struct Searching : B {
   // one was reported.
   void run(double dist, bool fast) { t += us(run_time(dist, fast ? vs : vc, a)); }
   void move(double dist) { t += us(move_time(dist, vc, a)); }
+  // A switch with one edge met after `dist` at the search speed: one step out of it and one in
+  // again at the switch speed, and the search is done there.
+  void one_edge(double dist) {
+    run(dist, true);
+    run(1, false);
+    run(1, false);
+    done();
+  }
+  // Modes 2 and 3 (+64: the other way round) between a left stop switch at -20000 and a right
+  // one at 30000, from 0: `first` steps to the end switch searched first, 50000 to the other,
+  // whose edge is the reference point; 196 is the distance between them.
+  void between_end_switches(double first) {
+    this->left_at(-20000);
+    this->right_at(30000);
+    start();
+    run(first, true);
+    one_edge(50000);
+    CHECK_EQ(this->get(196), 50000);
+  }
+  // Between end switches at -20000 and 30000, a home range [1000, 1300]: the search (whatever
+  // its stops and ramps) ends at rest on its reference point, which is position 0 and the target.
+  void ends_on_the_reference_point() {
+    this->left_at(-20000);
+    this->right_at(30000);
+    this->place(tmcl::SwitchInput::Home, 1000, 1300);
+    start();
+    CHECK(this->until(tmcl::MotionEventKind::ReferenceDone));
+    CHECK_EQ(this->core->position(0), 0);
+    CHECK(this->core->target_reached(0));
+  }
+  // A range [lo, lo + width] (a cam, a home switch) met after `dist`: one step out, back in and
+  // through it, then to its centre.
+  void through(double dist, double width) {
+    run(dist, true);
+    run(1, false);
+    run(width + 2, false);
+    move(width / 2 + 1);
+    done();
+  }
   void start() {
     this->to(this->now);  // the switches' state at power-on, as the VM collects it before a program runs
     CHECK_EQ(this->core->reference_search(0, tmcl::RfsAction::Start), 0);
@@ -117,5 +156,39 @@ struct Searching : B {
     return this->last().position;
   }
 };
+
+// Modes 5 (toward -) and 6 (toward +) on a Searching S: the end switch at -+20000 on the way
+// turns the search around, the home range of 300 steps on the other side is crossed, and its
+// centre is the reference point; 9 reads the home switch, 10 and 11 open.
+template <class S>
+void home_turning_at_the_end_switch(int mode) {
+  const int d = mode == 5 ? -1 : 1;
+  S b(mode);
+  b.left_at(-20000);
+  b.right_at(20000);
+  b.place(tmcl::SwitchInput::Home, d < 0 ? 5000 : -5300, d < 0 ? 5300 : -5000);
+  b.start();
+  b.run(20000, true);  // the end switch turns the search around
+  b.through(25000, 300);
+  CHECK_EQ(b.get(9), 1);
+  CHECK_EQ(b.get(10), 0);
+  CHECK_EQ(b.get(11), 0);
+  CHECK_EQ(b.edge_moving(-d * 1000), static_cast<std::int32_t>(-d * 151));
+}
+
+// Modes 7 (toward +) and 8 (toward -): the end switch at +-500 in the way is passed (no stop
+// function stops a search), the home range of 200 steps beyond it is crossed.
+template <class S>
+void home_ignoring_end_switches(int mode) {
+  const int d = mode == 7 ? 1 : -1;
+  S b(mode);
+  b.left_at(-500);
+  b.right_at(500);
+  b.place(tmcl::SwitchInput::Home, d > 0 ? 1000 : -1200, d > 0 ? 1200 : -1000);
+  b.start();
+  b.through(1000, 200);
+  CHECK_EQ(b.get(9), 1);
+  CHECK_EQ(b.get(d > 0 ? 10 : 11), 1);  // it stands beyond the end switch
+}
 
 }  // namespace mt

@@ -413,10 +413,7 @@ TEST(rfs_mode1_left_stop_switch) {
   b.left_at(-20000);
   b.right_at(30000);
   b.start();
-  b.run(20000, true);  // to the switch
-  b.run(1, false);     // out of it, one step
-  b.run(1, false);     // into it again: both switching points are -20000
-  b.done();
+  b.one_edge(20000);
   CHECK_EQ(b.get(11), 1);
   CHECK_EQ(b.get(9), 1);
   CHECK_EQ(b.get(10), 0);
@@ -425,15 +422,7 @@ TEST(rfs_mode1_left_stop_switch) {
 
 TEST(rfs_mode2_right_then_left) {
   Search b(2);
-  b.left_at(-20000);
-  b.right_at(30000);
-  b.start();
-  b.run(30000, true);
-  b.run(50000, true);
-  b.run(1, false);
-  b.run(1, false);
-  b.done();
-  CHECK_EQ(b.get(196), 50000);
+  b.between_end_switches(30000);
   CHECK_EQ(b.get(11), 1);
   CHECK_EQ(b.get(10), 0);
 }
@@ -445,11 +434,7 @@ TEST(rfs_mode3_right_then_reference_switch_from_both_sides) {
   b.place(SwitchInput::Home, -150, 150);
   b.start();
   b.run(30000, true);  // right switch
-  b.run(29850, true);  // back to the home switch's right edge
-  b.run(1, false);     // out of it
-  b.run(302, false);   // into it again and on through it, out at -151
-  b.move(151);         // to the centre
-  b.done();
+  b.through(29850, 300);
   CHECK_EQ(b.get(196), 30000);
   CHECK_EQ(b.get(9), 1);  // the reference input: the home switch
   CHECK_EQ(b.get(11), 0);
@@ -460,15 +445,7 @@ TEST(rfs_mode3_right_then_reference_switch_from_both_sides) {
 // switch at one position its middle is that position (docs/errata.md, "196 after mode 3").
 TEST(rfs_mode3_tmc429_distance_between_the_end_switches) {
   Search b(3);
-  b.left_at(-20000);
-  b.right_at(30000);
-  b.start();
-  b.run(30000, true);
-  b.run(50000, true);
-  b.run(1, false);
-  b.run(1, false);
-  b.done();
-  CHECK_EQ(b.get(196), 50000);
+  b.between_end_switches(30000);
   CHECK_EQ(b.get(11), 1);
 }
 
@@ -493,61 +470,23 @@ TEST(rfs_mode4_left_switch_from_both_sides) {
   Search b(4);
   b.place(SwitchInput::StopLeft, -20300, -20000);  // a cam on the left input
   b.start();
-  b.run(20000, true);
-  b.run(1, false);
-  b.run(302, false);
-  b.move(151);
-  b.done();
+  b.through(20000, 300);
   CHECK_EQ(b.get(11), 1);
   CHECK_EQ(b.edge_moving(1000), 151);
   Search c(4);  // a stop switch has one edge: its reference point is that edge
   c.left_at(-20000);
   c.start();
-  c.run(20000, true);
-  c.run(1, false);
-  c.run(1, false);
-  c.done();
+  c.one_edge(20000);
   CHECK_EQ(c.edge_moving(1000), 1);
 }
 
 // Mode 5 searches in -, mode 6 in +: the end switch on the way turns the search around.
 TEST(rfs_modes5_and_6_home_switch_turning_at_the_end_switch) {
-  for (int mode : {5, 6}) {
-    const int d = mode == 5 ? -1 : 1;
-    Search b(mode);
-    b.left_at(-20000);
-    b.right_at(20000);
-    b.place(SwitchInput::Home, d < 0 ? 5000 : -5300, d < 0 ? 5300 : -5000);
-    b.start();
-    b.run(20000, true);  // the end switch turns the search around
-    b.run(25000, true);  // to the home switch
-    b.run(1, false);     // out of it
-    b.run(302, false);   // back in and through it
-    b.move(151);         // to its centre
-    b.done();
-    CHECK_EQ(b.get(9), 1);
-    CHECK_EQ(b.get(11), 0);
-    CHECK_EQ(b.get(10), 0);
-    CHECK_EQ(b.edge_moving(-d * 1000), static_cast<std::int32_t>(-d * 151));
-  }
+  for (int mode : {5, 6}) mt::home_turning_at_the_end_switch<Search>(mode);
 }
 
 TEST(rfs_modes7_and_8_home_switch_ignoring_end_switches) {
-  for (int mode : {7, 8}) {
-    const int d = mode == 7 ? 1 : -1;
-    Search b(mode);
-    b.left_at(-500);  // in mode 8's way: ignored, and no stop function stops the search
-    b.right_at(500);  // in mode 7's way
-    b.place(SwitchInput::Home, d > 0 ? 1000 : -1200, d > 0 ? 1200 : -1000);
-    b.start();
-    b.run(1000, true);
-    b.run(1, false);
-    b.run(202, false);
-    b.move(101);
-    b.done();
-    CHECK_EQ(b.get(9), 1);
-    CHECK_EQ(b.get(d > 0 ? 10 : 11), 1);  // it stands beyond the end switch
-  }
+  for (int mode : {7, 8}) mt::home_ignoring_end_switches<Search>(mode);
 }
 
 TEST(rfs_plus_128_reverses_the_home_switch) {
@@ -566,13 +505,7 @@ TEST(rfs_with_soft_stops_ends_on_the_reference_point) {
   for (int mode : {1, 3, 7}) {
     Search b(mode);
     b.set(149, 1);
-    b.left_at(-20000);
-    b.right_at(30000);
-    b.place(SwitchInput::Home, 1000, 1300);
-    b.start();
-    CHECK(b.until(MotionEventKind::ReferenceDone));
-    CHECK_EQ(b.core->position(0), 0);
-    CHECK(b.core->target_reached(0));
+    b.ends_on_the_reference_point();
     if (mode == 1) CHECK_EQ(b.edge_moving(100), 1);
     if (mode != 1) CHECK_EQ(b.edge_moving(-1000), -151);
   }

@@ -186,10 +186,7 @@ TEST(tmc5160_rfs_modes_1_and_65_one_end_switch) {
   b.left_at(-20000);
   b.right_at(30000);
   b.start();
-  b.run(20000, true);
-  b.run(1, false);
-  b.run(1, false);
-  b.done();
+  b.one_edge(20000);
   CHECK_EQ(b.get(11), 1);
   CHECK_EQ(b.get(10), 0);
   CHECK_EQ(b.get(197), -20000);  // where the reference point was before it became 0
@@ -198,10 +195,7 @@ TEST(tmc5160_rfs_modes_1_and_65_one_end_switch) {
   c.left_at(-20000);
   c.right_at(30000);
   c.start();
-  c.run(30000, true);
-  c.run(1, false);
-  c.run(1, false);
-  c.done();
+  c.one_edge(30000);
   CHECK_EQ(c.get(10), 1);
   CHECK_EQ(c.get(11), 0);
   CHECK_EQ(c.get(197), 30000);
@@ -211,27 +205,11 @@ TEST(tmc5160_rfs_modes_1_and_65_one_end_switch) {
 // 196: the distance between the two end switches (7.1.2).
 TEST(tmc5160_rfs_modes_2_and_66_both_end_switches) {
   Search b(2);
-  b.left_at(-20000);
-  b.right_at(30000);
-  b.start();
-  b.run(30000, true);
-  b.run(50000, true);
-  b.run(1, false);
-  b.run(1, false);
-  b.done();
-  CHECK_EQ(b.get(196), 50000);
+  b.between_end_switches(30000);
   CHECK_EQ(b.get(11), 1);
   CHECK_EQ(b.get(10), 0);
   Search c(66);  // +64: the left one first, the right one is the zero point
-  c.left_at(-20000);
-  c.right_at(30000);
-  c.start();
-  c.run(20000, true);
-  c.run(50000, true);
-  c.run(1, false);
-  c.run(1, false);
-  c.done();
-  CHECK_EQ(c.get(196), 50000);
+  c.between_end_switches(20000);
   CHECK_EQ(c.get(10), 1);
   CHECK_EQ(c.get(11), 0);
   CHECK_EQ(c.edge_moving(-100), -1);
@@ -246,11 +224,7 @@ TEST(tmc5160_rfs_modes_3_and_67_the_zero_switch_from_both_sides) {
   b.place(SwitchInput::Home, -150, 150);           // in the way, and ignored
   b.start();
   b.run(30000, true);
-  b.run(50000, true);
-  b.run(1, false);
-  b.run(302, false);
-  b.move(151);
-  b.done();
+  b.through(50000, 300);
   CHECK_EQ(b.get(196), 50150);
   CHECK_EQ(b.get(11), 1);
   CHECK_EQ(b.get(9), 0);
@@ -260,11 +234,7 @@ TEST(tmc5160_rfs_modes_3_and_67_the_zero_switch_from_both_sides) {
   c.place(SwitchInput::StopRight, 30000, 30300);
   c.start();
   c.run(20000, true);
-  c.run(50000, true);
-  c.run(1, false);
-  c.run(302, false);
-  c.move(151);
-  c.done();
+  c.through(50000, 300);
   CHECK_EQ(c.get(196), 50150);
   CHECK_EQ(c.get(10), 1);
   CHECK_EQ(c.edge_moving(-1000), -151);
@@ -274,15 +244,7 @@ TEST(tmc5160_rfs_modes_3_and_67_the_zero_switch_from_both_sides) {
 // 196 is the distance between the end switches (docs/errata.md, "196 after mode 3").
 TEST(rfs_mode3_tmc5160_distance_between_the_end_switches) {
   Search b(3);
-  b.left_at(-20000);
-  b.right_at(30000);
-  b.start();
-  b.run(30000, true);
-  b.run(50000, true);
-  b.run(1, false);
-  b.run(1, false);
-  b.done();
-  CHECK_EQ(b.get(196), 50000);
+  b.between_end_switches(30000);
 }
 
 TEST(tmc5160_rfs_modes_4_and_68_one_switch_from_both_sides) {
@@ -294,11 +256,7 @@ TEST(tmc5160_rfs_modes_4_and_68_one_switch_from_both_sides) {
     else
       b.place(SwitchInput::StopRight, 20000, 20300);
     b.start();
-    b.run(20000, true);
-    b.run(1, false);
-    b.run(302, false);
-    b.move(151);
-    b.done();
+    b.through(20000, 300);
     CHECK_EQ(b.get(d < 0 ? 11 : 10), 1);
     CHECK_EQ(b.get(196), 0);  // only modes 2 and 3 measure it
     CHECK_EQ(b.edge_moving(-d * 1000), static_cast<std::int32_t>(-d * 151));
@@ -306,42 +264,13 @@ TEST(tmc5160_rfs_modes_4_and_68_one_switch_from_both_sides) {
 }
 
 TEST(tmc5160_rfs_modes_5_and_6_home_switch_turning_at_the_end_switch) {
-  for (int mode : {5, 6}) {
-    const int d = mode == 5 ? -1 : 1;
-    Search b(mode);
-    b.left_at(-20000);
-    b.right_at(20000);
-    b.place(SwitchInput::Home, d < 0 ? 5000 : -5300, d < 0 ? 5300 : -5000);
-    b.start();
-    b.run(20000, true);  // the end switch turns the search around
-    b.run(25000, true);  // to the home switch
-    b.run(1, false);
-    b.run(302, false);
-    b.move(151);
-    b.done();
-    CHECK_EQ(b.get(9), 1);  // the home switch's own state
-    CHECK_EQ(b.get(10), 0);
-    CHECK_EQ(b.get(11), 0);
-    CHECK_EQ(b.edge_moving(-d * 1000), static_cast<std::int32_t>(-d * 151));
-  }
+  for (int mode : {5, 6}) mt::home_turning_at_the_end_switch<Search>(mode);  // 9: the home switch's own state
 }
 
+// The end switches in the way are passed with their stop functions on (7.1: they do not influence
+// the search).
 TEST(tmc5160_rfs_modes_7_8_and_136_home_switch_ignoring_end_switches) {
-  for (int mode : {7, 8}) {
-    const int d = mode == 7 ? 1 : -1;
-    Search b(mode);
-    b.left_at(-500);  // in the way: ignored, the stop functions on (7.1: they do not influence the search)
-    b.right_at(500);
-    b.place(SwitchInput::Home, d > 0 ? 1000 : -1200, d > 0 ? 1200 : -1000);
-    b.start();
-    b.run(1000, true);
-    b.run(1, false);
-    b.run(202, false);
-    b.move(101);
-    b.done();
-    CHECK_EQ(b.get(9), 1);
-    CHECK_EQ(b.get(d > 0 ? 10 : 11), 1);  // it stands beyond the end switch
-  }
+  for (int mode : {7, 8}) mt::home_ignoring_end_switches<Search>(mode);
   Search c(8 + 128);  // +128: the home switch reads inverted, "closed" outside its range
   c.place(SwitchInput::Home, -150, 150);
   c.start();
@@ -360,13 +289,7 @@ TEST(tmc5160_rfs_with_sixpoint_and_soft_stops_ends_on_the_reference_point) {
     Search b(mode);
     b.sixpoint(100, 20000, 2000, 51200, 51200, 30000, 10000, 200);
     b.set(26, 1);
-    b.left_at(-20000);
-    b.right_at(30000);
-    b.place(SwitchInput::Home, 1000, 1300);
-    b.start();
-    CHECK(b.until(MotionEventKind::ReferenceDone));
-    CHECK_EQ(b.core->position(0), 0);
-    CHECK(b.core->target_reached(0));
+    b.ends_on_the_reference_point();
     CHECK_EQ(b.edge_moving(mode == 66 ? -100 : mode == 7 ? -1000 : 100), mode == 66 ? -1 : mode == 7 ? -151 : 1);
   }
 }
