@@ -3,12 +3,14 @@
 // move, ask for the next event, advance to it, check the WAIT POS condition. Goal: at least one
 // million moves per second of wall time, with a cost per move independent of the move's length
 // and duration (short, long and very long moves are timed separately). The same for the tmc429
-// core's trapezoids, and a whole program on it in the VM: a reference search on switches placed
-// at positions, then moves for one simulated hour (goal: under 50 ms).
+// core's trapezoids and the tmc5160 core's SixPoint ramps (TMCM-1260), and a whole program on the
+// tmc429 core in the VM: a reference search on switches placed at positions, then moves for one
+// simulated hour (goal: under 50 ms).
 // Prints rows "figure<TAB>goal<TAB>measured".
 #include <chrono>
 #include <cstdio>
 #include <random>
+#include <utility>
 #include <vector>
 
 #include "tmcl/motion.hpp"
@@ -17,12 +19,24 @@
 
 namespace {
 
+// A core on a profile with some parameters set.
+struct Setup {
+  const char* core;
+  const char* profile;
+  std::vector<std::pair<int, std::int32_t>> params;
+};
+const Setup kSShaped{"tmc4361", "usb-2-sd", {{14, 1}}};
+const Setup kTrapezoid{"tmc4361", "usb-2-sd", {{14, 0}}};
+const Setup kTmc429{"tmc429", "generic", {}};
+// The TMCM-1260's SixPoint ramp: VSTART, A1 to V1, A2 to VMAX, D2 to V1, D1 to VSTOP.
+const Setup kSixPoint{"tmc5160", "tmcm-1260", {{19, 1000}, {15, 100000}, {16, 20000}, {5, 50000}, {4, 60000},
+                                               {17, 40000}, {18, 80000}, {20, 2000}}};
+
 // Moves per second of wall time for `n` moves with targets uniform in +-range around 0.
-// ramp_type < 0: the tmc429 core (TMC429 units, trapezoids), else the tmc4361's parameter 14.
-double moves_per_second(int n, std::int32_t range, int ramp_type, bool check) {
-  auto core = tmcl::make_motion_core(ramp_type < 0 ? "tmc429" : "tmc4361");
-  core->reset(*tmcl::find_profile(ramp_type < 0 ? "generic" : "usb-2-sd"), 1);
-  if (ramp_type >= 0) core->set_param(0, 14, ramp_type);
+double moves_per_second(const Setup& setup, int n, std::int32_t range, bool check) {
+  auto core = tmcl::make_motion_core(setup.core);
+  core->reset(*tmcl::find_profile(setup.profile), 1);
+  for (auto [param, value] : setup.params) core->set_param(0, param, value);
   std::mt19937 rng(2024);
   std::uniform_int_distribution<std::int32_t> pick(-range, range);
   std::vector<std::int32_t> targets(static_cast<std::size_t>(n));
@@ -80,15 +94,18 @@ double homing_hour_ms(long& moves, tmcl::SimTime& simulated) {
 
 int main() {
   const int n = 100000;
-  moves_per_second(10000, 1000000, 1, false);  // warm up
+  moves_per_second(kSShaped, 10000, 1000000, false);  // warm up
   std::printf("S-shaped moves per second (100k MVP + WAIT POS, targets +-1e6)\t>= 1000000\t%.0f\n",
-              moves_per_second(n, 1000000, 1, true));
-  std::printf("  short S-shaped moves per second (targets +-1000)\tsame order\t%.0f\n", moves_per_second(n, 1000, 1, true));
-  std::printf("  long S-shaped moves per second (targets +-2e9)\tsame order\t%.0f\n", moves_per_second(n, 2000000000, 1, true));
-  std::printf("  trapezoid moves per second (targets +-1e6)\tsame order\t%.0f\n", moves_per_second(n, 1000000, 0, true));
+              moves_per_second(kSShaped, n, 1000000, true));
+  std::printf("  short S-shaped moves per second (targets +-1000)\tsame order\t%.0f\n", moves_per_second(kSShaped, n, 1000, true));
+  std::printf("  long S-shaped moves per second (targets +-2e9)\tsame order\t%.0f\n", moves_per_second(kSShaped, n, 2000000000, true));
+  std::printf("  trapezoid moves per second (targets +-1e6)\tsame order\t%.0f\n", moves_per_second(kTrapezoid, n, 1000000, true));
   std::printf("tmc429 moves per second (100k MVP + WAIT POS, targets +-1e6)\t>= 1000000\t%.0f\n",
-              moves_per_second(n, 1000000, -1, true));
-  std::printf("  short tmc429 moves per second (targets +-1000)\tsame order\t%.0f\n", moves_per_second(n, 1000, -1, true));
+              moves_per_second(kTmc429, n, 1000000, true));
+  std::printf("  short tmc429 moves per second (targets +-1000)\tsame order\t%.0f\n", moves_per_second(kTmc429, n, 1000, true));
+  std::printf("tmc5160 SixPoint moves per second (100k MVP + WAIT POS, targets +-1e6)\t>= 1000000\t%.0f\n",
+              moves_per_second(kSixPoint, n, 1000000, true));
+  std::printf("  short tmc5160 moves per second (targets +-1000)\tsame order\t%.0f\n", moves_per_second(kSixPoint, n, 1000, true));
   long moves = 0;
   tmcl::SimTime simulated = 0;
   homing_hour_ms(moves, simulated);  // warm up

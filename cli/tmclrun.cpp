@@ -625,8 +625,9 @@ int run(int argc, char** argv) {
     recording_core.finish(vm.now);
     recorder.show_motors(tmcl::shown_motors(vm));
     std::ostringstream csv, svg;
-    const std::string units = core->units_note();  // a core in chip units says which
-    if (!o.csv.empty()) tmcl::write_csv(csv, recorder, units);
+    // A core in chip units says which, at power-on and from each change on (a divisor written).
+    const std::string units = recording_core.units_history("; ");
+    if (!o.csv.empty()) tmcl::write_csv(csv, recorder, recording_core.units_history("\n# "));
     if (!o.plot.empty()) {
       tmcl::PlotOptions plot;
       plot.title = (o.program == "-" ? std::string("<stdin>") : o.program) + " on " + o.target + " (" +

@@ -15,6 +15,37 @@ void RecordingCore::advance(SimTime to, std::vector<MotionEvent>& events) {
   now_ = to;
 }
 
+void RecordingCore::reset(const Profile& profile, int motors) {
+  inner_.reset(profile, motors);
+  now_ = 0;
+  units_.clear();
+  if (std::string note = inner_.units_note(); !note.empty()) units_.emplace_back(0, std::move(note));
+}
+
+ParamWrite RecordingCore::set_param(int motor, int param, std::int32_t value) {
+  const ParamWrite r = inner_.set_param(motor, param, value);
+  if (units_.empty()) return r;  // a core in pps
+  if (std::string note = inner_.units_note(); note != units_.back().second) {
+    rec_.mark(now_, motor, Mark::Other, "units: " + note, inner_.sample_at(motor, now_).position);
+    units_.emplace_back(now_, std::move(note));
+  }
+  return r;
+}
+
+std::string RecordingCore::units_history(std::string_view sep) const {
+  std::string text;
+  for (std::size_t i = 0; i < units_.size(); ++i) {
+    if (i == 0) {
+      text = units_[i].second;
+      continue;
+    }
+    char at[48];
+    std::snprintf(at, sizeof at, "from %.6f s: ", static_cast<double>(units_[i].first) * 1e-6);
+    text.append(sep).append(at).append(units_[i].second);
+  }
+  return text;
+}
+
 void RecordingCore::issued(int motor, std::string label) {
   rec_.mark(now_, motor, Mark::MoveIssued, std::move(label), inner_.sample_at(motor, now_).position);
 }

@@ -49,7 +49,7 @@ expect "tmclasm -d " sub prog.bin prog.dgm
 expect "tmclasm -I " sub
 expect "tmclrun --plot " sub motion.svg
 expect "tmclrun --plot=mo" motion.svg
-expect "tmclrun --motion tmc" tmc429 tmc4361
+expect "tmclrun --motion tmc" tmc429 tmc4361 tmc5160
 expect "tmclrun --serve tcp:" 127.0.0.1:2001
 expect "tmclrun -Wno-reti" -Wno-reti
 expect "tmclrun --debug-c" --debug-commands

@@ -11,6 +11,8 @@
 
 using mt::Bench;
 using mt::near;
+using mt::move_time;
+using mt::run_time;
 using mt::us;
 using tmcl::MotionEventKind;
 using tmcl::SwitchInput;
@@ -23,39 +25,13 @@ double aunit(int pulse_div, int ramp_div) { return std::ldexp(kClock * kClock, -
 
 // The generic profile accepts every number; the core takes the TMCM-1110's rows. The settings
 // the tests count on are set here, whatever the profile's defaults.
-struct Chip : Bench {
-  Chip() : Bench("tmc429", "generic", 1) {
+struct Chip : mt::SwitchBench {
+  Chip() : SwitchBench("tmc429", "generic", 1) {
     for (auto [param, value] : {std::pair{154, 3}, {153, 7}, {4, 1000}, {5, 1000}, {130, 1}, {149, 0}, {12, 0}, {13, 0},
                                 {193, 1}, {194, 0}, {195, 0}, {138, 0}})
       set(param, value);
   }
-  void left_at(std::int64_t p) { CHECK(core->place_switch(0, SwitchInput::StopLeft, INT64_MIN, p)); }
-  void right_at(std::int64_t p) { CHECK(core->place_switch(0, SwitchInput::StopRight, p, INT64_MAX)); }
-  void place(SwitchInput in, std::int64_t lo, std::int64_t hi) { CHECK(core->place_switch(0, in, lo, hi)); }
-  // Runs until an event of `kind` (or nothing more can happen); true when it came.
-  bool until(MotionEventKind kind, int limit = 100) {
-    for (int i = 0; i < limit; ++i) {
-      std::size_t n = events.size();
-      if (next() == tmcl::kNever) return false;
-      for (std::size_t k = n; k < events.size(); ++k)
-        if (events[k].kind == kind) return true;
-    }
-    return false;
-  }
-  int count(MotionEventKind kind) const {
-    int n = 0;
-    for (const auto& e : events) n += e.kind == kind;
-    return n;
-  }
 };
-
-// From rest, accelerating with a up to v: the time to cover `dist` steps.
-double run_time(double dist, double v, double a) {
-  if (dist <= v * v / (2 * a)) return std::sqrt(2 * dist / a);
-  return v / a + (dist - v * v / (2 * a)) / v;
-}
-// A rest-to-rest move (trapezoid or triangle) with the same acceleration both ways.
-double move_time(double dist, double v, double a) { return dist >= v * v / a ? dist / v + v / a : 2 * std::sqrt(dist / a); }
 
 }  // namespace
 
@@ -423,39 +399,10 @@ namespace {
 
 // Hard stops (149 = 0), minimum speed 0, the defaults otherwise: search speed 1000 units (194 = 0:
 // as 4), switch speed 250 (195 = 0: 4 / 4), a_max 1000, pulse divisor 3, ramp divisor 7.
-struct Search : Chip {
-  double vs = 1000 * vunit(3), vc = 250 * vunit(3), a = 1000 * aunit(3, 7);
-  tmcl::SimTime t = 0;
-  explicit Search(int mode) {
+struct Search : mt::Searching<Chip> {
+  explicit Search(int mode) : Searching(1000 * vunit(3), 250 * vunit(3), 1000 * aunit(3, 7)) {
     set(130, 0);
     set(193, mode);
-  }
-  // The expected instants, step by step: each step starts from rest at the microsecond the last
-  // one was reported.
-  void run(double dist, bool fast) { t += us(run_time(dist, fast ? vs : vc, a)); }
-  void move(double dist) { t += us(move_time(dist, vc, a)); }
-  void start() {
-    to(now);  // the switches' state at power-on, as the VM collects it before a program runs
-    CHECK_EQ(core->reference_search(0, tmcl::RfsAction::Start), 0);
-    CHECK(!core->reference_done(0));
-    CHECK_EQ(core->reference_search(0, tmcl::RfsAction::Status), 1);
-  }
-  void done() {
-    CHECK(until(MotionEventKind::ReferenceDone));
-    CHECK(core->reference_done(0));
-    CHECK_EQ(core->reference_search(0, tmcl::RfsAction::Status), 0);
-    CHECK_EQ(core->position(0), 0);
-    CHECK_EQ(get(0), 0);
-    CHECK_EQ(get(3), 0);
-    CHECK(core->target_reached(0));
-    if (std::llabs(now - t) > 3) std::fprintf(stderr, "done at %lld us, expected %lld\n", (long long)now, (long long)t);
-    CHECK(std::llabs(now - t) <= 3);
-  }
-  // Where the reference point is: the first switch change of a move from it.
-  std::int32_t edge_moving(std::int32_t target) {
-    core->move_absolute(0, target);
-    CHECK(until(MotionEventKind::SwitchChanged));
-    return last().position;
   }
 };
 
@@ -466,10 +413,7 @@ TEST(rfs_mode1_left_stop_switch) {
   b.left_at(-20000);
   b.right_at(30000);
   b.start();
-  b.run(20000, true);  // to the switch
-  b.run(1, false);     // out of it, one step
-  b.run(1, false);     // into it again: both switching points are -20000
-  b.done();
+  b.one_edge(20000);
   CHECK_EQ(b.get(11), 1);
   CHECK_EQ(b.get(9), 1);
   CHECK_EQ(b.get(10), 0);
@@ -478,15 +422,7 @@ TEST(rfs_mode1_left_stop_switch) {
 
 TEST(rfs_mode2_right_then_left) {
   Search b(2);
-  b.left_at(-20000);
-  b.right_at(30000);
-  b.start();
-  b.run(30000, true);
-  b.run(50000, true);
-  b.run(1, false);
-  b.run(1, false);
-  b.done();
-  CHECK_EQ(b.get(196), 50000);
+  b.between_end_switches(30000);
   CHECK_EQ(b.get(11), 1);
   CHECK_EQ(b.get(10), 0);
 }
@@ -498,76 +434,59 @@ TEST(rfs_mode3_right_then_reference_switch_from_both_sides) {
   b.place(SwitchInput::Home, -150, 150);
   b.start();
   b.run(30000, true);  // right switch
-  b.run(29850, true);  // back to the home switch's right edge
-  b.run(1, false);     // out of it
-  b.run(302, false);   // into it again and on through it, out at -151
-  b.move(151);         // to the centre
-  b.done();
+  b.through(29850, 300);
   CHECK_EQ(b.get(196), 30000);
   CHECK_EQ(b.get(9), 1);  // the reference input: the home switch
   CHECK_EQ(b.get(11), 0);
   CHECK_EQ(b.edge_moving(1000), 151);
 }
 
+// 196 is "the distance between the end switches" (TMCM-1110 manual, 5.3): with a left stop
+// switch at one position its middle is that position (docs/errata.md, "196 after mode 3").
+TEST(rfs_mode3_tmc429_distance_between_the_end_switches) {
+  Search b(3);
+  b.between_end_switches(30000);
+  CHECK_EQ(b.get(11), 1);
+}
+
+// 138 has no "hold" mode in any manual (0 position, 1 soft, 2 velocity): every TMC429 profile's
+// range is 0..2 and the core refuses 3 (docs/errata.md, "Ramp mode 138 'hold'").
+TEST(tmc429_ramp_mode_has_no_hold) {
+  for (const char* name : {"tmcm-1110", "tmcm-3110", "tmcm-6110", "tmcm-351"}) {
+    const tmcl::Profile* p = tmcl::find_profile(name);
+    CHECK(p != nullptr && p->axis_param(138) != nullptr);
+    if (!p || !p->axis_param(138)) continue;
+    CHECK_EQ(p->axis_param(138)->max, 2);
+    Bench m("tmc429", name, 1);
+    CHECK(m.core->set_param(0, 138, 3) == tmcl::ParamWrite::OutOfRange);
+    CHECK(m.core->set_param(0, 138, 2) == tmcl::ParamWrite::Ok);
+  }
+  Chip b;  // generic: the TMCM-1110's row
+  CHECK(b.core->set_param(0, 138, 3) == tmcl::ParamWrite::OutOfRange);
+  CHECK_EQ(b.get(138), 0);
+}
+
 TEST(rfs_mode4_left_switch_from_both_sides) {
   Search b(4);
   b.place(SwitchInput::StopLeft, -20300, -20000);  // a cam on the left input
   b.start();
-  b.run(20000, true);
-  b.run(1, false);
-  b.run(302, false);
-  b.move(151);
-  b.done();
+  b.through(20000, 300);
   CHECK_EQ(b.get(11), 1);
   CHECK_EQ(b.edge_moving(1000), 151);
   Search c(4);  // a stop switch has one edge: its reference point is that edge
   c.left_at(-20000);
   c.start();
-  c.run(20000, true);
-  c.run(1, false);
-  c.run(1, false);
-  c.done();
+  c.one_edge(20000);
   CHECK_EQ(c.edge_moving(1000), 1);
 }
 
 // Mode 5 searches in -, mode 6 in +: the end switch on the way turns the search around.
 TEST(rfs_modes5_and_6_home_switch_turning_at_the_end_switch) {
-  for (int mode : {5, 6}) {
-    const int d = mode == 5 ? -1 : 1;
-    Search b(mode);
-    b.left_at(-20000);
-    b.right_at(20000);
-    b.place(SwitchInput::Home, d < 0 ? 5000 : -5300, d < 0 ? 5300 : -5000);
-    b.start();
-    b.run(20000, true);  // the end switch turns the search around
-    b.run(25000, true);  // to the home switch
-    b.run(1, false);     // out of it
-    b.run(302, false);   // back in and through it
-    b.move(151);         // to its centre
-    b.done();
-    CHECK_EQ(b.get(9), 1);
-    CHECK_EQ(b.get(11), 0);
-    CHECK_EQ(b.get(10), 0);
-    CHECK_EQ(b.edge_moving(-d * 1000), static_cast<std::int32_t>(-d * 151));
-  }
+  for (int mode : {5, 6}) mt::home_turning_at_the_end_switch<Search>(mode);
 }
 
 TEST(rfs_modes7_and_8_home_switch_ignoring_end_switches) {
-  for (int mode : {7, 8}) {
-    const int d = mode == 7 ? 1 : -1;
-    Search b(mode);
-    b.left_at(-500);  // in mode 8's way: ignored, and no stop function stops the search
-    b.right_at(500);  // in mode 7's way
-    b.place(SwitchInput::Home, d > 0 ? 1000 : -1200, d > 0 ? 1200 : -1000);
-    b.start();
-    b.run(1000, true);
-    b.run(1, false);
-    b.run(202, false);
-    b.move(101);
-    b.done();
-    CHECK_EQ(b.get(9), 1);
-    CHECK_EQ(b.get(d > 0 ? 10 : 11), 1);  // it stands beyond the end switch
-  }
+  for (int mode : {7, 8}) mt::home_ignoring_end_switches<Search>(mode);
 }
 
 TEST(rfs_plus_128_reverses_the_home_switch) {
@@ -586,13 +505,7 @@ TEST(rfs_with_soft_stops_ends_on_the_reference_point) {
   for (int mode : {1, 3, 7}) {
     Search b(mode);
     b.set(149, 1);
-    b.left_at(-20000);
-    b.right_at(30000);
-    b.place(SwitchInput::Home, 1000, 1300);
-    b.start();
-    CHECK(b.until(MotionEventKind::ReferenceDone));
-    CHECK_EQ(b.core->position(0), 0);
-    CHECK(b.core->target_reached(0));
+    b.ends_on_the_reference_point();
     if (mode == 1) CHECK_EQ(b.edge_moving(100), 1);
     if (mode != 1) CHECK_EQ(b.edge_moving(-1000), -151);
   }

@@ -16,6 +16,7 @@ struct Registry {
     factories.emplace("tmc4361", [] { return make_tmc4361_motion_core(); });
     factories.emplace("linear", [] { return make_linear_motion_core(); });
     factories.emplace("tmc429", [] { return make_tmc429_motion_core(); });
+    factories.emplace("tmc5160", [] { return make_tmc5160_motion_core(); });
   }
 };
 

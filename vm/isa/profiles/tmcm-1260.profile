@@ -1,7 +1,7 @@
 # TMCM-1260, the controller/driver of the PANdrive PD57-1260 and PD60-1260, TMCL firmware 1.44:
 # one axis, TMC5160 (SixPoint ramps in pps), a SensOstep encoder. Facts from the PD57/60-1260
 # manual; the vendor's host libraries add parameters of newer firmware (marked). Its motion core
-# is `linear` (pps, one acceleration) until a SixPoint core with these parameter numbers exists.
+# is `tmc5160`: the SixPoint ramp in pps with these parameter numbers (docs/motion.md).
 # Every unverified fact is listed in docs/profiles.md.
 tmcl-profile 1
 name tmcm-1260
@@ -18,7 +18,7 @@ program-memory 2048 eeprom unverified  # the manual gives no size ('download a p
 user-variables 256 eeprom=56 src=M:5.3
 coordinates 21 src=M:3.6.22  # 'up to 20 position values' per axis, and 0
 parameters listed
-motion linear src=M:1  # pps and pps², SixPoint ramps (section 1.3); see the header
+motion tmc5160 fallback=linear src=M:1,M:7.5  # pps and pps², SixPoint ramps (sections 1.3, 7.5)
 # Commands: table 5 (no STAP/RSAP), UF0..UF7 (3.6.34), 138 (3.6.35) and the control commands of
 # table 13.
 commands 1-6 9-15 19-28 30-39 64-71 src=M:table5,M:3.6.34

@@ -61,7 +61,8 @@ class MotionRecorder {
 
 // CSV: a comment line, a header, then rows in time order; sample rows have an empty event column,
 // event rows an empty velocity and acceleration. Stable text (fixed decimals) for golden files.
-// `units_note` (MotionCore::units_note: a core in chip units) is a second comment line.
+// `units_note` (MotionCore::units_note: a core in chip units) follows as comment lines (tmclrun
+// passes the units at power-on and, one line each, from when on each change held).
 void write_csv(std::ostream& out, const MotionRecorder& rec, std::string_view units_note = {});
 
 // The SVG of plot.hpp: three stacked panels (position, velocity, acceleration) over a shared

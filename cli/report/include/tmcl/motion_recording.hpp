@@ -4,6 +4,10 @@
 #pragma once
 
 #include <memory>
+#include <string>
+#include <string_view>
+#include <utility>
+#include <vector>
 
 #include "tmcl/motion_plot.hpp"
 #include "tmcl/vm.hpp"
@@ -15,12 +19,12 @@ class RecordingCore final : public MotionCore {
   RecordingCore(MotionCore& inner, MotionRecorder& recorder) : inner_(inner), rec_(recorder) {}
 
   std::string_view name() const override { return inner_.name(); }
-  void reset(const Profile& profile, int motors) override { inner_.reset(profile, motors); }
+  void reset(const Profile& profile, int motors) override;
   SimTime next_event() const override { return inner_.next_event(); }
   void advance(SimTime to, std::vector<MotionEvent>& events) override;
   bool owns(int param) const override { return inner_.owns(param); }
   const ParamInfo* range(int param) const override { return inner_.range(param); }
-  ParamWrite set_param(int motor, int param, std::int32_t value) override { return inner_.set_param(motor, param, value); }
+  ParamWrite set_param(int motor, int param, std::int32_t value) override;
   std::int32_t get_param(int motor, int param) override { return inner_.get_param(motor, param); }
   void move_absolute(int motor, std::int32_t target) override;
   void move_relative(int motor, std::int32_t offset) override;
@@ -43,12 +47,17 @@ class RecordingCore final : public MotionCore {
 
   // Samples up to `at` (the end of the run).
   void finish(SimTime at) { rec_.sample_until(inner_, at); }
+  // The units a core in chip units had at power-on and, for each change during the run (a
+  // divisor written: also a mark "units: ..."), from when on the new ones held, joined by `sep`:
+  // the CSV's comment lines, the plot's title. Empty for a core in pps.
+  std::string units_history(std::string_view sep) const;
 
  private:
   void issued(int motor, std::string label);
   MotionCore& inner_;
   MotionRecorder& rec_;
   SimTime now_ = 0;  // the last advance: commands and switches happen at this instant
+  std::vector<std::pair<SimTime, std::string>> units_;  // the units note from each instant on
 };
 
 class RecordingTrace final : public TraceSink {

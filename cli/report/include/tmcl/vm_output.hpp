@@ -26,6 +26,9 @@ using SourceMap = std::vector<std::string>;
 // characters), so the columns stay aligned whatever the paths. With `names` an instruction shows
 // the names its source gave (`JC LT, Loop`, source_names.hpp) and, where that differs from the
 // plain form, the plain form with its numbers in a comment at the end: `// JC LT, 3`.
+// A core in chip units (tmc429) has the units in force said once after the first instruction and
+// again after each that changed them (SAP 153/154: the step rate changes at once):
+//   0.000040s  units: TMC429 units: pulse divisor 1, ramp divisor 7: velocity 1 = 244.141 pps, ...
 class TextTrace final : public TraceSink {
  public:
   TextTrace(std::FILE* out, const SourceMap* sources, const SourceNames* names = nullptr)
@@ -51,6 +54,7 @@ class TextTrace final : public TraceSink {
   const SourceNames* names_;
   bool failed_ = false;
   int source_width_ = 0, text_width_ = 0;  // 0: not measured yet
+  std::string units_;                      // the units note last traced
 };
 
 // "ZE EQ" style flag names; "-" when none.

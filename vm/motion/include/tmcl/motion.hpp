@@ -180,4 +180,9 @@ std::unique_ptr<MotionCore> make_linear_motion_core();
 // functions, and the modules' reference search (docs/motion.md).
 std::unique_ptr<MotionCore> make_tmc429_motion_core();
 
+// The built-in `tmc5160` core (TMCM-1260, PD57/60-1260): SixPoint positioning ramps in pps,
+// velocity mode, limit switches with their stop functions, and the module's reference search
+// with its +64 modes (docs/motion.md).
+std::unique_ptr<MotionCore> make_tmc5160_motion_core();
+
 }  // namespace tmcl

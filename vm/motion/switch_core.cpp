@@ -1,0 +1,350 @@
+// The limit switches and the reference search of the TMCM modules' cores (switch_core.hpp).
+#include "switch_core.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "tmcl/params.hpp"
+
+namespace tmcl::sw {
+
+using ramp::Builder;
+using ramp::EventKind;
+using ramp::Limits;
+using ramp::SwitchHit;
+
+void SwitchCore::advance(SimTime to, std::vector<MotionEvent>& out) {
+  collect(
+      to, out,
+      [](Motor& m, EventKind k) {
+        if (k == EventKind::ReferenceDone) m.search.step = SearchStep::Off;
+        if (k != EventKind::VelocityReached) m.goal = Goal::Idle, m.trip_t = ramp::kInf;
+      },
+      [this](Motor& m, const SwitchHit& h) {
+        if (m.goal == Goal::Search) search_switch(m, h.input, h.in, h.edge, h.dir);
+      });
+}
+
+ParamWrite SwitchCore::set_param(int motor, int param, std::int32_t value) {
+  Motor& m = at(motor);
+  switch (param) {
+    case kApTargetPosition: move_absolute(motor, value); return ParamWrite::Ok;
+    case kApActualPosition:  // shifts the register; a move in progress still goes to its target
+      m.rm.shift(static_cast<std::int64_t>(value) - m.rm.xactual(now_));
+      if (m.goal == Goal::Position) replan(m);
+      return ParamWrite::Ok;
+    case kApTargetSpeed:
+      if (!in_range(param, value)) return ParamWrite::OutOfRange;
+      rotate(motor, value);
+      return ParamWrite::Ok;
+    case kApActualSpeed: case kApPositionReached: case kHomeState: case kRightSwitchState:
+    case kLeftSwitchState: case kRfsDistance:
+      return ParamWrite::ReadOnly;
+    case kRfsMode: {
+      SearchMode sm;
+      if (!in_range(param, value) || !decode(value, sm)) return ParamWrite::OutOfRange;
+      m.p[kRfsMode] = value;  // read at the next RFS START
+      return ParamWrite::Ok;
+    }
+    default:
+      if (cfg_.last_reference != 0 && param == cfg_.last_reference) return ParamWrite::ReadOnly;
+      return set_other(m, param, value);
+  }
+}
+
+ParamWrite SwitchCore::set_other(Motor& m, int param, std::int32_t value) {
+  if (!in_range(param, value)) return ParamWrite::OutOfRange;  // the profile's range (core_skeleton.hpp)
+  const std::int32_t before = m.p[static_cast<std::size_t>(param)];
+  m.p[static_cast<std::size_t>(param)] = value;
+  if (before != value) replan(m);
+  return ParamWrite::Ok;
+}
+
+std::int32_t SwitchCore::get_param(int motor, int param) {
+  Motor& m = at(motor);
+  const ramp::State s = m.rm.state(now_);
+  switch (param) {
+    case kApActualPosition: return ramp::wrap32(m.rm.xactual(now_));
+    case kApTargetSpeed: return target_speed(m, s);
+    case kApActualSpeed: return units(s.v / vunit(m));
+    case kApPositionReached: return target_reached(motor) ? 1 : 0;
+    case kHomeState: return home_state(m) ? 1 : 0;
+    case kRightSwitchState: return closed(m, 1) ? 1 : 0;
+    case kLeftSwitchState: return closed(m, 0) ? 1 : 0;
+    default: return m.p[static_cast<std::size_t>(param)];
+  }
+}
+
+std::int32_t SwitchCore::target_speed(const Motor& m, const ramp::State&) const {
+  return m.goal == Goal::Velocity ? m.vt : 0;
+}
+
+std::int32_t SwitchCore::units(double v) { return static_cast<std::int32_t>(std::trunc(v + (v > 0 ? 1e-9 : -1e-9))); }
+
+void SwitchCore::move_absolute(int motor, std::int32_t target) {
+  Motor& m = at(motor);
+  m.p[kApTargetPosition] = target;
+  set_goal(m, Goal::Position);
+  replan(m);
+}
+
+void SwitchCore::move_relative(int motor, std::int32_t offset) {
+  move_absolute(motor, ramp::wrap32(static_cast<std::int64_t>(at(motor).p[kApTargetPosition]) + offset));
+}
+
+void SwitchCore::rotate(int motor, std::int32_t velocity) {
+  Motor& m = at(motor);
+  m.vt = std::clamp(velocity, -max_speed(), max_speed());  // the chip's register holds no more
+  set_goal(m, Goal::Velocity);
+  replan(m);
+}
+
+void SwitchCore::stop(int motor) {
+  Motor& m = at(motor);
+  if (m.goal == Goal::Idle && m.rm.at_rest(now_)) return;
+  m.vt = 0;
+  set_goal(m, Goal::Velocity);
+  replan(m);
+}
+
+std::int32_t SwitchCore::reference_search(int motor, RfsAction action) {
+  Motor& m = at(motor);
+  switch (action) {
+    case RfsAction::Start: start_search(m); return 0;
+    case RfsAction::Stop:
+      if (m.search.step != SearchStep::Off) stop(motor);
+      return 0;
+    case RfsAction::Status: return m.search.step != SearchStep::Off ? 1 : 0;
+  }
+  return 0;
+}
+
+bool SwitchCore::reference_done(int motor) const {
+  return motors_[static_cast<std::size_t>(motor)].search.step == SearchStep::Off;
+}
+
+void SwitchCore::set_switch(int motor, SwitchInput input, bool active) {
+  Motor& m = at(motor);
+  const int k = static_cast<int>(input);
+  const bool was = closed(m, k);
+  const auto bit = static_cast<std::uint8_t>(1u << k);
+  m.timed = static_cast<std::uint8_t>(active ? m.timed | bit : m.timed & ~bit);
+  if (closed(m, k) == was) return;
+  if (m.goal == Goal::Search)  // a timed switch has no place: its edge is where the motor is
+    search_switch(m, k, closed(m, k), m.rm.xactual(now_), 0);
+  else if (active && (m.goal == Goal::Position || m.goal == Goal::Velocity))
+    replan(m);  // the trip scan stops the motor at once if it moves toward the switch
+}
+
+bool SwitchCore::closed(const Motor& m, int input) const {
+  if (input == kRefInput) return closed(m, 0) || closed(m, 2);
+  return ((m.timed >> input) & 1) || m.rm.zones[static_cast<std::size_t>(input)].in;
+}
+
+void SwitchCore::plan_position(Motor& m, Builder& b, const Limits& lim) const {
+  b.plan_position(lim, static_cast<double>(m.p[kApTargetPosition] - m.rm.base));
+}
+
+void SwitchCore::replan(Motor& m, double vscale) {
+  if (m.goal == Goal::Search) return search_step(m, false, vscale);
+  if (m.trip_t != ramp::kInf && m.rm.secs(now_) >= m.trip_t && m.goal != Goal::Idle)
+    m.goal = Goal::Halt;  // the switch was hit: what is left is its stop
+  m.trip_t = ramp::kInf;
+  if (m.goal == Goal::Idle) return;
+  const Limits lim = ramp_limits(m);
+  Builder b = m.rm.restart(now_, vscale);
+  switch (m.goal) {
+    case Goal::Position: plan_position(m, b, lim); break;
+    case Goal::Velocity: b.plan_velocity(lim, m.vt * vunit(m)); break;
+    case Goal::Halt: return switch_stop(m, b, lim);
+    default: break;
+  }
+  // An arrival within the nanosecond after a whole microsecond is reported at that microsecond:
+  // there the motor must read the target, not the step before it (at a stop speed VSTOP or 130 of
+  // a few thousand pps the last nanosecond is more than the step tolerance).
+  m.rm.rest_on_grid();
+  scan_trips(m, lim);
+}
+
+// A limit switch stops the motor with the ramp (soft-stop flag 1) or at once (0).
+void SwitchCore::switch_stop(Motor& m, Builder& b, const Limits& lim) {
+  if (m.p[static_cast<std::size_t>(cfg_.soft_stop)])
+    b.stop_ramp(lim);
+  else
+    b.stop_hard();
+  b.event(EventKind::Stopped);
+  b.finish_rest();
+}
+
+// The first instant the plan moves toward a closed limit switch or reaches a placed one whose
+// stop function is on (12, 13 = 0): there the plan is cut and the stop appended.
+void SwitchCore::scan_trips(Motor& m, const Limits& lim) {
+  const bool left_on = m.p[kLeftStopDisable] == 0, right_on = m.p[kRightStopDisable] == 0;
+  if (!left_on && !right_on) return;
+  for (const auto& seg : m.rm.plan.segs) {
+    if (seg.dir == 0) continue;
+    const int input = seg.dir < 0 ? 0 : 1;
+    if (!(seg.dir < 0 ? left_on : right_on)) continue;
+    double dt = (m.timed >> input) & 1 ? 0.0 : m.rm.entry(seg, input);
+    if (dt < 0) continue;
+    m.trip_t = seg.t0 + dt;
+    Builder b(m.rm.plan, {}, 0);
+    b.truncate(m.trip_t);
+    switch_stop(m, b, lim);
+    m.rm.rest_on_grid();
+    return;
+  }
+}
+
+// ---------------------------------------------------------------- reference search
+
+bool SwitchCore::decode(std::int32_t value, SearchMode& out) const {
+  out.mode = value & 63;
+  out.other = (value & 64) != 0;
+  out.invert = (value & 128) != 0;
+  if (value < 0 || value > 255 || out.mode < 1 || out.mode > 8) return false;
+  if (!cfg_.other_switch) return !out.other;  // TMC429 modules: +128 with any mode, no +64
+  return !(out.other && out.mode > 4) && !(out.invert && out.mode < 5);
+}
+
+// 194 = 0: the maximum positioning speed; 195 = 0: a quarter of it (TMCM-1110 manual, 5.3).
+std::int32_t SwitchCore::search_speed(const Motor& m) const {
+  return m.p[kRfsSpeed] ? m.p[kRfsSpeed] : m.p[kApMaxPositioningSpeed];
+}
+std::int32_t SwitchCore::switch_speed(const Motor& m) const {
+  return m.p[kRfsSwitchSpeed] ? m.p[kRfsSwitchSpeed] : m.p[kApMaxPositioningSpeed] / 4;
+}
+
+// Whether the searched switch is closed (mode + 128: the home switch reads inverted).
+bool SwitchCore::search_closed(const Motor& m, int input) const {
+  if (input == kRefInput) return closed(m, 0) || search_closed(m, 2);
+  return closed(m, input) != (input == 2 && m.search.m.invert);
+}
+
+void SwitchCore::start_search(Motor& m) {
+  Search& s = m.search;
+  s = Search{};
+  if (!decode(m.p[kRfsMode], s.m)) s.m = SearchMode{};
+  const int mode = s.m.mode;
+  const int near = s.m.other ? 1 : 0, toward = s.m.other ? 1 : -1;  // the zero switch, its direction
+  s.far = 1 - near;
+  s.step = mode == 2 || mode == 3 ? SearchStep::FindFar : SearchStep::Find;
+  if (mode <= 4)
+    s.input = mode == 3 && cfg_.home_in_series ? kRefInput : near;
+  else
+    s.input = 2;
+  if (mode <= 4)
+    s.dir = s.step == SearchStep::FindFar ? -toward : toward;
+  else
+    s.dir = mode == 6 || mode == 7 ? 1 : -1;
+  s.reverse_at = mode == 5 ? 0 : mode == 6 ? 1 : -1;
+  m.goal = Goal::Search;
+  m.trip_t = ramp::kInf;
+  search_step(m, false);
+}
+
+// Starts the current step from the motor's state now. `stop_first`: the step begins at a switch
+// just met, so the motor first stops as the soft-stop flag says (hard: at once; soft: the ramp of
+// the turn).
+void SwitchCore::search_step(Motor& m, bool stop_first, double vscale) {
+  Search& s = m.search;
+  Builder b = m.rm.restart(now_, vscale);
+  if (stop_first && !m.p[static_cast<std::size_t>(cfg_.soft_stop)]) b.stop_hard();
+  if (s.step == SearchStep::ToRef) {
+    b.plan_position(search_limits(m, switch_speed(m), true), static_cast<double>(-m.rm.base));
+    auto& ev = m.rm.plan.events;  // none when the ramp cannot move (an acceleration or the speed 0)
+    if (!ev.empty()) ev.back().kind = EventKind::ReferenceDone;  // the arrival ends the search
+    m.rm.rest_on_grid();
+    return;
+  }
+  const bool fast = s.step == SearchStep::Find || s.step == SearchStep::FindFar;
+  const Limits lim = search_limits(m, fast ? search_speed(m) : switch_speed(m), false);
+  b.plan_velocity(lim, s.dir * lim.vmax);
+  m.rm.plan.events.clear();  // the search's own stops and speeds are no events of the program
+  // A switch already as the step awaits it counts at once (e.g. a search started inside it).
+  if (s.step == SearchStep::Find && s.reverse_at >= 0 && closed(m, s.reverse_at)) return turn_around(m);
+  const int input = s.step == SearchStep::FindFar ? s.far : s.input;
+  const bool want = s.step != SearchStep::Release && s.step != SearchStep::Cross;
+  if (search_closed(m, input) == want) search_met(m, m.rm.xactual(now_));
+}
+
+// Modes 5 and 6: the end switch on the way turns the search around, once.
+void SwitchCore::turn_around(Motor& m) {
+  m.search.reverse_at = -1;
+  m.search.dir = -m.search.dir;
+  search_step(m, true);
+}
+
+// A switch closed or opened during the search: `edge` is where (register counts), `dir` the
+// motor's direction then (0: at rest, or a timed switch).
+void SwitchCore::search_switch(Motor& m, int input, bool now_closed, std::int64_t edge, int dir) {
+  Search& s = m.search;
+  if (s.step == SearchStep::Off || s.step == SearchStep::ToRef || (dir != 0 && dir != s.dir)) return;
+  if (s.step == SearchStep::Find && input == s.reverse_at && now_closed) return turn_around(m);
+  const int awaited = s.step == SearchStep::FindFar ? s.far : s.input;
+  if (awaited == kRefInput ? input == 1 : input != awaited) return;
+  if (input == 2 && s.m.invert) now_closed = !now_closed;
+  if (awaited == kRefInput) now_closed = search_closed(m, kRefInput);
+  const bool want = s.step != SearchStep::Release && s.step != SearchStep::Cross;
+  if (now_closed == want) search_met(m, edge);
+}
+
+// The awaited switching happened at `edge`: record it and go on to the next step.
+void SwitchCore::search_met(Motor& m, std::int64_t edge) {
+  Search& s = m.search;
+  switch (s.step) {
+    case SearchStep::FindFar:
+      s.far_edge = edge;
+      s.step = SearchStep::Find;
+      s.dir = -s.dir;
+      return search_step(m, true);
+    case SearchStep::Find:
+      if (s.input == kRefInput) s.input = search_closed(m, 2) ? 2 : 0;  // mode 3: whichever it was
+      s.both = far_edge(m, s.input, s.dir);
+      s.step = SearchStep::Release;
+      s.dir = -s.dir;
+      return search_step(m, true);
+    case SearchStep::Release:
+      s.release = edge;
+      s.step = SearchStep::Reenter;
+      s.dir = -s.dir;
+      return search_step(m, true);
+    case SearchStep::Reenter:
+      s.reenter = edge;
+      if (s.both) {  // on through the switch, without stopping, to its far edge
+        s.step = SearchStep::Cross;
+        return;
+      }
+      return reference_at(m, s.release, s.reenter);
+    case SearchStep::Cross: return reference_at(m, s.reenter, edge);
+    default: return;
+  }
+}
+
+// Whether the switch has an edge beyond the one met moving `dir`: a range (a home switch, a
+// cam on a stop input), not a stop switch that stays closed to the end of travel.
+bool SwitchCore::far_edge(const Motor& m, int input, int dir) const {
+  const ramp::Zone& z = m.rm.zones[static_cast<std::size_t>(input)];
+  if (!z.placed || (input == 2 && m.search.m.invert)) return false;
+  return dir < 0 ? z.lo != INT64_MIN : z.hi != INT64_MAX;
+}
+
+// The reference point is the centre of the two switching points (rounded down): the register
+// counts from it from now on, 196 holds the distance of the end switch met first (modes 2 and 3),
+// the last-reference parameter the reference point's former position, and the motor goes there
+// at the switch speed.
+void SwitchCore::reference_at(Motor& m, std::int64_t a, std::int64_t b) {
+  Search& s = m.search;
+  const std::int64_t sum = a + b, ref = sum >= 0 ? sum / 2 : -((1 - sum) / 2);
+  if (s.m.mode == 2 || s.m.mode == 3) {
+    const std::int64_t d = s.far_edge - ref;
+    m.p[kRfsDistance] = static_cast<std::int32_t>(std::min<std::int64_t>(d < 0 ? -d : d, INT32_MAX));
+  }
+  if (cfg_.last_reference != 0) m.p[static_cast<std::size_t>(cfg_.last_reference)] = ramp::wrap32(ref);
+  m.rm.shift(-ref);
+  m.p[kApTargetPosition] = 0;
+  s.step = SearchStep::ToRef;
+  search_step(m, true);
+}
+
+}  // namespace tmcl::sw

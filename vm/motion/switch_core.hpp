@@ -1,0 +1,151 @@
+// What the cores of the TMCM modules share beyond the ramp (ramp_motor.hpp): the limit switches
+// with their stop functions and switch states, and the modules' reference search (RFS, 193-196)
+// as a state machine driven by the switches. The TMC429 modules (motion_tmc429.cpp) and the
+// TMCM-1260 (motion_tmc5160.cpp) describe both alike in their manuals; a core adds its units, its
+// ramps and the parameter numbers where they differ. docs/motion.md explains every decision.
+//
+// Parameters this part gives a meaning: 0-3, 8-13, 193-196 (and the core's soft-stop flag and
+// last-reference parameter, SwitchConfig).
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <span>
+#include <string_view>
+#include <vector>
+
+#include "ramp_motor.hpp"
+
+namespace tmcl::sw {
+
+enum Param : int {
+  kHomeState = 9,          // TMC429 modules: the reference (left or home) input; TMCM-1260: home
+  kRightSwitchState = 10,
+  kLeftSwitchState = 11,
+  kRightStopDisable = 12,
+  kLeftStopDisable = 13,
+  kRfsMode = 193,          // 1-8; +64: the other end switch (1-4, TMCM-1260); +128: home inverted
+  kRfsSpeed = 194,
+  kRfsSwitchSpeed = 195,
+  kRfsDistance = 196,      // between the end switches, after modes 2 and 3
+};
+
+enum class Goal : std::uint8_t { Idle, Position, Velocity, Halt, Search };
+
+// The reference search's steps (docs/motion.md has a figure per mode):
+//   FindFar  modes 2, 3: toward the far end switch at the search speed until it closes
+//   Find     toward the switch at the search speed until it closes (modes 5, 6: the end switch
+//            on the way reverses the search once)
+//   Release  back at the switch speed until it opens: its near edge
+//   Reenter  toward it again until it closes: the edge once more
+//   Cross    on through it until it opens at its far edge (switches with two edges)
+//   ToRef    to the reference point, which is then position 0
+enum class SearchStep : std::uint8_t { Off, FindFar, Find, Release, Reenter, Cross, ToRef };
+inline constexpr int kRefInput = 3;  // the reference input: the left or the home switch in series
+
+// A value of 193 taken apart.
+struct SearchMode {
+  int mode = 1;          // 1-8
+  bool other = false;    // +64: modes 1-4 search the right switch (and 2, 3 the left one first)
+  bool invert = false;   // +128: the home switch is closed outside its range
+};
+
+struct Search {
+  SearchStep step = SearchStep::Off;
+  SearchMode m;
+  int input = 0;         // SwitchInput searched, or kRefInput
+  int far = 1;           // modes 2, 3: the end switch searched first
+  int dir = -1;          // direction of the current step
+  int reverse_at = -1;   // modes 5, 6: the end switch that turns the search around (-1: none)
+  bool both = false;     // the switch has a far edge: calibrate from both sides
+  std::int64_t far_edge = 0, release = 0, reenter = 0;  // switching points (register counts)
+};
+
+struct Motor {
+  ramp::RampMotor rm;
+  std::array<std::int32_t, 256> p{};  // owned parameters, raw as written
+  Goal goal = Goal::Idle;
+  std::int32_t vt = 0;                // velocity-mode target, raw
+  std::uint8_t timed = 0;             // bit (1 << SwitchInput): closed by a timed scenario line
+  double trip_t = ramp::kInf;         // plan instant of a pending limit-switch stop
+  Search search;
+};
+
+// Where the modules differ in what this part does.
+struct SwitchConfig {
+  int soft_stop;          // the flag choosing a ramp (1) or a hard stop (0) at a limit switch
+  bool home_in_series;    // mode 3 searches the reference input (TMC429 modules: home in series with left)
+  bool other_switch;      // 193 takes +64 (modes 1-4) and +128 only with modes 5-8 (TMCM-1260)
+  int last_reference = 0; // parameter that keeps the reference point's former position (0: none)
+};
+
+class SwitchCore : public ramp::RampCore<Motor> {
+ public:
+  SwitchCore(std::span<const int> owned, std::string_view home, bool chip_units, SwitchConfig cfg)
+      : RampCore(owned, home, chip_units), cfg_(cfg) {}
+
+  void advance(SimTime to, std::vector<MotionEvent>& out) override;
+  ParamWrite set_param(int motor, int param, std::int32_t value) override;
+  std::int32_t get_param(int motor, int param) override;
+  void move_absolute(int motor, std::int32_t target) override;
+  void move_relative(int motor, std::int32_t offset) override;  // from the last target
+  void rotate(int motor, std::int32_t velocity) override;
+  void stop(int motor) override;
+  std::int32_t reference_search(int motor, RfsAction action) override;
+  bool reference_done(int motor) const override;
+  void set_switch(int motor, SwitchInput input, bool active) override;
+  void encoder_slip(int, std::int32_t) override {}  // the encoder is not modelled (docs/motion.md)
+
+ protected:
+  // ---- what a core says
+  // pps per velocity unit of `m` now (1 for a core in pps).
+  virtual double vunit(const Motor& m) const = 0;
+  // The largest speed (raw) the velocity register holds.
+  virtual std::int32_t max_speed() const = 0;
+  // The ramp of the motor's goal (Position or Velocity) at its parameters.
+  virtual ramp::Limits ramp_limits(const Motor& m) const = 0;
+  // The ramp of a reference-search step at `speed` (raw): a velocity ramp to it, or (the last
+  // step, `positioning`) the positioning ramp with it as the top speed.
+  virtual ramp::Limits search_limits(const Motor& m, std::int32_t speed, bool positioning) const = 0;
+  // Plans a positioning to the target (parameter 0); the default is the plain positioning ramp.
+  virtual void plan_position(Motor& m, ramp::Builder& b, const ramp::Limits& lim) const;
+  // Writes of the parameters the shared part leaves to the core: the default checks the range,
+  // stores the value and re-plans when it changed.
+  virtual ParamWrite set_other(Motor& m, int param, std::int32_t value);
+  // Parameter 2 as read, and parameter 9 (see kHomeState).
+  virtual std::int32_t target_speed(const Motor& m, const ramp::State& s) const;
+  virtual bool home_state(const Motor& m) const { return closed(m, 2); }
+
+  // ---- the shared machinery, for the cores
+  // A reading in whole units, toward zero as the chip's registers hold it.
+  static std::int32_t units(double v);
+  bool closed(const Motor& m, int input) const;
+  // Re-plans motor m from its state now toward its goal; then the first limit-switch trip cuts it.
+  // `vscale` multiplies the speed now (a chip whose velocity unit just changed: tmc429).
+  void replan(Motor& m, double vscale = 1);
+  void abort_search(Motor& m) { m.search.step = SearchStep::Off; }
+  void set_goal(Motor& m, Goal goal) {
+    abort_search(m);
+    m.goal = goal;
+    m.trip_t = ramp::kInf;
+  }
+
+ private:
+  bool decode(std::int32_t value, SearchMode& out) const;
+  void switch_stop(Motor& m, ramp::Builder& b, const ramp::Limits& lim);
+  void scan_trips(Motor& m, const ramp::Limits& lim);
+  std::int32_t search_speed(const Motor& m) const;
+  std::int32_t switch_speed(const Motor& m) const;
+  bool search_closed(const Motor& m, int input) const;
+  void start_search(Motor& m);
+  void search_step(Motor& m, bool stop_first, double vscale = 1);
+  void turn_around(Motor& m);
+  void search_switch(Motor& m, int input, bool now_closed, std::int64_t edge, int dir);
+  void search_met(Motor& m, std::int64_t edge);
+  bool far_edge(const Motor& m, int input, int dir) const;
+  void reference_at(Motor& m, std::int64_t a, std::int64_t b);
+
+  SwitchConfig cfg_;
+};
+
+}  // namespace tmcl::sw
