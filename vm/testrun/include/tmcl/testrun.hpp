@@ -282,7 +282,8 @@ class Coverage {
   std::vector<Sums> sums_;
 };
 std::string lcov_tracefile(const Coverage& c);
-// Lines and branches covered per file, then the lines never run.
+// Lines and branches covered per file, then the lines never run and the lines of branches that
+// ran with an outcome no test saw ("branches never taken", "branches always taken").
 std::string coverage_summary(const Coverage& c);
 
 }  // namespace tmcl::testrun
