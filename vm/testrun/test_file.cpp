@@ -137,8 +137,8 @@ class LineReader {
 
   // After the last line: the program and the module (TestFile::module), which are the file's
   // `program` and `target` lines, or, without a `target` line, the module a plain tmclrun would
-  // take for the program.
-  void finish(const std::string& default_target, bool target_given) {
+  // take for the program. Returns the module's profile, or null.
+  const Profile* finish(const std::string& default_target, bool target_given) {
     if (t_.program.empty() && !t_.skipped)
       diags_.push_back({path_, 1, 0, 1, "no 'program' line: a test names the program it runs (program FILE)", ""});
     // The program is found relative to the test file ("tests/../prog.tmc" is "prog.tmc").
@@ -153,18 +153,19 @@ class LineReader {
       const std::size_t slash = path_.rfind('/');
       if (t_.module.find('/') != std::string::npos && t_.module[0] != '/' && slash != std::string::npos)
         t_.module = path_.substr(0, slash + 1) + t_.module;
-      if (!test_profile(t_, &why))
-        diags_.push_back({path_, t_.target_line, target_word_.col, static_cast<int>(target_word_.text.size()), why, target_source_});
-      return;
+      const Profile* p = test_profile(t_, &why);
+      if (!p) diags_.push_back({path_, t_.target_line, target_word_.col, static_cast<int>(target_word_.text.size()), why, target_source_});
+      return p;
     }
     // tmclrun's rule, with tmclrun's own function: -t, else the program's first line, else -t's default.
     t_.module = target_given || t_.program.empty() ? default_target : target_named_by_file(t_.program, default_target);
-    if (test_profile(t_, &why)) return;
+    if (const Profile* p = test_profile(t_, &why)) return p;
     if (t_.module != default_target)  // named by the program: shown at the `program` line
       diags_.push_back({path_, t_.program_line, program_col_, program_len_,
                         "the program's first line names the target '" + t_.module + "': " + why, program_source_});
     else
       diags_.push_back({path_, 1, 0, 1, why, ""});
+    return nullptr;
   }
 
  private:
@@ -362,8 +363,7 @@ bool parse_test_file(const std::string& text, const std::string& path, const std
     scenario += (!w.empty() && (w[0].text == "at" || w[0].text == "switch") ? out.lines[i] : std::string()) + "\n";
     reader.read(static_cast<int>(i) + 1, out.lines[i], line);
   }
-  reader.finish(default_target, target_given);
-  const Profile* profile = test_profile(out);
+  const Profile* profile = reader.finish(default_target, target_given);
   ScenarioOptions sopts;
   sopts.motors = profile ? profile->motors : 256;
   sopts.module = profile ? std::string(profile->name) : std::string();
