@@ -947,8 +947,6 @@ int run(int argc, char** argv) {
   if ((!o.csv.empty() || !o.plot.empty()) && o.command != "monitor") return usage_error("--csv and --plot go with monitor");
   if (!o.junit.empty() && o.command != "test") return usage_error("--junit goes with test");
   if (o.command == "test" && o.args.empty()) return usage_error("test needs test files or folders (FILE.tmctest or DIR)");
-  if (!o.junit.empty() && o.command != "test") return usage_error("--junit goes with test");
-  if (o.command == "test" && o.args.empty()) return usage_error("test needs test files or folders (FILE.tmctest or DIR)");
 
   std::string err;
   std::unique_ptr<host::Port> port = host::Port::open(o.port, o.baud, o.client.timeout_ms, err);
@@ -977,7 +975,6 @@ int run(int argc, char** argv) {
   if (c == "reset") return s.cmd_control(Op::ResetApplication);
   if (c == "status") return s.cmd_status();
   if (c == "monitor") return s.cmd_monitor();
-  if (c == "test") return tmclctl_test(s.client, *o.profile, o.args, o.include_dirs, o.junit, &g_stop);
   if (c == "test") return tmclctl_test(s.client, *o.profile, o.args, o.include_dirs, o.junit, &g_stop);
   return s.cmd_console();
 }

@@ -95,6 +95,7 @@ int tmclctl_test(host::Client& client, const tmcl::Profile& profile, const std::
   tmcl::testrun::SuiteOptions o;
   o.run.tool = "tmclctl";
   o.run.target = std::string(profile.name);
+  o.run.target_given = true;  // the module is the one connected, whatever a program's first line names
   o.run.asm_options.include_dirs = include_dirs;
   o.jobs = 1;  // one module
   o.junit = junit;

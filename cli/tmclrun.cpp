@@ -43,7 +43,6 @@ namespace {
 
 const char* kUsage = R"(usage: tmclrun [options] PROGRAM        PROGRAM: .tmc source, .bin, .dgm, or - (stdin)
        tmclrun --test [options] FILE.tmctest|DIR...
-       tmclrun --test [options] FILE.tmctest|DIR...
 
 Runs a TMCL program on a deterministic virtual module. Simulated time: nothing waits for real.
 
@@ -59,7 +58,6 @@ examples:
   tmclrun --eeprom module.eeprom prog.tmc       run twice: the EEPROM persists
   tmclrun --plot motion.svg --csv motion.csv prog.tmc   what the motors did, as a picture and data
   tmclrun --serve tcp:127.0.0.1:2001 prog.tmc   a virtual module for PyTrinamic (Ctrl-C stops it)
-  tmclrun --test --junit report.xml --coverage coverage.info tests/
   tmclrun --test --junit report.xml --coverage coverage.info tests/
 
 exit status: 0 STOP, 3 limit reached or blocked forever, 70 runtime fault, 65 bad input,
@@ -397,7 +395,9 @@ tmcl::cli::Tool command_line(Options& o) {
       {"-Wno-", "NAME", "do not report the assembler warning NAME", warning("-Wno-"), warnings},
       {"-W", "NAME", "", warning("-W"), warnings, {}, true},
   };
-  t.operands = [](const std::vector<std::string>&, const std::vector<std::string>&) {
+  t.operands = [](const std::vector<std::string>&, const std::vector<std::string>& given) {
+    for (const auto& g : given)
+      if (g == "--test") return Values::files({"tmctest"});  // test files, or folders of them
     return Values::files({"tmc", "bin", "dgm"});
   };
   return t;

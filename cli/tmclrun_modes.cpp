@@ -121,6 +121,7 @@ int tmclrun::run_mode(Options& o, const tmcl::Profile& profile, std::unique_ptr<
   if (o.testing) {  // the test files of o.inputs (vm/testrun, docs/testing.md)
     tmcl::testrun::RunOptions& r = o.test.run;
     std::tie(r.target, r.motion, r.instr_time, r.asm_options, r.strict) = std::tie(o.target, o.motion, o.instr_time, o.asm_opts, o.strict);
+    r.target_given = o.target_given;  // else a program's first line names its test's module, as for a plain run
     r.max_time_given = o.limits.until != tmcl::kNever;
     r.max_time = o.limits.until;
     r.error_limit = o.asm_opts.error_limit;  // --error-limit

@@ -37,7 +37,7 @@ class Parser {
   bool parse(std::string& error, std::size_t* error_at) {
     int root = binary(0);
     skip();
-    if (err_.empty() && pos_ < s_.size()) fail("unexpected '" + s_.substr(pos_, 1) + "'");
+    if (err_.empty() && pos_ < s_.size()) fail("unexpected '" + character() + "'");
     if (!err_.empty()) {
       error = err_ + " in '" + s_ + "'";
       if (error_at) *error_at = std::min(err_at_, s_.size());
@@ -72,6 +72,12 @@ class Parser {
     return true;
   }
   // The first error wins; `at` is where it is (default: the current position).
+  // The character at pos_, whole when it is valid UTF-8 (a stray "±"), else its one byte.
+  std::string character() const {
+    const std::size_t n = static_cast<unsigned char>(s_[pos_]) >= 0x80 ? utf8_length(s_, pos_) : 1;
+    return s_.substr(pos_, std::max<std::size_t>(n, 1));
+  }
+
   void fail(std::string m, std::size_t at = std::string::npos) {
     if (!err_.empty()) return;
     err_ = std::move(m);
@@ -201,7 +207,7 @@ class Parser {
       fail("no register, label or constant named '" + name + "'" + suggestion(name), start);
       return -1;
     }
-    fail("unexpected '" + std::string(1, c) + "'");
+    fail("unexpected '" + character() + "'");
     return -1;
   }
 

@@ -10,7 +10,7 @@ export PATH="$tools:$PATH"
 work=$(mktemp -d "${TMPDIR:-/tmp}/tmcl-completion.XXXXXX")
 trap 'rm -rf "$work"' EXIT
 cd "$work" || exit 1
-mkdir sub && touch prog.tmc lib.inc prog.bin prog.dgm motion.svg notes.txt sub/x.tmc
+mkdir sub && touch prog.tmc lib.inc prog.bin prog.dgm motion.svg notes.txt sub/x.tmc homing.tmctest
 
 failures=0
 if declare -F _init_completion >/dev/null; then
@@ -54,10 +54,13 @@ expect "tmclrun --serve tcp:" 127.0.0.1:2001
 expect "tmclrun -Wno-reti" -Wno-reti
 expect "tmclrun --debug-c" --debug-commands
 expect "tmclrun " sub prog.tmc prog.bin prog.dgm
+expect "tmclrun --test " sub homing.tmctest
+expect "tmclrun --test -j 2 homing.tmctest " sub homing.tmctest
 expect "tmclctl /dev/null st" status step stop store
 expect "tmclctl tcp:127.0.0.1:2001 get " ap gp io
 expect "tmclctl --baud 1152" 115200
 expect "tmclctl tcp:127.0.0.1:2001 download " sub prog.tmc prog.bin prog.dgm
+expect "tmclctl tcp:127.0.0.1:2001 test " sub homing.tmctest
 expect "tmcl-lsp --s" --stdio
 # Hidden options are not offered.
 expect "tmclasm --list-o"

@@ -1,8 +1,9 @@
 -- Drives Neovim's built-in LSP client (0.7 or newer) against tmcl-lsp, headless: open a file
 -- with a mistake, wait for its diagnostic, hover on a parameter number, fix the mistake with an
 -- incremental edit and see the diagnostics clear, jump to a label's definition, ask for semantic
--- tokens and inlay hints, format the file.
--- Run by nvim_test.sh; TMCL_LSP and TMC_FILE come from the environment.
+-- tokens and inlay hints, format the file; then open a test file (*.tmctest) with the shipped
+-- filetype detection and see the server check it too.
+-- Run by nvim_test.sh; TMCL_LSP, TMC_FILE, TMCTEST_FILE and TMCL_FTDETECT come from the environment.
 local ok, err = pcall(function()
   local file = os.getenv('TMC_FILE')
   local id = vim.lsp.start_client({
@@ -42,9 +43,23 @@ local ok, err = pcall(function()
   local lines = vim.api.nvim_buf_get_lines(0, 0, -1, false)
   assert(table.concat(lines, '\n') == 'Speed = 1000\nLoop:\n  SAP 4, 0, Speed\n  MVP ABS, 0, 100\n  JA Loop',
     'formatted: ' .. vim.inspect(lines))
+  -- A test file: the shipped filetype detection names it tmcltest, the server attaches to that
+  -- filetype as docs/editors.md sets it up, and its diagnostics arrive.
+  vim.cmd('source ' .. os.getenv('TMCL_FTDETECT'))
+  vim.api.nvim_create_autocmd('FileType', {
+    pattern = { 'tmcl', 'tmcltest' },
+    callback = function(args) vim.lsp.buf_attach_client(args.buf, id) end,
+  })
+  vim.cmd('edit ' .. os.getenv('TMCTEST_FILE'))
+  assert(vim.bo.filetype == 'tmcltest', 'a .tmctest buffer has the filetype ' .. vim.inspect(vim.bo.filetype))
+  assert(vim.lsp.buf_is_attached(0, id), 'the server is not attached to the .tmctest buffer')
+  assert(vim.wait(10000, function() return #vim.diagnostic.get(0) > 0 end, 50), 'no diagnostics arrived for the test file')
+  d = vim.diagnostic.get(0)[1]
+  assert(d.message == "no register, label or constant named 'Tpo'; did you mean 'Top'?" and d.lnum == 2 and d.col == 19,
+    'test file diagnostic: ' .. vim.inspect(d))
 end)
 if ok then
-  io.stdout:write('neovim: diagnostics, hover, incremental change, definition, semantic tokens, inlay hints and formatting all passed\n')
+  io.stdout:write('neovim: diagnostics, hover, incremental change, definition, semantic tokens, inlay hints, formatting and a test file all passed\n')
   vim.cmd('qall!')
 else
   io.stderr:write('FAIL: ' .. tostring(err) .. '\n')

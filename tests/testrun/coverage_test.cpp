@@ -105,7 +105,14 @@ TEST(coverage_summary_lists_what_never_ran) {
            "coverage: lines 16/17 (94.1%), branches 3/4 (75.0%) in 2 files\n"
            "  lib.tmc: lines 3/3 (100.0%), branches 0/0\n"
            "  main.tmc: lines 13/14 (92.9%), branches 3/4 (75.0%)\n"
-           "    never run: 10\n");
+           "    never run: 10\n"
+           "    branches always taken: 9\n");  // JC EQ, six: acc is always 6
+  // A branch that ran and never jumped, one that always jumped, one that never ran (its line is
+  // listed as never run, not again as a branch).
+  put("branchy.tmc", "CALC LOAD, 1\nCOMP 5\nJC EQ, 3\nJC NE, 4\nSTOP\nJC EQ, 0\n");
+  CHECK(has(coverage_summary(covered({"program branchy.tmc\n"})),
+            "  branchy.tmc: lines 5/6 (83.3%), branches 2/6 (33.3%)\n    never run: 6\n    branches never taken: 3\n"
+            "    branches always taken: 4\n"));
   put("gaps.tmc", "JA 4\nCALC ADD, 1\nCALC ADD, 1\nCALC ADD, 1\nSTOP\nCALC ADD, 1\n");
   CHECK(has(coverage_summary(covered({"program gaps.tmc\n"})), "  gaps.tmc: lines 2/6 (33.3%), branches 0/0\n    never run: 2-4, 6\n"));
 }

@@ -11,7 +11,7 @@ namespace {
 TestFile parsed(const std::string& text, const std::string& path = "dir/t.tmctest") {
   TestFile t;
   std::vector<tmcl::FileDiag> diags;
-  CHECK(parse_test_file(text, path, "generic", t, diags));
+  CHECK(parse_test_file(text, path, "generic", t, diags, true));
   CHECK_EQ(tmcl::render_file_diags(diags, 0), "");
   return t;
 }
@@ -19,7 +19,7 @@ TestFile parsed(const std::string& text, const std::string& path = "dir/t.tmctes
 std::string errors(const std::string& text, const std::string& target = "generic") {
   TestFile t;
   std::vector<tmcl::FileDiag> diags;
-  CHECK(!parse_test_file(text, "t.tmctest", target, t, diags));
+  CHECK(!parse_test_file(text, "t.tmctest", target, t, diags, true));
   return tmcl::render_file_diags(diags, 0);
 }
 
@@ -51,8 +51,10 @@ TEST(file_every_line_kind) {
   CHECK_EQ(t.max_time, 1'500'000);
   CHECK(t.max_time_given);
   CHECK_EQ(t.defines.size(), 1u);
-  CHECK_EQ(t.defines[0].first, "SPEED");
-  CHECK_EQ(t.defines[0].second, "1000 * 2");
+  CHECK_EQ(t.defines[0].name, "SPEED");
+  CHECK_EQ(t.defines[0].value, "1000 * 2");
+  CHECK_EQ(t.defines[0].line, 7);
+  CHECK_EQ(t.defines[0].col, 14);  // where the value starts: its errors are shown there
   CHECK_EQ(t.inputs.size(), 1u);
   CHECK_EQ(t.inputs[0].at, 100'000);
   CHECK_EQ(t.inputs[0].line, 8);
@@ -214,13 +216,61 @@ TEST(file_target_may_be_a_profile_file) {
     std::fputs("tmcl-profile 1\nname mine\ntitle \"mine\"\nbased-on usb-2-sd\n", f);
     std::fclose(f);
   }
+  TestFile t = parsed("program p.tmc\ntarget ./mine.profile\n", folder + "/t.tmctest");
+  CHECK_EQ(t.module, folder + "/./mine.profile");
   std::string why;
-  const tmcl::Profile* p = test_profile("./mine.profile", folder + "/t.tmctest", &why);
+  const tmcl::Profile* p = test_profile(t, &why);
   CHECK(p != nullptr);
   CHECK_EQ(why, "");
   if (p) CHECK_EQ(std::string(p->name), "mine");
-  CHECK(test_profile("./none.profile", folder + "/t.tmctest", &why) == nullptr);
+  std::vector<tmcl::FileDiag> diags;
+  CHECK(!parse_test_file("program p.tmc\ntarget ./none.profile\n", folder + "/t.tmctest", "generic", t, diags, true));
+  CHECK(test_profile(t, &why) == nullptr);
   CHECK(why.find("none.profile") != std::string::npos);
+  CHECK_EQ(diags.size(), std::size_t{1});
   std::error_code ec;
   std::filesystem::remove_all(folder, ec);
+}
+
+// Without a `target` line a test runs where a plain `tmclrun PROGRAM` would: on -t when given,
+// else on what the program's first line names (`// tmcl-target: NAME`), else on -t's default;
+// a module the program names that does not exist is shown at the `program` line.
+TEST(file_module_as_for_tmclrun) {
+  runtest::put("named/p.tmc", "// tmcl-target: tmcm-1110\n  STOP\n");
+  runtest::put("named/bad.tmc", "// tmcl-target: tmcm-9999\n  STOP\n");
+  runtest::put("named/plain.tmc", "  STOP\n");
+  auto module = [](const std::string& text, bool target_given) {
+    TestFile t;
+    std::vector<tmcl::FileDiag> diags;
+    CHECK(parse_test_file(text, "named/tests/t.tmctest", "usb-2-sd", t, diags, target_given));
+    CHECK_EQ(tmcl::render_file_diags(diags, 0), "");
+    return t.module;
+  };
+  CHECK_EQ(module("program ../p.tmc\n", false), "tmcm-1110");
+  CHECK_EQ(module("program ../p.tmc\n", true), "usb-2-sd");         // -t wins over the program, as for tmclrun
+  CHECK_EQ(module("program ../p.tmc\ntarget tmcm-3110\n", false), "tmcm-3110");  // the test file's own wins over both
+  CHECK_EQ(module("program ../plain.tmc\n", false), "usb-2-sd");
+  CHECK_EQ(module("program ../none.tmc\n", false), "usb-2-sd");     // not there: the error is the loader's
+  // The scenario lines' motors are the named module's: a USB-2-SD has one motor.
+  runtest::put("named/one.tmc", "// tmcl-target: usb-2-sd\n  STOP\n");
+  TestFile t;
+  std::vector<tmcl::FileDiag> diags;
+  CHECK(!parse_test_file("program ../one.tmc\nat 1s left 2 = 1\n", "named/tests/t.tmctest", "tmcm-3110", t, diags, false));
+  CHECK_EQ(tmcl::render_file_diags(diags, 0),
+           "named/tests/t.tmctest:2:12: error: usb-2-sd has no motor 2 (0..0)\n at 1s left 2 = 1\n            ^\n");
+  diags.clear();
+  CHECK(!parse_test_file("program  ../bad.tmc  # named\n", "named/tests/t.tmctest", "generic", t, diags, false));
+  CHECK(runtest::has(tmcl::render_file_diags(diags, 0),
+                     "named/tests/t.tmctest:1:10: error: the program's first line names the target 'tmcm-9999': unknown target 'tmcm-9999'"));
+  CHECK(runtest::has(tmcl::render_file_diags(diags, 0), " program  ../bad.tmc  # named\n          ^~~~~~~~~~\n"));
+}
+
+// Diagnostics quote a line as written when it is valid UTF-8 (a test file's "±"), with the
+// caret counted in characters; other bytes, controls and invisible characters that would move
+// the caret or turn the text around are '?'.
+TEST(file_diagnostics_quote_utf8_as_written) {
+  CHECK_EQ(tmcl::caret_lines("x = 0 \xC2\xB1 10 +", 13, 1), " x = 0 \xC2\xB1 10 +\n            ^\n");
+  CHECK_EQ(tmcl::caret_lines("\xC3\xA9t\xC3\xA9 = 1", 1, 5), " \xC3\xA9t\xC3\xA9 = 1\n ^~~\n");  // 5 bytes, 3 letters
+  CHECK_EQ(tmcl::caret_lines("\tv\xE2\x80\xAE" "1 \xE9 \xC2\x85 x", 13, 1), " \tv?1 ? ? x\n \t        ^\n");
+  CHECK_EQ(tmcl::caret_lines("ab", 5, 2), " ab\n     ^\n");  // past the end: no tildes
 }

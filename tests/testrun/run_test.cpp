@@ -209,3 +209,54 @@ TEST(run_images_run_without_labels) {
   CHECK_EQ(messages(r), "");
   CHECK(r.status == TestResult::Pass);
 }
+
+// A test file without a `target` line runs on the module a plain tmclrun would: the one the
+// program's first line names unless -t was given (RunOptions::target_given).
+TEST(run_the_module_is_the_programs_unless_t_is_given) {
+  put("named.tmc", "// tmcl-target: tmcm-1110\n  GAP 4, 0    // the maximum speed's default: 1000 here, 51200 on generic\n  STOP\n");
+  const std::string test = "program named.tmc\nexpect at end acc = 1000\n";
+  CHECK(run("named", test).status == TestResult::Pass);
+  tmcl::testrun::RunOptions o;
+  o.target = "generic";
+  o.target_given = true;
+  CHECK_EQ(messages(run("named-t", test, o)), "2: expected acc = 1000 at the end, got 51200\n");
+  CHECK(run("named-own", "program named.tmc\ntarget usb-2-sd\nexpect at end acc = 51200\n").status == TestResult::Pass);
+}
+
+// A bad `define` is shown at its line of the test file, the caret in its value; a note of the
+// program's diagnostics that points at one points at that line; each test that shares the
+// program sees its own lines. The test file's own mistakes come with them in one go: those of
+// an expression's syntax, not names, which need the program's symbols.
+TEST(run_define_errors_are_the_test_files) {
+  put("speed.tmc", "Speed = 3\n  SGP 0, 2, Speed\n  STOP\n");
+  tmcl::testrun::ProgramCache cache;
+  const TestResult empty = tmcl::testrun::run_test_file(
+      put("empty.tmctest", "program speed.tmc\ndefine X=\nexpect at 1s acc = 1 +\nexpect at end acc = Nope\n"), {}, cache);
+  CHECK(empty.status == TestResult::Error);
+  CHECK_EQ(empty.error,
+           "empty.tmctest:2:10: error: expected a value, found end of line\n define X=\n          ^\n"
+           "empty.tmctest:3:23: error: expression ends too early\n expect at 1s acc = 1 +\n                       ^\n");
+  // The same program and definitions (one load), the define on another line of another file.
+  const TestResult later = tmcl::testrun::run_test_file(
+      put("later.tmctest", "program speed.tmc\n\n   define  X=   # empty\n"), {}, cache);
+  CHECK_EQ(later.error, "later.tmctest:3:14: error: expected a value, found end of line\n    define  X=   # empty\n              ^\n");
+  // An error inside the value, with its did-you-mean.
+  const TestResult typo = run("typo", "program speed.tmc\ndefine Y=2 * Sped\n");
+  CHECK_EQ(typo.error, "");
+  put("uses.tmc", "  SGP 0, 2, Y\n  STOP\nSpeed = 1\n");
+  const TestResult uses = run("uses", "program uses.tmc\ndefine Y=2 * Sped\nexpect at end v[0] = (1\n");
+  CHECK_EQ(uses.error,
+           "uses.tmctest:2:14: error: use of undefined symbol 'Sped'; did you mean 'Speed'?\n define Y=2 * Sped\n              ^~~~\n"
+           "uses.tmctest:3:24: error: missing ')'\n expect at end v[0] = (1\n                        ^\n");
+  // The program defines it again: the error is the program's, its note at the define's line.
+  const TestResult twice = run("twice", "program speed.tmc\n  define Speed=5\n");
+  CHECK_EQ(twice.error,
+           "speed.tmc:1:1: error: constant 'Speed' redefined with a different value (3; it was 5)\n Speed = 3\n ^~~~~\n"
+           "twice.tmctest:2:16: note: first defined here\n   define Speed=5\n                ^\n");
+  // -D on the command line stays the command line's.
+  tmcl::testrun::RunOptions o;
+  o.asm_options.defines = {{"Z", "1 +"}};
+  const TestResult cli = run("cli", "program speed.tmc\ndefine X=\n", o);
+  CHECK(has(cli.error, "cli.tmctest:2:10: error: expected a value, found end of line\n"));
+  CHECK(has(cli.error, "<command line -D Z>:1:4: error:"));
+}

@@ -31,7 +31,34 @@ int edit_distance(std::string_view a, std::string_view b) {
   return prev[b.size()];
 }
 
+// Whether the character at `s[i]`, `n` bytes of valid UTF-8, is shown as it is in a quoted line:
+// not a C1 control (U+0080..U+009F), nor an invisible one that would move the caret or turn the
+// text around (zero-width and direction marks and overrides, U+200B..U+200F, U+202A..U+202E,
+// U+2060..U+206F, the byte-order mark U+FEFF).
+bool printable(std::string_view s, std::size_t i, std::size_t n) {
+  auto b = [&](std::size_t k) { return static_cast<unsigned char>(s[i + k]); };
+  if (n == 2) return !(b(0) == 0xC2 && b(1) < 0xA0);
+  if (n != 3) return true;
+  if (b(0) == 0xE2 && b(1) == 0x80) return !((b(2) >= 0x8B && b(2) <= 0x8F) || (b(2) >= 0xAA && b(2) <= 0xAE));
+  if (b(0) == 0xE2 && b(1) == 0x81) return !(b(2) >= 0xA0 && b(2) <= 0xAF);
+  return !(b(0) == 0xEF && b(1) == 0xBB && b(2) == 0xBF);
+}
+
 }  // namespace
+
+std::size_t utf8_length(std::string_view s, std::size_t i) {
+  auto b = [&](std::size_t k) { return static_cast<unsigned char>(s[k]); };
+  unsigned char c = b(i);
+  std::size_t n = c >= 0xF0 ? 4 : c >= 0xE0 ? 3 : c >= 0xC2 ? 2 : 0;
+  if (n == 0 || c > 0xF4 || i + n > s.size()) return 0;
+  for (std::size_t k = 1; k < n; ++k)
+    if ((b(i + k) & 0xC0) != 0x80) return 0;
+  if (c == 0xE0 && b(i + 1) < 0xA0) return 0;   // overlong
+  if (c == 0xED && b(i + 1) >= 0xA0) return 0;  // surrogate
+  if (c == 0xF0 && b(i + 1) < 0x90) return 0;   // overlong
+  if (c == 0xF4 && b(i + 1) >= 0x90) return 0;  // above U+10FFFF
+  return n;
+}
 
 std::string closest_match(std::string_view word, const std::vector<std::string_view>& candidates) {
   if (word.size() > 64) return {};
@@ -52,21 +79,32 @@ std::string closest_match(std::string_view word, const std::vector<std::string_v
 }
 
 std::string caret_lines(std::string_view line, int col, int len) {
-  std::string out = " ";
-  for (char c : line) {
-    auto u = static_cast<unsigned char>(c);
-    out += (c != '\t' && (u < 0x20 || u >= 0x7f)) ? '?' : c;
+  // The line character by character: a tab as it is (the caret line repeats it, so that both
+  // move alike), a printable character of valid UTF-8 as it is (the "±" of a test file, a
+  // comment's "°C"), any other byte as '?'. The caret line has a blank for each character before
+  // the column and a tilde for each character after the first underlined one.
+  const std::size_t from = static_cast<std::size_t>(std::max(1, col) - 1);
+  const std::size_t to = std::min(line.size(), from + static_cast<std::size_t>(std::max(1, len)));
+  std::string out = " ", under = " ";
+  bool caret = false;
+  for (std::size_t i = 0; i < line.size();) {
+    const auto u = static_cast<unsigned char>(line[i]);
+    const std::size_t valid = u >= 0x80 ? utf8_length(line, i) : 1;
+    const std::size_t n = std::max<std::size_t>(valid, 1);  // a byte of invalid UTF-8 is a '?' of its own
+    if (valid == 0 || (valid == 1 && u != '\t' && (u < 0x20 || u == 0x7f)) || (valid > 1 && !printable(line, i, valid)))
+      out += '?';
+    else
+      out.append(line.substr(i, n));
+    if (i < from) {
+      under += u == '\t' ? '\t' : ' ';
+    } else if (i < to) {
+      under += caret ? '~' : '^';
+      caret = true;
+    }
+    i += n;
   }
-  out += "\n ";
-  col = std::max(1, col);
-  for (int i = 1; i < col; ++i) {
-    bool tab = static_cast<std::size_t>(i - 1) < line.size() && line[static_cast<std::size_t>(i - 1)] == '\t';
-    out += tab ? '\t' : ' ';
-  }
-  out += '^';
-  int room = static_cast<int>(line.size()) - col;
-  for (int i = 1; i < std::min(len, room + 1); ++i) out += '~';
-  return out + "\n";
+  if (!caret) under += std::string(from - std::min(from, line.size()), ' ') + '^';
+  return out + "\n" + under + "\n";
 }
 
 std::string more_errors_note(const std::string& where, long long errors, long long warnings) {

@@ -61,7 +61,7 @@ TestResult run_test_live(const std::string& path, const RunOptions& options, Pro
   const std::string text(bytes.begin(), bytes.end());
   TestFile t;
   std::vector<FileDiag> diags;
-  if (parse_test_file(text, path, options.target, t, diags) &&
+  if (parse_test_file(text, path, options.target, t, diags, options.target_given) &&
       (t.skipped || !t.inputs.empty() || (!t.target.empty() && t.target != options.target))) {
     r.skip_reason = t.skipped ? t.skip
                     : !t.inputs.empty()

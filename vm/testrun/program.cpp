@@ -15,6 +15,13 @@
 
 namespace tmcl::testrun {
 
+// A source that did not assemble: the assembler's diagnostics, rendered for each test that runs
+// it (program_errors), since a `define` of a test is shown at that test's line.
+struct AsmFailure {
+  SourceSet sources;
+  Diagnostics diags;
+};
+
 namespace {
 
 bool is_image(const std::string& path) {
@@ -35,8 +42,10 @@ std::string absolute_path(const std::string& path) {
   return ec ? path : p.lexically_normal().generic_string();  // '/' on Windows too, as shown()
 }
 
-// Loads `path` into `p`; false with the rendered diagnostics in `error`.
-bool load(const std::string& path, const Profile& profile, AsmOptions options, Program& p, std::string& error) {
+// Loads `path` into `p`; false with the rendered diagnostics in `error`, or those of a source that
+// did not assemble in `failed`.
+bool load(const std::string& path, const Profile& profile, AsmOptions options, Program& p, std::string& error,
+          std::shared_ptr<const AsmFailure>& failed) {
   p.profile = &profile;
   if (is_image(path)) {
     std::vector<std::uint8_t> bytes;
@@ -56,7 +65,7 @@ bool load(const std::string& path, const Profile& profile, AsmOptions options, P
     options.symbols = true;
     AsmResult res = assemble({path}, options, reader);
     if (!res.ok()) {
-      error = res.diags.render(res.sources, options.error_limit);
+      failed = std::make_shared<AsmFailure>(AsmFailure{std::move(res.sources), std::move(res.diags)});
       return false;
     }
     if (!res.diags.all().empty()) p.messages = res.diags.render(res.sources, options.error_limit);
@@ -99,6 +108,58 @@ bool load(const std::string& path, const Profile& profile, AsmOptions options, P
   return true;
 }
 
+// The diagnostics of a program that did not assemble, for one test. The values of the test's
+// `define` lines are sources of their own to the assembler ("<command line -D NAME>", after
+// the -D options'): an error in one becomes the test file's, at that line and the column in the
+// value, with a note at the same place (a did-you-mean) joined to its message; a note that
+// points at one (a constant the program defines again) points at the line. The rest are
+// rendered as the assembler renders them.
+std::string program_errors(const AsmFailure& f, const TestFile& test, std::size_t cli_defines, int error_limit,
+                           std::vector<FileDiag>& test_diags) {
+  std::map<int, const Define*> define_of;  // source -> the test's define; the k-th such source is the k-th -D
+  std::size_t k = 0;
+  for (std::size_t i = 0; i < f.sources.files.size(); ++i) {
+    if (f.sources.files[i].name.rfind("<command line -D ", 0) != 0) continue;
+    if (k >= cli_defines && k - cli_defines < test.defines.size())
+      define_of[static_cast<int>(i)] = &test.defines[k - cli_defines];
+    ++k;
+  }
+  if (define_of.empty()) return f.diags.render(f.sources, error_limit);
+  // Those sources show the test file, so that a note at a define shows the define's line.
+  SourceSet sources = f.sources;
+  SourceSet test_text;
+  SourceFile tf;
+  tf.name = tf.path = test.path;
+  for (const std::string& line : test.lines) tf.text += line + "\n";
+  test_text.add(std::move(tf));
+  for (const auto& [index, define] : define_of) sources.files[static_cast<std::size_t>(index)] = test_text.files[0];
+  auto remap = [&](SourceLoc& loc) {
+    auto it = define_of.find(loc.file);
+    if (it == define_of.end()) return false;
+    loc.line = it->second->line;
+    loc.col = it->second->col + std::max(1, loc.col) - 1;
+    return true;
+  };
+  Diagnostics rest;
+  for (const Diagnostic& d : f.diags.all()) {
+    SourceLoc loc = d.loc;
+    if (remap(loc) && d.severity == Severity::Error) {
+      std::string message = d.message;
+      for (const Diagnostic& n : d.notes)
+        if (n.loc.file == d.loc.file && n.loc.col == d.loc.col) message += "; " + n.message;
+      test_diags.push_back({test.path, loc.line, loc.col, loc.len, message, test.lines[static_cast<std::size_t>(loc.line - 1)]});
+      continue;
+    }
+    if (d.severity == Severity::Note) continue;  // only notes of a diagnostic are made
+    Diagnostic& copy = d.severity == Severity::Error ? rest.error(loc, d.message) : rest.warning(loc, d.message);
+    copy.name = d.name;
+    copy.notes = d.notes;
+    for (Diagnostic& n : copy.notes)
+      if (remap(n.loc) && n.message == "first defined on the command line") n.message = "first defined here";
+  }
+  return rest.all().empty() ? std::string() : rest.render(sources, error_limit);
+}
+
 }  // namespace
 
 struct ProgramCache::Impl {
@@ -106,6 +167,7 @@ struct ProgramCache::Impl {
     std::once_flag once;
     std::shared_ptr<const Program> program;
     std::string error;
+    std::shared_ptr<const AsmFailure> failed;
   };
   std::mutex lock;
   std::map<std::string, std::shared_ptr<Entry>> entries;
@@ -115,9 +177,9 @@ ProgramCache::ProgramCache() : impl_(std::make_unique<Impl>()) {}
 ProgramCache::~ProgramCache() = default;
 
 std::shared_ptr<const Program> ProgramCache::get(const TestFile& test, const Profile& profile, const RunOptions& options,
-                                                 std::string& error) {
+                                                 std::string& error, std::vector<FileDiag>& test_diags) {
   std::string key = test.program + '\n' + std::string(profile.name);
-  for (const auto& [name, value] : test.defines) key += '\n' + name + '=' + value;
+  for (const Define& d : test.defines) key += '\n' + d.name + '=' + d.value;
   std::shared_ptr<Impl::Entry> entry;
   {
     std::lock_guard<std::mutex> g(impl_->lock);
@@ -129,11 +191,12 @@ std::shared_ptr<const Program> ProgramCache::get(const TestFile& test, const Pro
   std::call_once(entry->once, [&] {
     AsmOptions asm_options = options.asm_options;
     asm_options.error_limit = options.error_limit;
-    for (const auto& d : test.defines) asm_options.defines.push_back(d);
+    for (const Define& d : test.defines) asm_options.defines.emplace_back(d.name, d.value);
     auto p = std::make_shared<Program>();
-    if (load(test.program, profile, asm_options, *p, entry->error)) entry->program = std::move(p);
+    if (load(test.program, profile, asm_options, *p, entry->error, entry->failed)) entry->program = std::move(p);
   });
-  error = entry->error;
+  error = entry->failed ? program_errors(*entry->failed, test, options.asm_options.defines.size(), options.error_limit, test_diags)
+                        : entry->error;
   return entry->program;
 }
 

@@ -228,10 +228,18 @@ std::string coverage_summary(const Coverage& c) {
       if (n > 0) ++hit;
       else missed.push_back(line);
     }
-    for (const auto& [key, b] : f.branches) bhit += (b.taken > 0) + (b.not_taken > 0);
+    // The branches that ran with an outcome no test saw (one that never ran is on a line never run).
+    std::vector<int> never_taken, always_taken;
+    for (const auto& [key, b] : f.branches) {
+      bhit += (b.taken > 0) + (b.not_taken > 0);
+      auto& list = b.taken == 0 ? never_taken : always_taken;
+      if (b.ran && (b.taken == 0 || b.not_taken == 0) && (list.empty() || list.back() != key.first)) list.push_back(key.first);
+    }
     per_file += "  " + shown(path) + ": lines " + percent(hit, f.lines.size()) + ", branches " +
                 percent(bhit, f.branches.size() * 2) + "\n";
     if (!missed.empty()) per_file += "    never run: " + ranges(missed) + "\n";
+    if (!never_taken.empty()) per_file += "    branches never taken: " + ranges(never_taken) + "\n";
+    if (!always_taken.empty()) per_file += "    branches always taken: " + ranges(always_taken) + "\n";
     lf += f.lines.size();
     lh += hit;
     bf += f.branches.size() * 2;

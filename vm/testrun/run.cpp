@@ -247,13 +247,16 @@ TestResult run_test(const TestFile& t, std::shared_ptr<const Program> program, c
 std::shared_ptr<const Program> check_test_source(const std::string& path, const std::string& text, const RunOptions& options,
                                                  ProgramCache& cache, TestFile& t, std::vector<FileDiag>& diags,
                                                  std::string& program_error) {
-  parse_test_file(text, path, options.target, t, diags);
+  parse_test_file(text, path, options.target, t, diags, options.target_given);
   // The program is loaded even when the file has errors, so that the expressions' errors (which
-  // need its labels) are reported with the others in one go.
-  const Profile* profile = test_profile(t.target.empty() ? options.target : t.target, t.path);
+  // need its labels) are reported with the others in one go; without it, those that need none.
+  const Profile* profile = test_profile(t);
   std::shared_ptr<const Program> program;
-  if (profile && !t.program.empty()) program = cache.get(t, *profile, options, program_error);
-  if (program) bind_expectations(t, program->info, diags);
+  if (profile && !t.program.empty()) program = cache.get(t, *profile, options, program_error, diags);
+  if (program)
+    bind_expectations(t, program->info, diags);
+  else
+    check_expectations(t, diags);
   std::stable_sort(diags.begin(), diags.end(),
                    [](const FileDiag& a, const FileDiag& b) { return a.line != b.line ? a.line < b.line : a.col < b.col; });
   return program;
@@ -287,7 +290,7 @@ TestResult run_test_source(const std::string& path, const std::string& text, con
   };
   TestFile t;
   std::vector<FileDiag> diags;
-  if (parse_test_file(text, path, options.target, t, diags) && t.skipped) {  // a skipped test is not loaded
+  if (parse_test_file(text, path, options.target, t, diags, options.target_given) && t.skipped) {  // a skipped test is not loaded
     TestResult r;
     r.status = TestResult::Skip;
     r.skip_reason = t.skip;

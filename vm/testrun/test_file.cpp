@@ -94,13 +94,16 @@ class LineReader {
       auto eq = value.find('=');
       if (eq == std::string::npos || eq == 0)
         return error(start, static_cast<int>(value.size()), "expected 'define NAME=VALUE', as tmclasm's -D");
-      t_.defines.emplace_back(value.substr(0, eq), value.substr(eq + 1));
+      t_.defines.push_back({value.substr(0, eq), value.substr(eq + 1), line_no, start + static_cast<int>(eq) + 1});
       return;
     }
     if (!once(d)) return;
     if (d == "program") {
       t_.program = value;
       t_.program_line = line_no;
+      program_col_ = start;
+      program_len_ = static_cast<int>(value.size());
+      program_source_ = source;
     } else if (d == "target" || d == "motion") {
       if (w.size() > 2) return error_at(w[2], "unexpected '" + w[2].text + "' after the " + d + " name");
       if (d == "target") {
@@ -133,12 +136,37 @@ class LineReader {
     }
   }
 
-  void finish(const std::string& default_target) {
+  // After the last line: the program and the module (TestFile::module), which are the file's
+  // `program` and `target` lines, or, without a `target` line, the module a plain tmclrun would
+  // take for the program. Returns the module's profile, or null.
+  const Profile* finish(const std::string& default_target, bool target_given) {
     if (t_.program.empty() && !t_.skipped)
       diags_.push_back({path_, 1, 0, 1, "no 'program' line: a test names the program it runs (program FILE)", ""});
-    const std::string name = t_.target.empty() ? default_target : t_.target;
-    if (std::string why; !t_.target.empty() && !test_profile(name, path_, &why))
-      diags_.push_back({path_, t_.target_line, target_word_.col, static_cast<int>(target_word_.text.size()), why, target_source_});
+    // The program is found relative to the test file ("tests/../prog.tmc" is "prog.tmc").
+    if (!t_.program.empty() && !os::is_absolute(t_.program)) {
+      const auto slash = os::last_separator(path_);
+      if (slash != std::string::npos)
+        t_.program = std::filesystem::path(path_.substr(0, slash + 1) + t_.program).lexically_normal().generic_string();
+    }
+    std::string why;
+    if (!t_.target.empty()) {  // a profile file is found relative to the test file, as the program
+      t_.module = t_.target;
+      const std::size_t slash = os::last_separator(path_);
+      if (os::has_separator(t_.module) && !os::is_absolute(t_.module) && slash != std::string::npos)
+        t_.module = path_.substr(0, slash + 1) + t_.module;
+      const Profile* p = test_profile(t_, &why);
+      if (!p) diags_.push_back({path_, t_.target_line, target_word_.col, static_cast<int>(target_word_.text.size()), why, target_source_});
+      return p;
+    }
+    // tmclrun's rule, with tmclrun's own function: -t, else the program's first line, else -t's default.
+    t_.module = target_given || t_.program.empty() ? default_target : target_named_by_file(t_.program, default_target);
+    if (const Profile* p = test_profile(t_, &why)) return p;
+    if (t_.module != default_target)  // named by the program: shown at the `program` line
+      diags_.push_back({path_, t_.program_line, program_col_, program_len_,
+                        "the program's first line names the target '" + t_.module + "': " + why, program_source_});
+    else
+      diags_.push_back({path_, 1, 0, 1, why, ""});
+    return nullptr;
   }
 
  private:
@@ -307,24 +335,21 @@ class LineReader {
   std::string source_;
   LineWord target_word_{"", 0};
   std::string target_source_;
+  int program_col_ = 0, program_len_ = 0;
+  std::string program_source_;
   std::vector<std::pair<std::string, int>> seen_;
 };
 
 }  // namespace
 
-const Profile* test_profile(const std::string& target, const std::string& test_path, std::string* error) {
-  std::string value = target;
-  if (os::has_separator(value) && !os::is_absolute(value)) {
-    const std::size_t slash = os::last_separator(test_path);
-    if (slash != std::string::npos) value = test_path.substr(0, slash + 1) + value;
-  }
-  const TargetResult r = resolve_target(value);
+const Profile* test_profile(const TestFile& test, std::string* error) {
+  const TargetResult r = resolve_target(test.module);
   if (!r.profile && error) *error = r.diags.empty() ? r.error : r.message(0);
   return r.profile;
 }
 
 bool parse_test_file(const std::string& text, const std::string& path, const std::string& default_target,
-                     TestFile& out, std::vector<FileDiag>& diags) {
+                     TestFile& out, std::vector<FileDiag>& diags, bool target_given) {
   out = TestFile{};
   out.path = path;
   const std::size_t before = diags.size();
@@ -339,8 +364,7 @@ bool parse_test_file(const std::string& text, const std::string& path, const std
     scenario += (!w.empty() && (w[0].text == "at" || w[0].text == "switch") ? out.lines[i] : std::string()) + "\n";
     reader.read(static_cast<int>(i) + 1, out.lines[i], line);
   }
-  reader.finish(default_target);
-  const Profile* profile = test_profile(out.target.empty() ? default_target : out.target, path);
+  const Profile* profile = reader.finish(default_target, target_given);
   ScenarioOptions sopts;
   sopts.motors = profile ? profile->motors : 256;
   sopts.module = profile ? std::string(profile->name) : std::string();
@@ -349,26 +373,42 @@ bool parse_test_file(const std::string& text, const std::string& path, const std
   std::stable_sort(mine.begin(), mine.end(),
                    [](const FileDiag& a, const FileDiag& b) { return a.line != b.line ? a.line < b.line : a.col < b.col; });
   diags.insert(diags.end(), mine.begin(), mine.end());
-  // The program is found relative to the test file ("tests/../prog.tmc" is "prog.tmc").
-  if (!out.program.empty() && !os::is_absolute(out.program)) {
-    const auto slash = os::last_separator(path);
-    if (slash != std::string::npos)
-      out.program = std::filesystem::path(path.substr(0, slash + 1) + out.program).lexically_normal().generic_string();
-  }
   return diags.size() == before;
 }
 
-bool bind_expectations(TestFile& test, const ProgramInfo& info, std::vector<FileDiag>& diags) {
-  const std::size_t before = diags.size();
-  for (Expectation& e : test.expects) {
+namespace {
+
+// Parses each expression of each expectation against `info` into `bound` (the expectations of
+// `test`, or null), with a diagnostic for the first one of an expectation that does not parse.
+// `any_name` (no program at hand, `info` empty): every name is taken for one the program has.
+void parse_expectations(const TestFile& test, const ProgramInfo& program, std::vector<Expectation>* bound, bool any_name,
+                        std::vector<FileDiag>& diags) {
+  ProgramInfo names;  // any_name: the names met so far
+  const ProgramInfo& info = any_name ? names : program;
+  for (std::size_t i = 0; i < test.expects.size(); ++i) {
+    const Expectation& e = test.expects[i];
     if (e.kind != Expectation::At && e.kind != Expectation::AtEnd) continue;
     const std::string& source = test.lines[static_cast<std::size_t>(e.line - 1)];
-    for (auto [text, col, expr] : {std::tuple{&e.left, e.left_col, &e.left_expr}, std::tuple{&e.right, e.right_col, &e.right_expr},
-                                   std::tuple{&e.tolerance, e.tolerance_col, &e.tolerance_expr}}) {
+    Expectation* out = bound ? &(*bound)[i] : nullptr;
+    for (auto [text, col, which] : {std::tuple{&e.left, e.left_col, 0}, std::tuple{&e.right, e.right_col, 1},
+                                    std::tuple{&e.tolerance, e.tolerance_col, 2}}) {
       if (text->empty()) continue;
+      Expr scratch;
+      Expr* expr = !out ? &scratch : which == 0 ? &out->left_expr : which == 1 ? &out->right_expr : &out->tolerance_expr;
       std::string error;
       std::size_t at = 0;
-      if (parse_expr(*text, info, *expr, error, &at)) continue;
+      bool ok = parse_expr(*text, info, *expr, error, &at);
+      // Where the parser stopped at a name it does not know, the name becomes a known one (0)
+      // and the parse goes on to the mistakes after it; each name once, so this ends.
+      while (!ok && any_name && at < text->size() && (std::isalpha(static_cast<unsigned char>((*text)[at])) || (*text)[at] == '_')) {
+        std::size_t end = at;
+        while (end < text->size() && (std::isalnum(static_cast<unsigned char>((*text)[end])) || (*text)[end] == '_')) ++end;
+        const std::string name = text->substr(at, end - at);
+        if (info.symbol(name)) break;
+        names.constants.emplace_back(name, 0);
+        ok = parse_expr(*text, info, *expr, error, &at);
+      }
+      if (ok) continue;
       // The parser's message ends with " in 'TEXT'"; the caret shows where instead.
       if (auto in = error.rfind(" in '"); in != std::string::npos) error.resize(in);
       // Underline the word (or the character) where the parser stopped.
@@ -378,6 +418,19 @@ bool bind_expectations(TestFile& test, const ProgramInfo& info, std::vector<File
       break;
     }
   }
+}
+
+}  // namespace
+
+bool bind_expectations(TestFile& test, const ProgramInfo& info, std::vector<FileDiag>& diags) {
+  const std::size_t before = diags.size();
+  parse_expectations(test, info, &test.expects, false, diags);
+  return diags.size() == before;
+}
+
+bool check_expectations(const TestFile& test, std::vector<FileDiag>& diags) {
+  const std::size_t before = diags.size();
+  parse_expectations(test, ProgramInfo{}, nullptr, true, diags);
   return diags.size() == before;
 }
 

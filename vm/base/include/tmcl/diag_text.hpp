@@ -15,9 +15,15 @@ namespace tmcl {
 // if close enough to suggest ("did you mean ...?"): at most a third of the word wrong.
 std::string closest_match(std::string_view word, const std::vector<std::string_view>& candidates);
 
-// " LINE\n   ^~~~\n": the line (non-printable bytes shown as '?', tabs kept so the caret lines
-// up) and a caret under column `col` (1-based) with `len - 1` tildes, clipped to the line.
+// " LINE\n   ^~~~\n": the line (valid UTF-8 shown as it is, control and invisible characters and
+// other bytes as '?', tabs kept so the caret lines up) and a caret under byte column `col`
+// (1-based) with a tilde for each further character of the `len` bytes, clipped to the line.
+// The caret line counts characters, not bytes, so it lines up under non-ASCII text too.
 std::string caret_lines(std::string_view line, int col, int len);
+
+// The length of the valid UTF-8 sequence of a non-ASCII character at `s[i]` (2..4), or 0 when it
+// is none (overlong forms, encoded surrogates and code points above U+10FFFF are invalid).
+std::size_t utf8_length(std::string_view s, std::size_t i);
 
 // A word of a line of a line-based text file and its 1-based column, for carets under it.
 struct LineWord {

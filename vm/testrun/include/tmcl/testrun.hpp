@@ -7,7 +7,7 @@
 //
 //   # homing.tmctest
 //   program homing.tmc            relative to this file; .tmc, .bin or .dgm
-//   target usb-2-sd               default: the front end's (-t)
+//   target usb-2-sd               default: as for tmclrun (-t, else the program's first line)
 //   max-time 60s                  the run ends here unless the program stops first (default 10min)
 //   at 2s input 0 = 1             any scenario line (tmcl/scenario.hpp)
 //   expect at 1.5s position 0 = 0 ± 10
@@ -61,17 +61,26 @@ struct Expectation {
 std::string condition_text(const Expectation& e);
 bool holds(const Expectation& e, std::int64_t left, std::int64_t right, std::int64_t tolerance);
 
+struct Define {  // define NAME=VALUE (as -D)
+  std::string name, value;
+  int line = 0, col = 0;  // where VALUE starts in the test file (a bad value is shown there)
+};
+
 struct TestFile {
   std::string path;     // as given
   std::string program;  // the program's path, relative to the current folder
   int program_line = 0;
-  std::string target;   // empty: RunOptions::target
+  std::string target;   // as written; empty: as for tmclrun (see module)
   int target_line = 0;
+  // The module the test runs on, as resolve_target takes it: the `target` line (a relative
+  // profile path made relative to the current folder), else, as for a plain tmclrun, -t when
+  // given, else what the program's first line names (// tmcl-target: NAME), else -t's default.
+  std::string module;
   std::string motion;   // empty: the module's default core
   SimTime instr_time = -1;  // -1: RunOptions::instr_time
   SimTime max_time = kDefaultMaxTime;
   bool max_time_given = false;
-  std::vector<std::pair<std::string, std::string>> defines;  // define NAME=VALUE (as -D)
+  std::vector<Define> defines;
   std::vector<InputEvent> inputs;  // the scenario lines
   std::vector<Expectation> expects;
   std::string skip;  // skip REASON: not run, reported as skipped
@@ -80,14 +89,15 @@ struct TestFile {
 };
 
 // Reads a test file. Every bad line is a diagnostic (FILE:LINE:COL, the line, a caret, a "did
-// you mean"), all of them in line order; false when there is any. `default_target` resolves
-// scenario lines' motor numbers when the file names no target.
-// The module of a test: its `target` line, else `default_target`; a name or a profile file as for
-// -t (targets.hpp), a relative path taken from the test file's folder. Null with `error` when
-// there is none such.
-const Profile* test_profile(const std::string& target, const std::string& test_path, std::string* error = nullptr);
+// you mean"), all of them in line order; false when there is any. A file without a `target`
+// line runs on `default_target` when `target_given` (tmclrun -t, tmclctl's module), else on
+// what its program's first line names, else on `default_target` (TestFile::module); that module
+// also numbers the scenario lines' motors.
 bool parse_test_file(const std::string& text, const std::string& path, const std::string& default_target,
-                     TestFile& out, std::vector<FileDiag>& diags);
+                     TestFile& out, std::vector<FileDiag>& diags, bool target_given);
+// The profile of TestFile::module (a name or a profile file, as for -t; targets.hpp); null with
+// `error` when there is none such.
+const Profile* test_profile(const TestFile& test, std::string* error = nullptr);
 
 // ---- the program a test runs ----
 // A program loaded once for every test that runs it with the same module and definitions.
@@ -107,7 +117,8 @@ struct Program {
 
 // ---- running ----
 struct RunOptions {
-  std::string target = "generic";  // for files without `target` (tmclrun -t)
+  std::string target = "generic";  // for files without `target` (tmclrun -t) ...
+  bool target_given = false;       // ... and whose program's first line names none, unless -t was given
   std::string motion;              // tmclrun --motion
   SimTime instr_time = 20;         // for files without `instr-time`
   bool max_time_given = false;     // tmclrun --max-time: replaces the files' limits
@@ -148,9 +159,10 @@ class ProgramCache {
  public:
   ProgramCache();
   ~ProgramCache();
-  // The program of `test`, or null with the rendered diagnostics in `error`.
+  // The program of `test`, or null with the rendered diagnostics in `error`, except those of the
+  // test's `define` lines, which are diagnostics of the test file at those lines in `test_diags`.
   std::shared_ptr<const Program> get(const TestFile& test, const Profile& profile, const RunOptions& options,
-                                     std::string& error);
+                                     std::string& error, std::vector<FileDiag>& test_diags);
 
  private:
   struct Impl;
@@ -160,6 +172,9 @@ class ProgramCache {
 // Binds every expectation's expressions to the program's labels and constants; false with a
 // diagnostic for each one that does not parse.
 bool bind_expectations(TestFile& test, const ProgramInfo& info, std::vector<FileDiag>& diags);
+// Without a program (it does not assemble): the expressions' mistakes that need no names (a
+// missing operand, an unbalanced parenthesis); a name is taken for a known one.
+bool check_expectations(const TestFile& test, std::vector<FileDiag>& diags);
 
 // Reads, checks and runs one test file.
 TestResult run_test_file(const std::string& path, const RunOptions& options, ProgramCache& cache);
@@ -267,7 +282,8 @@ class Coverage {
   std::vector<Sums> sums_;
 };
 std::string lcov_tracefile(const Coverage& c);
-// Lines and branches covered per file, then the lines never run.
+// Lines and branches covered per file, then the lines never run and the lines of branches that
+// ran with an outcome no test saw ("branches never taken", "branches always taken").
 std::string coverage_summary(const Coverage& c);
 
 }  // namespace tmcl::testrun
