@@ -148,20 +148,17 @@ bool ends_with_ci(const std::string& s, const char* suffix) {
 }
 
 // Serves "-" from memory (standard input was already read to sniff its kind), the rest from disk.
-class StdinFirstReader final : public tmcl::FileReader {
+class StdinFirstReader final : public tmcl::FileOverlay {
  public:
   explicit StdinFirstReader(std::string text) : text_(std::move(text)) {}
-  bool read(const std::string& path, std::string& out) override {
-    if (path == "-") {
-      out = text_;
-      return true;
-    }
-    return disk_.read(path, out);
-  }
 
  private:
+  bool serve(const std::string& path, std::string& out) override {
+    if (path != "-") return false;
+    out = text_;
+    return true;
+  }
   std::string text_;
-  tmcl::DiskReader disk_;
 };
 
 // DURATION for OPT into `out`: "" when it parsed, else the usage error.
