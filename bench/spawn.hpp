@@ -18,8 +18,8 @@ namespace tmcl::bench {
 // not run or did not exit with 0. posix_spawn, not fork: the benchmark holds a million-line
 // program, and fork would copy its page tables into every child, which is the benchmark's cost,
 // not the tool's. `cpu_seconds`, when given, receives the child's user + system time (steadier
-// than wall time on a loaded machine); `max_rss_kib`, the child's peak resident memory.
-inline double run_process(const std::vector<std::string>& argv, double* cpu_seconds = nullptr, long* max_rss_kib = nullptr) {
+// than wall time on a loaded machine).
+inline double run_process(const std::vector<std::string>& argv, double* cpu_seconds = nullptr) {
   using Clock = std::chrono::steady_clock;
   auto t = Clock::now();
   posix_spawn_file_actions_t actions;
@@ -39,7 +39,6 @@ inline double run_process(const std::vector<std::string>& argv, double* cpu_seco
   if (cpu_seconds)
     *cpu_seconds = static_cast<double>(ru.ru_utime.tv_sec + ru.ru_stime.tv_sec) +
                    static_cast<double>(ru.ru_utime.tv_usec + ru.ru_stime.tv_usec) / 1e6;
-  if (max_rss_kib) *max_rss_kib = ru.ru_maxrss;
   if (!WIFEXITED(st) || WEXITSTATUS(st) != 0) return -1;
   return std::chrono::duration<double>(Clock::now() - t).count();
 }
