@@ -386,6 +386,7 @@ LibraryResult make_library(const std::vector<std::string>& files, const AsmOptio
     }
     out.library.members.push_back(std::move(m));
   };
+  bool folders_said = false;
   for (const auto& file : files) {
     std::string text;
     if (!reader.read(file, text)) {
@@ -418,21 +419,26 @@ LibraryResult make_library(const std::vector<std::string>& files, const AsmOptio
         break;
       }
       case FileKind::Source: {
-        // The root is read already (standard input cannot be read twice); includes are not.
-        class Preloaded final : public FileReader {
+        // The root is read already (standard input cannot be read twice); includes are not. An
+        // -I folder that cannot be searched is said with the first source, not with each.
+        class Preloaded final : public FileOverlay {
          public:
-          Preloaded(const std::string& p, std::string t, FileReader& n) : path_(p), text_(std::move(t)), next_(n) {}
-          bool read(const std::string& path, std::string& out) override {
-            if (path != path_) return next_.read(path, out);
+          Preloaded(const std::string& p, std::string t, FileReader& below, bool folders)
+              : FileOverlay(below), path_(p), text_(std::move(t)), folders_(folders) {}
+          std::string folder_problem(const std::string& path) override {
+            return folders_ ? FileOverlay::folder_problem(path) : std::string();
+          }
+
+         private:
+          bool serve(const std::string& path, std::string& out) override {
+            if (path != path_) return false;
             out = text_;
             return true;
           }
-          std::string last_error() const override { return next_.last_error(); }
-
-         private:
           std::string path_, text_;
-          FileReader& next_;
-        } preloaded(file, std::move(text), reader);
+          bool folders_;
+        } preloaded(file, std::move(text), reader, !folders_said);
+        folders_said = true;
         AsmOptions o = options;
         o.relocatable = true;
         AsmResult r = assemble({file}, o, preloaded);

@@ -6,8 +6,13 @@
 // a -Wunreachable warning). Two figures each: in process, and what the goal is about, whole
 // tmclasm processes (`tmclasm -o big.bin big.tmc` against `tmclasm --no-analysis -o big.bin
 // big.tmc`), each the best of nine runs, the two interleaved; and for information the processes'
-// CPU time, steadier than wall time on a loaded machine.
-// Prints "figure<TAB>goal<TAB>measured" rows for bench/run_all.sh.
+// CPU time, steadier than wall time on a loaded machine. For information, a third shape,
+// "chain": one chain of 100,000 nested calls (the deepest call chain; it once took 167 s and
+// 20 GB), as whole processes. (Peak memory is not measured here: a child started by posix_spawn
+// reports the benchmark's own as its peak; docs/performance.md gives the command.)
+// Prints "figure<TAB>goal<TAB>measured" rows for bench/run_all.sh. `analysis_bench --program SHAPE
+// [N]` prints a shape's program instead (N: lines, or calls for "chain"), to time or profile a
+// tool on it by hand (docs/performance.md).
 #include <sys/resource.h>
 #include <unistd.h>
 
@@ -62,6 +67,15 @@ std::string subroutines(int lines) {
   return s;
 }
 
+// The "chain" shape: the main program calls S0, each subroutine Sk calls S(k+1), the last
+// returns: `calls` nested calls, one -Wcall-depth warning.
+std::string chain(int calls) {
+  std::string s = "Main:\n  CSUB S0\n  STOP\n";
+  for (int k = 0; k < calls; ++k)
+    s += "S" + std::to_string(k) + ":\n" + (k + 1 < calls ? "  CSUB S" + std::to_string(k + 1) + "\n" : std::string()) + "  RSUB\n";
+  return s;
+}
+
 double cpu_now() {
   rusage ru{};
   getrusage(RUSAGE_SELF, &ru);
@@ -86,6 +100,33 @@ double run(tmcl::MemoryReader& reader, bool analysis, int warnings, double& cpu)
   return std::chrono::duration<double>(Clock::now() - t0).count();
 }
 
+// Whole tmclasm processes on `text`, with and without the analysis: the best of kRuns each,
+// interleaved.
+struct Processes {
+  double without = 1e9, with = 1e9, cpu_without = 1e9, cpu_with = 1e9;
+};
+bool processes(const std::string& text, Processes& p) {
+  std::string dir = "/tmp/tmcl-analysis-bench-" + std::to_string(::getpid());
+  std::string mkdir = "mkdir -p " + dir;
+  if (std::system(mkdir.c_str()) != 0) return false;
+  std::ofstream(dir + "/big.tmc") << text;
+  bool failed = false;
+  for (int k = 0; k < kRuns && !failed; ++k) {
+    double ca = 0, cb = 0;
+    double a = tmcl::bench::run_process({TMCL_TMCLASM_PATH, "--no-analysis", "-o", dir + "/big.bin", dir + "/big.tmc"}, &ca);
+    double b = tmcl::bench::run_process({TMCL_TMCLASM_PATH, "-o", dir + "/big.bin", dir + "/big.tmc"}, &cb);
+    failed = a < 0 || b < 0;
+    p.without = std::min(p.without, a);
+    p.with = std::min(p.with, b);
+    p.cpu_without = std::min(p.cpu_without, ca);
+    p.cpu_with = std::min(p.cpu_with, cb);
+  }
+  std::string rm = "rm -rf " + dir;
+  if (std::system(rm.c_str()) != 0) return false;
+  if (failed) std::fprintf(stderr, "analysis_bench: %s did not assemble the program\n", TMCL_TMCLASM_PATH);
+  return !failed;
+}
+
 // Prints the four rows of one shape; false when tmclasm failed.
 bool measure(const char* shape, const std::string& text, int warnings) {
   const int lines = static_cast<int>(std::count(text.begin(), text.end(), '\n'));
@@ -105,39 +146,40 @@ bool measure(const char* shape, const std::string& text, int warnings) {
               cpu_with * 1e3, cpu_without * 1e3);
 
   // Whole processes, as a user runs them: start, read, assemble, analyse, write, exit.
-  std::string dir = "/tmp/tmcl-analysis-bench-" + std::to_string(::getpid());
-  std::string mkdir = "mkdir -p " + dir;
-  if (std::system(mkdir.c_str()) != 0) return false;
-  std::ofstream(dir + "/big.tmc") << reader.files["bench.tmc"];
-  double p_without = 1e9, p_with = 1e9, c_without = 1e9, c_with = 1e9;
-  bool failed = false;
-  for (int k = 0; k < kRuns && !failed; ++k) {
-    double ca = 0, cb = 0;
-    double a = tmcl::bench::run_process({TMCL_TMCLASM_PATH, "--no-analysis", "-o", dir + "/big.bin", dir + "/big.tmc"}, &ca);
-    double b = tmcl::bench::run_process({TMCL_TMCLASM_PATH, "-o", dir + "/big.bin", dir + "/big.tmc"}, &cb);
-    failed = a < 0 || b < 0;
-    p_without = std::min(p_without, a);
-    p_with = std::min(p_with, b);
-    c_without = std::min(c_without, ca);
-    c_with = std::min(c_with, cb);
-  }
-  std::string rm = "rm -rf " + dir;
-  if (std::system(rm.c_str()) != 0) return false;
-  if (failed) {
-    std::fprintf(stderr, "analysis_bench: %s did not assemble the program\n", TMCL_TMCLASM_PATH);
-    return false;
-  }
+  Processes p;
+  if (!processes(text, p)) return false;
   std::printf("tmclasm with the control-flow analysis, %d-line program (%s), whole process\t<= 1.3x without\t%.2fx (%.0f ms vs %.0f ms)\n",
-              lines, shape, p_with / p_without, p_with * 1e3, p_without * 1e3);
+              lines, shape, p.with / p.without, p.with * 1e3, p.without * 1e3);
   std::printf("the same, CPU time (user + system) of the processes\t(info)\t%.2fx (%.0f ms vs %.0f ms)\n",
-              c_with / c_without, c_with * 1e3, c_without * 1e3);
+              p.cpu_with / p.cpu_without, p.cpu_with * 1e3, p.cpu_without * 1e3);
+  return true;
+}
+
+// One chain of `calls` nested calls, whole processes, with the analysis and without
+// (information: the cost must stay linear, not reach the 167 s it once took).
+bool measure_chain(int calls) {
+  Processes p;
+  if (!processes(chain(calls), p)) return false;
+  std::printf("tmclasm with the control-flow analysis, one chain of %d nested calls, whole process\t(info)\t%.0f ms (without: %.0f ms; CPU %.0f ms and %.0f ms)\n",
+              calls, p.with * 1e3, p.without * 1e3, p.cpu_with * 1e3, p.cpu_without * 1e3);
   return true;
 }
 
 }  // namespace
 
-int main() {
+int main(int argc, char** argv) {
+  if (argc >= 3 && std::string(argv[1]) == "--program") {
+    const std::string shape = argv[2];
+    const int n = argc > 3 ? std::atoi(argv[3]) : shape == "chain" ? 100000 : 1000000;
+    if (n <= 0 || (shape != "blocks" && shape != "subroutines" && shape != "chain")) {
+      std::fprintf(stderr, "usage: analysis_bench [--program blocks|subroutines|chain [N]]\n");
+      return 2;
+    }
+    std::fputs((shape == "blocks" ? blocks(n) : shape == "subroutines" ? subroutines(n) : chain(n)).c_str(), stdout);
+    return 0;
+  }
   bool ok = measure("blocks", blocks(1000000), 0);
   ok = measure("subroutines", subroutines(1000000), 83334) && ok;
+  ok = measure_chain(100000) && ok;
   return ok ? 0 : 1;
 }

@@ -18,9 +18,9 @@ namespace {
 
 const char* kUsage = R"(usage: tmcl-lsp [--stdio]
 The TMCL language server: speaks the Language Server Protocol on standard input and output.
-Editors start it themselves (docs/editors.md); settings come from .tmcl-lsp.json in the
+Editors start it themselves (editors.md); settings come from .tmcl-lsp.json in the
 workspace root and from initializationOptions, which win
-({"target": "usb-2-sd", "includeDirs": ["lib"]}, docs/lsp.md).
+({"target": "usb-2-sd", "includeDirs": ["lib"]}, lsp.md).
 
 options:
 )";
@@ -28,6 +28,9 @@ options:
 const char* kEpilogue = R"(
 exit status: 0 after shutdown and exit, 1 when the input ends or exit comes without shutdown,
              64 usage error, 74 standard output could not be written
+
+documentation: the .md files named above are in share/doc/tmcl/ of the installation
+               (/usr/share/doc/tmcl/ from the Debian package); also man tmcl-lsp
 )";
 
 // The options, declared once (tmcl/options.hpp): --help, the man-page check and completion follow.

@@ -39,7 +39,7 @@ const char* kUsage = R"(usage: tmclasm [options] FILE...        link sources, ob
        tmclasm -f lib -o LIB.a FILE...    bundle objects (sources are assembled) into a library
        tmclasm -d [--symbols SYM] FILE    disassemble a .bin, datagrams or an object to source
        tmclasm --dump-object FILE         show an object or library as text
-       tmclasm --fmt [-i | --check] FILE  lay a source out the canonical way (docs/tmclasm.md)
+       tmclasm --fmt [-i | --check] FILE  lay a source out the canonical way (tmclasm.md)
 FILE may be - for standard input.
 
 Assembles TMCL sources (.tmc) and links them with objects (.o) and libraries (.a) into a program
@@ -63,6 +63,9 @@ examples:
 
 exit status: 0 success, 65 errors in the input, 64 usage error, 74 output (a file or standard
              output) could not be written
+
+documentation: the .md files named above are in share/doc/tmcl/ of the installation
+               (/usr/share/doc/tmcl/ from the Debian package); also man tmclasm
 )";
 
 // PATH with its extension (from the last dot of the file name on; none for a name that starts
@@ -351,7 +354,7 @@ tmcl::cli::Tool command_line(Settings& s) {
        "datagrams      one 9-byte TMCL request per instruction (.dgm)\n"
        "listing        addresses, bytes, source lines (.lst)\n"
        "symbols        labels, constants and line table, tab-separated (.sym)\n"
-       "dot            the control-flow graph for Graphviz (.dot; docs/analysis.md)\n"
+       "dot            the control-flow graph for Graphviz (.dot; analysis.md)\n"
        "lib            a library of the inputs (needs -o)",
        [&s](const std::string& v) { return set_format(s, v); },
        Values::words({"bin", "datagrams", "listing", "symbols", "dot", "lib"}), "a format"},
@@ -410,7 +413,7 @@ tmcl::cli::Tool command_line(Settings& s) {
        }},
       {"-Werror", "", "treat warnings as errors", warning("-Werror")},
       {"-Werror=", "NAME", "treat the warning NAME as an error", warning("-Werror="), warnings},
-      {"-Wno-", "NAME", "do not report the warning NAME (names: docs/analysis.md)", warning("-Wno-"), warnings},
+      {"-Wno-", "NAME", "do not report the warning NAME (names: analysis.md)", warning("-Wno-"), warnings},
       {"-W", "NAME", "", warning("-W"), warnings, {}, true},
       {"--stack-usage", "",
        "write the call-stack report (per subroutine and handler: its maximum\n"
@@ -422,7 +425,7 @@ tmcl::cli::Tool command_line(Settings& s) {
        [&s](const std::string&) {
          return set_mode(s, Mode::Analyze, "--analyze cannot be combined with -c, -d or --dump-object");
        }},
-      {"--no-analysis", "", "do not analyse the control flow after linking (docs/analysis.md)",
+      {"--no-analysis", "", "do not analyse the control flow after linking (analysis.md)",
        ok([&s](const std::string&) { s.analysis = false; })},
       {"--no-append-stop", "", "do not append STOP when the program does not end in one",
        ok([&s](const std::string&) { s.opts.append_stop = false; })},

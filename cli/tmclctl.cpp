@@ -70,9 +70,9 @@ commands:
   console                     interactive direct mode: instructions in source syntax
   scan                        find the modules on a bus: address, firmware, module type
   probe -o FILE.profile       read what a module has (firmware, parameters, memory) into a draft
-                              profile for -t (docs/profiles.md, "Your own module")
+                              profile for -t (profiles.md, "Your own module")
   test FILE|DIR...            run test files (*.tmctest) on the module by the wall clock: a smoke
-                              test on hardware (docs/testing.md)
+                              test on hardware (testing.md)
 
 options:
 )";
@@ -92,6 +92,9 @@ examples:
 exit status: 0 ok, 1 verify mismatch or a test failed, 2 the module answered with an error
              status, 64 usage error, 65 bad input file, 69 no reply from the module, 74 port
              error, output file or standard output not written, 130 interrupted (Ctrl-C)
+
+documentation: the .md files named above are in share/doc/tmcl/ of the installation
+               (/usr/share/doc/tmcl/ from the Debian package); also man tmclctl
 )";
 
 const char* const kCommands[] = {"send", "get", "set", "store", "download", "upload", "run", "stop", "step",

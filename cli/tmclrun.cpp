@@ -66,6 +66,9 @@ exit status: 0 STOP, 3 limit reached or blocked forever, 70 runtime fault, 65 ba
              pipe ends the run so), 130/143 ended by SIGINT (Ctrl-C)/SIGTERM after writing the
              summary, --json, --csv, --plot and EEPROM; with --test: 0 every test passed, 1 a
              test failed, 65 a bad test file or program
+
+documentation: the .md files named above are in share/doc/tmcl/ of the installation
+               (/usr/share/doc/tmcl/ from the Debian package); also man tmclrun
 )";
 
 std::string joined(const std::vector<std::string>& names) {
@@ -146,20 +149,17 @@ bool ends_with_ci(const std::string& s, const char* suffix) {
 }
 
 // Serves "-" from memory (standard input was already read to sniff its kind), the rest from disk.
-class StdinFirstReader final : public tmcl::FileReader {
+class StdinFirstReader final : public tmcl::FileOverlay {
  public:
   explicit StdinFirstReader(std::string text) : text_(std::move(text)) {}
-  bool read(const std::string& path, std::string& out) override {
-    if (path == "-") {
-      out = text_;
-      return true;
-    }
-    return disk_.read(path, out);
-  }
 
  private:
+  bool serve(const std::string& path, std::string& out) override {
+    if (path != "-") return false;
+    out = text_;
+    return true;
+  }
   std::string text_;
-  tmcl::DiskReader disk_;
 };
 
 // DURATION for OPT into `out`: "" when it parsed, else the usage error.
@@ -226,7 +226,7 @@ tmcl::cli::Tool command_line(Options& o) {
          o.limits.max_steps = n;
          return std::string();
        }},
-      {"--scenario", "FILE", "timed inputs, switches and encoder slip (docs/tmclrun.md)", set(o.scenario), Values::files()},
+      {"--scenario", "FILE", "timed inputs, switches and encoder slip (tmclrun.md)", set(o.scenario), Values::files()},
       {"--eeprom", "FILE", "load the EEPROM from FILE at start, save it there at exit", set(o.eeprom),
        Values::files({"eeprom"})},
       {"--eeprom-seal", "FILE", "after editing an EEPROM file by hand: check it, write a new checksum",
@@ -256,7 +256,7 @@ tmcl::cli::Tool command_line(Options& o) {
       {"--serve", "SPEC",
        "act as a virtual module: tcp:HOST:PORT (loopback unless told\n"
        "otherwise; [::1]:PORT for IPv6), pty, stdio, or a serial port\n"
-       "(COM3, /dev/ttyUSB0; PORT:BAUD, default 9600) (docs/virtual-module.md).\n"
+       "(COM3, /dev/ttyUSB0; PORT:BAUD, default 9600) (virtual-module.md).\n"
        "PROGRAM is then optional (a host can download one)",
        [&o](const std::string& v) {
          o.serving = true;
@@ -300,7 +300,7 @@ tmcl::cli::Tool command_line(Options& o) {
        Values::words(durations)},
       {"--faults", "SPEC",
        "with --serve: drop, corrupt, delay, split, silence or stale replies, by\n"
-       "count, command or seeded chance (docs/virtual-module.md, \"Faults\")",
+       "count, command or seeded chance (virtual-module.md, \"Faults\")",
        [&o](const std::string& v) {
          std::string error;
          tmcl::parse_faults(v, o.serve_opts.faults, error);
@@ -329,7 +329,7 @@ tmcl::cli::Tool command_line(Options& o) {
       {"--plot-to", "DURATION", "with --plot: draw up to this simulated instant (default: the end)",
        duration("--plot-to", o.plot_to), Values::words(durations)},
       {"--debug", "",
-       "debug PROGRAM with gdb's commands (docs/debugger.md), read from\n"
+       "debug PROGRAM with gdb's commands (debugger.md), read from\n"
        "standard input: a terminal, or a pipe or file for scripts; with\n"
        "--serve tcp:... or pty, while the module keeps answering its host",
        flag(o.debug.enabled)},
@@ -366,7 +366,7 @@ tmcl::cli::Tool command_line(Options& o) {
        }},
       {"--test", "",
        "run test files (*.tmctest; a folder: every one under it) and print\n"
-       "PASS or FAIL for each, then 'N passed, N failed' (docs/testing.md)",
+       "PASS or FAIL for each, then 'N passed, N failed' (testing.md)",
        flag(o.testing)},
       {"-j, --jobs", "N", "with --test: run N tests at a time (default: one per core)",
        [&o](const std::string& v) {

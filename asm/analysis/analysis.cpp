@@ -63,10 +63,9 @@ int Walker::region_at(int address) {
   int& o = a.owner[static_cast<std::size_t>(address)];
   if (o >= 0) return o;
   o = static_cast<int>(a.regions.size());
-  Region reg;
+  Region& reg = a.regions.emplace_back();
   reg.kind = vect_target.test(address) ? RegionKind::Handler : RegionKind::Subroutine;
   reg.entry = address;
-  a.regions.push_back(std::move(reg));
   last_caller.push_back(-1);
   queue.push_back(o);
   return o;
@@ -141,106 +140,137 @@ void Walker::reach(int r, int from, int to) {
   if (claim(r, from, to)) work.push_back(to);
 }
 
+const std::array<OpClass, 256>& op_classes() {
+  static const std::array<OpClass, 256> table = [] {
+    std::array<OpClass, 256> classes{};
+    for (int op = 0; op < 256; ++op) {
+      OpClass c = op_info(static_cast<std::uint8_t>(op)) ? OpClass::Plain : OpClass::NotOp;
+      switch (static_cast<Op>(op)) {
+        case Op::JA: c = OpClass::Ja; break;
+        case Op::JC:
+        case Op::DJNZ: c = OpClass::Branch; break;
+        case Op::CSUB:
+        case Op::CALL: c = OpClass::Call; break;
+        case Op::RST: c = OpClass::Rst; break;
+        case Op::VECT: c = OpClass::Vect; break;
+        case Op::EI: c = OpClass::Ei; break;
+        case Op::RSUB: c = OpClass::Rsub; break;
+        case Op::RETI: c = OpClass::Reti; break;
+        case Op::STOP: c = OpClass::Stop; break;
+        case Op::WAIT: c = OpClass::Wait; break;
+        case Op::STAP:
+        case Op::STGP:
+        case Op::SCO:
+        case Op::SGP: c = OpClass::Store; break;
+        default: break;
+      }
+      classes[static_cast<std::size_t>(op)] = c;
+    }
+    return classes;
+  }();
+  return table;
+}
+
 // Depth first from `start`. Straight-line code is followed without the work stack: the next
 // instruction is taken at once when it is new (the order is the one a stack would give, as the
-// next instruction is always pushed last).
+// next instruction is always pushed last). A plain instruction (most of a program) costs a look
+// at its class, at the next instruction's owner and at whether a region starts there.
 void Walker::walk(int r, int from, int start) {
   if (from < 0 && start == region(r).entry) work.push_back(start);  // owned since region_at()
   else reach(r, from, start);
   const int n = static_cast<int>(in.program.size());
+  const bool graph = options.graph;
+  const Instruction* const program = in.program.data();
+  int* const owner = a.owner.data();
   while (!work.empty()) {
     int i = work.back();
     work.pop_back();
     for (;;) {
-      const Instruction& ins = in.program[static_cast<std::size_t>(i)];
-      const int t = ins.value;
-      const bool t_ok = t >= 0 && t < n;
-      bool next = true;
-      switch (static_cast<Op>(ins.op)) {
-        case Op::JA:
-          next = false;
-          [[fallthrough]];
-        case Op::JC:
-        case Op::DJNZ:
-          if (t_ok) {
-            edge(i, t, EdgeKind::Jump);
-            reach(r, i, t);
-          } else {
-            bad_jumps.push_back(i);
-          }
-          break;
-        case Op::CSUB:
-        case Op::CALL:
-          if (t_ok) {
-            edge(i, t, EdgeKind::Call);
-            int q = region_at(t);
-            int& last = last_caller[static_cast<std::size_t>(q)];
-            if (last != r) calls.push_back({i, r, q});
-            last = r;
-            if (keep_call_sites) call_sites.push_back(i);
-            // After a subroutine that never returns (it stops, restarts or loops) nothing follows.
-            if (!noreturn_at.empty() && noreturn_at[static_cast<std::size_t>(t)]) next = false;
-          } else {
-            bad_jumps.push_back(i);
-          }
-          break;
-        case Op::RST:
-          next = false;
-          if (t_ok) {
-            edge(i, t, EdgeKind::Jump);
-            if (r == 0) reach(r, i, t);
-            else {
-              // A reset leaves any region cleanly for the main program: it clears the call stack
-              // and the interrupt state, so it is also a way out of a handler (errata E31, E43).
-              restarts.push_back({i, t});
-              met(r, Fact::Reset, i);
+      const Instruction& ins = program[i];
+      if (const OpClass c = op_class[ins.op]; c != OpClass::Plain) {
+        const int t = ins.value;
+        const bool t_ok = t >= 0 && t < n;
+        bool next = true;
+        switch (c) {
+          case OpClass::Ja:
+            next = false;
+            [[fallthrough]];
+          case OpClass::Branch:
+            if (t_ok) {
+              if (graph) edge(i, t, EdgeKind::Jump);
+              reach(r, i, t);
+            } else {
+              bad_jumps.push_back(i);
             }
-          } else {
-            bad_jumps.push_back(i);
-          }
-          break;
-        case Op::VECT:
-          if (t_ok) {
-            edge(i, t, EdgeKind::Vect);
-            int h = region_at(t);
-            auto& v = a.regions[static_cast<std::size_t>(h)].vectors;
-            if (std::find(v.begin(), v.end(), ins.type) == v.end()) v.push_back(ins.type);
-            vect_set[ins.type] = true;
-          } else {
-            bad_vects.push_back(i);
-          }
-          break;
-        case Op::EI: eis.push_back(i); break;
-        // With nothing to return to, RSUB and RETI are ignored (manual; errata E6, E13) and the
-        // program goes on: in the main program and in a handler (RSUB), in the main program (RETI).
-        case Op::RSUB:
-          met(r, Fact::Rsub, i);
-          next = a.regions[static_cast<std::size_t>(r)].kind != RegionKind::Subroutine;
-          break;
-        case Op::RETI:
-          met(r, Fact::Reti, i);
-          next = a.regions[static_cast<std::size_t>(r)].kind == RegionKind::Main;
-          break;
-        case Op::STOP: met(r, Fact::Stop, i); next = false; break;
-        case Op::WAIT: met(r, Fact::Wait, i); break;
-        case Op::STAP:
-        case Op::STGP:
-        case Op::SCO:
-        case Op::SGP:
-          if (writes_eeprom(ins)) writes.push_back(i);
-          break;
-        default:
-          if (!is_op[ins.op]) next = false;  // not an instruction: the VM faults here (E20)
-          break;
+            break;
+          case OpClass::Call:
+            if (t_ok) {
+              if (graph) edge(i, t, EdgeKind::Call);
+              int q = region_at(t);
+              int& last = last_caller[static_cast<std::size_t>(q)];
+              if (last != r) calls.push_back({i, r, q});
+              last = r;
+              if (keep_call_sites) call_sites.push_back(i);
+              // After a subroutine that never returns (it stops, restarts or loops) nothing follows.
+              if (!noreturn_at.empty() && noreturn_at[static_cast<std::size_t>(t)]) next = false;
+            } else {
+              bad_jumps.push_back(i);
+            }
+            break;
+          case OpClass::Rst:
+            next = false;
+            if (t_ok) {
+              if (graph) edge(i, t, EdgeKind::Jump);
+              if (r == 0) reach(r, i, t);
+              else {
+                // A reset leaves any region cleanly for the main program: it clears the call stack
+                // and the interrupt state, so it is also a way out of a handler (errata E31, E43).
+                restarts.push_back({i, t});
+                met(r, Fact::Reset, i);
+              }
+            } else {
+              bad_jumps.push_back(i);
+            }
+            break;
+          case OpClass::Vect:
+            if (t_ok) {
+              if (graph) edge(i, t, EdgeKind::Vect);
+              int h = region_at(t);
+              auto& v = a.regions[static_cast<std::size_t>(h)].vectors;
+              if (std::find(v.begin(), v.end(), ins.type) == v.end()) v.push_back(ins.type);
+              vect_set[ins.type] = true;
+            } else {
+              bad_vects.push_back(i);
+            }
+            break;
+          case OpClass::Ei: eis.push_back(i); break;
+          // With nothing to return to, RSUB and RETI are ignored (manual; errata E6, E13) and the
+          // program goes on: in the main program and in a handler (RSUB), in the main program (RETI).
+          case OpClass::Rsub:
+            met(r, Fact::Rsub, i);
+            next = a.regions[static_cast<std::size_t>(r)].kind != RegionKind::Subroutine;
+            break;
+          case OpClass::Reti:
+            met(r, Fact::Reti, i);
+            next = a.regions[static_cast<std::size_t>(r)].kind == RegionKind::Main;
+            break;
+          case OpClass::Stop: met(r, Fact::Stop, i); next = false; break;
+          case OpClass::Wait: met(r, Fact::Wait, i); break;
+          case OpClass::Store:
+            if (writes_eeprom(ins)) writes.push_back(i);
+            break;
+          case OpClass::NotOp: next = false; break;  // not an instruction: the VM faults here (E20)
+          case OpClass::Plain: break;
+        }
+        if (!next) break;
       }
-      if (!next) break;
       if (i + 1 >= n) {
         met(r, Fact::Falloff, i);
         break;
       }
-      edge(i, i + 1, EdgeKind::Next);
+      if (graph) edge(i, i + 1, EdgeKind::Next);
       // The common case inline: the next instruction is nobody's yet and no region's entry.
-      if (int& o = a.owner[static_cast<std::size_t>(i) + 1]; o < 0 && !is_target(i + 1)) o = r;
+      if (int& o = owner[i + 1]; o < 0 && !entry.test(i + 1)) o = r;
       else if (!claim(r, i, i + 1)) break;
       ++i;
     }
@@ -304,35 +334,28 @@ void Walker::pass() {
   a.owner.reserve(static_cast<std::size_t>(n));
   prefer_huge_pages(a.owner.data(), a.owner.capacity() * sizeof(int));  // fewer page faults
   a.owner.assign(static_cast<std::size_t>(n), -1);
-  call_target.reset(n);
+  entry.reset(n);
   vect_target.reset(n);
   // Every call and VECT target is an entry, whether or not its caller is reachable, so that a
   // walk stops at a subroutine's label even before the CSUB naming it has been seen.
+  const Instruction* const program = in.program.data();
   for (int i = 0; i < n; ++i) {
-    const Instruction& ins = in.program[static_cast<std::size_t>(i)];
-    switch (static_cast<Op>(ins.op)) {
-      case Op::STAP:
-      case Op::STGP:
-      case Op::SCO:
-      case Op::SGP: keep_call_sites = keep_call_sites || writes_eeprom(ins); break;
-      case Op::CSUB:
-      case Op::CALL:
-        if (ins.value >= 0 && ins.value < n) call_target.set(ins.value);
-        break;
-      case Op::VECT:
-        if (ins.value >= 0 && ins.value < n) vect_target.set(ins.value);
-        break;
-      default: break;
+    const Instruction& ins = program[i];
+    const OpClass c = op_class[ins.op];
+    if (c < kFirstScanned) continue;
+    if (c == OpClass::Store) {
+      keep_call_sites = keep_call_sites || writes_eeprom(ins);
+    } else if (ins.value >= 0 && ins.value < n) {
+      entry.set(ins.value);
+      if (c == OpClass::Vect) vect_target.set(ins.value);
     }
   }
   // One region per entry at most (exported labels nothing calls add a few later).
   std::size_t entries = 1;
-  for (std::size_t k = 0; k < call_target.words.size(); ++k)
-    entries += static_cast<std::size_t>(std::popcount(call_target.words[k] | vect_target.words[k]));
+  for (std::uint64_t w : entry.words) entries += static_cast<std::size_t>(std::popcount(w));
   a.regions.reserve(entries);
   last_caller.reserve(entries);
   if (n == 0) return;
-  for (int op = 0; op < 256; ++op) is_op[static_cast<std::size_t>(op)] = op_info(static_cast<std::uint8_t>(op)) != nullptr;
   Region main;
   main.kind = RegionKind::Main;
   main.entry = 0;
@@ -367,7 +390,7 @@ void Walker::pass() {
       if (sym.kind != SymbolKind::Label || !sym.exported || sym.value < 0 || sym.value >= n) continue;
       auto t = static_cast<std::size_t>(sym.value);
       if (a.owner[t] >= 0) continue;
-      call_target.set(static_cast<int>(t));
+      entry.set(static_cast<int>(t));
       region_at(static_cast<int>(t));
       more = true;
     }

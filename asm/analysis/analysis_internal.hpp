@@ -101,6 +101,13 @@ struct CounterFacts {
   std::unordered_set<std::uint32_t> handler_writes, subroutine_writes;
 };
 
+// What the walk does at an instruction, by opcode (op_classes(), made once): most instructions
+// are Plain and go on to the next without a look at their operands. The last three are also what
+// the first scan of the program looks for (>= kFirstScanned).
+enum class OpClass : std::uint8_t { Plain, Ja, Branch, Rst, Ei, Rsub, Reti, Stop, Wait, NotOp, Call, Vect, Store };
+inline constexpr OpClass kFirstScanned = OpClass::Call;
+const std::array<OpClass, 256>& op_classes();
+
 struct Walker {
   Walker(const AnalysisInput& input, Diagnostics& d, const AnalysisOptions& o) : in(input), diags(d), options(o) {}
   const AnalysisInput& in;
@@ -115,7 +122,7 @@ struct Walker {
   std::vector<int> fact_begin, fact_addresses;
   std::vector<Fact> fact_kinds;
   std::vector<std::uint8_t> fact_mask;  // per region: bit k set when it met a fact of kind k
-  AddressBits call_target, vect_target;    // per address: a CSUB/CALL or VECT names it
+  AddressBits entry, vect_target;  // per address: a CSUB/CALL or VECT names it (entry), a VECT does
   std::vector<int> queue;                  // regions to walk, in the order found
   std::vector<int> work;                   // the walk's stack of addresses
   std::vector<Flow> flows;
@@ -131,19 +138,17 @@ struct Walker {
   std::vector<std::pair<int, int>> restarts;  // RST outside the main program: (site, target)
   std::vector<int> bad_jumps, bad_vects, eis, writes;
   std::array<bool, 256> vect_set{};
-  std::array<bool, 256> is_op{};  // opcodes of the instruction table (op_info, looked up once)
+  const std::array<OpClass, 256>& op_class = op_classes();  // NotOp: not in the table (E20)
   std::vector<char> noreturn_at;  // per address: a subroutine there never returns (second pass)
   // Per region: the best edge of its deepest chain (-1: none) and its graph edges.
   RegionGraph out;
-  std::vector<int> comp;         // region -> component
-  std::vector<RegionEdge> best;  // per component
-  std::vector<int> best_from;    // per component: the region the best edge leaves
-  std::vector<char> recursive;   // per component
+  std::vector<int> comp;        // region -> component
+  std::vector<char> recursive;  // per component
 
   SourceLoc loc(int address) const;
   int region_at(int address);
   int region_of_entry(int address) const;
-  bool is_target(int address) const { return call_target.test(address) || vect_target.test(address); }
+  bool is_target(int address) const { return entry.test(address); }
   void name_regions();
   void edge(int from, int to, EdgeKind kind);
   bool claim(int r, int from, int to);

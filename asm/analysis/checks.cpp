@@ -28,6 +28,11 @@ void Walker::depths() {
   });
   std::vector<int> roots(static_cast<std::size_t>(nr));
   for (int r = 0; r < nr; ++r) roots[static_cast<std::size_t>(r)] = r;
+  // Each component's depth as it completes (the components its edges lead to have completed
+  // before): the deepest of its members' edges out of it, one frame more for a call. Members in
+  // the order of their regions, edges in the order met: the first of equal depths is the chain.
+  recursive.assign(static_cast<std::size_t>(nr), 0);
+  std::vector<int> depth(static_cast<std::size_t>(nr), 0), members;
   int count = 0;
   comp = strong_components(
       nr, roots,
@@ -35,51 +40,41 @@ void Walker::depths() {
         auto edges = out[static_cast<std::size_t>(v)];
         return static_cast<std::size_t>(k) < edges.size() ? edges[static_cast<std::size_t>(k)].to : -1;
       },
-      count);
-  recursive.assign(static_cast<std::size_t>(count), 0);
-  best.assign(static_cast<std::size_t>(count), RegionEdge{-1, 0, -1});
-  best_from.assign(static_cast<std::size_t>(count), -1);
-  std::vector<int> depth(static_cast<std::size_t>(count), 0);
-  // Regions by component, callees' components first (Tarjan's numbering; a counting sort).
-  std::vector<int> order(static_cast<std::size_t>(nr)), start(static_cast<std::size_t>(count) + 1, 0);
-  for (int r = 0; r < nr; ++r) ++start[static_cast<std::size_t>(comp[static_cast<std::size_t>(r)]) + 1];
-  for (std::size_t c = 1; c < start.size(); ++c) start[c] += start[c - 1];
-  for (int r = 0; r < nr; ++r)
-    order[static_cast<std::size_t>(start[static_cast<std::size_t>(comp[static_cast<std::size_t>(r)])]++)] = r;
-  for (std::size_t k = 0; k < order.size();) {
-    int c = comp[static_cast<std::size_t>(order[k])];
-    std::size_t end = k;
-    while (end < order.size() && comp[static_cast<std::size_t>(order[end])] == c) ++end;
-    auto& d = depth[static_cast<std::size_t>(c)];
-    for (std::size_t m = k; m < end; ++m) {
-      int v = order[m];
-      for (const auto& e : out[static_cast<std::size_t>(v)]) {
-        int tc = comp[static_cast<std::size_t>(e.to)];
-        if (tc == c) {
-          if (e.weight > 0) recursive[static_cast<std::size_t>(c)] = 1;
-          continue;
+      count,
+      [&](int c, std::span<const int> in_component, const std::vector<int>& comp_of) {
+        if (in_component.size() > 1) {
+          members.assign(in_component.begin(), in_component.end());
+          std::sort(members.begin(), members.end());
+          in_component = members;
         }
-        int td = depth[static_cast<std::size_t>(tc)];
-        int val = td >= kUnbounded ? kUnbounded : td + e.weight;
-        if (val > d || (best[static_cast<std::size_t>(c)].to < 0 && val == d && val > 0)) {
-          d = val;
-          best[static_cast<std::size_t>(c)] = e;
-          best_from[static_cast<std::size_t>(c)] = v;
+        int d = 0;
+        RegionEdge best{-1, 0, -1};
+        for (int v : in_component)
+          for (const auto& e : out[static_cast<std::size_t>(v)]) {
+            int tc = comp_of[static_cast<std::size_t>(e.to)];
+            if (tc == c) {
+              if (e.weight > 0) recursive[static_cast<std::size_t>(c)] = 1;
+              continue;
+            }
+            int td = depth[static_cast<std::size_t>(tc)];
+            int val = td >= kUnbounded ? kUnbounded : td + e.weight;
+            if (val > d || (best.to < 0 && val == d && val > 0)) {
+              d = val;
+              best = e;
+            }
+          }
+        const bool cycle = recursive[static_cast<std::size_t>(c)] != 0;
+        depth[static_cast<std::size_t>(c)] = cycle ? kUnbounded : d;
+        for (int v : in_component) {
+          Region& reg = a.regions[static_cast<std::size_t>(v)];
+          reg.depth = depth[static_cast<std::size_t>(c)];
+          if (!cycle && best.to >= 0) {
+            reg.chain_to = best.to;
+            reg.chain_site = best.weight > 0 ? best.site : -1;
+          }
         }
-      }
-    }
-    if (recursive[static_cast<std::size_t>(c)]) d = kUnbounded;
-    k = end;
-  }
-  for (int r = 0; r < nr; ++r) {
-    Region& reg = a.regions[static_cast<std::size_t>(r)];
-    auto c = static_cast<std::size_t>(comp[static_cast<std::size_t>(r)]);
-    reg.depth = depth[c];
-    if (!recursive[c] && best[c].to >= 0) {
-      reg.chain_to = best[c].to;
-      reg.chain_site = best[c].weight > 0 ? best[c].site : -1;
-    }
-  }
+      });
+  recursive.resize(static_cast<std::size_t>(count));
   a.main_depth = a.regions.empty() ? 0 : a.regions[0].depth;
 }
 
@@ -304,13 +299,16 @@ void Walker::check_interrupts() {
 void Walker::check_unreachable() {
   const int n = static_cast<int>(in.program.size());
   const int last = in.appended_stop ? n - 1 : n;  // the appended STOP is not the user's code
+  const int* const owner = a.owner.data();
   for (int i = 0; i < last;) {
-    if (a.owner[static_cast<std::size_t>(i)] >= 0) {
-      ++i;
-      continue;
-    }
+    // Reached code eight instructions at a time: only an unreached one has a negative owner.
+    while (i + 8 <= last && (owner[i] | owner[i + 1] | owner[i + 2] | owner[i + 3] | owner[i + 4] | owner[i + 5] |
+                             owner[i + 6] | owner[i + 7]) >= 0)
+      i += 8;
+    while (i < last && owner[i] >= 0) ++i;
+    if (i >= last) break;
     int j = i;
-    while (j < last && a.owner[static_cast<std::size_t>(j)] < 0) ++j;
+    while (j < last && owner[j] < 0) ++j;
     int count = j - i;
     if (!want("unreachable", i)) {
       i = j;

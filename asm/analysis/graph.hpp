@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cstdint>
+#include <span>
 #include <vector>
 
 namespace tmcl::detail {
@@ -13,9 +14,14 @@ namespace tmcl::detail {
 // successors is built (an instruction has at most two). Returns the component of every vertex
 // of `roots`' reach (-1 elsewhere); components are numbered in the order Tarjan completes them,
 // so every edge leads to a component with a number no larger than its own (callees before
-// callers).
-template <class Succ>
-std::vector<int> strong_components(int n, const std::vector<int>& roots, Succ succ, int& count) {
+// callers). `done(c, members, comp)`, when given, is called as component c completes, with its
+// vertices and the components so far (every component an edge of theirs leads to has completed
+// before), so a pass over the components in that order needs no sort of its own.
+struct NoComponentCallback {
+  void operator()(int, std::span<const int>, const std::vector<int>&) const {}
+};
+template <class Succ, class Done = NoComponentCallback>
+std::vector<int> strong_components(int n, const std::vector<int>& roots, Succ succ, int& count, Done done = {}) {
   std::vector<int> index(static_cast<std::size_t>(n), -1), low(static_cast<std::size_t>(n), 0),
       comp(static_cast<std::size_t>(n), -1);
   std::vector<int> stack;
@@ -49,12 +55,11 @@ std::vector<int> strong_components(int n, const std::vector<int>& roots, Succ su
       int v = f.v;
       frames.pop_back();
       if (low[static_cast<std::size_t>(v)] == index[static_cast<std::size_t>(v)]) {
-        for (;;) {
-          int w = stack.back();
-          stack.pop_back();
-          comp[static_cast<std::size_t>(w)] = count;
-          if (w == v) break;
-        }
+        std::size_t first = stack.size() - 1;
+        while (stack[first] != v) --first;
+        for (std::size_t k = first; k < stack.size(); ++k) comp[static_cast<std::size_t>(stack[k])] = count;
+        done(count, std::span<const int>(stack.data() + first, stack.size() - first), comp);
+        stack.resize(first);
         ++count;
       }
       if (!frames.empty()) {

@@ -19,20 +19,22 @@ std::string folded(std::string_view s) {
 }
 
 // One line of source as the file "<command line>", for `profile`, with the session's names as
-// -D definitions. Includes are read from disk and the bundled ones; no STOP is appended.
+// -D definitions. Includes are read from disk and the bundled ones; no STOP is appended. An -I
+// folder that cannot be searched is warned about when `check_folders` says so.
 AsmResult assemble_line(const std::string& line, const Profile& profile, const std::vector<std::string>& include_dirs,
-                        const std::vector<std::pair<std::string, std::string>>& defines) {
-  struct Reader final : FileReader {
+                        const std::vector<std::pair<std::string, std::string>>& defines, bool check_folders) {
+  struct Reader final : FileOverlay {
     std::string line;
-    DiskReader disk;
-    bool read(const std::string& path, std::string& out) override {
-      if (path != "<command line>") return disk.read(path, out);
+    bool folders = false;
+    std::string folder_problem(const std::string& path) override { return folders ? FileOverlay::folder_problem(path) : ""; }
+    bool serve(const std::string& path, std::string& out) override {
+      if (path != "<command line>") return false;
       out = line;
       return true;
     }
-    std::string last_error() const override { return disk.last_error(); }
   } reader;
   reader.line = line + "\n";
+  reader.folders = check_folders;
   AsmOptions opt;
   opt.profile = &profile;
   opt.include_dirs = include_dirs;
@@ -51,15 +53,20 @@ ConsoleSession::ConsoleSession(const Profile& profile, std::vector<std::string> 
     if (file.empty()) continue;
     // The bundled files assemble for every profile; a failure here would be a defect of ours,
     // and the session would merely lack the names.
-    if (take("#include " + file, file + " (predefined)").kind != Entry::Error) predefined_.push_back(file);
+    if (take("#include " + file, file + " (predefined)", false).kind != Entry::Error) predefined_.push_back(file);
   }
 }
 
-ConsoleSession::Entry ConsoleSession::enter(const std::string& line) { return take(line, line); }
+// An -I folder that cannot be searched is said once, with the first line the user typed.
+ConsoleSession::Entry ConsoleSession::enter(const std::string& line) {
+  Entry e = take(line, line, !folders_said_);
+  folders_said_ = true;
+  return e;
+}
 
-ConsoleSession::Entry ConsoleSession::take(const std::string& line, const std::string& origin) {
+ConsoleSession::Entry ConsoleSession::take(const std::string& line, const std::string& origin, bool check_folders) {
   Entry e;
-  AsmResult r = assemble_line(line, profile_, include_dirs_, defines_);
+  AsmResult r = assemble_line(line, profile_, include_dirs_, defines_, check_folders);
   // The session name a note points at: the assembler says "first defined on the command line"
   // at the -D definition of a name a line redefines.
   auto define_of = [&](const Diagnostic& note) -> std::optional<std::size_t> {
@@ -95,7 +102,7 @@ ConsoleSession::Entry ConsoleSession::take(const std::string& line, const std::s
     auto defines = defines_;
     for (auto i = old.rbegin(); i != old.rend(); ++i) defines.erase(defines.begin() + static_cast<std::ptrdiff_t>(*i));
     if (only_typed_redefinitions) {
-      if (AsmResult again = assemble_line(line, profile_, include_dirs_, defines); again.ok() && again.program.empty()) {
+      if (AsmResult again = assemble_line(line, profile_, include_dirs_, defines, check_folders); again.ok() && again.program.empty()) {
         for (auto i = old.rbegin(); i != old.rend(); ++i) {
           replaced.push_back(defines_[*i]);
           defines_.erase(defines_.begin() + static_cast<std::ptrdiff_t>(*i));

@@ -28,22 +28,20 @@ int hex_digit(char c) {
 }
 
 // The files an assembly reads: open documents from the editor's text, the rest from disk.
-class OverlayReader final : public FileReader {
+class OverlayReader final : public FileOverlay {
  public:
   explicit OverlayReader(const std::map<std::string, Document>& docs) : docs_(docs) {}
-  bool read(const std::string& path, std::string& out) override {
+
+ private:
+  bool serve(const std::string& path, std::string& out) override {
     for (const auto& [uri, d] : docs_)
       if (d.path == path) {
         out = d.text;
         return true;
       }
-    return disk_.read(path, out);
+    return false;
   }
-  std::string last_error() const override { return disk_.last_error(); }
-
- private:
   const std::map<std::string, Document>& docs_;
-  DiskReader disk_;
 };
 
 void index_lines(Document& d) {

@@ -46,6 +46,18 @@ TEST(console_keeps_constants_and_includes) {
   CHECK(s.enter("#include TMCLParam.tmc").kind == Kind::Nothing);  // included once, as in a program
 }
 
+// An -I folder that cannot be searched is a warning, as in tmclasm (issue 28, item 9): once, with
+// the first line typed, not with every line.
+TEST(console_warns_once_of_an_include_folder_that_does_not_exist) {
+  ConsoleSession s(profile("usb-2-sd"), {"/nonexistent-tmcl-folder"});
+  auto e = s.enter("SAP 4, 0, 1000");
+  CHECK(e.kind == Kind::Send);
+  CHECK_EQ(e.messages, std::string("tmclasm: warning: include folder '/nonexistent-tmcl-folder' (-I) does not exist\n"));
+  e = s.enter("GAP 4, 0");
+  CHECK(e.kind == Kind::Send);
+  CHECK_EQ(e.messages, std::string());
+}
+
 TEST(console_typed_constants_take_new_values_included_ones_do_not) {
   ConsoleSession s(profile("usb-2-sd"), {});
   s.enter("Speed = 1000");

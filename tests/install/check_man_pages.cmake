@@ -1,9 +1,9 @@
 # Every tool (TMCL_TOOLS in cli/CMakeLists.txt) has a man page docs/man/TOOL.1 whose OPTIONS list
 # every option of the tool's table (`TOOL --list-options`, what --help shows) and no option the
 # tool does not have, and which names documentation files as installed (share/doc/tmcl/), not
-# as docs/... of the sources; the bash completion cli/completion/tmcl is set up for it (the completion
-# asks the tool itself, tests/install/check_completion.sh); and every executable cli/ builds is in
-# TMCL_TOOLS.
+# as docs/... of the sources (nor may the tool's --help); the bash completion cli/completion/tmcl
+# is set up for it (the completion asks the tool itself, tests/install/check_completion.sh); and
+# every executable cli/ builds is in TMCL_TOOLS.
 # Run as: cmake -DROOT=<source dir> "-DTOOLS=name=path;..." "-DEXECUTABLES=name;..." -P check_man_pages.cmake
 cmake_minimum_required(VERSION 3.25)
 include(${CMAKE_CURRENT_LIST_DIR}/../unit/checks.cmake)
@@ -30,6 +30,16 @@ foreach(tool IN LISTS names)
   file(READ "${man}" man_text)
   string(REPLACE "\\-" "-" man_text "${man_text}")
   string(REGEX REPLACE "\\\\f[BIRP]" "" man_text "${man_text}")
+
+  # --help, which an installed user reads first, names no docs/... either.
+  execute_process(COMMAND "${path}" --help RESULT_VARIABLE rc OUTPUT_VARIABLE help_text)
+  string(REPLACE ";" "," help_text "${help_text}")
+  string(REPLACE "\n" ";" help_lines "${help_text}")
+  foreach(line IN LISTS help_lines)
+    if(line MATCHES "docs/")
+      problem("${tool} --help sends an installed reader to the source tree: ${line}")
+    endif()
+  endforeach()
 
   execute_process(COMMAND "${path}" --list-options RESULT_VARIABLE rc OUTPUT_VARIABLE list)
   if(NOT rc EQUAL 0)

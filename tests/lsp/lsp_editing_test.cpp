@@ -248,6 +248,24 @@ TEST(project_file_sets_target_and_include_folders) {
   CHECK(messages(c, 1).empty());
 }
 
+// An include folder that cannot be searched is a warning, as tmclasm's -I (issue 28, item 9),
+// shown at the document's first line; the folders that exist are searched as before.
+TEST(an_include_folder_that_does_not_exist_is_a_warning) {
+  TempDir dir;
+  dir.write(".tmcl-lsp.json", R"({"includeDirs": ["lib", "nothere"]})");
+  dir.write("lib/mylib.inc", "Far = 5\n");
+  Client c;
+  c.request("initialize", R"({"processId":null,"capabilities":{},"rootUri":")" + dir.uri() + R"("})");
+  c.notify("initialized", "{}");
+  std::string main = dir.uri("main.tmc");
+  c.open(main, "#include mylib.inc\n  SAP 4, 0, Far\n");
+  Value d = c.last_diagnostics(main);
+  CHECK_EQ(d.size(), 1u);
+  CHECK_EQ(d.at(0)["message"].as_string(), "include folder '" + dir.path + "/nothere' (-I) does not exist");
+  CHECK_EQ(d.at(0)["severity"].as_int(), 2);
+  CHECK_EQ(d.at(0)["range"]["start"]["line"].as_int(), 0);
+}
+
 TEST(initialization_options_override_the_project_file) {
   TempDir dir;
   dir.write(".tmcl-lsp.json", R"({"target": "usb-2-sd", "includeDirs": ["lib"]})");

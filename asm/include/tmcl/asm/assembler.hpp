@@ -49,6 +49,29 @@ class DiskReader final : public FileReader {
   std::string error_;
 };
 
+// Serves some files itself (standard input read already, an editor's unsaved text, one line of
+// a console) and every other from the reader below it, the disk unless one is given. What a
+// reader says besides the bytes (why a read failed, why an -I folder cannot be searched) is the
+// reader's below: a wrapper that forgot to forward it hid the -I warning (issue 28).
+class FileOverlay : public FileReader {
+ public:
+  FileOverlay() : below_(&disk_) {}
+  explicit FileOverlay(FileReader& below) : below_(&below) {}
+  FileOverlay(const FileOverlay&) = delete;
+  FileOverlay& operator=(const FileOverlay&) = delete;
+  bool read(const std::string& path, std::string& out) final { return serve(path, out) || below_->read(path, out); }
+  std::string last_error() const final { return below_->last_error(); }
+  std::string folder_problem(const std::string& path) override { return below_->folder_problem(path); }
+
+ protected:
+  // True, with `out` filled, when `path` is one of the overlay's own; false to read it below.
+  virtual bool serve(const std::string& path, std::string& out) = 0;
+
+ private:
+  DiskReader disk_;
+  FileReader* below_;
+};
+
 // Serves files from memory (tests, fuzzers, embedders); paths are compared as given.
 class MemoryReader final : public FileReader {
  public:

@@ -38,7 +38,8 @@ class ConsoleSession {
     std::string messages;  // the assembler's diagnostics, warnings included, rendered
   };
   // Assembles one line in the session: an instruction is returned to be sent; names it defines
-  // are kept. Diagnostics name the line "<command line>".
+  // are kept. Diagnostics name the line "<command line>"; the first line's also say which -I
+  // folders cannot be searched.
   Entry enter(const std::string& line);
 
   // The files predefined at the start ("TMCLParam.tmc", "USB-2-SD.inc").
@@ -46,12 +47,13 @@ class ConsoleSession {
   std::size_t name_count() const { return defines_.size(); }
 
  private:
-  Entry take(const std::string& line, const std::string& origin);
+  Entry take(const std::string& line, const std::string& origin, bool check_folders);
   const Profile& profile_;
   std::vector<std::string> include_dirs_;
   std::vector<std::pair<std::string, std::string>> defines_;  // NAME, its value in decimal
   std::vector<std::string> origins_;  // per define: the line that defined it, or "FILE (predefined)"
   std::vector<std::string> predefined_;
+  bool folders_said_ = false;
 };
 
 }  // namespace tmcl::host
