@@ -32,8 +32,8 @@ struct Drive : mt::SwitchBench {
   }
 };
 
-struct Search : mt::Searching<Drive> {
-  explicit Search(int mode) : Searching(51200, 5120, 51200) { set(193, mode); }
+struct PpsSearch : mt::Searching<Drive> {
+  explicit PpsSearch(int mode) : Searching(51200, 5120, 51200) { set(193, mode); }
 };
 
 }  // namespace
@@ -182,7 +182,7 @@ TEST(tmc5160_moves_into_a_limit_switch) {
 // ---------------------------------------------------------------- reference search (7.1)
 
 TEST(tmc5160_rfs_modes_1_and_65_one_end_switch) {
-  Search b(1);
+  PpsSearch b(1);
   b.left_at(-20000);
   b.right_at(30000);
   b.start();
@@ -191,7 +191,7 @@ TEST(tmc5160_rfs_modes_1_and_65_one_end_switch) {
   CHECK_EQ(b.get(10), 0);
   CHECK_EQ(b.get(197), -20000);  // where the reference point was before it became 0
   CHECK_EQ(b.edge_moving(100), 1);
-  Search c(65);  // +64: the right switch instead
+  PpsSearch c(65);  // +64: the right switch instead
   c.left_at(-20000);
   c.right_at(30000);
   c.start();
@@ -204,11 +204,11 @@ TEST(tmc5160_rfs_modes_1_and_65_one_end_switch) {
 
 // 196: the distance between the two end switches (7.1.2).
 TEST(tmc5160_rfs_modes_2_and_66_both_end_switches) {
-  Search b(2);
+  PpsSearch b(2);
   b.between_end_switches(30000);
   CHECK_EQ(b.get(11), 1);
   CHECK_EQ(b.get(10), 0);
-  Search c(66);  // +64: the left one first, the right one is the zero point
+  PpsSearch c(66);  // +64: the left one first, the right one is the zero point
   c.between_end_switches(20000);
   CHECK_EQ(c.get(10), 1);
   CHECK_EQ(c.get(11), 0);
@@ -218,7 +218,7 @@ TEST(tmc5160_rfs_modes_2_and_66_both_end_switches) {
 // 196: "the distance between the right end switch and the middle of the left end switch"
 // (7.1.3). Mode 3 searches the left stop switch, not the home switch (its own input here).
 TEST(tmc5160_rfs_modes_3_and_67_the_zero_switch_from_both_sides) {
-  Search b(3);
+  PpsSearch b(3);
   b.place(SwitchInput::StopLeft, -20300, -20000);  // a cam on the left input
   b.right_at(30000);
   b.place(SwitchInput::Home, -150, 150);           // in the way, and ignored
@@ -229,7 +229,7 @@ TEST(tmc5160_rfs_modes_3_and_67_the_zero_switch_from_both_sides) {
   CHECK_EQ(b.get(11), 1);
   CHECK_EQ(b.get(9), 0);
   CHECK_EQ(b.edge_moving(1000), 151);
-  Search c(67);
+  PpsSearch c(67);
   c.left_at(-20000);
   c.place(SwitchInput::StopRight, 30000, 30300);
   c.start();
@@ -243,14 +243,14 @@ TEST(tmc5160_rfs_modes_3_and_67_the_zero_switch_from_both_sides) {
 // With a left stop switch at one position, "the middle of the left end switch" is that position:
 // 196 is the distance between the end switches (docs/errata.md, "196 after mode 3").
 TEST(rfs_mode3_tmc5160_distance_between_the_end_switches) {
-  Search b(3);
+  PpsSearch b(3);
   b.between_end_switches(30000);
 }
 
 TEST(tmc5160_rfs_modes_4_and_68_one_switch_from_both_sides) {
   for (int mode : {4, 68}) {
     const int d = mode == 4 ? -1 : 1;  // toward the switch
-    Search b(mode);
+    PpsSearch b(mode);
     if (d < 0)
       b.place(SwitchInput::StopLeft, -20300, -20000);
     else
@@ -264,14 +264,14 @@ TEST(tmc5160_rfs_modes_4_and_68_one_switch_from_both_sides) {
 }
 
 TEST(tmc5160_rfs_modes_5_and_6_home_switch_turning_at_the_end_switch) {
-  for (int mode : {5, 6}) mt::home_turning_at_the_end_switch<Search>(mode);  // 9: the home switch's own state
+  for (int mode : {5, 6}) mt::home_turning_at_the_end_switch<PpsSearch>(mode);  // 9: the home switch's own state
 }
 
 // The end switches in the way are passed with their stop functions on (7.1: they do not influence
 // the search).
 TEST(tmc5160_rfs_modes_7_8_and_136_home_switch_ignoring_end_switches) {
-  for (int mode : {7, 8}) mt::home_ignoring_end_switches<Search>(mode);
-  Search c(8 + 128);  // +128: the home switch reads inverted, "closed" outside its range
+  for (int mode : {7, 8}) mt::home_ignoring_end_switches<PpsSearch>(mode);
+  PpsSearch c(8 + 128);  // +128: the home switch reads inverted, "closed" outside its range
   c.place(SwitchInput::Home, -150, 150);
   c.start();
   c.run(151, true);
@@ -286,7 +286,7 @@ TEST(tmc5160_rfs_modes_7_8_and_136_home_switch_ignoring_end_switches) {
 // search's runs (velocity mode); with soft stops (26) it still ends on the reference point.
 TEST(tmc5160_rfs_with_sixpoint_and_soft_stops_ends_on_the_reference_point) {
   for (int mode : {1, 3, 66, 7}) {
-    Search b(mode);
+    PpsSearch b(mode);
     b.sixpoint(100, 20000, 2000, 51200, 51200, 30000, 10000, 200);
     b.set(26, 1);
     b.ends_on_the_reference_point();
@@ -295,7 +295,7 @@ TEST(tmc5160_rfs_with_sixpoint_and_soft_stops_ends_on_the_reference_point) {
 }
 
 TEST(tmc5160_rfs_that_never_meets_its_switch_runs_until_stopped) {
-  Search b(1);
+  PpsSearch b(1);
   b.start();
   CHECK_EQ(b.core->next_event(), tmcl::kNever);
   b.to(10000000);

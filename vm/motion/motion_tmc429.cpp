@@ -26,7 +26,6 @@ namespace {
 using ramp::Builder;
 using ramp::Limits;
 using sw::Goal;
-using sw::Motor;
 
 constexpr int kChipMax = 2047;         // velocity and acceleration registers: 11 bits
 
@@ -68,13 +67,13 @@ class Tmc429Core final : public sw::SwitchCore {
 
   std::int32_t get_param(int motor, int param) override {
     if (param != kActualAcceleration) return SwitchCore::get_param(motor, param);
-    const Motor& m = at(motor);
+    const sw::Motor& m = at(motor);
     return units(std::fabs(m.rm.state(now_).a) / aunit(m));
   }
 
   // The chip's ramp mode (138) follows the commands.
   void move_absolute(int motor, std::int32_t target) override {
-    Motor& m = at(motor);
+    sw::Motor& m = at(motor);
     m.p[kRampMode] = m.p[kRampMode] == 1 ? 1 : 0;
     SwitchCore::move_absolute(motor, target);
   }
@@ -83,14 +82,14 @@ class Tmc429Core final : public sw::SwitchCore {
     SwitchCore::rotate(motor, velocity);
   }
   void stop(int motor) override {
-    Motor& m = at(motor);
+    sw::Motor& m = at(motor);
     if (m.goal == Goal::Idle && m.rm.at_rest(now_)) return;
     m.p[kRampMode] = 2;
     SwitchCore::stop(motor);
   }
 
   std::optional<PhysicalValue> physical(int motor, int param, std::int32_t raw) const override {
-    const Motor& m = motors_[static_cast<std::size_t>(motor)];
+    const sw::Motor& m = motors_[static_cast<std::size_t>(motor)];
     switch (param) {
       case kApTargetSpeed: case kApActualSpeed: case kApMaxPositioningSpeed: case kMinSpeed:
       case sw::kRfsSpeed: case sw::kRfsSwitchSpeed:
@@ -101,13 +100,13 @@ class Tmc429Core final : public sw::SwitchCore {
   }
   std::string units_note() const override {
     std::string note = "TMC429 units";
-    auto one = [this](const Motor& m) {
+    auto one = [this](const sw::Motor& m) {
       char buf[160];
       std::snprintf(buf, sizeof buf, "pulse divisor %d, ramp divisor %d: velocity 1 = %.6g pps, acceleration 1 = %.6g pps²",
                     m.p[kPulseDivisor], m.p[kRampDivisor], vunit(m), aunit(m));
       return std::string(buf);
     };
-    bool same = std::all_of(motors_.begin(), motors_.end(), [&](const Motor& m) {
+    bool same = std::all_of(motors_.begin(), motors_.end(), [&](const sw::Motor& m) {
       return m.p[kPulseDivisor] == motors_.front().p[kPulseDivisor] && m.p[kRampDivisor] == motors_.front().p[kRampDivisor];
     });
     if (motors_.empty()) return note;
@@ -119,28 +118,28 @@ class Tmc429Core final : public sw::SwitchCore {
  protected:
   // pps per velocity unit and pps² per acceleration unit (TMCM-1110 manual 5.5).
   // The constants are the profile's (motion-constant lines), the manual's where it gives none.
-  double vunit(const Motor& m) const override { return std::ldexp(clock_ / velocity_divisor_, -m.p[kPulseDivisor]); }
+  double vunit(const sw::Motor& m) const override { return std::ldexp(clock_ / velocity_divisor_, -m.p[kPulseDivisor]); }
   std::int32_t max_speed() const override { return kChipMax; }
-  Limits ramp_limits(const Motor& m) const override {
+  Limits ramp_limits(const sw::Motor& m) const override {
     return limits(m, clamp_units(m.p[kApMaxPositioningSpeed]), m.goal == Goal::Position);
   }
-  Limits search_limits(const Motor& m, std::int32_t speed, bool positioning) const override {
+  Limits search_limits(const sw::Motor& m, std::int32_t speed, bool positioning) const override {
     return limits(m, clamp_units(speed), positioning);
   }
-  void plan_position(Motor& m, Builder& b, const Limits& lim) const override {
+  void plan_position(sw::Motor& m, Builder& b, const Limits& lim) const override {
     if (m.p[kRampMode] != 1 || !plan_soft(m, b, lim)) SwitchCore::plan_position(m, b, lim);
   }
   // In position mode the chip sets 2 to the maximum speed while it speeds up or cruises and to 0
   // while it slows down or rests (manual, parameter 2).
-  std::int32_t target_speed(const Motor& m, const ramp::State& s) const override {
+  std::int32_t target_speed(const sw::Motor& m, const ramp::State& s) const override {
     if (m.goal != Goal::Position) return m.goal == Goal::Search ? 0 : m.vt;
     if (s.v == 0 || s.v * s.a < 0) return 0;
     return s.v > 0 ? m.p[kApMaxPositioningSpeed] : -m.p[kApMaxPositioningSpeed];
   }
   // 9 is the reference input: the left switch or the home switch in series with it.
-  bool home_state(const Motor& m) const override { return closed(m, sw::kRefInput); }
+  bool home_state(const sw::Motor& m) const override { return closed(m, sw::kRefInput); }
 
-  ParamWrite set_other(Motor& m, int param, std::int32_t value) override {
+  ParamWrite set_other(sw::Motor& m, int param, std::int32_t value) override {
     switch (param) {
       case kActualAcceleration: return ParamWrite::ReadOnly;
       case kRampMode:  // the chip drives to the target (0, 1) or at the target speed (2) at once
@@ -167,17 +166,17 @@ class Tmc429Core final : public sw::SwitchCore {
   }
 
  private:
-  double aunit(const Motor& m) const {
+  double aunit(const sw::Motor& m) const {
     return std::ldexp(clock_ * clock_, -(m.p[kPulseDivisor] + m.p[kRampDivisor] + acceleration_shift_));
   }
   double clock_ = 16e6, velocity_divisor_ = 65536;  // fCLK (Hz), 2048 · 32: TMCM-1110 manual 5.5
   int acceleration_shift_ = 29;
   static double clamp_units(std::int32_t v) { return std::clamp(v, 0, kChipMax); }
-  int index(const Motor& m) const { return static_cast<int>(&m - motors_.data()); }
+  int index(const sw::Motor& m) const { return static_cast<int>(&m - motors_.data()); }
 
   // A positioning ramp at `vmax` units: one acceleration both ways, the minimum speed (130) as
   // start and stop speed. A velocity ramp starts from and stops to 0.
-  Limits limits(const Motor& m, double vmax, bool positioning) const {
+  Limits limits(const sw::Motor& m, double vmax, bool positioning) const {
     const double fv = vunit(m), a = clamp_units(m.p[kApMaxAcceleration]) * aunit(m);
     Limits l;
     l.vmax = std::min<double>(vmax, kChipMax) * fv;
@@ -196,7 +195,7 @@ class Tmc429Core final : public sw::SwitchCore {
   // most); the last cruise absorbs the rounding. False (nothing planned) when
   // the motion now does not fit the profile (moving away from the target, or too fast to enter
   // it): the position mode's ramp takes over.
-  bool plan_soft(const Motor& m, Builder& b, const Limits& lim) const {
+  bool plan_soft(const sw::Motor& m, Builder& b, const Limits& lim) const {
     const ramp::State s = b.state();
     const double target = static_cast<double>(m.p[kApTargetPosition] - m.rm.base);
     const double dist = std::fabs(target - s.x), V = lim.vmax, a = lim.amax;
