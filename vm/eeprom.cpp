@@ -52,6 +52,7 @@ struct RecordKind {
 constexpr RecordKind kRecords[] = {
     {"var", 3, "var INDEX VALUE", {"variable number", "value", nullptr}},
     {"global", 3, "global PARAM VALUE", {"parameter number", "value", nullptr}},
+    {"global3", 3, "global3 PARAM VALUE", {"parameter number", "value", nullptr}},
     {"axis", 4, "axis MOTOR PARAM VALUE", {"motor number", "parameter number", "value"}},
     {"coord", 4, "coord MOTOR N VALUE", {"motor number", "coordinate number", "value"}},
 };
@@ -77,6 +78,7 @@ std::string eeprom_to_text(const EepromImage& image) {
   os << "profile " << (image.profile.empty() ? "generic" : image.profile) << "\n";
   for (const auto& [n, v] : image.vars) os << "var " << n << " " << v << "\n";
   for (const auto& [n, v] : image.globals) os << "global " << n << " " << v << "\n";
+  for (const auto& [n, v] : image.bank3) os << "global3 " << n << " " << v << "\n";
   for (const auto& [k, v] : image.axis) os << "axis " << k.first << " " << k.second << " " << v << "\n";
   for (const auto& [k, v] : image.coords) os << "coord " << k.first << " " << k.second << " " << v << "\n";
   std::string body = os.str();
@@ -158,7 +160,7 @@ bool eeprom_from_text(const std::string& text, const std::string& file, EepromIm
           if (auto [it, fresh] = seen.emplace(key, line_no); !fresh) {
             at_line("duplicate record: " + key + " is already set on line " + std::to_string(it->second));
           } else if (kind->words == 3) {
-            auto& map = w[0].text == "var" ? image.vars : image.globals;
+            auto& map = w[0].text == "var" ? image.vars : w[0].text == "global" ? image.globals : image.bank3;
             map.emplace(static_cast<int>(n[0]), static_cast<std::int32_t>(n[1]));
           } else {
             auto& map = w[0].text == "axis" ? image.axis : image.coords;
@@ -167,10 +169,10 @@ bool eeprom_from_text(const std::string& text, const std::string& file, EepromIm
         }
       }
     } else {
-      std::vector<std::string_view> names{"var", "global", "axis", "coord", "profile", "check"};
+      std::vector<std::string_view> names{"var", "global", "global3", "axis", "coord", "profile", "check"};
       std::string hint = closest_match(w[0].text, names);
       at_word(0, "malformed EEPROM record '" + source + "': unknown record '" + w[0].text +
-                     "' (var, global, axis, coord, profile, check)" + (hint.empty() ? "" : "; did you mean '" + hint + "'?"));
+                     "' (var, global, global3, axis, coord, profile, check)" + (hint.empty() ? "" : "; did you mean '" + hint + "'?"));
     }
     pos = end + 1;
   }

@@ -114,10 +114,13 @@ void Vm::power_on(const EepromImage* image) {
   eeprom.profile = std::string(profile->name);
   eeprom_dirty = false;
   if (!image) return;
-  // What a module restores at power-up: bank 0, axis parameters, user variables (unless global
-  // 85 says not to), coordinates (when global 84 says they live in the EEPROM).
+  // What a module restores at power-up: banks 0 and 3 (a timer period starts its timer), axis
+  // parameters, user variables (unless global 85 says not to), coordinates (when global 84 says
+  // they live in the EEPROM).
   for (const auto& [param, value] : image->globals)
     if (param >= 0 && param < 256) bank0[static_cast<std::size_t>(param)] = value;
+  for (const auto& [param, value] : image->bank3)
+    if (param >= 0 && param < 256) set_bank3(param, value);
   for (const auto& [key, value] : image->axis) {
     auto [motor, param] = key;
     if (!motor_ok(motor) || param < 0 || param > 255) continue;

@@ -27,14 +27,16 @@ bool computed_global(int param) {
          param == kGpRandomNumber;
 }
 
-// Whether bank-0 global parameter `param` has an EEPROM copy that STGP and RSGP may store or
-// restore: a known parameter marked EEPROM or auto-stored (any, on a generic profile), never a
-// computed one.
-std::uint8_t eeprom_global_status(const Profile& profile, int param) {
-  const ParamInfo* p = rules(profile, profile.global_param(0, param));
+// Whether global parameter `param` of bank 0 or 3 has an EEPROM copy that STGP and RSGP may
+// store or restore: a known parameter marked EEPROM or auto-stored (any, on a generic profile),
+// never a computed one. Bank 3 is a bank like 0 here (errata M2: the interrupt settings' E is
+// STGP/RSGP); a module without bank 3 has no such bank (invalid value, E3).
+std::uint8_t eeprom_global_status(const Profile& profile, int bank, int param) {
+  if (bank == 3 && profile.bank3.empty() && !profile.any_parameter) return kStatusInvalidValue;
+  const ParamInfo* p = rules(profile, profile.global_param(bank, param));
   if (!p && !profile.any_parameter) return kStatusWrongType;
   if (p && !(p->access & (kEeprom | kAutoStore))) return kStatusWrongType;
-  if (computed_global(param)) return kStatusWrongType;
+  if (bank == 0 && computed_global(param)) return kStatusWrongType;
   return kStatusOk;
 }
 
@@ -128,9 +130,11 @@ std::uint8_t Vm::set_global(int bank, int param, std::int32_t value) {
   if (p && !(p->access & kWrite)) return kStatusWrongType;
   if (const ParamInfo* r = profile->global_param(bank, param); r && !accepts(*r, value)) return kStatusInvalidValue;
   if (bank == 3) {
-    bank3[idx] = value;
-    if (param < kTimers) set_timer(param, value);
-    next_check_ = 0;
+    set_bank3(param, value);
+    if (const ParamInfo* info = profile->global_param(3, param); info && (info->access & kAutoStore)) {
+      eeprom.bank3[param] = value;
+      eeprom_dirty = true;
+    }
     return kStatusOk;
   }
   if (param == kGpApplicationStatus || param == kGpDownloadMode || param == kGpProgramCounter)
@@ -192,9 +196,10 @@ std::uint8_t Vm::store_global(int bank, int param) {
     eeprom_dirty = true;
     return kStatusOk;
   }
-  if (bank != 0) return kStatusInvalidValue;
-  if (std::uint8_t st = eeprom_global_status(*profile, param); st != kStatusOk) return st;
-  eeprom.globals[param] = bank0[static_cast<std::size_t>(param)];
+  if (bank != 0 && bank != 3) return kStatusInvalidValue;
+  if (std::uint8_t st = eeprom_global_status(*profile, bank, param); st != kStatusOk) return st;
+  auto idx = static_cast<std::size_t>(param);
+  (bank == 0 ? eeprom.globals : eeprom.bank3)[param] = bank == 0 ? bank0[idx] : bank3[idx];
   eeprom_dirty = true;
   return kStatusOk;
 }
@@ -207,12 +212,24 @@ std::uint8_t Vm::restore_global(int bank, int param) {
     vars[static_cast<std::size_t>(param)] = it != eeprom.vars.end() ? it->second : 0;
     return kStatusOk;
   }
-  if (bank != 0) return kStatusInvalidValue;
-  if (std::uint8_t st = eeprom_global_status(*profile, param); st != kStatusOk) return st;
-  auto it = eeprom.globals.find(param);
-  const ParamInfo* info = profile->global_param(0, param);
-  bank0[static_cast<std::size_t>(param)] = it != eeprom.globals.end() ? it->second : (info ? info->default_value : 0);
+  if (bank != 0 && bank != 3) return kStatusInvalidValue;
+  if (std::uint8_t st = eeprom_global_status(*profile, bank, param); st != kStatusOk) return st;
+  const auto& stored = bank == 0 ? eeprom.globals : eeprom.bank3;
+  auto it = stored.find(param);
+  const ParamInfo* info = profile->global_param(bank, param);
+  const std::int32_t v = it != stored.end() ? it->second : (info ? info->default_value : 0);  // E16: factory default
+  if (bank == 0)
+    bank0[static_cast<std::size_t>(param)] = v;
+  else
+    set_bank3(param, v);
   return kStatusOk;
+}
+
+// Bank 3 as SGP, RSGP and power-up set it: a timer period (0 … 2) restarts its timer.
+void Vm::set_bank3(int param, std::int32_t value) {
+  bank3[static_cast<std::size_t>(param)] = value;
+  if (param < kTimers) set_timer(param, value);
+  next_check_ = 0;
 }
 
 // ---------------------------------------------------------------- coordinates

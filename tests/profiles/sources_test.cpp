@@ -156,7 +156,8 @@ TEST(the_manuals_own_facts_of_each_module) {
 // fact by fact. A row for every module (scope `all`) that gives the profile's access or range
 // confirms it: the profile names the reference's section and does not mark the fact unverified. A
 // row that gives another access or range (older firmware) leaves the fact unverified (docs/errata.md
-// M15). And in every TMCM profile a fact that names the reference as its source is the reference's.
+// M15). And in every TMCM profile a fact that names the reference as its source is the reference's,
+// and unverified where the row is for other modules only.
 namespace {
 
 struct RefRow {
@@ -256,6 +257,10 @@ TEST(the_tmcl_reference_confirms_or_leaves_unverified) {
         ::tmcl_test::fail(__FILE__, __LINE__, what + ": access " + tmcl::access_letters(info->access) + " from the reference, which says " + r.access);
       if (!(info->unverified & tmcl::kFactRange) && r.has_range && (info->min != r.min || info->max != r.max))
         ::tmcl_test::fail(__FILE__, __LINE__, what + ": a range from the reference, which says " + std::to_string(r.min) + ".." + std::to_string(r.max));
+      // A row that names the only modules it is for confirms nothing for these (M15: 213).
+      if (r.scope == "only" && ((!r.access.empty() && !(info->unverified & tmcl::kFactAccess)) ||
+                                (r.has_range && !(info->unverified & tmcl::kFactRange))))
+        ::tmcl_test::fail(__FILE__, __LINE__, what + ": the reference's row is for other modules only, so what it gives is unverified here");
     }
   }
 }

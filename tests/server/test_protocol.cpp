@@ -139,6 +139,26 @@ TEST(address_overrides_and_locked_eeprom) {
   CHECK_EQ(hex(e.feed(frame(5, kGgp, 76, 0, 0))), hex(reply_bytes(9, 5, 100, kGgp, 9)));
 }
 
+// A user's profile may mark a bank-3 parameter A (stored by every SGP): with the EEPROM locked
+// that SGP writes the EEPROM, so it is refused as bank 0's auto-stored parameters are.
+TEST(locked_eeprom_refuses_sgp_of_an_auto_stored_bank3_parameter) {
+  static const tmcl::ParamInfo bank3[] = {{0, "timer 0", 0, 4294967295LL, tmcl::kRead | tmcl::kWrite | tmcl::kAutoStore, 0, ""}};
+  static const tmcl::Profile profile = [] {
+    tmcl::Profile q = *tmcl::find_profile("usb-2-sd");
+    q.bank3 = bank3;
+    return q;
+  }();
+  auto core = tmcl::make_ideal_motion_core();
+  tmcl::Vm vm(profile, *core);
+  tmcl::ProtocolOptions o;
+  o.eeprom_locked = true;
+  tmcl::TmclModule m(vm, o);
+  Bytes f = frame(1, static_cast<std::uint8_t>(Op::SGP), 0, 3, 100);
+  m.receive(f.data(), f.size());
+  CHECK_EQ(st(m.output()), 5);
+  CHECK(vm.eeprom.bank3.empty());
+}
+
 TEST(control_commands_missing_from_profile_are_status_6) {
   auto core = tmcl::make_linear_motion_core();
   tmcl::Vm vm(*tmcl::find_profile("tmc2300-eval"), *core);

@@ -165,3 +165,138 @@ TEST(bank0_store_and_restore_need_an_eeprom_copy) {
   CHECK_EQ(g.vm.execute_direct(I(Op::STGP, 132, 0)).status, 3);       // computed by the VM
   CHECK_EQ(g.vm.execute_direct(I(Op::RSGP, 130, 0)).status, 3);
 }
+
+namespace {
+// A stored value, or INT32_MIN for none (a failed check, not an exception).
+std::int32_t stored(const std::map<int, std::int32_t>& records, int key) {
+  auto it = records.find(key);
+  return it != records.end() ? it->second : INT32_MIN;
+}
+}  // namespace
+
+// Bank 3 (the interrupt settings) in the EEPROM: the TMCM profiles give them E (errata M2), so
+// STGP stores and RSGP restores them, and power-up restores them like bank 0 (a timer period
+// starts its timer).
+TEST(bank3_store_restore_and_power_cycle_on_a_tmcm_module) {
+  const tmcl::Profile& tmcm = *tmcl::find_profile("tmcm-1110");
+  Machine m({I(Op::STOP)}, tmcm);
+  CHECK_EQ(m.vm.execute_direct(I(Op::SGP, 0, 3, 250)).status, 100);   // timer 0 period
+  CHECK_EQ(m.vm.execute_direct(I(Op::STGP, 0, 3)).status, 100);
+  CHECK_EQ(m.vm.execute_direct(I(Op::SGP, 27, 3, 2)).status, 100);    // left stop switch 0 edge
+  CHECK_EQ(m.vm.execute_direct(I(Op::STGP, 27, 3)).status, 100);
+  CHECK(m.vm.eeprom_dirty);
+  CHECK_EQ(m.vm.eeprom.bank3.size(), 2u);
+  CHECK(m.vm.eeprom.globals.empty());                                 // not bank 0's parameter 0 or 27
+  CHECK_EQ(m.vm.execute_direct(I(Op::SGP, 0, 3, 7)).status, 100);
+  CHECK_EQ(m.vm.execute_direct(I(Op::RSGP, 0, 3)).status, 100);
+  CHECK_EQ(m.vm.execute_direct(I(Op::GGP, 0, 3)).value, 250);
+  CHECK_EQ(m.vm.timers[0].period_ms, 250u);                          // the restored period runs
+  CHECK_EQ(m.vm.execute_direct(I(Op::SGP, 39, 3, 3)).status, 100);
+  CHECK_EQ(m.vm.execute_direct(I(Op::RSGP, 39, 3)).status, 100);     // never stored: factory default
+  CHECK_EQ(m.vm.execute_direct(I(Op::GGP, 39, 3)).value, 0);
+
+  // Power cycle: the stored settings come back, the timer runs from power-up.
+  const tmcl::EepromImage image = m.vm.eeprom;
+  Machine n({I(Op::VECT, 0, 0, 5), I(Op::EI, 0), I(Op::EI, 255), I(Op::WAIT, 0, 0, 100), I(Op::STOP),
+             I(Op::GGP, 0, 2), I(Op::CALC, 0, 0, 1), I(Op::AGP, 0, 2), I(Op::RETI)},
+            tmcm);
+  n.vm.power_on(&image);
+  n.vm.start(0);
+  CHECK_EQ(n.vm.bank3[0], 250);
+  CHECK_EQ(n.vm.bank3[27], 2);
+  CHECK_EQ(n.vm.bank3[39], 0);
+  auto r = n.run();
+  CHECK(r.halt == tmcl::Halt::Stop);
+  CHECK_EQ(n.vm.vars[0], 4);                  // at 250, 500, 750 and 1000 ms
+}
+
+// Every bundled module whose profile gives a bank-3 parameter E stores it; the others refuse
+// as for bank 0: a parameter without E is a wrong type (3), a module without bank 3 has no such
+// bank (invalid value, 4), generic stores any number.
+TEST(bank3_store_follows_the_profile_on_every_module) {
+  int with_e = 0;
+  for (const tmcl::Profile* p : tmcl::all_profiles()) {
+    if (p->any_parameter) continue;
+    for (const tmcl::ParamInfo& g : p->bank3) {
+      Machine m({I(Op::STOP)}, *p);
+      const std::uint8_t want = (g.access & (tmcl::kEeprom | tmcl::kAutoStore)) ? 100 : 3;
+      CHECK_EQ(m.vm.execute_direct(I(Op::STGP, g.number, 3)).status, want);
+      CHECK_EQ(m.vm.execute_direct(I(Op::RSGP, g.number, 3)).status, want);
+      CHECK_EQ(m.vm.eeprom.bank3.size(), want == 100 ? 1u : 0u);
+      with_e += want == 100;
+    }
+  }
+  CHECK(with_e > 0);
+  const tmcl::Profile& usb = *tmcl::find_profile("usb-2-sd");  // bank 3 is RW there
+  Machine u({I(Op::SGP, 0, 3, 10), I(Op::STGP, 0, 3), I(Op::STOP)}, usb);
+  u.run();
+  CHECK(u.vm.eeprom.bank3.empty());
+  CHECK(!u.vm.eeprom_dirty);
+  CHECK_EQ(u.vm.execute_direct(I(Op::STGP, 0, 3)).status, 3);
+  Machine e({I(Op::STOP)}, *tmcl::find_profile("tmc2300-eval"));  // no bank 3
+  CHECK_EQ(e.vm.execute_direct(I(Op::STGP, 0, 3)).status, 4);
+  CHECK_EQ(e.vm.execute_direct(I(Op::RSGP, 0, 3)).status, 4);
+  Machine t({I(Op::STOP)});  // the test profile: bank 3 RW
+  CHECK_EQ(t.vm.execute_direct(I(Op::STGP, 28, 3)).status, 3);
+  CHECK_EQ(t.vm.execute_direct(I(Op::STGP, 29, 3)).status, 3);   // not a parameter here
+  Machine g({I(Op::SGP, 1, 3, 20), I(Op::STGP, 1, 3), I(Op::STOP)}, tmcl::generic_profile());
+  g.run();
+  CHECK_EQ(stored(g.vm.eeprom.bank3, 1), 20);
+  CHECK_EQ(g.vm.execute_direct(I(Op::STGP, 200, 3)).status, 100);  // generic: any number
+}
+
+// A standalone program on a TMCM module: STGP/RSGP of bank 3 run (they were ignored before).
+TEST(bank3_stgp_in_a_program) {
+  Machine m({I(Op::SGP, 1, 3, 40), I(Op::STGP, 1, 3), I(Op::SGP, 1, 3, 0), I(Op::RSGP, 1, 3), I(Op::STOP)},
+            *tmcl::find_profile("tmcm-351"));
+  m.run();
+  CHECK_EQ(m.vm.bank3[1], 40);
+  CHECK_EQ(stored(m.vm.eeprom.bank3, 1), 40);
+}
+
+// A bank-3 parameter a user's profile marks A is stored by every SGP, as bank 0's are.
+TEST(bank3_auto_stored_in_a_users_profile) {
+  static const tmcl::ParamInfo bank3[] = {{0, "timer 0", 0, 4294967295LL, tmcl::kRead | tmcl::kWrite | tmcl::kAutoStore, 0, ""}};
+  static const tmcl::Profile p = [] {
+    tmcl::Profile q = test_profile();
+    q.bank3 = bank3;
+    return q;
+  }();
+  Machine m({I(Op::SGP, 0, 3, 30), I(Op::STOP)}, p);
+  m.run();
+  CHECK_EQ(stored(m.vm.eeprom.bank3, 0), 30);
+  CHECK(m.vm.eeprom_dirty);
+}
+
+// The file keeps bank 3 as `global3` records, after bank 0's; a file without them (every file
+// written before them) reads as it did.
+TEST(file_round_trip_with_bank3) {
+  tmcl::EepromImage img;
+  img.profile = "tmcm-1110";
+  img.globals[77] = 1;
+  img.bank3[0] = 250;
+  img.bank3[27] = -1;
+  img.axis[{0, 4}] = 100;
+  const std::string text = tmcl::eeprom_to_text(img);
+  CHECK(text.find("global 77 1\nglobal3 0 250\nglobal3 27 -1\naxis 0 4 100\n") != std::string::npos);
+  tmcl::EepromImage back;
+  std::string err;
+  CHECK(tmcl::eeprom_from_text(text, "e.txt", back, err));
+  CHECK(back == img);
+  // A file of the first format: no global3 lines, same checksum rule.
+  const std::string old_file = "tmcl-eeprom 1\nprofile generic\nvar 0 2\nglobal 77 1\naxis 0 4 53200\ncoord 0 1 -20\n"
+                               "coord 1 1 0\ncoord 2 1 0\ncoord 3 1 0\ncoord 4 1 0\ncoord 5 1 0\ncheck c5be0db5\n";
+  CHECK(tmcl::eeprom_from_text(old_file, "old.txt", back, err));
+  CHECK(back.bank3.empty());
+  CHECK_EQ(stored(back.globals, 77), 1);
+  // Hand-edited records are checked like the others: duplicates, numbers, a misspelt keyword.
+  std::vector<tmcl::FileDiag> diags;
+  CHECK(!tmcl::eeprom_from_text("tmcl-eeprom 1\nprofile x\nglobal3 0 1\nglobal3 0 2\nglobal3 256 1\nglobl3 1 1\n",
+                                "e.txt", back, diags, false));
+  CHECK_EQ(diags.size(), 3u);
+  if (diags.size() == 3) {
+    CHECK(diags[0].message.find("duplicate record: global3 0 is already set on line 3") != std::string::npos);
+    CHECK(diags[1].message.find("bad parameter number '256'") != std::string::npos);
+    CHECK(diags[2].message.find("did you mean 'global3'?") != std::string::npos);
+  }
+}

@@ -188,9 +188,9 @@ bool TmclModule::writes_eeprom(const Instruction& ins) const {
     case Op::STGP: return true;
     case Op::SCO:
     case Op::ACO: return ins.motor == 255;  // the bank-255 forms copy coordinates to the EEPROM
-    case Op::SGP: {
-      if (ins.motor != 0) return false;
-      const ParamInfo* p = vm_.profile->global_param(0, ins.type);
+    case Op::SGP: {  // an auto-stored (A) parameter of bank 0, or of bank 3 in a user's profile
+      if (ins.motor != 0 && ins.motor != 3) return false;
+      const ParamInfo* p = vm_.profile->global_param(ins.motor, ins.type);
       return p != nullptr && (p->access & kAutoStore) != 0;
     }
     default: return false;

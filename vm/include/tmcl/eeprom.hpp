@@ -6,9 +6,12 @@
 //   profile usb-2-sd
 //   var <index> <value>
 //   global <param> <value>          (bank 0)
+//   global3 <param> <value>         (bank 3, the interrupt settings: STGP of a parameter with E)
 //   axis <motor> <param> <value>
 //   coord <motor> <n> <value>
 //   check <8 hex digits>            FNV-1a 32 of every byte before this line
+// global3 came after the first files were written; a file without it reads as before, and the
+// version stays 1 (an older tmclrun refuses a file with it as an unknown record, by name).
 // A file that does not match (header, syntax, duplicate record, checksum) is rejected with every
 // error in one go, each FILE:LINE:COL: error: ... with the line and a caret, like the assembler. Saving writes FILE.tmp, flushes it, then renames it over FILE, so a
 // killed process leaves either the old or the new file, never half of one.
@@ -32,6 +35,7 @@ struct EepromImage {
   std::string profile;  // the -t name it was written with
   std::map<int, std::int32_t> vars;                     // bank 2 (STGP)
   std::map<int, std::int32_t> globals;                  // bank 0 (auto-stored or STGP)
+  std::map<int, std::int32_t> bank3;                    // bank 3 (STGP of a parameter with E)
   std::map<std::pair<int, int>, std::int32_t> axis;     // (motor, param) (STAP)
   std::map<std::pair<int, int>, std::int32_t> coords;   // (motor, n) (SCO n, 255 / global 84)
   friend bool operator==(const EepromImage&, const EepromImage&) = default;

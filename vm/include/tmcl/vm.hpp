@@ -367,6 +367,7 @@ struct Vm {
   void fire_due_timers();
   int wait_check();                // 0 still waiting, 1 condition met, 2 timed out (ETO set)
   void set_timer(int n, std::int32_t period_ms);
+  void set_bank3(int param, std::int32_t value);  // bank3[param], restarting a timer (0 … 2)
   bool vector_ok(int n) const;
   bool jump_ok(std::int32_t target);  // faults when the target is outside the program
   void decode_all();  // rebuilds code_[] from program[]

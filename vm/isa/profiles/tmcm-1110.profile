@@ -90,7 +90,7 @@ axis 208 "TMC262 driver error flags" 0..255 R default=0 src=M:5
 axis 209 "Encoder position" -2147483648..2147483647 RW default=0 unit="encoder steps" src=M:5.4  # the range from section 5.4
 axis 210 "Encoder prescaler" 0..65535 RWE default=512 src=M:5.4.1 unverified=default  # prescaler = value / 512; bits 2..4 select special functions
 axis 212 "Maximum encoder deviation" 0..65535 RWE default=0 unit="encoder steps" src=M:5 unverified=default  # 0: off
-axis 213 "Group index" 0..255 RW default=0 src=R:4.2,P unverified=default
+axis 213 "Group index" 0..255 RW default=0 src=R:4.2,P unverified=range,access,default  # not in the manual; the reference gives 0..255 RW for the TMCM-610, -611, -612 and -34x only (errata M15)
 axis 214 "Power down delay" 1..65535 RWE default=200 unit="10 ms" src=M:5  # 'the standard value is 200'
 axis 254 "Step/direction mode" 0..1 RWE default=0 src=M:5 unverified=default
 
