@@ -2,7 +2,8 @@
 // the 17-byte and quiet-gap rules, download bookkeeping, option handling. Fast and exact: the
 // transports test the same behaviour end to end in test_transports.cpp.
 #include "check.hpp"
-#include "client.hpp"
+#include "frames.hpp"
+#include "tmcl/server.hpp"
 
 using namespace srvtest;
 using tmcl::Instruction;
@@ -202,4 +203,17 @@ TEST(parse_serve_spec_forms) {
   CHECK(!tmcl::parse_serve_spec("tcp:host:99999", o, err));
   CHECK(!tmcl::parse_serve_spec("serial", o, err));
   CHECK(!err.empty());
+  // A serial port: COMn and \\.\COMn on every system (they open only on Windows), a device path,
+  // and ":BAUD" for another rate than 9600.
+  CHECK(tmcl::parse_serve_spec("COM5", o, err));
+  CHECK(o.transport == tmcl::Transport::Serial && o.serial_port == "COM5" && o.serial_baud == 9600);
+  CHECK(tmcl::parse_serve_spec("\\\\.\\COM12:115200", o, err));
+  CHECK(o.serial_port == "\\\\.\\COM12" && o.serial_baud == 115200);
+  CHECK(tmcl::parse_serve_spec("/dev/ttyUSB0:57600", o, err));
+  CHECK(o.serial_port == "/dev/ttyUSB0" && o.serial_baud == 57600);
+  err.clear();
+  CHECK(!tmcl::parse_serve_spec("COM5:1234", o, err));
+  CHECK(err.find("'1234' is not a baud rate") != std::string::npos);
+  CHECK(!tmcl::parse_serve_spec("COM", o, err));
+  CHECK(!tmcl::parse_serve_spec("com5x", o, err));
 }

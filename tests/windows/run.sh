@@ -6,17 +6,21 @@
 # 1. Cross-compiles tmclasm.exe, tmclrun.exe, tmclctl.exe and tmcl-lsp.exe with MinGW-w64
 #    (cli/windows/mingw-w64.cmake) into WINDOWS_BUILD, with the unit-test programs, and packs the
 #    tools with `cpack -G ZIP`.
-# 2. Runs the unit tests under Wine (`ctest -L unit`; the toolchain file makes Wine CTest's
-#    emulator). A test that needs what Windows lacks (fork, pseudo-terminals) says so on a
-#    NOT-ON-WINDOWS: line and is skipped (tmcl_not_on_windows in tests/CMakeLists.txt).
+# 2. Runs the Windows build's tests under Wine (`ctest`; the toolchain file makes Wine CTest's
+#    emulator): the unit tests. One that needs what Windows lacks (fork, pseudo-terminals), and
+#    every script test (the Linux build's), says so on a NOT-ON-WINDOWS: line and is skipped
+#    (tmcl_not_on_windows and tmcl_script_test in tests/CMakeLists.txt).
 #    Then runs every golden case with the Windows tools under Wine, through the Linux build's
 #    golden_runner (--emulator): the golden files are the Linux ones, byte for byte. A case that
 #    needs what Windows lacks says so on a NOT-ON-WINDOWS: line and is skipped with that reason.
 # 3. tmclctl.exe talks to a Linux `tmclrun --serve` over TCP, and over COM5, which Wine maps to
 #    the pseudo-terminal of `tmclrun --serve pty` (a dosdevices/com5 link); its output must be
 #    the Linux tmclctl's. tmclrun.exe serves on COM7, a pseudo-terminal's slave (com_serve.py).
-# 4. What Windows has in its own way: %APPDATA%\tmcl\profiles is searched; `--serve pty` says
-#    there are no pseudo-terminals, exit 71; -o /dev/null writes to NUL.
+# 4. What Windows has in its own way: `--serve pty` says there are no pseudo-terminals, exit 71;
+#    %APPDATA%\tmcl\profiles and %USERPROFILE%\.config\tmcl\profiles are searched, and
+#    TMCL_PROFILE_PATH takes ';' and drive letters; -o NUL (and -o /dev/null) write to NUL;
+#    Ctrl-C ends a run with its summary; UTF-8 file names; drive letters, '\' and
+#    #include "lib\motor.inc" in diagnostics.
 # The compiler and Wine come from Debian (g++-mingw-w64-x86-64-posix, wine64); without them, and
 # when they cannot be installed, the step is skipped with a message and passes.
 # Ends with "windows: N passed, N failed[, N skipped]".
@@ -78,7 +82,7 @@ trap 'wineserver -k >/dev/null 2>&1; [[ -n "${servers:-}" ]] && kill $servers 2>
 
 # ---- 2. the unit tests, then the golden cases ----
 t2=$(date +%s)
-(cd "$win" && ctest -L unit -j2 --timeout 300) >"$win/unit.log" 2>&1
+(cd "$win" && ctest -j2 --timeout 300) >"$win/unit.log" 2>&1
 u_total=$(sed -n 's/.*tests passed, \([0-9]*\) tests failed out of \([0-9]*\).*/\2/p' "$win/unit.log")
 u_fail=$(sed -n 's/.*tests passed, \([0-9]*\) tests failed out of.*/\1/p' "$win/unit.log")
 u_skip=$(grep -c -- '\*\*\*Skipped' "$win/unit.log")
@@ -90,7 +94,7 @@ fi
 grep -o 'NOT-ON-WINDOWS: [^"]*' "$win/Testing/Temporary/LastTest.log" 2>/dev/null | sort -u | sed 's/^/SKIP unit: /'
 if [[ "$u_fail" != 0 ]]; then
   grep -E '\*\*\*(Failed|Timeout|Exception)' "$win/unit.log"
-  (cd "$win" && ctest -L unit --rerun-failed --output-on-failure) 2>&1 | tail -60
+  (cd "$win" && ctest --rerun-failed --output-on-failure) 2>&1 | tail -60
 fi
 passed=$((passed + u_total - u_fail - u_skip)) failed=$((failed + u_fail)) skipped=$((skipped + u_skip))
 echo "== windows: unit tests under Wine: $((u_total - u_fail - u_skip)) passed, $u_fail failed, $u_skip skipped ($(( $(date +%s) - t2 )) s)"
@@ -144,6 +148,10 @@ for args in "status" "get ap 4" "set ap 4 1234" "get ap 4" "send 'GAP 4, 0'"; do
   got=$(wine "$win/cli/tmclctl.exe" COM5 "$@" 2>&1; echo "exit $?")
   [[ "$got" == "$want" ]] && ok "tmclctl.exe COM5 (pty): $args" || bad "tmclctl.exe COM5: $args: got [$got], Linux [$want]"
 done
+ln -sfn "$pty" "$WINEPREFIX/dosdevices/com12"  # COM10 and above: Windows' own calls need \\.\ (tmclctl adds it)
+got=$(wine "$win/cli/tmclctl.exe" COM12 get ap 4 2>&1)
+[[ "$got" == 1234 ]] && ok 'tmclctl.exe COM12' || bad "tmclctl.exe COM12: [$got]"
+rm -f "$WINEPREFIX/dosdevices/com12"
 got=$(wine "$win/cli/tmclctl.exe" '\\.\COM5' get ap 4 2>&1)
 [[ "$got" == 1234 ]] && ok 'tmclctl.exe \\.\COM5' || bad "tmclctl.exe \\\\.\\COM5: [$got]"
 got=$(wine "$win/cli/tmclctl.exe" COM9 get ap 4 2>&1; echo "exit $?")
@@ -170,6 +178,38 @@ cp "$src/tests/golden/profiles/my-module.profile" "$appdata_unix/tmcl/profiles/"
 got=$(cd "$src/tests/golden/profiles" && wine "$win/cli/tmclasm.exe" --list-targets 2>&1 | tr -d '\r')
 [[ "$got" == *"my-module"*"AppData"*"tmcl"*"profiles"* ]] && ok "%APPDATA%\\tmcl\\profiles searched" ||
   bad "%APPDATA%\\tmcl\\profiles not searched: [$got]"
+misc="$win/win-misc"
+rm -rf "$misc" && mkdir -p "$misc"
+userprofile_unix=$(winepath -u "$(wine cmd /c 'echo %USERPROFILE%' 2>/dev/null | tr -d '\r')" 2>/dev/null)
+mkdir -p "$userprofile_unix/.config/tmcl/profiles"
+sed 's/^name my-module/name home-module/' "$src/tests/golden/profiles/my-module.profile" > "$userprofile_unix/.config/tmcl/profiles/home-module.profile"
+got=$(cd "$src/tests/golden/profiles" && wine "$win/cli/tmclasm.exe" --list-targets 2>&1 | tr -d '\r')
+[[ "$got" == *"home-module"*".config"*"tmcl"*"profiles"* ]] && ok "%USERPROFILE%\\.config\\tmcl\\profiles searched" ||
+  bad "%USERPROFILE%\\.config\\tmcl\\profiles not searched: [$got]"
+rm -rf "$userprofile_unix/.config/tmcl"
+# TMCL_PROFILE_PATH as Windows writes a list: ';' between folders with drive letters.
+pp="$win/profile-path" && rm -rf "$pp" && mkdir -p "$pp/a" "$pp/b"
+cp "$src/tests/golden/profiles/my-module.profile" "$pp/b/"
+got=$(cd "$src/tests/golden/profiles" && TMCL_PROFILE_PATH="$(winepath -w "$pp/a");$(winepath -w "$pp/b")" \
+      wine "$win/cli/tmclasm.exe" --list-targets 2>&1 | tr -d '\r')
+[[ "$got" == *"my-module"*"$(winepath -w "$pp/b")"* ]] && ok "TMCL_PROFILE_PATH with ';' and drive letters" ||
+  bad "TMCL_PROFILE_PATH with ';': [$got]"
+rm -rf "$pp"
+# -o NUL is Windows' /dev/null: written into, never replaced by a file.
+printf 'STOP\n' > "$misc/ok.tmc"
+got=$(cd "$misc" && wine "$win/cli/tmclasm.exe" -o NUL ok.tmc 2>&1; echo "exit $?")
+[[ "$got" == "exit 0" && ! -e "$misc/NUL" && ! -e "$misc/nul" ]] && ok "-o NUL" || bad "-o NUL: [$got]"
+# Ctrl-C: Wine turns SIGINT into the console's Ctrl-C event; the run ends with its summary, 130.
+printf 'loop:  JA loop\n' > "$misc/loop.tmc"
+(cd "$misc" && exec wine "$win/cli/tmclrun.exe" loop.tmc) >"$misc/ctrl-c.out" 2>&1 &
+runner=$!
+sleep 3
+kill -INT $runner
+wait $runner
+rc=$?
+got=$(tr -d '\r' < "$misc/ctrl-c.out")
+[[ $rc == 130 && "$got" == "halted: interrupted (interrupted by SIGINT (Ctrl-C))"* ]] && ok "Ctrl-C ends a run with its summary" ||
+  bad "Ctrl-C: exit $rc, [$got]"
 # File names are UTF-8, as on Linux (the tools' manifest, cli/windows/utf8.manifest): a source
 # named with a non-ASCII letter is found, and its listing names it in the same bytes.
 u8="$win/utf8-names"
@@ -198,7 +238,7 @@ printf 'Speed = 1000\n' > "$wp/main/lib/motor.inc"
 got=$(cd "$wp/main" && wine "$win/cli/tmclrun.exe" -I '..\common' --json "$prog" 2>&1)
 [[ "$got" == *'"halt":"stop"'* && "$got" == *'"acc":1002'* ]] && ok "tmclrun.exe runs a program given by its drive and '\\' path" ||
   bad "tmclrun.exe with a Windows path: [$got]"
-rm -rf "$appdata_unix/tmcl" "$work" "$u8" "$wp"
+rm -rf "$appdata_unix/tmcl" "$work" "$u8" "$wp" "$misc"
 
 echo "== windows: $(( $(date +%s) - t0 )) s in all"
 line="windows: $passed passed, $failed failed"

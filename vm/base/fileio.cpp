@@ -100,7 +100,7 @@ bool write_file_atomic(const std::string& path, const std::vector<std::uint8_t>&
   // regular file.
   const std::string native = os::native_path(path);
   struct stat st {};
-  if (native != path || (::stat(native.c_str(), &st) == 0 && !S_ISREG(st.st_mode))) {
+  if (native != path || os::is_device_name(native) || (::stat(native.c_str(), &st) == 0 && !S_ISREG(st.st_mode))) {
     if (S_ISDIR(st.st_mode)) {
       error = "cannot write '" + path + "': it is a directory";
       return false;

@@ -47,6 +47,8 @@ std::string portable_path(std::string path) {
 
 std::string normal_path(const std::string& path) { return std::filesystem::path(path).lexically_normal().generic_string(); }
 
+bool is_device_name(std::string_view) { return false; }
+
 bool sync_file(int fd) { return ::fsync(fd) == 0; }
 
 bool replace_file(const std::string& from, const std::string& to) { return std::rename(from.c_str(), to.c_str()) == 0; }

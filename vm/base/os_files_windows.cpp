@@ -39,7 +39,7 @@ std::vector<std::string> split_path_list(const std::string& list) {
 bool is_separator(char c) { return c == '/' || c == '\\'; }
 bool has_separator(std::string_view path) { return path.find_first_of("/\\") != std::string_view::npos; }
 bool is_absolute(std::string_view path) {
-  if (!path.empty() && is_separator(path[0])) return true;  // "\\a" (the current drive) and "\\\\server\\share"
+  if (!path.empty() && is_separator(path[0])) return true;  // "\a" (the current drive) and "\\server\share"
   return path.size() >= 2 && path[1] == ':' && std::isalpha(static_cast<unsigned char>(path[0]));
 }
 std::size_t last_separator(std::string_view path) { return path.find_last_of("/\\"); }
@@ -54,8 +54,17 @@ std::string join_path(const std::string& folder, const std::string& name) {
 std::string portable_path(std::string path) { return path; }
 
 std::string normal_path(const std::string& path) {
-  const std::filesystem::path normal = std::filesystem::path(path).lexically_normal();  // '\\' throughout
+  const std::filesystem::path normal = std::filesystem::path(path).lexically_normal();  // '\' throughout
   return path.find('\\') != std::string::npos ? normal.string() : normal.generic_string();
+}
+
+bool is_device_name(std::string_view path) {
+  if (path.substr(0, 4) == "\\\\.\\") path.remove_prefix(4);
+  if (!path.empty() && path.back() == ':') path.remove_suffix(1);
+  std::string name;
+  for (char c : path) name += static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
+  if (name == "NUL" || name == "CON" || name == "AUX" || name == "PRN") return true;
+  return name.size() == 4 && (name.substr(0, 3) == "COM" || name.substr(0, 3) == "LPT") && name[3] >= '1' && name[3] <= '9';
 }
 
 bool sync_file(int fd) { return ::_commit(fd) == 0; }

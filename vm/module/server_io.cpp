@@ -600,8 +600,9 @@ bool parse_serve_spec(std::string_view spec, ServeOptions& options, std::string&
   }
   // A serial line: "COM5", "\\.\COM12" (Windows) or a device path ("/dev/ttyUSB0"), and
   // ":BAUD" after it for another rate than the modules' default 9600.
-  const bool com = spec.size() > 3 && (spec.substr(0, 3) == "COM" || spec.substr(0, 3) == "com") &&
-                   spec[3] >= '0' && spec[3] <= '9';
+  const std::size_t digits_end = spec.find_first_not_of("0123456789", 3);
+  const bool com = spec.size() > 3 && (spec.substr(0, 3) == "COM" || spec.substr(0, 3) == "com") && digits_end != 3 &&
+                   (digits_end == std::string_view::npos || spec[digits_end] == ':');
   if (com || spec.substr(0, 4) == "\\\\.\\" || os::is_absolute(spec)) {
     std::string_view port = spec;
     long baud = 9600;

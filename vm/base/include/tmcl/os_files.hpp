@@ -20,22 +20,26 @@ extern const int kOpenFlags;
 // POSIX shell, and the tests, pass); elsewhere `path` itself.
 std::string native_path(const std::string& path);
 // Paths as this system spells them. POSIX: '/' between folders, absolute from '/'. Windows: '/'
-// or '\\' between folders, absolute from either or from a drive ("C:\\a", "C:/a", "\\\\server\\s").
+// or '\' between folders, absolute from either or from a drive ("C:\a", "C:/a", "\\server\s").
 bool is_separator(char c);
 bool has_separator(std::string_view path);
 bool is_absolute(std::string_view path);
 // The position of the path's last folder separator, or npos.
 std::size_t last_separator(std::string_view path);
 // NAME in FOLDER ("" is the current folder), with the separator FOLDER already uses: on Windows
-// "C:\\work" and "lib\\a.inc" make "C:\\work\\lib\\a.inc", not a mix; elsewhere '/'.
+// "C:\work" and "lib\a.inc" make "C:\work\lib\a.inc", not a mix; elsewhere '/'.
 std::string join_path(const std::string& folder, const std::string& name);
-// A path written on Windows, as an #include of a TMCL-IDE program is ("lib\\motor.inc"), as this
-// system reads it: on POSIX every '\\' is a folder separator '/' (a file name with a backslash in
+// A path written on Windows, as an #include of a TMCL-IDE program is ("lib\motor.inc"), as this
+// system reads it: on POSIX every '\' is a folder separator '/' (a file name with a backslash in
 // it cannot be included); on Windows the path as it is.
 std::string portable_path(std::string path);
 // PATH without "." and "x/.." steps, as a diagnostic names a file: with '/' between folders, but
-// on Windows with '\\' when the path has one ("C:\\work\\lib/../a.inc" is "C:\\work\\a.inc").
+// on Windows with '\' when the path has one ("C:\work\lib/../a.inc" is "C:\work\a.inc").
 std::string normal_path(const std::string& path);
+// Whether PATH names a device by a reserved name, not a file: on Windows NUL, CON, AUX, PRN,
+// COM1-9 and LPT1-9, in any case, with a "\\.\" before or a ':' after ("nul", "\\.\NUL");
+// never elsewhere (there stat() tells).
+bool is_device_name(std::string_view path);
 // Splits a search path such as TMCL_PROFILE_PATH into its folders (empty ones dropped): at ':'
 // on POSIX; on Windows at ';' and at a ':' that does not follow a drive letter ("C:\a;D:\b",
 // "lib:C:/x").
