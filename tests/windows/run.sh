@@ -91,13 +91,13 @@ if [[ -z "$u_total" ]]; then
   tail -30 "$win/unit.log"
 fi
 # The reasons, from the skipped tests' own output.
-grep -o 'NOT-ON-WINDOWS: [^"]*' "$win/Testing/Temporary/LastTest.log" 2>/dev/null | sort -u | sed 's/^/SKIP unit: /'
+grep -o 'NOT-ON-WINDOWS: [^"]*' "$win/Testing/Temporary/LastTest.log" 2>/dev/null | sort -u | sed 's/^NOT-ON-WINDOWS: /SKIP /'
 if [[ "$u_fail" != 0 ]]; then
   grep -E '\*\*\*(Failed|Timeout|Exception)' "$win/unit.log"
   (cd "$win" && ctest --rerun-failed --output-on-failure) 2>&1 | tail -60
 fi
 passed=$((passed + u_total - u_fail - u_skip)) failed=$((failed + u_fail)) skipped=$((skipped + u_skip))
-echo "== windows: unit tests under Wine: $((u_total - u_fail - u_skip)) passed, $u_fail failed, $u_skip skipped ($(( $(date +%s) - t2 )) s)"
+echo "== windows: the Windows build's tests under Wine: $((u_total - u_fail - u_skip)) passed, $u_fail failed, $u_skip skipped ($(( $(date +%s) - t2 )) s)"
 
 t2=$(date +%s)
 t2=$(date +%s)
