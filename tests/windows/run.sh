@@ -156,6 +156,9 @@ got=$(wine "$win/cli/tmclctl.exe" '\\.\COM5' get ap 4 2>&1)
 [[ "$got" == 1234 ]] && ok 'tmclctl.exe \\.\COM5' || bad "tmclctl.exe \\\\.\\COM5: [$got]"
 got=$(wine "$win/cli/tmclctl.exe" COM9 get ap 4 2>&1; echo "exit $?")
 [[ "$got" == *"COM9: No such file or directory"*"exit 74" ]] && ok "a missing COM port" || bad "a missing COM port: [$got]"
+got=$(wine "$win/cli/tmclrun.exe" --serve COM9 2>&1; echo "exit $?")
+[[ "$got" == "tmclrun: error: COM9: No such file or directory"*"exit 71" ]] && ok "--serve on a missing COM port" ||
+  bad "--serve COM9: [$got]"
 kill $servers 2>/dev/null
 wait $servers 2>/dev/null
 servers=""
