@@ -403,3 +403,19 @@ ON_ALL_TRANSPORTS(factory_and_reset)
 ON_ALL_TRANSPORTS(random_stream)
 ON_ALL_TRANSPORTS(torn_frame)
 ON_ALL_TRANSPORTS(flood)
+
+// A serial line that goes away (an adapter unplugged; here the pseudo-terminal's master closed):
+// the server says so and stops by itself with status 0, instead of spinning on the hang-up.
+TEST(serial_line_gone_stops_the_server) {
+  ServerConfig cfg;
+  cfg.transport = Transport::Serial;
+  Server s(cfg);
+  CHECK(s.is_ready);
+  if (!s.is_ready) return;
+  ::close(s.line_master);
+  s.line_master = -1;
+  s.thread.join();  // it ends by itself (opt.max_wall_ms bounds a failure), nobody told it to stop
+  CHECK_EQ(s.result, 0);
+  CHECK(s.log.str().find("tmclrun: the serial line " + s.opt.serial_port + " is gone (unplugged?): stopping") !=
+        std::string::npos);
+}
