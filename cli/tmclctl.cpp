@@ -36,6 +36,7 @@
 #include "tmcl/image.hpp"
 #include "tmcl/options.hpp"
 #include "tmcl/os_console.hpp"
+#include "tmcl/os_serial.hpp"
 #include "tmcl/plot.hpp"
 #include "tmcl/program_image.hpp"
 #include "tmcl/targets.hpp"
@@ -175,9 +176,9 @@ tmcl::cli::Tool command_line(Options& o) {
       return std::string();
     };
   };
-  const char* kBauds = "9600, 19200, 38400, 57600, 115200, 230400, 460800, 500000, 576000, 921600 or 1000000";
-  const std::vector<std::string> bauds{"9600",   "19200",  "38400",  "57600",  "115200", "230400",
-                                       "460800", "500000", "576000", "921600", "1000000"};
+  const std::string kBauds = tmcl::os::serial::baud_rates_text();
+  std::vector<std::string> bauds;
+  for (long b : tmcl::os::serial::kBaudRates) bauds.push_back(std::to_string(b));
   const std::vector<std::string> durations{"100ms", "500ms", "1s", "10s"};
   tmcl::cli::Tool t;
   t.name = "tmclctl";

@@ -191,4 +191,21 @@ void home_ignoring_end_switches(int mode) {
   CHECK_EQ(b.get(d > 0 ? 10 : 11), 1);  // it stands beyond the end switch
 }
 
+// docs/motion.md, decision 17: a parameter written while the motor cruises at its target speed
+// (here its acceleration, `accel_param`) re-plans it without a second "velocity reached"; a
+// command (ROR again) reports it again.
+template <class S>
+void cruise_reports_velocity_reached_once(S& b, int accel_param, std::int32_t v, std::int32_t accel) {
+  using tmcl::MotionEventKind;
+  b.core->rotate(0, v);
+  CHECK(b.until(MotionEventKind::VelocityReached));
+  b.to(b.now + 100000);
+  b.set(accel_param, accel);
+  b.to(b.now + 100000);
+  CHECK_EQ(b.count(MotionEventKind::VelocityReached), 1);
+  b.core->rotate(0, v);
+  b.to(b.now + 1);
+  CHECK_EQ(b.count(MotionEventKind::VelocityReached), 2);
+}
+
 }  // namespace mt

@@ -62,14 +62,15 @@ TEST(tmc429_units_match_the_manuals_worked_example) {
         std::string::npos);
 }
 
-// Under generic the defaults are the tmcm-1110 profile's, or the core's own rows while there is
-// none (not the generic profile's, which are the USB-2-SD's in pps).
+// Under generic the defaults are the built-in tmcm-1110 profile's (not the generic profile's,
+// which are the USB-2-SD's in pps).
 TEST(tmc429_defaults_and_ranges_without_a_module_profile) {
   Bench d("tmc429", "generic", 1);
   const tmcl::Profile* home = tmcl::find_profile("tmcm-1110");
-  auto expect = [&](int param, std::int32_t own) {
-    const tmcl::ParamInfo* row = home ? home->axis_param(param) : nullptr;
-    CHECK_EQ(d.get(param), row ? row->default_value : own);
+  CHECK(home != nullptr);
+  auto expect = [&](int param, std::int32_t value) {
+    CHECK_EQ(d.get(param), value);
+    if (home) CHECK_EQ(home->axis_param(param)->default_value, value);
   };
   expect(4, 1000);
   expect(5, 1000);
@@ -589,4 +590,9 @@ TEST(tmc429_switch_change_within_the_rounding_nanosecond) {
   CHECK_EQ(b.last().position, 2992);
   CHECK_EQ(b.last().at, 387094 - 20);  // (the fuzz case's ROR took effect at 20 us)
   CHECK_EQ(b.core->next_event(), tmcl::kNever);
+}
+
+TEST(tmc429_a_parameter_written_while_cruising_reports_no_second_velocity_reached) {
+  Chip b;
+  mt::cruise_reports_velocity_reached_once(b, 5, 1000, 500);
 }

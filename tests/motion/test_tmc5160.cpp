@@ -346,3 +346,8 @@ TEST(tmc5160_an_arrival_at_a_stop_speed_reads_its_target) {
   }
   CHECK_EQ(wrong, 0);
 }
+
+TEST(tmc5160_a_parameter_written_while_cruising_reports_no_second_velocity_reached) {
+  Drive b;
+  mt::cruise_reports_velocity_reached_once(b, 5, 30000, 20000);
+}

@@ -37,6 +37,7 @@ namespace srvtest {
 
 using Clock = std::chrono::steady_clock;
 
+// One connection to the module.
 struct Link {
   int fd = -1;
   bool socket = true;

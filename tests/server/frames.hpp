@@ -56,6 +56,4 @@ inline std::int32_t value_of(const Bytes& r) {
                                    static_cast<std::uint32_t>(r[6]) << 8 | r[7]);
 }
 
-// One connection to the module.
-
 }  // namespace srvtest

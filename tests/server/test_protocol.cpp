@@ -214,6 +214,7 @@ TEST(parse_serve_spec_forms) {
   err.clear();
   CHECK(!tmcl::parse_serve_spec("COM5:1234", o, err));
   CHECK(err.find("'1234' is not a baud rate") != std::string::npos);
+  CHECK(tmcl::parse_serve_spec("Com7", o, err) && o.serial_port == "Com7");  // as tmclctl takes it
   CHECK(!tmcl::parse_serve_spec("COM", o, err));
   CHECK(!tmcl::parse_serve_spec("com5x", o, err));
 }

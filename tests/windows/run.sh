@@ -100,7 +100,6 @@ passed=$((passed + u_total - u_fail - u_skip)) failed=$((failed + u_fail)) skipp
 echo "== windows: the Windows build's tests under Wine: $((u_total - u_fail - u_skip)) passed, $u_fail failed, $u_skip skipped ($(( $(date +%s) - t2 )) s)"
 
 t2=$(date +%s)
-t2=$(date +%s)
 tools=()
 for exe in tmclasm tmclrun tmclctl tmcl-lsp; do tools+=(--tool "$exe=$win/cli/$exe.exe"); done
 tools+=(--tool "motion_csv=$linux/tests/motion/motion_csv" --tool sh=/bin/sh)

@@ -20,16 +20,12 @@
 namespace tmcl::os::serial {
 namespace {
 
-constexpr long kBauds[] = {9600, 19200, 38400, 57600, 115200, 230400, 460800, 500000, 576000, 921600, 1000000};
 
 HANDLE handle(std::intptr_t port) { return reinterpret_cast<HANDLE>(port); }
 
 // "COM3", "com12" -> "\\.\COM12"; "/dev/null" -> "NUL" (os_files.hpp); anything else as it is.
 std::string device_path(const std::string& name) {
-  if (name.size() > 3 && (name[0] == 'C' || name[0] == 'c') && (name[1] == 'O' || name[1] == 'o') &&
-      (name[2] == 'M' || name[2] == 'm') &&
-      std::all_of(name.begin() + 3, name.end(), [](char c) { return std::isdigit(static_cast<unsigned char>(c)) != 0; }))
-    return "\\\\.\\COM" + name.substr(3);
+  if (is_com_name(name)) return "\\\\.\\COM" + name.substr(3);
   return os::native_path(name);
 }
 
@@ -44,7 +40,7 @@ std::string last_error_text() {
 
 }  // namespace
 
-bool valid_baud(long baud) { return std::find(std::begin(kBauds), std::end(kBauds), baud) != std::end(kBauds); }
+bool valid_baud(long baud) { return std::find(std::begin(kBaudRates), std::end(kBaudRates), baud) != std::end(kBaudRates); }
 
 std::intptr_t open(const std::string& path, long baud, std::string& error) {
   const std::string device = device_path(path);

@@ -15,6 +15,7 @@
 #include "tmcl/debug_cli.hpp"
 #include "tmcl/duration.hpp"
 #include "tmcl/json.hpp"
+#include "tmcl/os_files.hpp"
 #include "tmcl/os_net.hpp"
 #include "tmcl/targets.hpp"
 
@@ -174,11 +175,6 @@ class Dap {
     event("stopped", std::move(body));
   }
 
-#if defined(_WIN32)
-  static constexpr const char* kPathSeparators = "/\\";  // a Windows path takes either
-#else
-  static constexpr const char* kPathSeparators = "/";
-#endif
   Value source_of(std::int32_t address) const {
     const ProgramInfo& info = engine_->info();
     if (address < 0 || static_cast<std::size_t>(address) >= info.lines.size()) return Value();
@@ -186,7 +182,7 @@ class Dap {
     if (f < 0) return Value();
     const auto& file = info.files[static_cast<std::size_t>(f)];
     const std::string& name = file.path.empty() ? file.name : file.path;  // a .bin's source as found
-    std::string base = name.substr(name.find_last_of(kPathSeparators) + 1);
+    std::string base = name.substr(os::last_separator(name) + 1);
     return obj({{"name", base}, {"path", name}});
   }
   int line_of(std::int32_t address) const {

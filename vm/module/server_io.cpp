@@ -600,10 +600,7 @@ bool parse_serve_spec(std::string_view spec, ServeOptions& options, std::string&
   }
   // A serial line: "COM5", "\\.\COM12" (Windows) or a device path ("/dev/ttyUSB0"), and
   // ":BAUD" after it for another rate than the modules' default 9600.
-  const std::size_t digits_end = spec.find_first_not_of("0123456789", 3);
-  const bool com = spec.size() > 3 && (spec.substr(0, 3) == "COM" || spec.substr(0, 3) == "com") && digits_end != 3 &&
-                   (digits_end == std::string_view::npos || spec[digits_end] == ':');
-  if (com || spec.substr(0, 4) == "\\\\.\\" || os::is_absolute(spec)) {
+  if (os::serial::is_com_name(spec.substr(0, spec.find(':'))) || spec.substr(0, 4) == "\\\\.\\" || os::is_absolute(spec)) {
     std::string_view port = spec;
     long baud = 9600;
     if (const std::size_t colon = spec.rfind(':'); colon != std::string_view::npos && colon + 1 < spec.size() &&
@@ -611,8 +608,8 @@ bool parse_serve_spec(std::string_view spec, ServeOptions& options, std::string&
       port = spec.substr(0, colon);
       baud = spec.size() - colon - 1 > 7 ? 0 : std::stol(std::string(spec.substr(colon + 1)));
       if (!os::serial::valid_baud(baud)) {
-        error = "--serve PORT:BAUD: '" + std::string(spec.substr(colon + 1)) +
-                "' is not a baud rate (9600, 19200, 38400, 57600, 115200, 230400, 460800, 500000, 576000, 921600 or 1000000)";
+        error = "--serve PORT:BAUD: '" + std::string(spec.substr(colon + 1)) + "' is not a baud rate (" +
+                os::serial::baud_rates_text() + ")";
         return false;
       }
     }

@@ -253,10 +253,7 @@ class Tmc4361Core final : public ramp::RampCore<Tmc4361Motor> {
       case Tmc4361Goal::Halt: return halt(m, b, lim, m.halt);
       case Tmc4361Goal::Idle: break;
     }
-    auto& ev = m.rm.plan.events;
-    if (!by_command && m.goal == Tmc4361Goal::Velocity && !ev.empty() && ev.front().t == 0 &&
-        ev.front().kind == EventKind::VelocityReached && m.vt != 0)
-      ev.erase(ev.begin());
+    if (!by_command && m.goal == Tmc4361Goal::Velocity && m.vt != 0) m.rm.drop_repeated_velocity_reached();
     scan_trips(m, lim);
   }
 

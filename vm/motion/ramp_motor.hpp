@@ -109,6 +109,13 @@ struct RampMotor {
     plan.t_rest = u;
   }
 
+  // A re-plan caused by a parameter or a switch, not by a command, of a motor already cruising at
+  // its target speed does not report "velocity reached" again (docs/motion.md, decision 17).
+  void drop_repeated_velocity_reached() {
+    auto& ev = plan.events;
+    if (!ev.empty() && ev.front().t == 0 && ev.front().kind == EventKind::VelocityReached) ev.erase(ev.begin());
+  }
+
   // Shifts the register (SAP 1, a reference search): XACTUAL changes by d, the switches stay.
   void shift(std::int64_t d) {
     base += d;

@@ -85,7 +85,7 @@ void SwitchCore::move_absolute(int motor, std::int32_t target) {
   Motor& m = at(motor);
   m.p[kApTargetPosition] = target;
   set_goal(m, Goal::Position);
-  replan(m);
+  replan(m, 1, true);
 }
 
 void SwitchCore::move_relative(int motor, std::int32_t offset) {
@@ -96,7 +96,7 @@ void SwitchCore::rotate(int motor, std::int32_t velocity) {
   Motor& m = at(motor);
   m.vt = std::clamp(velocity, -max_speed(), max_speed());  // the chip's register holds no more
   set_goal(m, Goal::Velocity);
-  replan(m);
+  replan(m, 1, true);
 }
 
 void SwitchCore::stop(int motor) {
@@ -104,7 +104,7 @@ void SwitchCore::stop(int motor) {
   if (m.goal == Goal::Idle && m.rm.at_rest(now_)) return;
   m.vt = 0;
   set_goal(m, Goal::Velocity);
-  replan(m);
+  replan(m, 1, true);
 }
 
 std::int32_t SwitchCore::reference_search(int motor, RfsAction action) {
@@ -145,7 +145,7 @@ void SwitchCore::plan_position(Motor& m, Builder& b, const Limits& lim) const {
   b.plan_position(lim, static_cast<double>(m.p[kApTargetPosition] - m.rm.base));
 }
 
-void SwitchCore::replan(Motor& m, double vscale) {
+void SwitchCore::replan(Motor& m, double vscale, bool by_command) {
   if (m.goal == Goal::Search) return search_step(m, false, vscale);
   if (m.trip_t != ramp::kInf && m.rm.secs(now_) >= m.trip_t && m.goal != Goal::Idle)
     m.goal = Goal::Halt;  // the switch was hit: what is left is its stop
@@ -159,6 +159,7 @@ void SwitchCore::replan(Motor& m, double vscale) {
     case Goal::Halt: return switch_stop(m, b, lim);
     default: break;
   }
+  if (!by_command && m.goal == Goal::Velocity && m.vt != 0) m.rm.drop_repeated_velocity_reached();
   // An arrival within the nanosecond after a whole microsecond is reported at that microsecond:
   // there the motor must read the target, not the step before it (at a stop speed VSTOP or 130 of
   // a few thousand pps the last nanosecond is more than the step tolerance).

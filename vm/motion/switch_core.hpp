@@ -121,8 +121,9 @@ class SwitchCore : public ramp::RampCore<Motor> {
   static std::int32_t units(double v);
   bool closed(const Motor& m, int input) const;
   // Re-plans motor m from its state now toward its goal; then the first limit-switch trip cuts it.
-  // `vscale` multiplies the speed now (a chip whose velocity unit just changed: tmc429).
-  void replan(Motor& m, double vscale = 1);
+  // `vscale` multiplies the speed now (a chip whose velocity unit just changed: tmc429). A
+  // re-plan not `by_command` (a parameter, a switch) keeps a cruise's "velocity reached" quiet.
+  void replan(Motor& m, double vscale = 1, bool by_command = false);
   void abort_search(Motor& m) { m.search.step = SearchStep::Off; }
   void set_goal(Motor& m, Goal goal) {
     abort_search(m);

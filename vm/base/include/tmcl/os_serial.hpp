@@ -7,13 +7,19 @@
 #include <cstddef>
 #include <cstdint>
 #include <string>
+#include <string_view>
 
 #include "tmcl/os_net.hpp"  // POLLIN, POLLOUT, POLLERR, POLLHUP
 
 namespace tmcl::os::serial {
 
 // The baud rates a port accepts (9600 to 1000000, those Linux has a Bnnn constant for).
+inline constexpr long kBaudRates[] = {9600, 19200, 38400, 57600, 115200, 230400, 460800, 500000, 576000, 921600, 1000000};
 bool valid_baud(long baud);
+// "9600, 19200, ... 921600 or 1000000", for messages and help texts.
+std::string baud_rates_text();
+// Whether NAME is a COM port's short name, "COM" (any case) and a number: "COM3", "com12".
+bool is_com_name(std::string_view name);
 // Opens the port: a descriptor (a HANDLE on Windows), or -1 with `error` naming it and why.
 std::intptr_t open(const std::string& path, long baud, std::string& error);
 void close(std::intptr_t port);
