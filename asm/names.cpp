@@ -1,25 +1,18 @@
-// named_operands and source_names (names.hpp): a line is read again with the lexer's character
-// classes, just far enough to find the mnemonic and split the operands at their commas (an
-// operand expression has no comma of its own).
+// named_operands and source_names (names.hpp): a line is read again with the assembler's own
+// lexer (tokenize, format.hpp), just far enough to find the mnemonic and split the operands at
+// their commas (an operand expression has no comma of its own); comments are its tokens too.
 #include "tmcl/asm/names.hpp"
 
-#include "chars.hpp"
+#include <vector>
+
 #include "tmcl/asm/assembler.hpp"
+#include "tmcl/asm/format.hpp"
 #include "tmcl/isa.hpp"
 
 namespace tmcl {
 namespace {
 
-using detail::char_class;
-using detail::ident_char;
-using detail::ident_start;
-using detail::kSpace;
-
-std::string_view trim(std::string_view s) {
-  while (!s.empty() && char_class(s.front()) == kSpace) s.remove_prefix(1);
-  while (!s.empty() && char_class(s.back()) == kSpace) s.remove_suffix(1);
-  return s;
-}
+using TokKind = SourceToken::Kind;
 
 bool same_word(std::string_view a, std::string_view b) {
   if (a.size() != b.size()) return false;
@@ -28,46 +21,51 @@ bool same_word(std::string_view a, std::string_view b) {
   return true;
 }
 
-// Blanks and whole /* ... */ comments from `at` on.
-std::size_t skip_blanks(std::string_view s, std::size_t at) {
+bool is_mark(const SourceToken& t, char c) { return t.kind == TokKind::Punct && t.text.size() == 1 && t.text[0] == c; }
+
+// The tokens of the line, comments included, up to its end (the first Newline).
+std::vector<SourceToken> line_tokens(std::string_view line) {
+  std::vector<SourceToken> out;
+  for (const SourceToken& t : tokenize(line)) {
+    if (t.kind == TokKind::Newline) break;
+    out.push_back(t);
+  }
+  return out;
+}
+
+// Where the mnemonic is in `toks`, after labels and comments; npos when it is not there.
+std::size_t mnemonic_at(const std::vector<SourceToken>& toks, std::string_view mnemonic) {
+  std::size_t i = 0;
   for (;;) {
-    while (at < s.size() && char_class(s[at]) == kSpace) ++at;
-    if (s.substr(at, 2) != "/*") return at;
-    const std::size_t close = s.find("*/", at + 2);
-    if (close == std::string_view::npos) return s.size();
-    at = close + 2;
+    while (i < toks.size() && toks[i].kind == TokKind::Comment) ++i;
+    if (i == toks.size() || toks[i].kind != TokKind::Name) return std::string_view::npos;
+    std::size_t next = i + 1;
+    while (next < toks.size() && toks[next].kind == TokKind::Comment) ++next;
+    if (next < toks.size() && is_mark(toks[next], ':')) {  // a label
+      i = next + 1;
+      continue;
+    }
+    return same_word(toks[i].text, mnemonic) ? i : std::string_view::npos;
   }
 }
 
-// Whether an operand's text has a name in it: an identifier that does not belong to a number
-// literal (0x1F, 0b101, $1F and %101 have letters or digits after a prefix, never a name).
-bool has_name(std::string_view text) {
-  for (std::size_t i = 0; i < text.size();) {
-    if (ident_start(text[i])) return true;
-    if (char_class(text[i]) == detail::kDigit || text[i] == '$') {
-      ++i;
-      while (i < text.size() && ident_char(text[i])) ++i;
+// An operand's tokens [from, to) as written, but a comment among them as one blank.
+std::string operand_text(std::string_view line, const std::vector<SourceToken>& toks, std::size_t from, std::size_t to) {
+  std::string text;
+  std::size_t prev_end = std::string_view::npos;
+  bool comment_between = false;
+  for (std::size_t k = from; k < to; ++k) {
+    const SourceToken& t = toks[k];
+    if (t.kind == TokKind::Comment) {
+      comment_between = true;
       continue;
     }
-    ++i;
+    if (prev_end != std::string_view::npos) text += comment_between ? std::string_view(" ") : line.substr(prev_end, t.offset - prev_end);
+    text += t.text;
+    prev_end = t.offset + t.text.size();
+    comment_between = false;
   }
-  return false;
-}
-
-// Where the mnemonic starts in `line`, after labels; npos when there is none.
-std::size_t mnemonic_at(std::string_view line, std::string_view mnemonic) {
-  std::size_t at = skip_blanks(line, 0);
-  for (;;) {
-    std::size_t end = at;
-    while (end < line.size() && ident_char(line[end])) ++end;
-    if (end == at || !ident_start(line[at])) return std::string_view::npos;
-    const std::size_t after = skip_blanks(line, end);
-    if (after < line.size() && line[after] == ':') {  // a label
-      at = skip_blanks(line, after + 1);
-      continue;
-    }
-    return same_word(line.substr(at, end - at), mnemonic) ? at : std::string_view::npos;
-  }
+  return text;
 }
 
 }  // namespace
@@ -76,25 +74,26 @@ std::array<std::string, 3> named_operands(std::string_view line, const Instructi
   std::array<std::string, 3> out;
   const OpInfo* info = op_info(ins.op);
   if (!info || info->control || info->operands.empty()) return out;
-  std::size_t at = mnemonic_at(line, info->mnemonic);
+  std::vector<SourceToken> toks = line_tokens(line);
+  std::size_t at = mnemonic_at(toks, info->mnemonic);
   if (at == std::string_view::npos) {  // the line may start inside a comment that ends on it
     const std::size_t close = line.find("*/");
     if (close == std::string_view::npos) return out;
     line.remove_prefix(close + 2);
-    at = mnemonic_at(line, info->mnemonic);
+    toks = line_tokens(line);
+    at = mnemonic_at(toks, info->mnemonic);
     if (at == std::string_view::npos) return out;
   }
-  at += info->mnemonic.size();
-  std::string_view rest = line.substr(at);
-  for (std::string_view end : {"//", ";", "/*"})
-    if (const std::size_t c = rest.find(end); c != std::string_view::npos) rest = rest.substr(0, c);
-  for (std::size_t k = 0; k < info->operands.size() && !rest.empty(); ++k) {
-    const std::size_t comma = rest.find(',');
-    const std::string_view text = trim(rest.substr(0, comma));
-    rest = comma == std::string_view::npos ? std::string_view() : rest.substr(comma + 1);
+  std::size_t from = at + 1;
+  for (std::size_t k = 0; k < info->operands.size() && from < toks.size(); ++k) {
+    std::size_t to = from;
+    bool named = false;  // a name, not a number literal (0x1F, $1F, %101 are Numbers)
+    for (; to < toks.size() && !is_mark(toks[to], ','); ++to) named = named || toks[to].kind == TokKind::Name;
+    const std::string text = operand_text(line, toks, from, to);
+    from = to + 1;
     const OperandSpec& spec = info->operands[k];
-    if (!has_name(text) || (spec.keywords != KwSet::None && keyword_value(spec.keywords, text))) continue;
-    out[static_cast<std::size_t>(spec.field)] = std::string(text);
+    if (!named || (spec.keywords != KwSet::None && keyword_value(spec.keywords, text))) continue;
+    out[static_cast<std::size_t>(spec.field)] = text;
   }
   return out;
 }

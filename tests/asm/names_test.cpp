@@ -42,6 +42,22 @@ TEST(named_operands_read_a_line_again) {
   CHECK_EQ(field(a, Field::Value), std::string("Home"));
 }
 
+// A /* */ comment in the operand list is the lexer's, not the end of the line: the operands
+// after it are still read, and one inside an expression stands as a blank.
+TEST(named_operands_past_an_inline_comment) {
+  using tmcl::Field;
+  using tmcl::Op;
+  auto a = tmcl::named_operands("SAP 4, 0, /* max */ Speed", ins(Op::SAP, 4, 0, 100));
+  CHECK_EQ(field(a, Field::Value), std::string("Speed"));
+  a = tmcl::named_operands("/* a */ Go: SAP /* b */ APMax, /* c */ Motor0 /* d */, 2*/* e */Speed ; f", ins(Op::SAP, 4, 0, 200));
+  CHECK_EQ(field(a, Field::Type), std::string("APMax"));
+  CHECK_EQ(field(a, Field::Motor), std::string("Motor0"));
+  CHECK_EQ(field(a, Field::Value), std::string("2* Speed"));
+  a = tmcl::named_operands("JC /* when */ LT, Loop /* back */", ins(Op::JC, 6, 0, 3));
+  CHECK_EQ(field(a, Field::Type), std::string());  // still a keyword
+  CHECK_EQ(field(a, Field::Value), std::string("Loop"));
+}
+
 TEST(named_instruction_text_with_and_without_names) {
   tmcl::SourceNames names;
   names.labels[3] = "Loop";

@@ -91,6 +91,22 @@ TEST(based_on_its_own_name_means_the_hidden_one) {
   CHECK(r.message().find("b.profile:3:10: error: based-on cycle: b -> a -> b\n") != std::string::npos);
 }
 
+// The file skipped is the file itself, however -t spells its path: "dir//usb-2-sd.profile" and
+// "./usb-2-sd.profile" are the search path's dir/usb-2-sd.profile, not a cycle on itself. Each
+// spelling in a folder of its own, as the cache knows a file once read.
+TEST(based_on_its_own_name_means_the_hidden_one_whatever_the_path_spelling) {
+  const std::string text = "tmcl-profile 1\nname usb-2-sd\nbased-on usb-2-sd\nmotors 3\n";
+  TempDir d, e;
+  d.write("usb-2-sd.profile", text);
+  e.write("usb-2-sd.profile", text);
+  auto r = tmcl::resolve_target(d.path + "//usb-2-sd.profile", tmcl::TargetSearch{{d.path}});
+  CHECK(r.profile && r.profile->motors == 3 && r.profile->program_memory == 577);
+  CHECK_EQ(r.message(), "");
+  r = tmcl::resolve_target(e.path + "/./usb-2-sd.profile", tmcl::TargetSearch{{e.path + "/"}});
+  CHECK(r.profile && r.profile->motors == 3 && r.profile->program_memory == 577);
+  CHECK_EQ(r.message(), "");
+}
+
 // A file's error that came from a cycle depends on the other files: once a is mended, b (which
 // did not change) is read again and is fine. The language server asks again at every edit.
 TEST(a_mended_cycle_is_read_again) {

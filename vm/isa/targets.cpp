@@ -30,6 +30,13 @@ bool is_path(std::string_view v) {
 
 bool file_exists(const std::string& path, struct stat& st) { return ::stat(path.c_str(), &st) == 0 && S_ISREG(st.st_mode); }
 
+// Which file `path` is (its real path), as by_path keys it: "dir//a.profile", "./a.profile" and
+// "a.profile" read in dir are one file.
+std::string file_key(const std::string& path, bool exists) {
+  const std::string real = exists ? os::real_path(path) : std::string();
+  return real.empty() ? path : real;
+}
+
 struct Loaded {
   long long mtime = 0, size = -1;
   bool loading = false;  // being read: a based-on line that comes back to it is a cycle
@@ -58,11 +65,12 @@ UserProfiles& user_profiles() {
   return u;
 }
 
-const Profile* lookup_name(std::string_view name, const TargetSearch& search, const std::string& skip, std::string& why);
+const Profile* lookup_name(std::string_view name, const TargetSearch& search, const std::string& skip_key, std::string& why);
 
 // "a.profile" and "dir/a.profile" are "a".
 std::string file_stem(const std::string& path) {
-  std::string s = path.substr(path.find_last_of('/') + 1);
+  const std::size_t sep = os::last_separator(path);
+  std::string s = sep == std::string::npos ? path : path.substr(sep + 1);
   if (s.size() > kProfileExtension.size() && s.substr(s.size() - kProfileExtension.size()) == kProfileExtension)
     s.resize(s.size() - kProfileExtension.size());
   return s;
@@ -106,8 +114,7 @@ const Loaded& load_file(const std::string& path, const TargetSearch& search) {
   struct stat st{};
   const bool exists = file_exists(path, st);
   // Cached by the file itself: the same relative path from another folder is another file.
-  const std::string real = exists ? os::real_path(path) : std::string();
-  const std::string key = real.empty() ? path : real;
+  const std::string key = file_key(path, exists);
   Loaded& entry = u.by_path[key];
   if (entry.loading) return entry;  // no profile yet: the based-on line that asked says so
   const long long mtime = exists ? os::modified_ns(st) : -1;
@@ -126,8 +133,8 @@ const Loaded& load_file(const std::string& path, const TargetSearch& search) {
     return entry;
   }
   // `based-on NAME` in a file NAME.profile means the NAME it hides (a user's own usb-2-sd based on
-  // the bundled one): the file itself is skipped.
-  auto based_on = [&search, &path](std::string_view name, std::string& reason) { return lookup_name(name, search, path, reason); };
+  // the bundled one): the file itself is skipped, however its path is spelled.
+  auto based_on = [&search, &key](std::string_view name, std::string& reason) { return lookup_name(name, search, key, reason); };
   entry.loading = true;
   u.reading.push_back({key, file_stem(path)});
   std::vector<FileDiag> diags;
@@ -139,14 +146,14 @@ const Loaded& load_file(const std::string& path, const TargetSearch& search) {
   return entry;
 }
 
-// A target by name for a based-on line of the file `skip`: NAME.profile in the search path (but
-// `skip`), then the bundled ones. A cycle of based-on lines between files ends at a file being
+// A target by name for a based-on line of the file keyed `skip_key` (file_key): NAME.profile in
+// the search path (but that file), then the bundled ones. A cycle of based-on lines between files ends at a file being
 // read, which has no profile yet: `why` tells the cycle, to every file in it.
-const Profile* lookup_name(std::string_view name, const TargetSearch& search, const std::string& skip, std::string& why) {
+const Profile* lookup_name(std::string_view name, const TargetSearch& search, const std::string& skip_key, std::string& why) {
   for (const auto& dir : search.dirs) {
     const std::string path = os::join_path(dir, std::string(name) + std::string(kProfileExtension));
     struct stat st{};
-    if (path == skip || !file_exists(path, st)) continue;
+    if (!file_exists(path, st) || file_key(path, true) == skip_key) continue;
     const Loaded& l = load_file(path, search);
     if (l.store && l.store->profile.name == name) return &l.store->profile;
     why = based_on_cycle(user_profiles(), l);
