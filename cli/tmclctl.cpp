@@ -979,7 +979,11 @@ int run(int argc, char** argv) {
   if (c == "reset") return s.cmd_control(Op::ResetApplication);
   if (c == "status") return s.cmd_status();
   if (c == "monitor") return s.cmd_monitor();
-  if (c == "test") return tmclctl_test(s.client, *o.profile, o.args, o.include_dirs, o.junit, &g_stop);
+  if (c == "test") {
+    host::Fail failed = host::Fail::None;
+    const int status = tmclctl_test(s.client, *o.profile, o.args, o.include_dirs, o.junit, &g_stop, failed);
+    return status != kExitInterrupted && failed != host::Fail::None ? exit_for(failed) : status;
+  }
   return s.cmd_console();
 }
 

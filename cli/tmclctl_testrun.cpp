@@ -1,6 +1,9 @@
 // tmclctl PORT test (cli/tmclctl_testrun.hpp): a module as the test runner reads it. Each value an
 // expectation names is a request (GGP for v[n], GAP for ap(p, m), GIO for in/ain/out, 135 for
 // acc, x and pc); the program is downloaded and verified (cli/host's transfers), reset and run.
+// The first time the module stays silent or the port fails, the run ends: the test under way ends
+// as an error at once, later tests are skipped rather than each waiting out its timeouts, and
+// tmclctl exits as for that failure anywhere else (69, 74).
 #include "tmclctl_testrun.hpp"
 
 #include <cstdio>
@@ -45,6 +48,8 @@ class HostModule final : public tmcl::testrun::Module {
       const host::TransferResult t = transfer(client_, program, 0, profile_.program_memory, nullptr);
       if (t.outcome != host::Outcome::Ok) {
         error = t.message;
+        if (t.outcome == host::Outcome::NoReply || t.outcome == host::Outcome::Port)
+          failed(t.outcome == host::Outcome::NoReply ? host::Fail::NoReply : host::Fail::Port, t.message);
         return false;
       }
     }
@@ -61,16 +66,29 @@ class HostModule final : public tmcl::testrun::Module {
     std::string error;
     ask(ins(Op::StopApplication, 0, 0), ignored, error);
   }
-  bool cancelled() const override { return *stop_ != 0; }
+  // Ctrl-C, or the module failed: the test under way stops waiting.
+  bool cancelled() const override { return *stop_ != 0 || fail_ != host::Fail::None; }
+
+  host::Fail fail() const { return fail_; }
 
  private:
   static Instruction ins(Op op, int type, int motor) {
     return {static_cast<std::uint8_t>(op), static_cast<std::uint8_t>(type), static_cast<std::uint8_t>(motor), 0};
   }
+  void failed(host::Fail f, const std::string& message) {
+    if (fail_ != host::Fail::None) return;
+    fail_ = f;
+    fail_message_ = message;
+  }
   bool ask(const Instruction& i, std::int64_t& out, std::string& error) {
+    if (fail_ != host::Fail::None) {  // nothing more is asked of a module that failed
+      error = fail_message_;
+      return false;
+    }
     const host::Result r = client_.request(i);
     if (!r.ok()) {
       error = r.error;
+      failed(r.fail, r.error);
       return false;
     }
     if (r.reply.status != host::kStatusOk) {
@@ -85,12 +103,15 @@ class HostModule final : public tmcl::testrun::Module {
   host::Client& client_;
   const tmcl::Profile& profile_;
   volatile std::sig_atomic_t* stop_;
+  host::Fail fail_ = host::Fail::None;
+  std::string fail_message_;
 };
 
 }  // namespace
 
 int tmclctl_test(host::Client& client, const tmcl::Profile& profile, const std::vector<std::string>& paths,
-                 const std::vector<std::string>& include_dirs, const std::string& junit, volatile std::sig_atomic_t* stop) {
+                 const std::vector<std::string>& include_dirs, const std::string& junit, volatile std::sig_atomic_t* stop,
+                 host::Fail& failed) {
   HostModule module(client, profile, stop);
   tmcl::testrun::SuiteOptions o;
   o.run.tool = "tmclctl";
@@ -100,8 +121,14 @@ int tmclctl_test(host::Client& client, const tmcl::Profile& profile, const std::
   o.jobs = 1;  // one module
   o.junit = junit;
   o.run_one = [&](const std::string& path, tmcl::testrun::ProgramCache& cache) {
-    return tmcl::testrun::run_test_live(path, o.run, cache, module);
+    if (module.fail() == host::Fail::None) return tmcl::testrun::run_test_live(path, o.run, cache, module);
+    tmcl::testrun::TestResult skipped;
+    skipped.path = path;
+    skipped.status = tmcl::testrun::TestResult::Skip;
+    skipped.skip_reason = "not run: the module failed in an earlier test";
+    return skipped;
   };
   const int status = tmcl::testrun::run_command(paths, o, stdout, stderr);
+  failed = module.fail();
   return *stop ? 130 : status;
 }

@@ -506,7 +506,7 @@ TEST(position_reached_events_are_routed) {
 TEST(test_files_on_the_virtual_module) {
   // tmclctl PORT test: the program downloaded and run, values polled by the wall clock; a test
   // with scenario lines skipped, `never fault` noted as not checked, a value a module cannot give
-  // named, the JUnit report written.
+  // named, the JUnit report written; a silent module ends the run with exit 69.
   Server server(kRun, {"--serve", "pty", "-t", "usb-2-sd"});
   const std::string dir = temp_dir() + "/live";
   ::mkdir(dir.c_str(), 0700);
@@ -529,6 +529,18 @@ TEST(test_files_on_the_virtual_module) {
   CHECK(has(o.out, "SKIP " + dir + "/d.tmctest (written for generic, and the module is usb-2-sd (-t))\n"));
   CHECK(has(o.out, "1 passed, 1 failed, 2 skipped\n"));
   CHECK(has(slurp(junit), "<testsuites name=\"tmclctl\" tests=\"4\" failures=\"1\" errors=\"0\" skipped=\"2\""));
+  // A silent module (no module 9 on the line): the test under way is an error naming the request,
+  // the run stops there (later tests are skipped, not each left to time out) and the exit status
+  // is the one of a silent module, 69, not the 65 of a bad test file.
+  Output silent = ctl({"-t", "usb-2-sd", "-a", "9", "--timeout", "50ms", "--retries", "0", server.port(), "test",
+                       dir + "/a.tmctest", dir + "/b.tmctest", "--junit", junit});
+  show(silent);
+  CHECK_EQ(silent.status, 69);
+  CHECK(has(silent.out, "ERROR " + dir + "/a.tmctest\nSKIP " + dir + "/b.tmctest (not run: the module failed in an earlier test)\n"));
+  CHECK(has(silent.err, dir + "/a.tmctest: error: no reply within 50 ms to "));
+  CHECK(has(silent.err, " to module 9 on " + server.port()));
+  CHECK(has(silent.out, "0 passed, 0 failed, 1 skipped, 1 error\n"));
+  CHECK(has(slurp(junit), "tests=\"2\" failures=\"0\" errors=\"1\" skipped=\"1\""));
   // The options that go with it.
   CHECK_EQ(ctl({server.port(), "status", "--junit", junit}).status, 64);
   Output none = ctl({server.port(), "test"});

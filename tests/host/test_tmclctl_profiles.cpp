@@ -1,8 +1,9 @@
 // tmclctl and module profiles, against the virtual module (`tmclrun --serve -t NAME`): the
 // module's reply to 136 on connect picks its profile (parameter names of a TMCM-1110 without
-// -t), -t naming another module is warned about, download checks the program as tmclasm -Werror
-// does and honours its first line, autostart on a module that keeps its program in RAM is warned
-// about, and `probe` drafts a profile that agrees with the bundled one on which parameters exist.
+// -t), -t naming another module is warned about, a firmware no profile knows is noted (generic is
+// used), download checks the program as tmclasm -Werror does and honours its first line, autostart
+// on a module that keeps its program in RAM is warned about, and `probe` drafts a profile that
+// agrees with the bundled one on which parameters exist.
 #include <set>
 #include <sstream>
 
@@ -70,6 +71,41 @@ TEST(autostart_on_a_module_without_eeprom_program_is_warned) {
   d = ctl({"-q", eeprom.port(), "download", "--autostart", prog});
   CHECK_EQ(d.status, 0);
   CHECK(!has(d.err, "warning"));
+}
+
+TEST(a_firmware_no_profile_knows_is_noted) {
+  // A module of the user's own (tests/golden/profiles/my-module.profile, firmware 4242V201) that
+  // no bundled profile knows: without -t generic is used and tmclctl says so, naming the command
+  // that drafts a profile; -q keeps it quiet; on the search path, or with -t, its profile is used.
+  const std::string profiles = TMCL_TEST_PROFILES;
+  Server server(kRun, {"--serve", "tcp:127.0.0.1:0", "-t", profiles + "/my-module.profile"});
+  const std::string& p = server.port();
+  // No profile path from the environment, and a home without ~/.config/tmcl/profiles.
+  auto ctl_with = [&](const std::string& profile_path, const std::vector<std::string>& args) {
+    std::vector<std::string> argv{"/usr/bin/env", "-u", "TMCL_PROFILE_PATH", "HOME=" + temp_dir()};
+    if (!profile_path.empty()) argv.push_back("TMCL_PROFILE_PATH=" + profile_path);
+    argv.insert(argv.end(), {kCtl, "--timeout", "5s"});
+    argv.insert(argv.end(), args.begin(), args.end());
+    return hosttest::run(argv);
+  };
+  Output g = ctl_with("", {p, "get", "ap", "4"});
+  show(g);
+  CHECK_EQ(g.status, 0);
+  CHECK_EQ(g.out, "100\n");
+  CHECK_EQ(g.err, "tmclctl: note: no profile knows firmware 4242V201; using generic (`tmclctl " + p +
+                      " probe -o NAME.profile` drafts one)\n");
+  Output q = ctl_with("", {"-q", p, "get", "ap", "4"});
+  CHECK_EQ(q.status, 0);
+  CHECK(q.err.empty());
+  // Its own parameter name, which generic does not have, once its profile is found.
+  Output named = ctl_with(profiles, {p, "get", "maximum speed"});
+  show(named);
+  CHECK_EQ(named.status, 0);
+  CHECK_EQ(named.out, "100\n");
+  CHECK(named.err.empty());
+  Output given = ctl_with("", {"-t", profiles + "/my-module.profile", p, "get", "maximum speed"});
+  CHECK_EQ(given.status, 0);
+  CHECK(given.err.empty());
 }
 
 TEST(probe_drafts_a_profile_that_agrees_on_which_parameters_exist) {
