@@ -223,6 +223,23 @@ TEST(run_the_module_is_the_programs_unless_t_is_given) {
   CHECK(run("named-own", "program named.tmc\ntarget usb-2-sd\nexpect at end acc = 51200\n").status == TestResult::Pass);
 }
 
+// Two profiles with the same name are two modules: a test of each, sharing one cache, runs its
+// program on its own (the loaded programs are kept by profile, not by its name).
+TEST(run_profiles_of_one_name_do_not_share_a_program) {
+  put("maxspeed.tmc", "  GAP 4, 0    // 1000 on the TMCM-1110, 51200 on the USB-2-SD\n  STOP\n");
+  put("a/mine.profile", "tmcl-profile 1\nname mine\ntitle \"mine\"\nbased-on usb-2-sd\n");
+  put("b/mine.profile", "tmcl-profile 1\nname mine\ntitle \"mine\"\nbased-on tmcm-1110\n");
+  tmcl::testrun::ProgramCache cache;
+  const TestResult a = tmcl::testrun::run_test_file(
+      put("a/t.tmctest", "program ../maxspeed.tmc\ntarget ./mine.profile\nexpect at end acc = 51200\n"), {}, cache);
+  const TestResult b = tmcl::testrun::run_test_file(
+      put("b/t.tmctest", "program ../maxspeed.tmc\ntarget ./mine.profile\nexpect at end acc = 1000\n"), {}, cache);
+  CHECK_EQ(a.error + messages(a), "");
+  CHECK_EQ(b.error + messages(b), "");
+  CHECK(a.status == TestResult::Pass);
+  CHECK(b.status == TestResult::Pass);
+}
+
 // A bad `define` is shown at its line of the test file, the caret in its value; a note of the
 // program's diagnostics that points at one points at that line; each test that shares the
 // program sees its own lines. The test file's own mistakes come with them in one go: those of
