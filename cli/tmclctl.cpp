@@ -978,7 +978,7 @@ int run(int argc, char** argv) {
   if (c == "reset") return s.cmd_control(Op::ResetApplication);
   if (c == "status") return s.cmd_status();
   if (c == "monitor") return s.cmd_monitor();
-  if (c == "test") return tmclctl_test(s.client, *o.profile, o.args, o.include_dirs, o.junit, &g_stop);
+  if (c == "test") return tmclctl_test(s.client, *o.profile, o.target_given ? o.target : std::string(o.profile->name), o.args, o.include_dirs, o.junit, &g_stop);
   return s.cmd_console();
 }
 

@@ -9,9 +9,10 @@
 #include "tmcl/host/client.hpp"
 #include "tmcl/profile.hpp"
 
-// Runs the test files and folders `paths` on the module behind `client` (module profile `profile`)
-// and prints a line per test and the closing line; writes a JUnit report to `junit` unless empty.
+// Runs the test files and folders `paths` on the module behind `client` (module profile `profile`,
+// which `target` names as -t takes it: -t as given, or the identified module's name) and prints a line per test and the closing line; writes a JUnit report to `junit` unless empty.
 // Returns tmclctl's exit status: 0 every test passed, 1 a test failed, 65 a bad test file or
 // program, 69/74 the module or port failed, 130 interrupted (`*stop` set by Ctrl-C).
-int tmclctl_test(tmcl::host::Client& client, const tmcl::Profile& profile, const std::vector<std::string>& paths,
+int tmclctl_test(tmcl::host::Client& client, const tmcl::Profile& profile, const std::string& target,
+                 const std::vector<std::string>& paths,
                  const std::vector<std::string>& include_dirs, const std::string& junit, volatile std::sig_atomic_t* stop);

@@ -529,6 +529,18 @@ TEST(test_files_on_the_virtual_module) {
   CHECK(has(o.out, "SKIP " + dir + "/d.tmctest (written for generic, and the module is usb-2-sd (-t))\n"));
   CHECK(has(o.out, "1 passed, 1 failed, 2 skipped\n"));
   CHECK(has(slurp(junit), "<testsuites name=\"tmclctl\" tests=\"4\" failures=\"1\" errors=\"0\" skipped=\"2\""));
+  // -t a profile file whose name (mymod) is no target: tests without a target line run on it,
+  // and one naming that file beside it is not skipped as written for another module.
+  ::mkdir((dir + "/mine").c_str(), 0700);
+  write_temp("live/mine.profile", "tmcl-profile 1\nname mymod\ntitle \"mine\"\nbased-on usb-2-sd\n");
+  write_temp("live/mine/e.tmctest", "program ../p.tmc\nexpect at end v[1] = 7\n");
+  write_temp("live/mine/f.tmctest", "program ../p.tmc\ntarget ../mine.profile\nexpect at end v[1] = 7\n");
+  Output mine = ctl({"-t", dir + "/mine.profile", server.port(), "test", dir + "/mine"});
+  show(mine);
+  CHECK_EQ(mine.status, 0);
+  CHECK(has(mine.out, "PASS " + dir + "/mine/e.tmctest\n"));
+  CHECK(has(mine.out, "PASS " + dir + "/mine/f.tmctest\n"));
+  CHECK(has(mine.out, "2 passed, 0 failed\n"));
   // The options that go with it.
   CHECK_EQ(ctl({server.port(), "status", "--junit", junit}).status, 64);
   Output none = ctl({server.port(), "test"});
