@@ -152,7 +152,7 @@ class LineReader {
     if (!t_.target.empty()) {  // a profile file is found relative to the test file, as the program
       t_.module = t_.target;
       const std::size_t slash = os::last_separator(path_);
-      if (os::has_separator(t_.module) && !os::is_absolute(t_.module) && slash != std::string::npos)
+      if (is_profile_path(t_.module) && !os::is_absolute(t_.module) && slash != std::string::npos)
         t_.module = path_.substr(0, slash + 1) + t_.module;
       const Profile* p = test_profile(t_, &why);
       if (!p) diags_.push_back({path_, t_.target_line, target_word_.col, static_cast<int>(target_word_.text.size()), why, target_source_});
