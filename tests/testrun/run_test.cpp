@@ -179,6 +179,11 @@ TEST(run_tests_that_cannot_run_are_errors) {
   CHECK(has(name.error, "name.tmctest:2:20: error: no register, label or constant named 'hihg'; did you mean 'high'?\n"
                         " expect at end pc = hihg\n                    ^~~~\n"));
   CHECK(has(name.error, "name.tmctest:3:15: error: no register, label or constant named 'accc'; did you mean 'acc'?\n"));
+  // The assembler's hexadecimal $FF is a register's name here ($acc, $pc): the caret under the $.
+  const TestResult& hex = run_counter("hex", "expect at end v[3] = $FF\n");
+  CHECK(hex.status == TestResult::Error);
+  CHECK_EQ(hex.error, "hex.tmctest:2:22: error: no register named '$ff' ($pc, $sp, $acc, $x, $flags, $errors, $time, $steps); "
+                      "hexadecimal is written 0xFF\n expect at end v[3] = $FF\n                      ^~~\n");
   // A program that does not assemble: the assembler's own diagnostics.
   put("broken.tmc", "SAPP 4, 0, 100\nSTOP\n");
   const TestResult& broken = run("broken", "program broken.tmc\nexpect at end acc = 0\n");

@@ -411,8 +411,8 @@ void parse_expectations(const TestFile& test, const ProgramInfo& program, std::v
       if (ok) continue;
       // The parser's message ends with " in 'TEXT'"; the caret shows where instead.
       if (auto in = error.rfind(" in '"); in != std::string::npos) error.resize(in);
-      // Underline the word (or the character) where the parser stopped.
-      std::size_t end = at;
+      // Underline the word (or the character) where the parser stopped; a register's with its $.
+      std::size_t end = at < text->size() && (*text)[at] == '$' ? at + 1 : at;
       while (end < text->size() && (std::isalnum(static_cast<unsigned char>((*text)[end])) || (*text)[end] == '_')) ++end;
       diags.push_back({test.path, e.line, col + static_cast<int>(at), std::max<int>(1, static_cast<int>(end - at)), error, source});
       break;
