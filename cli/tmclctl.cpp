@@ -981,7 +981,8 @@ int run(int argc, char** argv) {
   if (c == "monitor") return s.cmd_monitor();
   if (c == "test") {
     host::Fail failed = host::Fail::None;
-    const int status = tmclctl_test(s.client, *o.profile, o.args, o.include_dirs, o.junit, &g_stop, failed);
+    const int status = tmclctl_test(s.client, *o.profile, o.target_given ? o.target : std::string(o.profile->name), o.args,
+                                    o.include_dirs, o.junit, &g_stop, failed);
     return status != kExitInterrupted && failed != host::Fail::None ? exit_for(failed) : status;
   }
   return s.cmd_console();

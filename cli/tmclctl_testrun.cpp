@@ -109,13 +109,13 @@ class HostModule final : public tmcl::testrun::Module {
 
 }  // namespace
 
-int tmclctl_test(host::Client& client, const tmcl::Profile& profile, const std::vector<std::string>& paths,
-                 const std::vector<std::string>& include_dirs, const std::string& junit, volatile std::sig_atomic_t* stop,
-                 host::Fail& failed) {
+int tmclctl_test(host::Client& client, const tmcl::Profile& profile, const std::string& target,
+                 const std::vector<std::string>& paths, const std::vector<std::string>& include_dirs, const std::string& junit,
+                 volatile std::sig_atomic_t* stop, host::Fail& failed) {
   HostModule module(client, profile, stop);
   tmcl::testrun::SuiteOptions o;
   o.run.tool = "tmclctl";
-  o.run.target = std::string(profile.name);
+  o.run.target = target;  // not profile.name: a profile file's name need not be a target
   o.run.target_given = true;  // the module is the one connected, whatever a program's first line names
   o.run.asm_options.include_dirs = include_dirs;
   o.jobs = 1;  // one module

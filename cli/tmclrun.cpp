@@ -538,6 +538,21 @@ int run(int argc, char** argv) {
     return located_error(why);
   }
 
+  auto unknown_core = [&o] {
+    return usage_error("unknown motion core '" + o.motion + "' (available: " + joined(tmcl::motion_core_names()) + ")");
+  };
+  // --test (tmclrun_modes.cpp): each test's module is the runner's to find, from -t as given (a
+  // profile file's path stays a path: its name need not be a target) or the test's own lines; -t
+  // and --motion are checked once here. The operands are tests, not a program naming a target.
+  if (o.testing) {
+    if (o.target_given) {
+      const tmcl::TargetResult t = tmcl::resolve_target(o.target);
+      if (!t.profile) return !t.diags.empty() ? file_errors(t.diags) : t.usage ? usage_error(t.error) : input_error("", t.error);
+    }
+    if (!o.motion.empty() && !tmcl::make_motion_core(o.motion)) return unknown_core();
+    return run_tests(o);
+  }
+
   if (!o.target_given) o.target = tmcl::target_named_by_file(o.program, o.target);
   tmcl::TargetResult target = tmcl::resolve_target(o.target);
   if (!target.profile)
@@ -546,11 +561,8 @@ int run(int argc, char** argv) {
   o.target = std::string(profile->name);
   std::string core_note;
   auto core = o.motion.empty() ? tmcl::make_profile_motion_core(*profile, &core_note) : tmcl::make_motion_core(o.motion);
-  if (!core)
-    return usage_error("unknown motion core '" + o.motion + "' (available: " + joined(tmcl::motion_core_names()) + ")");
+  if (!core) return unknown_core();
   if (!core_note.empty()) std::fprintf(stderr, "tmclrun: note: %s\n", core_note.c_str());
-
-  if (o.testing) return run_mode(o, *profile, std::move(core), {}, {}, {}, nullptr);  // --test: tmclrun_modes.cpp
 
   // ---- the program (optional with --serve: a host may download one) ----
   std::vector<tmcl::Instruction> program;

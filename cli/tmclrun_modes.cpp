@@ -115,18 +115,19 @@ int tmclrun::check_mode_options(Options& o, bool have_program) {
   return -1;
 }
 
+int tmclrun::run_tests(Options& o) {
+  tmcl::testrun::RunOptions& r = o.test.run;
+  std::tie(r.target, r.motion, r.instr_time, r.asm_options, r.strict) = std::tie(o.target, o.motion, o.instr_time, o.asm_opts, o.strict);
+  r.target_given = o.target_given;  // else a program's first line names its test's module, as for a plain run
+  r.max_time_given = o.limits.until != tmcl::kNever;
+  r.max_time = o.limits.until;
+  r.error_limit = o.asm_opts.error_limit;  // --error-limit
+  return tmcl::testrun::run_command(o.inputs, o.test, stdout, stderr);
+}
+
 int tmclrun::run_mode(Options& o, const tmcl::Profile& profile, std::unique_ptr<tmcl::MotionCore> core,
                       const std::vector<tmcl::Instruction>& program, const tmcl::SourceMap& sources,
                       std::vector<tmcl::InputEvent> inputs, tmcl::EepromImage* image) {
-  if (o.testing) {  // the test files of o.inputs (vm/testrun, docs/testing.md)
-    tmcl::testrun::RunOptions& r = o.test.run;
-    std::tie(r.target, r.motion, r.instr_time, r.asm_options, r.strict) = std::tie(o.target, o.motion, o.instr_time, o.asm_opts, o.strict);
-    r.target_given = o.target_given;  // else a program's first line names its test's module, as for a plain run
-    r.max_time_given = o.limits.until != tmcl::kNever;
-    r.max_time = o.limits.until;
-    r.error_limit = o.asm_opts.error_limit;  // --error-limit
-    return tmcl::testrun::run_command(o.inputs, o.test, stdout, stderr);
-  }
   if (o.debug.enabled && o.serving) {  // debugging while serving: tcp or pty, one module
     if (o.debug.dap || o.serve_opts.transport == tmcl::Transport::Stdio || !o.modules.empty() || o.trace)
       return usage_error("--serve with --debug takes tcp:HOST:PORT or pty, one module, no --dap and no --trace");

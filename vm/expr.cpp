@@ -155,15 +155,21 @@ class Parser {
     if (std::isdigit(static_cast<unsigned char>(c))) return number();
     if (c == '$') {
       // $pc, $sp, $acc, $x ... name registers, as gdb's do. $N is the command line's value
-      // history (expanded before the expression gets here); hexadecimal is written 0x1F.
+      // history (expanded before the expression gets here); hexadecimal is written 0x1F, not as
+      // the assembler's $1F: $a, $acc would be registers and $ab a number.
+      const std::size_t dollar = pos_;
       std::size_t start = ++pos_;
       while (pos_ < s_.size() && (std::isalnum(static_cast<unsigned char>(s_[pos_])) || s_[pos_] == '_')) ++pos_;
-      std::string name = lower(s_.substr(start, pos_ - start));
+      const std::string written = s_.substr(start, pos_ - start);
+      std::string name = lower(written);
       for (const auto& r : kRegs)
         if (name == r.name) return node({Expr::Node::Reg, r.reg, -1, -1});
+      const bool hex = std::all_of(name.begin(), name.end(), [](char h) { return std::isxdigit(static_cast<unsigned char>(h)); });
       fail(name.empty() || std::isdigit(static_cast<unsigned char>(name[0]))
                ? "'$" + name + "' is no register (the value history $, $N is print's; hexadecimal is written 0x...)"
-               : "no register named '$" + name + "' ($pc, $sp, $acc, $x, $flags, $errors, $time, $steps)");
+               : "no register named '$" + name + "' ($pc, $sp, $acc, $x, $flags, $errors, $time, $steps)" +
+                     (hex ? "; hexadecimal is written 0x" + written : ""),
+           dollar);
       return -1;
     }
     if (std::isalpha(static_cast<unsigned char>(c)) || c == '_') {

@@ -541,6 +541,18 @@ TEST(test_files_on_the_virtual_module) {
   CHECK(has(silent.err, " to module 9 on " + server.port()));
   CHECK(has(silent.out, "0 passed, 0 failed, 1 skipped, 1 error\n"));
   CHECK(has(slurp(junit), "tests=\"2\" failures=\"0\" errors=\"1\" skipped=\"1\""));
+  // -t a profile file whose name (mymod) is no target: tests without a target line run on it,
+  // and one naming that file beside it is not skipped as written for another module.
+  ::mkdir((dir + "/mine").c_str(), 0700);
+  write_temp("live/mine.profile", "tmcl-profile 1\nname mymod\ntitle \"mine\"\nbased-on usb-2-sd\n");
+  write_temp("live/mine/e.tmctest", "program ../p.tmc\nexpect at end v[1] = 7\n");
+  write_temp("live/mine/f.tmctest", "program ../p.tmc\ntarget ../mine.profile\nexpect at end v[1] = 7\n");
+  Output mine = ctl({"-t", dir + "/mine.profile", server.port(), "test", dir + "/mine"});
+  show(mine);
+  CHECK_EQ(mine.status, 0);
+  CHECK(has(mine.out, "PASS " + dir + "/mine/e.tmctest\n"));
+  CHECK(has(mine.out, "PASS " + dir + "/mine/f.tmctest\n"));
+  CHECK(has(mine.out, "2 passed, 0 failed\n"));
   // The options that go with it.
   CHECK_EQ(ctl({server.port(), "status", "--junit", junit}).status, 64);
   Output none = ctl({server.port(), "test"});

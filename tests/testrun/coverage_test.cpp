@@ -100,6 +100,19 @@ TEST(coverage_a_branch_that_never_ran_is_a_dash) {
                 "DA:1,1\nDA:2,0\nDA:3,1\nLF:3\nLH:2\nend_of_record\n"));
 }
 
+TEST(coverage_a_conditional_call_counts_as_a_call) {
+  // sub runs twice: once by a taken CALL EQ, once by CSUB. A CALL is a call, not a jump into sub.
+  put("calls.tmc", "COMP 0\nCALL EQ, sub\nCSUB sub\nSTOP\nsub: CALC ADD, 1\nRSUB\n");
+  const std::string t = lcov_tracefile(covered({"program calls.tmc\nexpect at end acc = 2\n"}));
+  CHECK(has(t, "FN:5,sub\nFNDA:2,sub\nFNF:1\nFNH:1\n"));
+  CHECK(has(t, "DA:5,2\n"));
+  // A jump back to a subroutine's entry still is not a call of it: sub runs twice, called once.
+  put("again.tmc", "CSUB sub\nSTOP\nsub: CALC ADD, 1\nCOMP 1\nJC EQ, sub\nRSUB\n");
+  const std::string u = lcov_tracefile(covered({"program again.tmc\nexpect at end acc = 2\n"}));
+  CHECK(has(u, "FN:3,sub\nFNDA:1,sub\n"));
+  CHECK(has(u, "DA:3,2\n"));
+}
+
 TEST(coverage_summary_lists_what_never_ran) {
   CHECK_EQ(coverage_summary(covered({kTest})),
            "coverage: lines 16/17 (94.1%), branches 3/4 (75.0%) in 2 files\n"

@@ -223,6 +223,12 @@ TEST(file_target_may_be_a_profile_file) {
   CHECK(p != nullptr);
   CHECK_EQ(why, "");
   if (p) CHECK_EQ(std::string(p->name), "mine");
+  // A file name without a folder is a profile file as for -t (it ends in .profile), found beside
+  // the test file too, not in the current folder (the scratch folder, which has none).
+  TestFile bare = parsed("program p.tmc\ntarget mine.profile\n", folder + "/t.tmctest");
+  CHECK_EQ(bare.module, folder + "/mine.profile");
+  CHECK(test_profile(bare, &why) == p);
+  CHECK_EQ(why, "");
   std::vector<tmcl::FileDiag> diags;
   CHECK(!parse_test_file("program p.tmc\ntarget ./none.profile\n", folder + "/t.tmctest", "generic", t, diags, true));
   CHECK(test_profile(t, &why) == nullptr);

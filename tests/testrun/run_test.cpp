@@ -179,6 +179,11 @@ TEST(run_tests_that_cannot_run_are_errors) {
   CHECK(has(name.error, "name.tmctest:2:20: error: no register, label or constant named 'hihg'; did you mean 'high'?\n"
                         " expect at end pc = hihg\n                    ^~~~\n"));
   CHECK(has(name.error, "name.tmctest:3:15: error: no register, label or constant named 'accc'; did you mean 'acc'?\n"));
+  // The assembler's hexadecimal $FF is a register's name here ($acc, $pc): the caret under the $.
+  const TestResult& hex = run_counter("hex", "expect at end v[3] = $FF\n");
+  CHECK(hex.status == TestResult::Error);
+  CHECK_EQ(hex.error, "hex.tmctest:2:22: error: no register named '$ff' ($pc, $sp, $acc, $x, $flags, $errors, $time, $steps); "
+                      "hexadecimal is written 0xFF\n expect at end v[3] = $FF\n                      ^~~\n");
   // A program that does not assemble: the assembler's own diagnostics.
   put("broken.tmc", "SAPP 4, 0, 100\nSTOP\n");
   const TestResult& broken = run("broken", "program broken.tmc\nexpect at end acc = 0\n");
@@ -221,6 +226,23 @@ TEST(run_the_module_is_the_programs_unless_t_is_given) {
   o.target_given = true;
   CHECK_EQ(messages(run("named-t", test, o)), "2: expected acc = 1000 at the end, got 51200\n");
   CHECK(run("named-own", "program named.tmc\ntarget usb-2-sd\nexpect at end acc = 51200\n").status == TestResult::Pass);
+}
+
+// Two profiles with the same name are two modules: a test of each, sharing one cache, runs its
+// program on its own (the loaded programs are kept by profile, not by its name).
+TEST(run_profiles_of_one_name_do_not_share_a_program) {
+  put("maxspeed.tmc", "  GAP 4, 0    // 1000 on the TMCM-1110, 51200 on the USB-2-SD\n  STOP\n");
+  put("a/mine.profile", "tmcl-profile 1\nname mine\ntitle \"mine\"\nbased-on usb-2-sd\n");
+  put("b/mine.profile", "tmcl-profile 1\nname mine\ntitle \"mine\"\nbased-on tmcm-1110\n");
+  tmcl::testrun::ProgramCache cache;
+  const TestResult a = tmcl::testrun::run_test_file(
+      put("a/t.tmctest", "program ../maxspeed.tmc\ntarget ./mine.profile\nexpect at end acc = 51200\n"), {}, cache);
+  const TestResult b = tmcl::testrun::run_test_file(
+      put("b/t.tmctest", "program ../maxspeed.tmc\ntarget ./mine.profile\nexpect at end acc = 1000\n"), {}, cache);
+  CHECK_EQ(a.error + messages(a), "");
+  CHECK_EQ(b.error + messages(b), "");
+  CHECK(a.status == TestResult::Pass);
+  CHECK(b.status == TestResult::Pass);
 }
 
 // A bad `define` is shown at its line of the test file, the caret in its value; a note of the

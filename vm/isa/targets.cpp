@@ -23,11 +23,6 @@ namespace {
 
 constexpr std::size_t kMaxProfileBytes = 1u << 20;
 
-bool is_path(std::string_view v) {
-  return os::has_separator(v) ||
-         (v.size() > kProfileExtension.size() && v.substr(v.size() - kProfileExtension.size()) == kProfileExtension);
-}
-
 bool file_exists(const std::string& path, struct stat& st) { return ::stat(path.c_str(), &st) == 0 && S_ISREG(st.st_mode); }
 
 // Which file `path` is (its real path), as by_path keys it: "dir//a.profile", "./a.profile" and
@@ -175,6 +170,11 @@ std::vector<std::string> known_names(const TargetSearch& search) {
 
 }  // namespace
 
+bool is_profile_path(std::string_view value) {
+  return os::has_separator(value) || (value.size() > kProfileExtension.size() &&
+                                      value.substr(value.size() - kProfileExtension.size()) == kProfileExtension);
+}
+
 TargetSearch TargetSearch::from_environment() {
   TargetSearch s;
   if (const char* path = std::getenv("TMCL_PROFILE_PATH")) {
@@ -199,7 +199,7 @@ TargetResult resolve_target(std::string_view value, const TargetSearch& search) 
     r.error = "-t needs a target name or a profile file";
     return r;
   }
-  if (is_path(value)) {
+  if (is_profile_path(value)) {
     const Loaded& l = load_file(std::string(value), search);
     r.profile = l.store ? &l.store->profile : nullptr;
     r.diags = l.diags;

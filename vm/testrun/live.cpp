@@ -13,6 +13,7 @@
 #include "tmcl/duration.hpp"
 #include "tmcl/fileio.hpp"
 #include "tmcl/numbers.hpp"
+#include "tmcl/targets.hpp"
 #include "tmcl/testrun.hpp"
 
 namespace tmcl::testrun {
@@ -62,7 +63,7 @@ TestResult run_test_live(const std::string& path, const RunOptions& options, Pro
   TestFile t;
   std::vector<FileDiag> diags;
   if (parse_test_file(text, path, options.target, t, diags, options.target_given) &&
-      (t.skipped || !t.inputs.empty() || (!t.target.empty() && t.target != options.target))) {
+      (t.skipped || !t.inputs.empty() || (!t.target.empty() && test_profile(t) != resolve_target(options.target).profile))) {
     r.skip_reason = t.skipped ? t.skip
                     : !t.inputs.empty()
                         ? "its scenario lines change the program's inputs, which a module's host cannot"

@@ -170,7 +170,9 @@ struct ProgramCache::Impl {
     std::shared_ptr<const AsmFailure> failed;
   };
   std::mutex lock;
-  std::map<std::string, std::shared_ptr<Entry>> entries;
+  // By profile (its address: two user profiles may share a name, and profiles live as long as
+  // the program), then the program and the test's defines.
+  std::map<std::pair<const Profile*, std::string>, std::shared_ptr<Entry>> entries;
 };
 
 ProgramCache::ProgramCache() : impl_(std::make_unique<Impl>()) {}
@@ -178,8 +180,8 @@ ProgramCache::~ProgramCache() = default;
 
 std::shared_ptr<const Program> ProgramCache::get(const TestFile& test, const Profile& profile, const RunOptions& options,
                                                  std::string& error, std::vector<FileDiag>& test_diags) {
-  std::string key = test.program + '\n' + std::string(profile.name);
-  for (const Define& d : test.defines) key += '\n' + d.name + '=' + d.value;
+  std::pair<const Profile*, std::string> key{&profile, test.program};
+  for (const Define& d : test.defines) key.second += '\n' + d.name + '=' + d.value;
   std::shared_ptr<Impl::Entry> entry;
   {
     std::lock_guard<std::mutex> g(impl_->lock);

@@ -41,7 +41,12 @@ bool is_branch(const Instruction& i) {
          i.op == static_cast<std::uint8_t>(Op::DJNZ);
 }
 
-bool is_jump(const Instruction& i) { return is_branch(i) || i.op == static_cast<std::uint8_t>(Op::JA); }
+// What reaches an address without calling it: a function's entry count leaves these out. CALL
+// (opcode 80, "call if condition") is a branch for the branch counts but a call here.
+bool is_jump(const Instruction& i) {
+  return i.op == static_cast<std::uint8_t>(Op::JA) || i.op == static_cast<std::uint8_t>(Op::JC) ||
+         i.op == static_cast<std::uint8_t>(Op::DJNZ);
+}
 
 }  // namespace
 

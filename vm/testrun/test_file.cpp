@@ -152,7 +152,7 @@ class LineReader {
     if (!t_.target.empty()) {  // a profile file is found relative to the test file, as the program
       t_.module = t_.target;
       const std::size_t slash = os::last_separator(path_);
-      if (os::has_separator(t_.module) && !os::is_absolute(t_.module) && slash != std::string::npos)
+      if (is_profile_path(t_.module) && !os::is_absolute(t_.module) && slash != std::string::npos)
         t_.module = path_.substr(0, slash + 1) + t_.module;
       const Profile* p = test_profile(t_, &why);
       if (!p) diags_.push_back({path_, t_.target_line, target_word_.col, static_cast<int>(target_word_.text.size()), why, target_source_});
@@ -411,8 +411,8 @@ void parse_expectations(const TestFile& test, const ProgramInfo& program, std::v
       if (ok) continue;
       // The parser's message ends with " in 'TEXT'"; the caret shows where instead.
       if (auto in = error.rfind(" in '"); in != std::string::npos) error.resize(in);
-      // Underline the word (or the character) where the parser stopped.
-      std::size_t end = at;
+      // Underline the word (or the character) where the parser stopped; a register's with its $.
+      std::size_t end = at < text->size() && (*text)[at] == '$' ? at + 1 : at;
       while (end < text->size() && (std::isalnum(static_cast<unsigned char>((*text)[end])) || (*text)[end] == '_')) ++end;
       diags.push_back({test.path, e.line, col + static_cast<int>(at), std::max<int>(1, static_cast<int>(end - at)), error, source});
       break;

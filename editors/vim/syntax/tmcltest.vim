@@ -9,7 +9,9 @@ syntax keyword tmcltestWord at end never fault no warnings halted stop max-time 
 syntax keyword tmcltestWord input analog left right home slip from to
 syntax keyword tmcltestValue acc a x pc sp flags errors time steps v ap gp in ain out position velocity
 syntax match tmcltestNumber /\<\d\+\(\.\d\+\)\=\(us\|ms\|s\|min\|h\)\=\>/
-syntax match tmcltestNumber /\<0x\x\+\>\|\$\x\+\>\|\<0b[01]\+\>/
+syntax match tmcltestNumber /\<0x\x\+\>\|\<0b[01]\+\>/
+" $acc, $pc ...: registers as the debugger writes them ($FF is no number here: 0xFF is).
+syntax match tmcltestValue /\$\(acc\|a\|x\|pc\|sp\|flags\|errors\|time\|steps\)\>/
 syntax match tmcltestOperator /[=!<>]=\=\|±\|+\/-/
 syntax match tmcltestComment /#.*$/
 highlight default link tmcltestDirective Statement

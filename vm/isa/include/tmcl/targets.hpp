@@ -34,6 +34,9 @@ struct TargetResult {
   std::string message(int limit = kDefaultErrorLimit, std::string_view tool = {}) const;
 };
 
+// Whether -t VALUE names a profile file (a '/' in it, or ending in ".profile") rather than a
+// target by name; a relative one is relative to the current folder, or to the file that names it.
+bool is_profile_path(std::string_view value);
 // Resolves -t VALUE (see above).
 TargetResult resolve_target(std::string_view value, const TargetSearch& search = TargetSearch::from_environment());
 
