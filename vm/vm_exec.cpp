@@ -18,15 +18,19 @@ std::string wait_text(const Vm& vm) {
   return std::string("WAIT ") + kNames[ins.type <= 4 ? ins.type : 0] + " at " + vm.where(at);
 }
 
-// Why a WAIT that nothing pending can end never ends. A reference search is motion that runs on:
-// the module would search until RFS STOP; say so rather than "no motion" (issue 25).
-std::string never_ends(const Vm& vm) {
+}  // namespace
+
+// A reference search is motion that runs on: the module would search until RFS STOP; say so
+// rather than "no motion" (issue 25).
+std::string never_ending_wait_reason(const Vm& vm) {
   if (vm.wait.kind == 4 && !vm.motion->reference_done(vm.wait.motor))
     return " can never end: motor " + std::to_string(vm.wait.motor) +
            "'s reference search runs on, but no switch on its way can end it and no timer, input or timeout is"
            " pending (the module would search until RFS STOP; give WAIT RFS a timeout, or run with --max-time)";
   return " can never end: no timer, motion, input or timeout is pending";
 }
+
+namespace {
 
 RunResult step_limit(const Vm& vm) {
   return RunResult{Halt::StepLimit, "stopped after " + std::to_string(vm.steps) + " instructions (--max-steps)"};
@@ -121,7 +125,7 @@ std::optional<RunResult> Vm::Loop::service(Vm& vm, const Limits& lim) {
       if (vm.next_check_ <= vm.now) vm.next_check_ = vm.now + 1;  // never spin on a stale instant
       return std::nullopt;
     }
-    if (wake == kNever && lim.until == kNever) return RunResult{Halt::Blocked, wait_text(vm) + never_ends(vm)};
+    if (wake == kNever && lim.until == kNever) return RunResult{Halt::Blocked, wait_text(vm) + never_ending_wait_reason(vm)};
     vm.now = std::max(vm.now, std::min(wake, lim.until));
   }
 }

@@ -3,6 +3,7 @@
 // so peaks survive), event markers as faint vertical lines with a glyph on top and a hover title.
 // Its output is pinned byte for byte by tmclrun's plot goldens (tests/golden/run/plot-*).
 #include "tmcl/plot.hpp"
+#include "tmcl/xml.hpp"
 
 #include <algorithm>
 #include <array>
@@ -55,20 +56,6 @@ namespace {
 
 using report::fixed;
 using report::seconds;
-
-std::string xml(std::string_view s) {
-  std::string r;
-  for (char c : s) {
-    switch (c) {
-      case '&': r += "&amp;"; break;
-      case '<': r += "&lt;"; break;
-      case '>': r += "&gt;"; break;
-      case '"': r += "&quot;"; break;
-      default: r += c;
-    }
-  }
-  return r;
-}
 
 
 struct Ticks {
@@ -234,7 +221,7 @@ void write_svg(std::ostream& out, const Plot& whole, const PlotOptions& opt) {
     legend.push_back({28 + 6.8 * static_cast<double>(text.size()) + 14, [text, colour = p.colour](std::ostream& o, double x, double y) {
                         o << "<line x1=\"" << x << "\" y1=\"" << y - 4 << "\" x2=\"" << x + 22 << "\" y2=\"" << y - 4
                           << "\" stroke=\"" << colour << "\" stroke-width=\"2.5\"/>";
-                        o << "<text x=\"" << x + 28 << "\" y=\"" << y << "\" font-size=\"13\" fill=\"#333\">" << xml(text) << "</text>\n";
+                        o << "<text x=\"" << x + 28 << "\" y=\"" << y << "\" font-size=\"13\" fill=\"#333\">" << xml_text(text) << "</text>\n";
                       }});
   }
   if (lines > 1)
@@ -243,7 +230,7 @@ void write_svg(std::ostream& out, const Plot& whole, const PlotOptions& opt) {
       legend.push_back({90, [name, dash = dashes[m % std::size(dashes)]](std::ostream& o, double x, double y) {
                           o << "<line x1=\"" << x << "\" y1=\"" << y - 4 << "\" x2=\"" << x + 22 << "\" y2=\"" << y - 4
                             << "\" stroke=\"#444\" stroke-width=\"2\" stroke-dasharray=\"" << dash << "\"/>";
-                          o << "<text x=\"" << x + 28 << "\" y=\"" << y << "\" font-size=\"13\" fill=\"#333\">" << xml(name) << "</text>\n";
+                          o << "<text x=\"" << x + 28 << "\" y=\"" << y << "\" font-size=\"13\" fill=\"#333\">" << xml_text(name) << "</text>\n";
                         }});
     }
   bool present[5] = {};
@@ -300,7 +287,7 @@ void write_svg(std::ostream& out, const Plot& whole, const PlotOptions& opt) {
   for (unsigned char c : opt.title) title_chars += (c & 0xC0) != 0x80;
   const int title_font = std::clamp(static_cast<int>((W - left - 16) / (0.6 * std::max(1.0, title_chars))), 10, 19);
   out << "<text x=\"" << left << "\" y=\"30\" font-size=\"" << title_font << "\" font-weight=\"bold\" fill=\"#222\">"
-      << xml(opt.title) << "</text>\n";
+      << xml_text(opt.title) << "</text>\n";
 
   for (std::size_t i = 0; i < legend.size(); ++i) legend[i].draw(out, placed_legend[i].first, placed_legend[i].second);
 
@@ -310,7 +297,7 @@ void write_svg(std::ostream& out, const Plot& whole, const PlotOptions& opt) {
     const TickRow& row = rows[r];
     const char* colour = mark_style(Mark::Interrupt).colour;
     out << "<text x=\"" << left - 6 << "\" y=\"" << y + 9 << "\" font-size=\"11\" fill=\"" << colour
-        << "\" text-anchor=\"end\">" << xml(row.label) << "</text>";
+        << "\" text-anchor=\"end\">" << xml_text(row.label) << "</text>";
     out << "<path stroke=\"" << colour << "\" stroke-width=\"1.5\" d=\"";
     std::string last;
     for (SimTime t : row.at) {
@@ -319,7 +306,7 @@ void write_svg(std::ostream& out, const Plot& whole, const PlotOptions& opt) {
       if (buf != last) out << buf;  // ticks on one pixel are one
       last = buf;
     }
-    out << "\"><title>" << xml(row.label) << ": " << row.at.size() << (row.at.size() == 1 ? " interrupt at " : " interrupts, ")
+    out << "\"><title>" << xml_text(row.label) << ": " << row.at.size() << (row.at.size() == 1 ? " interrupt at " : " interrupts, ")
         << seconds(row.at.front()) << " s" << (row.at.size() == 1 ? "" : " to " + seconds(row.at.back()) + " s")
         << "</title></path>\n";
   }
@@ -364,7 +351,7 @@ void write_svg(std::ostream& out, const Plot& whole, const PlotOptions& opt) {
     // axis title, rotated, in the quantity's colour
     out << "<text transform=\"translate(" << 22 << ',' << y0 + panel_h / 2 << ") rotate(-90)\" font-size=\"14\" "
         << "font-weight=\"bold\" text-anchor=\"middle\" fill=\"" << panel.colour << "\">"
-        << xml(panel.axis_title.empty() ? label(panel) : panel.axis_title) << "</text>\n";
+        << xml_text(panel.axis_title.empty() ? label(panel) : panel.axis_title) << "</text>\n";
     // event lines (interrupts have their rows above)
     for (const auto& m : plot.marks) {
       if (m.kind == Mark::Interrupt) continue;
@@ -404,8 +391,8 @@ void write_svg(std::ostream& out, const Plot& whole, const PlotOptions& opt) {
     }
     placed.emplace_back(x, level);
     out << "<path transform=\"translate(" << x << ',' << marks_base - 8 - 13 * level << ")\" d=\"" << st.glyph << "\" fill=\"" << st.colour
-        << "\"><title>" << seconds(m.at) << " s: " << xml(mark_name(m.kind))
-        << (m.label.empty() ? "" : ": " + xml(m.label)) << (m.motor >= 0 ? " (motor " + std::to_string(m.motor) + ")" : "")
+        << "\"><title>" << seconds(m.at) << " s: " << xml_text(mark_name(m.kind))
+        << (m.label.empty() ? "" : ": " + xml_text(m.label)) << (m.motor >= 0 ? " (motor " + std::to_string(m.motor) + ")" : "")
         << "</title></path>\n";
   }
 

@@ -160,6 +160,16 @@ TEST(svg_long_title_fits) {
   CHECK(mid.str().find("font-size=\"13\" font-weight=\"bold\"") != std::string::npos);  // (1100 - 96 - 16) / 72
 }
 
+// A title is XML text: markup characters are escaped and control bytes, which XML 1.0 does not
+// allow, left out (a program named with one must not make the picture unreadable).
+TEST(svg_title_is_escaped_xml) {
+  tmcl::MotionRecorder rec(1, 1000);
+  std::ostringstream svg;
+  tmcl::write_svg(svg, rec, {"a<b & 'c' \x01.tmc", 1100, 780});
+  CHECK(svg.str().find(">a&lt;b &amp; &apos;c&apos; .tmc</text>") != std::string::npos);
+  CHECK(svg.str().find('\x01') == std::string::npos);
+}
+
 // The recording of a core in chip units: a rotation's speed in units and pps; a placed switch's
 // events as marks that name the switch; the CSV's units line.
 TEST(recording_in_chip_units) {

@@ -146,6 +146,11 @@ TEST(run_faults_warnings_and_blocked_runs) {
   CHECK_EQ(messages(run("blocked-stop", "program blocked.tmc\nexpect at end halted stop\n")),
            "2: expected the run to end with stop, but the run ended at 600.000000s (blocked: the WAIT at blocked.tmc:1 can "
            "never end: no timer, motion, input or timeout is pending)\n");
+  // The VM's own reason (never_ending_wait_reason): a reference search with no switch on its way
+  // runs on, which the test says as tmclrun does, not "no motion".
+  put("rfs.tmc", "// tmcl-target: tmcm-1110\nRFS START, 0\nWAIT RFS, 0, 0\nSTOP\n");
+  CHECK(runtest::has(messages(run("rfs", "program rfs.tmc\nmax-time 1s\nexpect at end halted stop\n")),
+                     "(blocked: the WAIT at rfs.tmc:3 can never end: motor 0's reference search runs on, but no switch"));
 }
 
 TEST(run_scenario_lines_and_definitions_reach_the_program) {

@@ -7,28 +7,11 @@
 #include <filesystem>
 
 #include "tmcl/testrun.hpp"
+#include "tmcl/xml.hpp"
 
 namespace tmcl::testrun {
 
 namespace {
-
-// XML 1.0 text and attribute values: the five escapes, and control bytes (not allowed in XML
-// 1.0, apart from tab and line breaks) left out.
-std::string xml(std::string_view s) {
-  std::string out;
-  for (char c : s) {
-    switch (c) {
-      case '&': out += "&amp;"; break;
-      case '<': out += "&lt;"; break;
-      case '>': out += "&gt;"; break;
-      case '"': out += "&quot;"; break;
-      case '\'': out += "&apos;"; break;
-      default:
-        if (static_cast<unsigned char>(c) >= 0x20 || c == '\t' || c == '\n' || c == '\r') out += c;
-    }
-  }
-  return out;
-}
 
 std::string seconds_text(double s) {
   char buf[32];
@@ -55,22 +38,22 @@ std::string junit_xml(const SuiteResult& s, const std::string& suite_name) {
                              "\" errors=\"" + std::to_string(s.errors) + "\" skipped=\"" + std::to_string(s.skipped) +
                              "\" time=\"" + seconds_text(s.seconds) + "\"";
   std::string x = "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n";
-  x += "<testsuites name=\"" + xml(suite_name) + "\"" + counts + ">\n";
-  x += "  <testsuite name=\"" + xml(suite_name) + "\"" + counts +
-       (s.timestamp.empty() ? "" : " timestamp=\"" + xml(s.timestamp) + "\"") + ">\n";
+  x += "<testsuites name=\"" + xml_text(suite_name) + "\"" + counts + ">\n";
+  x += "  <testsuite name=\"" + xml_text(suite_name) + "\"" + counts +
+       (s.timestamp.empty() ? "" : " timestamp=\"" + xml_text(s.timestamp) + "\"") + ">\n";
   for (const TestResult& r : s.tests) {
     // classname: the test's folder with dots (as a package); name: the file without .tmctest.
     const std::filesystem::path p(r.path);
     std::string folder = p.parent_path().generic_string();
     std::replace(folder.begin(), folder.end(), '/', '.');
     while (!folder.empty() && folder.front() == '.') folder.erase(0, 1);
-    x += "    <testcase classname=\"" + xml(folder.empty() ? suite_name : folder) + "\" name=\"" + xml(p.stem().string()) +
-         "\" file=\"" + xml(r.path) + "\" time=\"" + seconds_text(r.seconds) + "\"";
+    x += "    <testcase classname=\"" + xml_text(folder.empty() ? suite_name : folder) + "\" name=\"" + xml_text(p.stem().string()) +
+         "\" file=\"" + xml_text(r.path) + "\" time=\"" + seconds_text(r.seconds) + "\"";
     switch (r.status) {
       case TestResult::Pass: x += "/>\n"; continue;
-      case TestResult::Skip: x += ">\n      <skipped message=\"" + xml(r.skip_reason) + "\"/>\n"; break;
+      case TestResult::Skip: x += ">\n      <skipped message=\"" + xml_text(r.skip_reason) + "\"/>\n"; break;
       case TestResult::Error:
-        x += ">\n      <error message=\"the test could not run (a bad test file or program)\" type=\"error\">" + xml(r.error) +
+        x += ">\n      <error message=\"the test could not run (a bad test file or program)\" type=\"error\">" + xml_text(r.error) +
              "</error>\n";
         break;
       case TestResult::Fail: {
@@ -82,7 +65,7 @@ std::string junit_xml(const SuiteResult& s, const std::string& suite_name) {
         const std::string message = r.failures.size() == 1 ? r.failures.front().message
                                                             : std::to_string(r.failures.size()) + " expectations failed; the first: " +
                                                                   r.failures.front().message;
-        x += ">\n      <failure message=\"" + xml(message) + "\" type=\"expectation\">" + xml(text) + "</failure>\n";
+        x += ">\n      <failure message=\"" + xml_text(message) + "\" type=\"expectation\">" + xml_text(text) + "</failure>\n";
         break;
       }
     }

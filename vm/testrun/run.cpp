@@ -222,8 +222,7 @@ TestResult run_test(const TestFile& t, std::shared_ptr<const Program> program, c
   if (end == End::MaxTime && vm.status == AppStatus::Running && vm.wait.active && vm.next_wakeup() == kNever) {
     end = End::Blocked;
     const std::string place = p.info.place(vm.pc);
-    res.message = "the WAIT at " + (place.empty() ? "address " + std::to_string(vm.pc) : place) +
-                  " can never end: no timer, motion, input or timeout is pending";
+    res.message = "the WAIT at " + (place.empty() ? "address " + std::to_string(vm.pc) : place) + never_ending_wait_reason(vm);
   }
   for (const Expectation& e : t.expects) {
     switch (e.kind) {

@@ -373,4 +373,8 @@ struct Vm {
   void decode_all();  // rebuilds code_[] from program[]
 };
 
+// Why the WAIT the VM is in can never end (nothing pending can end it), as " can never end: ...":
+// the run's Blocked message, and the test runner's for a run cut at its max-time.
+std::string never_ending_wait_reason(const Vm& vm);
+
 }  // namespace tmcl
