@@ -1,4 +1,4 @@
-// tmclctl PORT test FILE|DIR...: the test runner (vm/testrun) on a real or virtual module, over
+// tmclctl PORT test FILE|DIR...: the test runner (cli/testrun) on a real or virtual module, over
 // the host protocol (cli/host). Kept out of tmclctl.cpp, which only parses the command line.
 #pragma once
 

@@ -63,7 +63,7 @@ void set_up_vm(tmcl::Vm& vm, const Options& o, const std::vector<tmcl::Instructi
 // After all arguments: the checks that involve serving and debugging (--module sets o.program
 // and o.target). -1 when the run goes on, else an exit status.
 int check_mode_options(Options& o, bool have_program);
-// Runs the test files of o.inputs (--test; vm/testrun, docs/testing.md) with -t as given.
+// Runs the test files of o.inputs (--test; cli/testrun, docs/testing.md) with -t as given.
 int run_tests(Options& o);
 // Serves or debugs (o.serving or o.debug.enabled). Returns tmclrun's exit status.
 int run_mode(Options& o, const tmcl::Profile& profile, std::unique_ptr<tmcl::MotionCore> core,

@@ -1,7 +1,7 @@
 // tmclrun's modes beside a plain run: the checks of the options of serving (--serve and its
 // companions, --module, --faults), debugging (--debug, --dap) and testing (--test and its
 // reports), and the runs that serve a host with the virtual module (vm/module), debug with the
-// debugger (vm/debug) or run test files (vm/testrun).
+// debugger (cli/debug) or run test files (cli/testrun).
 #include <algorithm>
 #include <cerrno>
 #include <cstdio>
@@ -134,7 +134,7 @@ int tmclrun::run_mode(Options& o, const tmcl::Profile& profile, std::unique_ptr<
     o.serve_opts.eeprom_path = o.eeprom;
   }
   o.debug.target_given = o.target_given;
-  if (o.debug.enabled)  // the debugger loads and runs the program (vm/debug, docs/debugger.md)
+  if (o.debug.enabled)  // the debugger loads and runs the program (cli/debug, docs/debugger.md)
     return tmcl::debug::main(o.debug, profile, std::move(core), o.program, o.asm_opts, o.instr_time, o.limits,
                              std::move(inputs), image, o.serving ? &o.serve_opts : nullptr);
 

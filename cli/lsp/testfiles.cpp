@@ -1,7 +1,7 @@
 // Test files (*.tmctest, docs/testing.md) in the language server: their diagnostics as the test
 // runner reports them (the test file's own, and its program's when it does not assemble), a
 // "Run test" code lens, and the command it runs (tmcl.runTest), which runs the test on the VM and
-// shows each unmet expectation as a diagnostic on its line. The runner is vm/testrun's, as
+// shows each unmet expectation as a diagnostic on its line. The runner is cli/testrun's, as
 // tmclrun --test uses it.
 #include "tmcl/lsp/server.hpp"
 #include "tmcl/testrun.hpp"

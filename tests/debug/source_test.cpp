@@ -1,4 +1,4 @@
-// The debugger's source lookup for images (vm/debug/source.cpp): a symbols file's line table
+// The debugger's source lookup for images (cli/debug/source.cpp): a symbols file's line table
 // gives a .bin's ProgramInfo every address's file and line and the text of the sources found
 // beside the symbols file or in a --source-dir folder (with their absolute path, which DAP clients
 // send back in setBreakpoints); a missing source is a warning, not a failure.
@@ -9,7 +9,7 @@
 #include <filesystem>
 #include <fstream>
 
-#include "source.hpp"  // vm/debug, private to the library
+#include "source.hpp"  // cli/debug, private to the library
 #include "tmcl/asm/assembler.hpp"
 #include "tmcl/asm/output.hpp"
 

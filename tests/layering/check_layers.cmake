@@ -11,12 +11,47 @@ set(LAYERS
   "module|vm/module|module,vm,motion,isa,base"
   "asm|asm|asm,isa,base"
   "analysis|asm/analysis|analysis,asm,isa,base"
-  "debug|vm/debug|debug,module,vm,asm,motion,isa,base"
-  "testrun|vm/testrun|testrun,analysis,vm,asm,motion,isa,base"
+  "debug|cli/debug|debug,module,vm,asm,motion,isa,base"
+  "testrun|cli/testrun|testrun,analysis,vm,asm,motion,isa,base"
   "lsp|cli/lsp|lsp,testrun,analysis,vm,motion,asm,isa,base"
   "report|cli/report|report,vm,motion,isa,base"
   "host|cli/host|host,asm,isa,base"
 )
+
+# The top-level folders are layers too, in this order (vm/ lowest): a row may let its library reach
+# libraries of its own top-level folder and of those below it, never of one above
+# (docs/architecture.md). So `asm/` never uses the machine of `vm/` above `vm/isa` through a row,
+# and nothing in `vm/` uses the assembler.
+set(TOP_LEVELS vm asm cli)
+set(failures 0)
+foreach(row IN LISTS LAYERS)
+  string(REPLACE "|" ";" parts "${row}")
+  list(GET parts 0 lib)
+  list(GET parts 1 dir)
+  string(REGEX REPLACE "/.*" "" top "${dir}")
+  list(FIND TOP_LEVELS "${top}" rank)
+  if(rank EQUAL -1)
+    message(SEND_ERROR "layer '${lib}': ${dir} is in no top-level folder of TOP_LEVELS (${TOP_LEVELS})")
+    math(EXPR failures "${failures} + 1")
+  endif()
+  set(top_of_${lib} "${top}")
+  set(rank_of_${lib} ${rank})
+endforeach()
+foreach(row IN LISTS LAYERS)
+  string(REPLACE "|" ";" parts "${row}")
+  list(GET parts 0 lib)
+  list(GET parts 2 allowed)
+  string(REPLACE "," ";" allowed "${allowed}")
+  foreach(other IN LISTS allowed)
+    if(NOT DEFINED rank_of_${other})
+      message(SEND_ERROR "layer '${lib}': may use '${other}', which the table does not have")
+      math(EXPR failures "${failures} + 1")
+    elseif(rank_of_${other} GREATER rank_of_${lib})
+      message(SEND_ERROR "layer '${lib}' (${top_of_${lib}}/) may use '${other}' of ${top_of_${other}}/, a top-level folder above its own")
+      math(EXPR failures "${failures} + 1")
+    endif()
+  endforeach()
+endforeach()
 
 # Which library owns each public header.
 set(owners "")
@@ -34,7 +69,6 @@ endforeach()
 set(owner_tmcl/version.hpp base)  # vm/base/version.hpp.in
 
 # Which library a source file belongs to: the longest folder of the table that holds it.
-set(failures 0)
 foreach(row IN LISTS LAYERS)
   string(REPLACE "|" ";" parts "${row}")
   list(GET parts 0 lib)

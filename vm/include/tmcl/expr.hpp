@@ -1,6 +1,6 @@
 // The debugger's expressions and what they know of the program, in the VM's layer so that every
 // front end that inspects a machine shares one vocabulary: the debugger (print, display, set var,
-// conditions, watchpoints) and the test runner's expectations (vm/testrun). ProgramInfo is a
+// conditions, watchpoints) and the test runner's expectations (cli/testrun). ProgramInfo is a
 // program with its source places, texts, labels and constants; an Expr is parsed once against it
 // and evaluated on a live VM.
 #pragma once

@@ -297,7 +297,7 @@ struct Vm {
   void sync_motion();              // advance the core to `now`, handle its events
   std::string where(std::int32_t address) const;  // "address 12 (prog.tmc:13)"
 
-  // ---- debugger traps (vm/debug): run() returns Halt::Break before executing a trapped
+  // ---- debugger traps (cli/debug): run() returns Halt::Break before executing a trapped
   // address. A trap decodes to opcode 0 in the run loop's code, so the fast path pays nothing
   // for it; only the slow path that reports unknown instructions looks at `traps`.
   std::vector<std::uint8_t> traps;  // per address, 1 = trapped; empty when none was ever set
@@ -306,7 +306,7 @@ struct Vm {
   bool trapped(std::int32_t address) const {
     return address >= 0 && static_cast<std::size_t>(address) < traps.size() && traps[static_cast<std::size_t>(address)];
   }
-  // Checkpoints for reverse execution (vm/debug): a copy of the whole machine without program
+  // Checkpoints for reverse execution (cli/debug): a copy of the whole machine without program
   // memory, its decoded form, traps, sources and the input queue (which do not change while
   // debugging, so a checkpoint shares the live VM's), and restoring one. The motion core is
   // copied on its own (MotionCore::clone); restore() keeps this VM's core, trace and hooks.

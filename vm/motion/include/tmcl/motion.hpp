@@ -146,7 +146,7 @@ class MotionCore {
   virtual std::string units_note() const { return {}; }
 
   // A copy of the core with its whole state, for the debugger's checkpoints (reverse execution,
-  // vm/debug). nullptr (the default) when the core cannot be copied: the debugger then says
+  // cli/debug). nullptr (the default) when the core cannot be copied: the debugger then says
   // that reverse execution needs a core that can.
   virtual std::unique_ptr<MotionCore> clone() const { return nullptr; }
 };
