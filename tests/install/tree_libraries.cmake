@@ -1,0 +1,15 @@
+# tmcl_tree_libraries(OUT ROOT): the name of every library of the tree (each folder's
+# `tmcl_library(NAME ...)` under vm/, asm/ and cli/; examples aside), for the install checks.
+function(tmcl_tree_libraries out root)
+  set(libs "")
+  file(GLOB_RECURSE lists "${root}/vm/CMakeLists.txt" "${root}/asm/CMakeLists.txt" "${root}/cli/CMakeLists.txt")
+  foreach(list_file IN LISTS lists)
+    file(STRINGS "${list_file}" aliases REGEX "^tmcl_library\\([a-z_0-9]+[ )]")
+    foreach(a IN LISTS aliases)
+      string(REGEX REPLACE "^tmcl_library\\(([a-z_0-9]+).*" "\\1" name "${a}")
+      list(APPEND libs ${name})
+    endforeach()
+  endforeach()
+  list(SORT libs)
+  set(${out} ${libs} PARENT_SCOPE)
+endfunction()
