@@ -86,7 +86,7 @@ class Checker {
     const bool axis = has_role(*s_.op, Role::AxisParam);
     if (!axis && ins_.motor != 0 && ins_.motor != 3) return;  // user variables and other banks: any value
     const ParamInfo* p = axis ? p_.axis_param(ins_.type) : p_.global_param(ins_.motor, ins_.type);
-    if (p) check_param(op, *p, param_text(axis ? "axis parameter" : "global parameter", ins_.type, p), operand_loc(s_, Field::Type));
+    if (p) check_param(op, *p, axis ? "axis parameter" : "global parameter", operand_loc(s_, Field::Type));
   }
 
   // Under the generic profile a range is that of its tables (docs/profiles.md): say so.
@@ -103,7 +103,7 @@ class Checker {
       d_.warning(at, "axis parameter " + std::to_string(ins_.type) + " does not exist on " + std::string(p_.title), "target");
       return;
     }
-    check_param(op, *p, param_text("axis parameter", ins_.type, p), at);
+    check_param(op, *p, "axis parameter", at);
   }
 
   void global(Op op) {
@@ -130,28 +130,31 @@ class Checker {
                          " does not exist on " + std::string(p_.title), "target");
       return;
     }
-    check_param(op, *p, param_text("global parameter", ins_.type, p), at);
+    check_param(op, *p, "global parameter", at);
   }
 
-  void check_param(Op op, const ParamInfo& p, const std::string& what, SourceLoc at) {
+  // `kind` is "axis parameter" or "global parameter"; the parameter's text ("axis parameter 4
+  // (Maximum positioning speed)") is built only for a warning: most instructions have none.
+  void check_param(Op op, const ParamInfo& p, const char* kind, SourceLoc at) {
     const bool generic = p_.any_parameter;  // no access checks
-    if (!generic && writes(op) && !(p.access & kWrite)) d_.warning(at, what + " is read-only", "target");
+    auto what = [&] { return param_text(kind, ins_.type, &p); };
+    if (!generic && writes(op) && !(p.access & kWrite)) d_.warning(at, what() + " is read-only", "target");
     if (!generic && (op == Op::GAP || op == Op::GGP || op == Op::GAPX) && !(p.access & kRead))
-      d_.warning(at, what + " cannot be read", "target");
+      d_.warning(at, what() + " cannot be read", "target");
     // STAP/RSAP need E; STGP/RSGP take E or A (an auto-stored parameter has its EEPROM copy too),
     // as the VM and the module answer: else "wrong type" (status 3).
     const bool axis_store = op == Op::STAP || op == Op::RSAP, global_store = op == Op::STGP || op == Op::RSGP;
     if (!generic && ((axis_store && !(p.access & kEeprom)) || (global_store && !(p.access & (kEeprom | kAutoStore)))))
-      d_.warning(at, what + " is not stored in the EEPROM of " + std::string(p_.title), "target");
+      d_.warning(at, what() + " is not stored in the EEPROM of " + std::string(p_.title), "target");
     if (writes_immediate(op) && ((p.access & kWrite) || generic) && !accepts(p, ins_.value))
       generic_note(d_.warning(operand_loc(s_, Field::Value),
-                              "value " + std::to_string(ins_.value) + " is outside the range of " + what + ": " + range_text(p),
+                              "value " + std::to_string(ins_.value) + " is outside the range of " + what() + ": " + range_text(p),
                               "target"));
     // A negative number for a parameter with no negative values: in range only as the unsigned
     // number its 32 bits also are. "Unsigned" is what the profile's range says (its minimum).
     else if (writes_immediate(op) && ((p.access & kWrite) || generic) && negative_ && p.min >= 0)
       d_.warning(operand_loc(s_, Field::Value),
-                 "value " + std::to_string(ins_.value) + " is negative, but " + what + " takes no negative values (" +
+                 "value " + std::to_string(ins_.value) + " is negative, but " + what() + " takes no negative values (" +
                      range_text(p) + "): the module reads it as " +
                      std::to_string(static_cast<std::uint32_t>(ins_.value)),
                  "target");
