@@ -1,15 +1,18 @@
-// Control-flow analysis benchmark (issues 13 and 28): assembling a generated program of about a
-// million lines with the analysis after the link, against the same assembly without it. Goal: at
-// most 1.3 times as long. Two shapes: "blocks" (blocks with a loop and a CSUB, 97 subroutines,
-// clean) and "subroutines" (a subroutine every ten lines: 100,000 subroutines in chains of 50
-// calls, 110,001 labels, CSUB and JC throughout, and 83,333 stretches of unreachable code, each
-// a -Wunreachable warning). Two figures each: in process, and what the goal is about, whole
-// tmclasm processes (`tmclasm -o big.bin big.tmc` against `tmclasm --no-analysis -o big.bin
-// big.tmc`), each the best of nine runs, the two interleaved; and for information the processes'
-// CPU time, steadier than wall time on a loaded machine. For information, a third shape,
-// "chain": one chain of 100,000 nested calls (the deepest call chain; it once took 167 s and
-// 20 GB), as whole processes. (Peak memory is not measured here: a child started by posix_spawn
-// reports the benchmark's own as its peak; docs/performance.md gives the command.)
+// Control-flow analysis benchmark (issues 13, 28 and 35): assembling a generated program of about
+// a million lines with the analysis after the link, against the same assembly without it. Goal:
+// at most 1.3 times as long. Three shapes: "blocks" (blocks with a loop and a CSUB, 97
+// subroutines, clean), "subroutines" (a subroutine every ten lines: 100,000 subroutines in chains
+// of 50 calls, 110,001 labels, CSUB and JC throughout, and 83,333 stretches of unreachable code,
+// each a -Wunreachable warning) and "calls" (call-dense code with no RSUB, a label every ten
+// instructions; below). Two figures each: in process, and what the goal is about, whole tmclasm
+// processes (`tmclasm -o big.bin big.tmc` against `tmclasm --no-analysis -o big.bin big.tmc`),
+// each the best of nine runs, the two interleaved; and for information the processes' CPU time,
+// steadier than wall time on a loaded machine. On "calls", in the same run, assembly alone
+// against GNU as on an x86 file of the same line count (goal: at least 5 times as fast). For
+// information, a fourth shape, "chain": one chain of 100,000 nested calls (the deepest call
+// chain; it once took 167 s and 20 GB), as whole processes. (Peak memory is not measured here: a
+// child started by posix_spawn reports the benchmark's own as its peak; docs/performance.md
+// gives the command.)
 // Prints "figure<TAB>goal<TAB>measured" rows for bench/run_all.sh. `analysis_bench --program SHAPE
 // [N]` prints a shape's program instead (N: lines, or calls for "chain"), to time or profile a
 // tool on it by hand (docs/performance.md).
@@ -22,7 +25,9 @@
 #include <cstdlib>
 #include <fstream>
 #include <string>
+#include <vector>
 
+#include "programs.hpp"
 #include "spawn.hpp"
 
 #include "tmcl/analysis.hpp"
@@ -63,6 +68,42 @@ std::string subroutines(int lines) {
     s += name + ":\n  GGP 0, 2\n" + (k % 10 == 0 ? loop + ": " : std::string("  ")) + "CALC ADD, 1\n  AGP 0, 2\n  COMP 1000\n  JC GE, " +
          loop + "\n" + ((k + 1) % chain != 0 && k + 1 < n ? "  CSUB S" + std::to_string(k + 1) + "\n" : std::string("  CALC SUB, 1\n"));
     s += k % 6 != 0 ? "  RSUB\n  MVP REL, 0, 100\n  WAIT TICKS, 0, 1\n" : "  MVP REL, 0, 100\n  WAIT TICKS, 0, 1\n  RSUB\n";
+  }
+  return s;
+}
+
+// The "calls" shape (issue 35): call-dense code with no RSUB. A constant line, then instructions
+// cycling through twelve (SAP, GAP, CALC, COMP, JC GE to the label seven ahead, CALCV, MVP ABS,
+// WAIT POS, CSUB to the label seven ahead, AGP, CALCX, SGP with an expression), every tenth with
+// a label in front; v is the instruction's index mod 100,000, labels wrap around. At 1,100,001
+// lines: 1,100,000 instructions, 110,000 labels; nothing returns, so each CSUB's subroutine runs
+// on into the next: 91,666 -Wunreachable, one -Wrsub, -Wrecursion and -Wstack-leak each, nearly
+// all beyond --error-limit.
+std::string calls(int lines) {
+  const int labels = (lines - 1) / 10;
+  std::string s = "Speed = 100\n";
+  s.reserve(static_cast<std::size_t>(lines) * 16);
+  int i = 0;
+  for (int k = 0; k < labels; ++k) {
+    const std::string target = "L" + std::to_string((k + 7) % labels);
+    for (int j = 0; j < 10; ++j, ++i) {
+      const std::string v = std::to_string(i % 100000);
+      s += j == 0 ? "L" + std::to_string(k) + ": " : std::string("  ");
+      switch (i % 12) {
+        case 0: s += "SAP 4, 0, " + v + "\n"; break;
+        case 1: s += "GAP 1, 0\n"; break;
+        case 2: s += "CALC ADD, " + v + "\n"; break;
+        case 3: s += "COMP " + v + "\n"; break;
+        case 4: s += "JC GE, " + target + "\n"; break;
+        case 5: s += "CALCV SUB, 3, " + v + "\n"; break;
+        case 6: s += "MVP ABS, 0, " + v + "\n"; break;
+        case 7: s += "WAIT POS, 0, 0\n"; break;
+        case 8: s += "CSUB " + target + "\n"; break;
+        case 9: s += "AGP 7, 2\n"; break;
+        case 10: s += "CALCX SWAP\n"; break;
+        default: s += "SGP 9, 2, Speed*2+" + v + "\n"; break;
+      }
+    }
   }
   return s;
 }
@@ -155,6 +196,38 @@ bool measure(const char* shape, const std::string& text, int warnings) {
   return true;
 }
 
+// Assembly alone (tmclasm --no-analysis) of `text` against GNU as on an x86 file of the same line
+// count, whole processes, interleaved, the median of kRuns each: the reference run that says
+// whether assembling stays fast on this shape (goal: at least 5 times as fast as GNU as).
+bool versus_gnu_as(const char* shape, const std::string& text) {
+  const int lines = static_cast<int>(std::count(text.begin(), text.end(), '\n'));
+  std::string dir = "/tmp/tmcl-analysis-bench-as-" + std::to_string(::getpid());
+  std::string mkdir = "mkdir -p " + dir;
+  if (std::system(mkdir.c_str()) != 0) return false;
+  std::ofstream(dir + "/big.tmc") << text;
+  std::ofstream(dir + "/big.s") << tmcl::bench::x86_program(lines);
+  std::vector<double> as, tmclasm;
+  for (int k = 0; k < kRuns; ++k) {
+    as.push_back(tmcl::bench::run_process({"as", "-o", dir + "/big.o", dir + "/big.s"}));
+    tmclasm.push_back(tmcl::bench::run_process({TMCL_TMCLASM_PATH, "--no-analysis", "-o", dir + "/big.bin", dir + "/big.tmc"}));
+  }
+  std::string rm = "rm -rf " + dir;
+  if (std::system(rm.c_str()) != 0) return false;
+  std::sort(as.begin(), as.end());
+  std::sort(tmclasm.begin(), tmclasm.end());
+  if (tmclasm.front() < 0) {
+    std::fprintf(stderr, "analysis_bench: %s did not assemble the program\n", TMCL_TMCLASM_PATH);
+    return false;
+  }
+  const double a = as[kRuns / 2], t = tmclasm[kRuns / 2];
+  if (as.front() < 0)
+    std::printf("tmclasm --no-analysis vs GNU as, %d-line program (%s), whole process\t>= 5x faster\tGNU as not available\n", lines, shape);
+  else
+    std::printf("tmclasm --no-analysis vs GNU as, %d-line program (%s), whole process, medians\t>= 5x faster\t%.1fx (tmclasm %.0f ms, as %.0f ms)\n",
+                lines, shape, a / t, t * 1e3, a * 1e3);
+  return true;
+}
+
 // One chain of `calls` nested calls, whole processes, with the analysis and without
 // (information: the cost must stay linear, not reach the 167 s it once took).
 bool measure_chain(int calls) {
@@ -171,15 +244,23 @@ int main(int argc, char** argv) {
   if (argc >= 3 && std::string(argv[1]) == "--program") {
     const std::string shape = argv[2];
     const int n = argc > 3 ? std::atoi(argv[3]) : shape == "chain" ? 100000 : 1000000;
-    if (n <= 0 || (shape != "blocks" && shape != "subroutines" && shape != "chain")) {
-      std::fprintf(stderr, "usage: analysis_bench [--program blocks|subroutines|chain [N]]\n");
+    if (n <= 0 || (shape != "blocks" && shape != "subroutines" && shape != "calls" && shape != "chain")) {
+      std::fprintf(stderr, "usage: analysis_bench [--program blocks|subroutines|calls|chain [N]]\n");
       return 2;
     }
-    std::fputs((shape == "blocks" ? blocks(n) : shape == "subroutines" ? subroutines(n) : chain(n)).c_str(), stdout);
+    std::fputs((shape == "blocks"        ? blocks(n)
+                : shape == "subroutines" ? subroutines(n)
+                : shape == "calls"       ? calls(n)
+                                         : chain(n))
+                   .c_str(),
+               stdout);
     return 0;
   }
   bool ok = measure("blocks", blocks(1000000), 0);
   ok = measure("subroutines", subroutines(1000000), 83334) && ok;
+  const std::string dense = calls(1100001);
+  ok = measure("calls", dense, 91669) && ok;
+  ok = versus_gnu_as("calls", dense) && ok;
   ok = measure_chain(100000) && ok;
   return ok ? 0 : 1;
 }

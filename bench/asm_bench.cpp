@@ -20,29 +20,10 @@ namespace {
 
 using tmcl::bench::run_process;
 using tmcl::bench::tmcl_program;
+using tmcl::bench::x86_program;
 using Clock = std::chrono::steady_clock;
 
 double seconds_since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
-
-// An x86 file of the same shape for GNU as.
-std::string x86_program(int lines) {
-  std::string s;
-  s.reserve(static_cast<std::size_t>(lines) * 40);
-  int n = 0;
-  for (int i = 0; n < lines; ++i) {
-    s += "# block " + std::to_string(i) + ": move and wait\n";
-    s += ".set Speed" + std::to_string(i) + ", " + std::to_string(i % 5000) + " * 16 + (Base & 0xFF)\n";
-    s += "L" + std::to_string(i) + ":\n";
-    s += "  movl $Speed" + std::to_string(i) + " + 1, %eax   # maximum speed\n";
-    s += "  movl $-" + std::to_string(i * 7) + ", %ebx\n";
-    s += "  cmpl %eax, %ebx\n";
-    s += "  orl $((1 << 4) | 5), %ecx\n";
-    s += "  jge L" + std::to_string(i) + "\n";
-    n += 8;
-  }
-  s += ".set Base, 0x1F\n";
-  return s;
-}
 
 }  // namespace
 
