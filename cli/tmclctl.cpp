@@ -497,7 +497,9 @@ struct Session {
     std::size_t at = 0;
     host::ParamRef p;
     std::string err;
-    if (!host::parse_param(o.args, at, *o.profile, false, p, err)) return usage_error(err);
+    // set keeps its last word for the value: an optional motor must not swallow it.
+    const std::size_t keep = action == host::ParamAction::Set ? 1 : 0;
+    if (!host::parse_param(o.args, at, *o.profile, false, p, err, keep)) return usage_error(err);
     long value = 0;
     if (action == host::ParamAction::Set) {
       if (at >= o.args.size() || !parse_long(o.args[at], INT32_MIN, INT32_MAX, value))

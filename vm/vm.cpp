@@ -140,6 +140,16 @@ void Vm::power_on(const EepromImage* image) {
     }
 }
 
+bool Vm::program_in_eeprom() const { return profile->program_store == ProgramStore::Eeprom; }
+
+void Vm::store_program() {
+  if (!program_in_eeprom()) return;
+  std::vector<Instruction> words(program.begin(), program.begin() + program_size);
+  if (eeprom.program == words) return;
+  eeprom.program = std::move(words);
+  eeprom_dirty = true;
+}
+
 void Vm::start(std::int32_t address) {
   pc = address;
   status = AppStatus::Running;
