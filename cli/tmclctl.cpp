@@ -851,7 +851,9 @@ struct Session {
       if (line == "help") {
         if (!session) enter("");
         std::string files;
-        for (const auto& f : session->predefined()) files += (files.empty() ? "" : " and ") + f;
+        const auto& predefined = session->predefined();
+        for (std::size_t i = 0; i < predefined.size(); ++i)
+          files += (i == 0 ? "" : i + 1 == predefined.size() ? " and " : ", ") + predefined[i];
         std::printf(
             "Type an instruction in source syntax (SAP 4, 0, 51200; GAP 1, 0; MVP ABS, 0, 1000; .raw 136, 0, 0, 0).\n"
             "Names work as in a program: %s are included, and NAME = VALUE and\n"
