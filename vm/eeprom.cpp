@@ -194,10 +194,14 @@ bool eeprom_from_text(const std::string& text, const std::string& file, EepromIm
         }
       }
     } else {
-      std::vector<std::string_view> names{"var", "global", "global3", "axis", "coord", "program", "profile", "check"};
+      // Every record this reader knows, from its one table.
+      std::vector<std::string_view> names;
+      std::string listed;
+      for (const auto& k : kRecords) names.push_back(k.name);
+      names.insert(names.end(), {"profile", "check"});
+      for (std::string_view n : names) listed += (listed.empty() ? "" : ", ") + std::string(n);
       std::string hint = closest_match(w[0].text, names);
-      at_word(0, "malformed EEPROM record '" + source + "': unknown record '" + w[0].text +
-                     "' (var, global, global3, axis, coord, program, profile, check)" +
+      at_word(0, "malformed EEPROM record '" + source + "': unknown record '" + w[0].text + "' (" + listed + ")" +
                      (hint.empty() ? "" : "; did you mean '" + hint + "'?"));
     }
     pos = end + 1;
