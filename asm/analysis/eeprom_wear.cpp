@@ -55,21 +55,7 @@ void Walker::check_eeprom() {
   // Where control lands other than by running on: the counted-loop patterns stop there.
   AddressBits landing;
   landing.reset(n);
-  for (int i = 0; i < n; ++i) {
-    const Instruction& x = ins(i);
-    switch (static_cast<Op>(x.op)) {
-      case Op::JA:
-      case Op::JC:
-      case Op::DJNZ:
-      case Op::RST:
-      case Op::CSUB:
-      case Op::CALL:
-      case Op::VECT:
-        if (x.value >= 0 && x.value < n) landing.set(x.value);
-        break;
-      default: break;
-    }
-  }
+  scan([&](int i, OpClass) { landing.set(ins(i).value); }, [](int) {});
   // Per instruction, the edge cut as one that goes round a counted loop again: 1 its jump,
   // 2 running on.
   std::vector<std::uint8_t> cut(static_cast<std::size_t>(n), 0);
