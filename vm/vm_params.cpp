@@ -303,9 +303,9 @@ std::uint8_t Vm::move(int type, int motor, std::int32_t value) {
   if (!motor_ok(motor)) return kStatusInvalidValue;
   sync_motion();
   switch (type) {
-    case 0: motion->move_absolute(motor, value); break;
-    case 1: motion->move_relative(motor, value); break;
-    case 2:
+    case kw::Move::ABS: motion->move_absolute(motor, value); break;
+    case kw::Move::REL: motion->move_relative(motor, value); break;
+    case kw::Move::COORD:
       if (value < 0 || value >= profile->coords) return kStatusInvalidValue;
       motion->move_absolute(motor, coords[static_cast<std::size_t>(motor)][static_cast<std::size_t>(value)]);
       break;
@@ -335,7 +335,9 @@ std::uint8_t Vm::motor_stop(int motor) {
 
 std::uint8_t Vm::rfs(int type, int motor, std::int32_t& value) {
   if (!motor_ok(motor)) return kStatusInvalidValue;
-  if (type > 2) return kStatusWrongType;
+  if (type > kw::Rfs::STATUS) return kStatusWrongType;
+  static_assert(static_cast<int>(RfsAction::Start) == kw::Rfs::START && static_cast<int>(RfsAction::Stop) == kw::Rfs::STOP &&
+                static_cast<int>(RfsAction::Status) == kw::Rfs::STATUS);
   sync_motion();
   value = motion->reference_search(motor, static_cast<RfsAction>(type));
   next_check_ = 0;

@@ -142,7 +142,7 @@ void Walker::check_eeprom() {
   std::vector<int> parent(static_cast<std::size_t>(n), -1), touched, next;
   auto time_of = [this](int i) {
     const Instruction& x = ins(i);
-    if (x.op == static_cast<std::uint8_t>(Op::WAIT) && x.type == 0 && x.value > 0) return x.value * kTickUs;
+    if (x.op == static_cast<std::uint8_t>(Op::WAIT) && x.type == kw::Wait::TICKS && x.value > 0) return x.value * kTickUs;
     return in.instr_time_us;
   };
   auto shortest_round = [&](int at, bool outer) {
@@ -186,7 +186,7 @@ void Walker::check_eeprom() {
       const Instruction& x = ins(v);
       ++way.instructions;
       if (x.op == static_cast<std::uint8_t>(Op::WAIT)) {
-        if (x.type == 0 && x.value > 0) way.ticks += x.value, ++way.waits;
+        if (x.type == kw::Wait::TICKS && x.value > 0) way.ticks += x.value, ++way.waits;
         else way.event_wait = true;
       }
       if (v == at) break;

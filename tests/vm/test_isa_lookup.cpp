@@ -73,3 +73,16 @@ TEST(isa_lookups_agree_with_a_scan_of_the_tables) {
   CHECK(!tmcl::is_keyword(std::string_view("\0", 1)));
   CHECK(!tmcl::is_keyword(std::string_view("\0\0\0", 3)));
 }
+
+// The named constants the VM switches on (tmcl::kw, isa.hpp) are the keyword table's values.
+TEST(keyword_constants_are_the_tables_values) {
+  int n = 0;
+#define KEYWORD(set, name, value)                                                                        \
+  CHECK_EQ(tmcl::kw::set::name, static_cast<int>(tmcl::keyword_value(tmcl::KwSet::set, #name).value_or(255))); \
+  ++n;
+#include "tmcl/keywords.def"
+#undef KEYWORD
+  CHECK_EQ(static_cast<std::size_t>(n), tmcl::all_keywords().size());
+  CHECK_EQ(tmcl::kw::Move::REL, 1);  // MVP REL (the manual's 3.6.4)
+  CHECK_EQ(tmcl::kw::Wait::RFS, 4);
+}
