@@ -1,6 +1,7 @@
 // The VM's life cycle and its slow path: power-up, program loading, interrupts, timers, external
 // inputs, motion events and the choice of the next instant to wake up at. The run loop and the
-// instruction semantics are in vm_exec.cpp; parameter access in vm_params.cpp.
+// instruction semantics are in vm_exec.cpp; parameter access in vm_params.cpp; the motion commands in
+// vm_motion.cpp.
 #include <algorithm>
 #include <bit>
 
