@@ -569,6 +569,13 @@ struct Session {
       std::fputs(r.diags.render(r.sources).c_str(), stderr);
       if (!r.ok()) {
         std::fprintf(stderr, "tmclctl: the program has errors (warnings count, as with tmclasm -Werror); nothing sent\n");
+        // Refused for warnings alone: perhaps one this version added to a program an older one
+        // sent. Say how to go on (docs/analysis.md, "New warnings").
+        bool only_warnings = true;
+        for (const auto& d : r.diags.all()) only_warnings = only_warnings && (d.severity != tmcl::Severity::Error || !d.name.empty());
+        if (only_warnings)
+          std::fprintf(stderr, "tmclctl: note: a warning counts as an error here, a new one too; fix the line, or allow the "
+                               "warning there with a comment '// tmcl: allow NAME' (docs/analysis.md, \"New warnings\")\n");
         return kExitInput;
       }
       program = r.program;
