@@ -411,6 +411,8 @@ tmcl::cli::Tool command_line(Settings& s) {
          s.opts.defines.emplace_back(name, eq == std::string::npos ? "1" : v.substr(eq + 1));
          return std::string();
        }},
+      {"-Wall", "", "report every warning (all are on by default; a -Wno-NAME still holds)",
+       [warning](const std::string&) { return warning("-W")("all"); }},
       {"-Werror", "", "treat warnings as errors", warning("-Werror")},
       {"-Werror=", "NAME", "treat the warning NAME as an error", warning("-Werror="), warnings},
       {"-Wno-", "NAME", "do not report the warning NAME (names: analysis.md)", warning("-Wno-"), warnings},
