@@ -471,3 +471,34 @@ TEST(include_files_are_ascii) {
     if (!ascii) ::tmcl_test::fail(__FILE__, __LINE__, std::string(file) + " is not plain ASCII");
   }
 }
+
+// ---- The docs that list the bundled modules list them all --------------------------------------
+
+namespace {
+
+// The paragraph of docs/NAME that contains `marker`, from the blank line before it to the next.
+std::string doc_paragraph(const std::string& doc, const std::string& marker) {
+  std::ifstream in(std::string(TMCL_DOCS_DIR) + "/" + doc, std::ios::binary);
+  const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const std::size_t at = text.find(marker);
+  if (at == std::string::npos) return {};
+  std::size_t begin = text.rfind("\n\n", at), end = text.find("\n\n", at);
+  begin = begin == std::string::npos ? 0 : begin;
+  return text.substr(begin, end == std::string::npos ? std::string::npos : end - begin);
+}
+
+}  // namespace
+
+TEST(docs_listing_the_bundled_modules_name_every_profile) {
+  // tmclrun.md's opening and debugger.md's DAP `target` argument name every bundled profile by
+  // its -t name: a profile added to vm/isa/profiles/ fails here until the docs say so.
+  const std::pair<const char*, const char*> lists[] = {{"tmclrun.md", "runs a TMCL program on a virtual module"},
+                                                       {"debugger.md", "`launch` arguments"}};
+  for (const auto& [doc, marker] : lists) {
+    const std::string paragraph = doc_paragraph(doc, marker);
+    CHECK(!paragraph.empty());
+    for (const Profile* p : tmcl::all_profiles())
+      if (paragraph.find("`" + std::string(p->name) + "`") == std::string::npos)
+        ::tmcl_test::fail(__FILE__, __LINE__, std::string(doc) + " does not name " + std::string(p->name) + " where it lists the modules");
+  }
+}
