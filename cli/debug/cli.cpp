@@ -418,7 +418,7 @@ void Cli::info_motors() {
                         : (s.acceleration > 0) == (s.velocity >= 0) ? "accelerating"
                                                                      : "decelerating";
     char buf[256];
-    std::snprintf(buf, sizeof buf, "motor %d: position %lld, velocity %.0f pps, acceleration %.0f pps/s, %s", m,
+    std::snprintf(buf, sizeof buf, "motor %d: position %lld, velocity %.0f pps, acceleration %.0f pps², %s", m,
                   static_cast<long long>(s.position), s.velocity, s.acceleration, phase);
     std::string line = buf;
     if (has_target) line += ", target " + std::to_string(target);
@@ -430,6 +430,11 @@ void Cli::info_motors() {
     }
     println(line);
   }
+  // The lines above are physical; an expression reads the parameters as the module gives them,
+  // which on a core in chip units are not pps (the same units as GAP).
+  const std::string units = vm.motion->units_note();
+  println(units.empty() ? std::string("(expressions read velocity in pps and acceleration in pps² too: velocity M, ap(5, M))")
+                        : "(expressions read the module's own units: velocity M, ap(5, M) in " + units + ")");
 }
 
 void Cli::cmd_list(const std::string& arg) {
