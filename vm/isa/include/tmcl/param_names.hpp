@@ -32,8 +32,8 @@ struct Renumbered {
 std::vector<Renumbered> renumbered(const Profile& profile, ParamTable table, int number);
 
 // The constant an include file gives a parameter: the manual's name in CamelCase, parts in
-// parentheses dropped, "Maximum"/"Minimum" as "Max"/"Min", a leading "TMCL" dropped; a profile's
-// `const=NAME` overrides it (where two manuals use one name for different parameters).
+// parentheses dropped, "Maximum"/"Minimum" as "Max"/"Min", a leading "TMCL" dropped. That no
+// name means two numbers across the bundled files is tested (profiles_test).
 std::string parameter_constant(const ParamInfo& p);
 
 // The bundled include file of a profile: its `include-file`, else NAME.inc in capitals
