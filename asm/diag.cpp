@@ -208,6 +208,12 @@ bool WarningOptions::parse(std::string_view arg, std::string& error) {
   }
   if (arg.substr(0, 2) != "-W" || arg.size() == 2) return false;
   std::string_view name = arg.substr(2);
+  if (name == "all") {
+    // As GCC reads it: every warning on, but a -Wno-NAME, before or after, keeps its warning off
+    // (enabled() reads `off` first), so `-Wno-unreachable -Wall` still drops that one.
+    for (const auto& w : warning_table()) on.insert(std::string(w.name));
+    return true;
+  }
   std::set<std::string, std::less<>>* into = &on;
   if (name.substr(0, 6) == "error=") {
     name = name.substr(6);

@@ -3,6 +3,7 @@
 // probably not as meant — an unknown parameter, a write to a read-only one, a store or restore of
 // one the EEPROM does not keep, a value outside the documented range, a motor or variable that does not exist — is a warning.
 #include "internal.hpp"
+#include "tmcl/param_names.hpp"
 #include "tmcl/params.hpp"
 
 namespace tmcl::detail {
@@ -100,7 +101,8 @@ class Checker {
     const ParamInfo* p = p_.axis_param(ins_.type);
     SourceLoc at = operand_loc(s_, Field::Type);
     if (!p) {
-      d_.warning(at, "axis parameter " + std::to_string(ins_.type) + " does not exist on " + std::string(p_.title), "target");
+      renumbering_hint(d_.warning(at, "axis parameter " + std::to_string(ins_.type) + " does not exist on " + std::string(p_.title), "target"),
+                       ParamTable::Axis, "axis parameter", at);
       return;
     }
     check_param(op, *p, "axis parameter", at);
@@ -126,11 +128,30 @@ class Checker {
     }
     const ParamInfo* p = p_.global_param(bank, ins_.type);
     if (!p) {
-      d_.warning(at, "global parameter " + std::to_string(ins_.type) + " of bank " + std::to_string(bank) +
-                         " does not exist on " + std::string(p_.title), "target");
+      renumbering_hint(d_.warning(at, "global parameter " + std::to_string(ins_.type) + " of bank " + std::to_string(bank) +
+                                          " does not exist on " + std::string(p_.title), "target"),
+                       bank == 0 ? ParamTable::Bank0 : ParamTable::Bank3,
+                       bank == 0 ? "global parameter" : "bank 3 parameter", at);
       return;
     }
     check_param(op, *p, "global parameter", at);
+  }
+
+  // A number this module lacks that another bundled module gives a parameter this one has at
+  // another number (param_names.hpp): say which, with a fix-it to this module's number.
+  void renumbering_hint(Diagnostic& d, ParamTable table, const char* kind, SourceLoc at) {
+    for (const Renumbered& r : renumbered(p_, table, ins_.type)) {
+      std::string modules;
+      for (std::size_t i = 0; i < r.elsewhere.size(); ++i)
+        modules += std::string(i == 0 ? "" : i + 1 == r.elsewhere.size() ? " and " : ", ") + std::string(r.elsewhere[i]->name);
+      const std::string number = std::to_string(r.here->number);
+      d_.note(d, at, std::string(kind) + " " + std::to_string(ins_.type) + " is '" + std::string(r.name) + "' on " + modules +
+                         (r.same_name ? "; here that is " : "; the nearest name here is ") + kind + " " + number + " ('" +
+                         std::string(r.here->name) + "')");
+      SourceLoc end = at;
+      end.col += at.len;
+      d.fixes.push_back({"use " + std::string(kind) + " " + number + " (" + std::string(r.here->name) + ")", at, end, number});
+    }
   }
 
   // `kind` is "axis parameter" or "global parameter"; the parameter's text ("axis parameter 4

@@ -274,6 +274,7 @@ int format_sources(const std::vector<std::string>& files, bool in_place, bool ch
 struct Settings {
   tmcl::AsmOptions opts;
   std::string target, show_target;  // -t, --show-target: resolved after the options (profile files)
+  std::string show_include;          // --show-include: a bundled include file to print
   bool list_targets = false;
   std::string output, map_file, symbols_file;
   bool have_output = false, have_format = false;
@@ -401,6 +402,14 @@ tmcl::cli::Tool command_line(Settings& s) {
       {"--list-targets", "", "list every target found and where it comes from", flag(s.list_targets)},
       {"--show-target", "NAME", "print the target's profile file (a start for a module of your own)",
        set(s.show_target), Values::words([] { return tmcl::target_names(); }, {"profile"}), "a target name or a profile file"},
+      {"--show-include", "FILE", "print a bundled include file (TMCLParam.tmc, TMCM-1260.inc, ...)",
+       set(s.show_include),
+       Values::words([] {
+         std::vector<std::string> names;
+         for (const auto& [name, text] : tmcl::bundled_includes()) names.push_back(name);
+         return names;
+       }()),
+       "a bundled include file"},
       {"-I", "DIR", "search DIR for #include files (after the including file's folder)",
        tmcl::cli::append(s.opts.include_dirs), Values::dirs()},
       {"-D", "NAME=VALUE", "define a constant (VALUE is an expression)",
@@ -411,6 +420,8 @@ tmcl::cli::Tool command_line(Settings& s) {
          s.opts.defines.emplace_back(name, eq == std::string::npos ? "1" : v.substr(eq + 1));
          return std::string();
        }},
+      {"-Wall", "", "report every warning (all are on by default; a -Wno-NAME still holds)",
+       [warning](const std::string&) { return warning("-W")("all"); }},
       {"-Werror", "", "treat warnings as errors", warning("-Werror")},
       {"-Werror=", "NAME", "treat the warning NAME as an error", warning("-Werror="), warnings},
       {"-Wno-", "NAME", "do not report the warning NAME (names: analysis.md)", warning("-Wno-"), warnings},
@@ -517,6 +528,19 @@ int run(int argc, char** argv) {
   if (cl.status == tmcl::cli::Result::Status::Done) return 0;
   if (cl.status == tmcl::cli::Result::Status::Error) return usage_error(cl.error);
   if (s.list_targets) return write_output("-", bytes_of(tmcl::format_target_list(tmcl::list_targets()))) ? 0 : kExitOutput;
+  if (!s.show_include.empty()) {
+    // Names are matched as #include matches bundled files: ignoring case.
+    auto upper = [](std::string t) {
+      for (char& c : t) c = static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
+      return t;
+    };
+    std::string names;
+    for (const auto& [name, text] : tmcl::bundled_includes()) {
+      if (upper(name) == upper(s.show_include)) return write_output("-", bytes_of(std::string(text))) ? 0 : kExitOutput;
+      names += (names.empty() ? "" : ", ") + name;
+    }
+    return usage_error("--show-include: no bundled include file '" + s.show_include + "' (" + names + ")");
+  }
   for (const std::string* v : {&s.show_target, &s.target}) {
     if (v->empty()) continue;
     const tmcl::TargetResult t = tmcl::resolve_target(*v);

@@ -661,13 +661,14 @@ int run(int argc, char** argv) {
     recording_core.finish(vm.now);
     recorder.show_motors(tmcl::shown_motors(vm));
     std::ostringstream csv, svg;
-    // A core in chip units says which, at power-on and from each change on (a divisor written).
-    const std::string units = recording_core.units_history("; ");
+    // A core in chip units says which, at power-on and from each change on (a divisor written),
+    // in the CSV's head; the plot's title only names them (its markers show each change), so a
+    // run with many changes keeps a title that fits.
     if (!o.csv.empty()) tmcl::write_csv(csv, recorder, recording_core.units_history("\n# "));
     if (!o.plot.empty()) {
       tmcl::PlotOptions plot;
       plot.title = (o.program == "-" ? std::string("<stdin>") : o.program) + " on " + o.target + " (" +
-                   std::string(core->name()) + " motion" + (units.empty() ? "" : "; " + units) + ")";
+                   std::string(core->name()) + " motion" + recording_core.units_title() + ")";
       plot.from = o.plot_from;
       plot.to = o.plot_to;
       tmcl::write_svg(svg, recorder, plot);

@@ -91,6 +91,8 @@ class Parser {
 
   int binary(int level) {
     if (level == kLevelCount) return unary();
+    skip();
+    const std::size_t start = pos_;
     int left = binary(level + 1);
     for (;;) {
       if (!err_.empty()) return left;
@@ -102,7 +104,8 @@ class Parser {
         }
       if (!hit) return left;
       int right = binary(level + 1);
-      left = node({Expr::Node::Binary, op_code(hit), left, right});
+      left = node({Expr::Node::Binary, op_code(hit), left, right, static_cast<std::uint32_t>(start),
+                   static_cast<std::uint32_t>(std::max(pos_, start) - start)});
     }
   }
 
@@ -119,10 +122,19 @@ class Parser {
       int& d;
       ~Leave() { --d; }
     } leave{depth_};
+    skip();
+    const std::size_t start = pos_;
+    int i = -1;
+    bool op_found = false;
     for (const char* op : {"-", "~", "!"})
-      if (eat(op)) return node({Expr::Node::Unary, op_code(op), unary(), -1});
-    if (eat("+")) return unary();
-    return primary();
+      if (!op_found && eat(op)) i = node({Expr::Node::Unary, op_code(op), unary(), -1}), op_found = true;
+    if (!op_found) i = eat("+") ? unary() : primary();
+    if (i >= 0) {
+      auto& n = e_.nodes[static_cast<std::size_t>(i)];
+      n.at = static_cast<std::uint32_t>(start);
+      n.len = static_cast<std::uint32_t>(std::max(pos_, start) - start);
+    }
+    return i;
   }
 
   std::vector<int> args(std::size_t n, const std::string& what) {

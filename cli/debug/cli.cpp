@@ -4,6 +4,7 @@
 // Ctrl-C pauses a running program). All behaviour is the engine's; this file parses and prints.
 #include <unistd.h>
 
+#include <chrono>
 #include <csignal>
 #include <cstring>
 #include <sstream>
@@ -417,7 +418,7 @@ void Cli::info_motors() {
                         : (s.acceleration > 0) == (s.velocity >= 0) ? "accelerating"
                                                                      : "decelerating";
     char buf[256];
-    std::snprintf(buf, sizeof buf, "motor %d: position %lld, velocity %.0f pps, acceleration %.0f pps/s, %s", m,
+    std::snprintf(buf, sizeof buf, "motor %d: position %lld, velocity %.0f pps, acceleration %.0f pps², %s", m,
                   static_cast<long long>(s.position), s.velocity, s.acceleration, phase);
     std::string line = buf;
     if (has_target) line += ", target " + std::to_string(target);
@@ -429,6 +430,11 @@ void Cli::info_motors() {
     }
     println(line);
   }
+  // The lines above are physical; an expression reads the parameters as the module gives them,
+  // which on a core in chip units are not pps (the same units as GAP).
+  const std::string units = vm.motion->units_note();
+  println(units.empty() ? std::string("(expressions read velocity in pps and acceleration in pps² too: velocity M, ap(5, M))")
+                        : "(expressions read the module's own units: velocity M, ap(5, M) in " + units + ")");
 }
 
 void Cli::cmd_list(const std::string& arg) {
@@ -973,6 +979,26 @@ int run_cli(Engine& engine, const CliOptions& options, std::FILE* in, std::FILE*
   g_engine = &engine;
   os::SavedSignal old;
   os::catch_signal(SIGINT, on_sigint, false, &old);
+  // The note of an unbounded run, as a plain run gives it (docs/tmclrun.md): when neither
+  // --max-time nor --max-steps bounds the program and standard error is a terminal, a command
+  // that has run for 2 s of wall time says so once, whether the commands come from a terminal,
+  // a pipe or a file. The wall clock times the note only; the engine asks between slices.
+  using Clock = std::chrono::steady_clock;
+  Clock::time_point command_start = Clock::now();
+  bool noted = false;
+  const Limits& bounds = engine.setup().limits;
+  if (bounds.until == kNever && bounds.max_steps == UINT64_MAX && ::isatty(2) && !engine.on_slice)
+    engine.on_slice = [&engine, &command_start, &noted] {
+      if (!noted && Clock::now() - command_start >= std::chrono::seconds(2)) {
+        noted = true;
+        std::fprintf(stderr,
+                     "tmclrun: note: still running after 2 s, at simulated time %s (no --max-time or --max-steps): "
+                     "--max-time DURATION bounds a run; Ctrl-C pauses it\n",
+                     format_time(engine.vm().now).c_str());
+        std::fflush(stderr);
+      }
+      return kNever;
+    };
   std::size_t next_line = 0;
   for (;;) {
     std::string line;
@@ -996,8 +1022,11 @@ int run_cli(Engine& engine, const CliOptions& options, std::FILE* in, std::FILE*
       if (!std::fgets(buf, sizeof buf, src)) break;
       line = buf;
     }
+    command_start = Clock::now();
+    noted = false;
     if (!cli.line(line)) break;
   }
+  engine.on_slice = nullptr;
   os::restore_signal(SIGINT, old);
   g_engine = nullptr;
   std::fflush(out);

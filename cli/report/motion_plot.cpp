@@ -30,9 +30,10 @@ void MotionRecorder::mark(SimTime at, int motor, Mark kind, std::string label, s
 }
 
 void MotionRecorder::motion_event(const MotionEvent& ev) {
-  Mark k = ev.kind == MotionEventKind::TargetReached   ? Mark::TargetReached
-           : ev.kind == MotionEventKind::SwitchChanged ? Mark::StopSwitch
-                                                       : Mark::Other;
+  Mark k = ev.kind == MotionEventKind::TargetReached ? Mark::TargetReached
+           : ev.kind != MotionEventKind::SwitchChanged ? Mark::Other
+           : ev.input == SwitchInput::Home           ? Mark::HomeSwitch
+                                                     : Mark::StopSwitch;
   mark(ev.at, ev.motor, k, motion_event_text(ev), ev.position);
 }
 
@@ -53,7 +54,7 @@ std::string csv_field(const std::string& s) {
 std::string event_text(const RecordedMark& m) {
   std::string kind(mark_name(m.kind));
   if (m.label.empty() || m.label == kind) return kind;
-  if (m.kind == Mark::Other || m.kind == Mark::StopSwitch) return m.label;  // "left switch closed"
+  if (m.kind == Mark::Other || m.kind == Mark::StopSwitch || m.kind == Mark::HomeSwitch) return m.label;  // "left switch closed"
   return kind + ": " + m.label;
 }
 

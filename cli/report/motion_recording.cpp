@@ -19,14 +19,39 @@ void RecordingCore::reset(const Profile& profile, int motors) {
   inner_.reset(profile, motors);
   now_ = 0;
   units_.clear();
-  if (std::string note = inner_.units_note(); !note.empty()) units_.emplace_back(0, std::move(note));
+  motor_units_.clear();
+  if (std::string note = inner_.units_note(); !note.empty()) {
+    units_.emplace_back(0, std::move(note));
+    for (int m = 0; m < motors; ++m) motor_units_.push_back(motor_units(m));
+  }
+}
+
+// One motor's units, from what the core converts: "velocity 1 = 7.62939 pps, acceleration 1 =
+// 116.415 pps²".
+std::string RecordingCore::motor_units(int motor) const {
+  std::string text;
+  for (auto [param, what] : {std::pair{int{kApTargetSpeed}, "velocity"}, std::pair{int{kApMaxAcceleration}, "acceleration"}})
+    if (auto p = inner_.physical(motor, param, 1)) {
+      char buf[96];
+      std::snprintf(buf, sizeof buf, "%s%s 1 = %.6g %s", text.empty() ? "" : ", ", what, p->value, std::string(p->unit).c_str());
+      text += buf;
+    }
+  return text;
 }
 
 ParamWrite RecordingCore::set_param(int motor, int param, std::int32_t value) {
   const ParamWrite r = inner_.set_param(motor, param, value);
   if (units_.empty()) return r;  // a core in pps
   if (std::string note = inner_.units_note(); note != units_.back().second) {
-    rec_.mark(now_, motor, Mark::Other, "units: " + note, inner_.sample_at(motor, now_).position);
+    // A mark (a CSV row) for each motor whose units changed, with its own units: the row's motor
+    // is the one it is about.
+    for (std::size_t m = 0; m < motor_units_.size(); ++m) {
+      const int mi = static_cast<int>(m);
+      if (std::string mine = motor_units(mi); mine != motor_units_[m]) {
+        rec_.mark(now_, mi, Mark::Other, "units: " + mine, inner_.sample_at(mi, now_).position);
+        motor_units_[m] = std::move(mine);
+      }
+    }
     units_.emplace_back(now_, std::move(note));
   }
   return r;
@@ -44,6 +69,12 @@ std::string RecordingCore::units_history(std::string_view sep) const {
     text.append(sep).append(at).append(units_[i].second);
   }
   return text;
+}
+
+std::string RecordingCore::units_title() const {
+  if (units_.empty()) return {};
+  const std::string& first = units_.front().second;
+  return "; " + first.substr(0, first.find(':')) + (units_.size() > 1 ? ", changes marked" : "");
 }
 
 void RecordingCore::issued(int motor, std::string label) {
@@ -85,7 +116,8 @@ std::int32_t RecordingCore::reference_search(int motor, RfsAction action) {
 void RecordingCore::set_switch(int motor, SwitchInput input, bool active) {
   inner_.set_switch(motor, input, active);
   const char* which = input == SwitchInput::StopLeft ? "left" : input == SwitchInput::StopRight ? "right" : "home";
-  rec_.mark(now_, motor, Mark::StopSwitch, std::string(which) + " switch " + (active ? "on" : "off"),
+  rec_.mark(now_, motor, input == SwitchInput::Home ? Mark::HomeSwitch : Mark::StopSwitch,
+            std::string(which) + " switch " + (active ? "on" : "off"),
             inner_.sample_at(motor, now_).position);
 }
 

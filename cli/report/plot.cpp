@@ -22,6 +22,7 @@ std::string_view mark_name(Mark m) {
     case Mark::TargetReached: return "target reached";
     case Mark::Interrupt: return "interrupt";
     case Mark::StopSwitch: return "stop switch";
+    case Mark::HomeSwitch: return "home switch";
     case Mark::Other: return "event";
   }
   return "event";
@@ -141,6 +142,7 @@ MarkStyle mark_style(Mark m) {
     case Mark::TargetReached: return {"#7b3fb5", "M0,-6 L5,-1 L0,4 L-5,-1 Z"};  // diamond
     case Mark::Interrupt: return {"#e07b00", "M-4,-5 L4,-5 L4,3 L-4,3 Z"};      // square
     case Mark::StopSwitch: return {"#b00020", "M-5,3 L5,3 L0,-6 Z"};             // triangle up
+    case Mark::HomeSwitch: return {"#2e7d32", "M0,-6 L5,-1 L5,4 L-5,4 L-5,-1 Z"};  // a house, green
     case Mark::Other: return {"#0a8a8a", "M-4.5,-1 a4.5,4.5 0 1,0 9,0 a4.5,4.5 0 1,0 -9,0"};  // circle
   }
   return {"#000000", ""};

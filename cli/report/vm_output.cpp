@@ -100,8 +100,10 @@ void TextTrace::instruction(const Vm& vm, SimTime at, std::int32_t pc, const Ins
                source_width_, where(pc).c_str(), text_width_, named.c_str(), vm.acc, vm.x, flags_text(vm.flags).c_str(),
                errors_text(vm.errors).c_str(), named == plain ? "" : "  // ", named == plain ? "" : plain.c_str());
   if (auto u = units_text(vm, ins)) std::fprintf(out_, "%s  units: %s\n", format_time(at).c_str(), u->c_str());
+  // New units hold from the instruction's end (vm.now here), the instant the CSV and the plot
+  // give them too (docs/tmclrun.md).
   if (std::string note = vm.motion->units_note(); !note.empty() && note != units_) {
-    std::fprintf(out_, "%s  units: %s\n", format_time(at).c_str(), note.c_str());
+    std::fprintf(out_, "%s  units: %s\n", format_time(vm.now).c_str(), note.c_str());
     units_ = std::move(note);
   }
   written();

@@ -62,27 +62,37 @@ class Checker {
     std::string error;
     if (!eval_expr(e.left_expr, vm_, left, error) || !eval_expr(e.right_expr, vm_, right, error) ||
         (!e.tolerance.empty() && !eval_expr(e.tolerance_expr, vm_, tolerance, error))) {
-      fail(e, "cannot evaluate " + condition_text(e) + " at " + when + ": " + error, program_place(p_, vm_));
+      fail(e, "cannot evaluate " + condition_text(e) + " at " + when + ": " + error, program_place(p_, vm_)).no_update =
+          "it could not be evaluated, so there is no value to write";
       return;
     }
     if (tolerance < 0) {
-      fail(e, "the tolerance of " + condition_text(e) + " is negative (" + std::to_string(tolerance) + ")", "");
+      fail(e, "the tolerance of " + condition_text(e) + " is negative (" + std::to_string(tolerance) + ")", "").no_update =
+          "its tolerance is negative: fix it by hand";
       return;
     }
     if (holds(e, left, right, tolerance)) return;
     std::string msg = "expected " + condition_text(e) + " at " + when + ", got " + std::to_string(left);
     if (!is_literal(e.right)) msg += " (" + e.right + " is " + std::to_string(right) + ")";
     Failure& f = fail(e, msg, program_place(p_, vm_));
-    if (e.op == Compare::Eq && is_literal(e.right)) {
-      f.update = std::to_string(left);
+    // A number is rewritten as a number, a duration (`$time = 2s`) as a duration.
+    const bool duration = !is_literal(e.right) && parse_duration(e.right).has_value();
+    if (e.op == Compare::Eq && (is_literal(e.right) || duration)) {
+      f.update = duration ? format_time(left) : std::to_string(left);
       f.update_col = e.right_col;
       f.update_len = static_cast<int>(e.right.size());
+    } else if (e.op != Compare::Eq) {
+      f.no_update = "only an '=' expectation is rewritten; this one compares with '" + std::string(compare_text(e.op)) + "'";
+    } else {
+      f.no_update = "its value '" + e.right + "' is an expression; only a number or a duration is rewritten";
     }
   }
 
   // An expectation at an instant the run never reached.
   void after_end(const Expectation& e, const std::string& end) {
-    fail(e, "expected " + condition_text(e) + " at " + e.when + ", but " + end, "");
+    fail(e, "expected " + condition_text(e) + " at " + e.when + ", but " + end, "").no_update =
+        "the run ended before " + e.when + ", so there is no value at that instant; move the instant, or let the run "
+        "go on (max-time)";
   }
 
   void halted(const Expectation& e, End end, const std::string& how) {
@@ -95,7 +105,8 @@ class Checker {
 
   void never_fault(const Expectation& e, const RunResult& res) {
     if (res.halt != Halt::Fault) return;
-    fail(e, "expected no fault, got one at " + format_time(vm_.now) + ": " + res.message, program_place(p_, vm_));
+    fail(e, "expected no fault, got one at " + format_time(vm_.now) + ": " + res.message, program_place(p_, vm_)).no_update =
+        "a fault is not a value to rewrite";
   }
 
   void no_warnings(const Expectation& e) {
@@ -110,7 +121,7 @@ class Checker {
               std::string(warning_kind_name(w.kind)) + "]";
     }
     if (vm_.warnings_total > 3) list += "\nand " + std::to_string(vm_.warnings_total - 3) + " more";
-    fail(e, msg, list);
+    fail(e, msg, list).no_update = "a run-time warning is not a value to rewrite";
   }
 
  private:

@@ -378,6 +378,46 @@ bool parse_test_file(const std::string& text, const std::string& path, const std
 
 namespace {
 
+// Reads nothing: evaluating a constant index (v[3], position 2, ap(4, 1 + 1)) fails at any read.
+class NoReads : public ExprReader {
+ public:
+  int motors() const override { return 256; }
+  bool reg(Reg, std::int64_t&, std::string&) override { return false; }
+  bool var(int, std::int64_t&, std::string&) override { return false; }
+  bool axis(int, int, std::int64_t&, std::string&) override { return false; }
+  bool global(int, int, std::int64_t&, std::string&) override { return false; }
+  bool port(int, int, std::int64_t&, std::string&) override { return false; }
+};
+
+// A motor or user variable the module lacks, named by a constant, is a mistake in the file, as a
+// switch on a missing motor is: the first such index of `expr`, as an error at its place.
+bool index_in_range(const Expr& expr, const Profile& profile, const std::string& path, int line, int col,
+                    const std::string& source, std::vector<FileDiag>& diags) {
+  auto constant = [&](int i, std::int64_t& v) {
+    if (i < 0) return false;
+    Expr sub = expr;
+    sub.root = i;
+    NoReads none;
+    std::string ignored;
+    return eval_expr(sub, none, v, ignored);
+  };
+  for (const Expr::Node& n : expr.nodes) {
+    const bool var = n.kind == Expr::Node::Var, axis = n.kind == Expr::Node::Ap;
+    if (!var && !axis) continue;
+    const int index = var ? n.a : n.b;
+    const std::int64_t limit = var ? profile.user_vars : profile.motors;
+    std::int64_t v = 0;
+    if (!constant(index, v) || (v >= 0 && v < limit)) continue;
+    const Expr::Node& at = expr.nodes[static_cast<std::size_t>(index)];
+    diags.push_back({path, line, col + static_cast<int>(at.at), std::max(1, static_cast<int>(at.len)),
+                     std::string(profile.name) + " has no " + (var ? "user variable " : "motor ") + std::to_string(v) +
+                         " (0.." + std::to_string(limit - 1) + ")",
+                     source});
+    return false;
+  }
+  return true;
+}
+
 // Parses each expression of each expectation against `info` into `bound` (the expectations of
 // `test`, or null), with a diagnostic for the first one of an expectation that does not parse.
 // `any_name` (no program at hand, `info` empty): every name is taken for one the program has.
@@ -385,6 +425,7 @@ void parse_expectations(const TestFile& test, const ProgramInfo& program, std::v
                         std::vector<FileDiag>& diags) {
   ProgramInfo names;  // any_name: the names met so far
   const ProgramInfo& info = any_name ? names : program;
+  const Profile* profile = test_profile(test, nullptr);
   for (std::size_t i = 0; i < test.expects.size(); ++i) {
     const Expectation& e = test.expects[i];
     if (e.kind != Expectation::At && e.kind != Expectation::AtEnd) continue;
@@ -408,7 +449,10 @@ void parse_expectations(const TestFile& test, const ProgramInfo& program, std::v
         names.constants.emplace_back(name, 0);
         ok = parse_expr(*text, info, *expr, error, &at);
       }
-      if (ok) continue;
+      if (ok) {
+        if (profile && !index_in_range(*expr, *profile, test.path, e.line, col, source, diags)) break;
+        continue;
+      }
       // The parser's message ends with " in 'TEXT'"; the caret shows where instead.
       if (auto in = error.rfind(" in '"); in != std::string::npos) error.resize(in);
       // Underline the word (or the character) where the parser stopped; a register's with its $.

@@ -131,3 +131,28 @@ TEST(a_bounded_run_gives_no_note) {
   CHECK(!has(o.out, "note:"));
   CHECK(has(o.out, "halted: interrupted"));
 }
+
+TEST(a_debugger_continue_with_commands_not_from_a_terminal_gets_the_note) {
+  // `printf 'run\n' | tmclrun --debug forever.tmc` (here the commands come from a file, as from a
+  // pipe: not a terminal) with standard error on a terminal: the unbounded run says how far it
+  // got after 2 s, as a plain run does, and Ctrl-C pauses it; then the commands end (quit).
+  const std::string prog = write_temp("forever-debug.tmc", kForever);
+  const std::string commands = write_temp("forever-debug.cmd", "run\n");
+  Output o = run_on_pty_then_sigint({"/bin/sh", "-c", "exec " + kRun + " --debug " + prog + " < " + commands},
+                                    "tmclrun: note:", 20000);
+  const std::size_t note = o.out.find("tmclrun: note: still running after 2 s, at simulated time ");
+  CHECK(note != std::string::npos);
+  CHECK(has(o.out, "(no --max-time or --max-steps): --max-time DURATION bounds a run; Ctrl-C pauses it"));
+  CHECK(has(o.out, "Program paused."));
+  CHECK(o.out.find("Program paused.") > note);
+  if (note == std::string::npos) show(o);
+}
+
+TEST(a_bounded_debugger_run_gives_no_note) {
+  const std::string prog = write_temp("forever-debug-bounded.tmc", kForever);
+  const std::string commands = write_temp("forever-debug-bounded.cmd", "run\n");
+  Output o = run_on_pty_then_sigint(
+      {"/bin/sh", "-c", "exec " + kRun + " --debug --max-time 1000h " + prog + " < " + commands}, "never shown", 2600);
+  CHECK(!has(o.out, "note:"));
+  CHECK(has(o.out, "Program paused."));
+}

@@ -22,6 +22,7 @@
 #include <vector>
 
 #include "tmcl/isa.hpp"
+#include "tmcl/param_names.hpp"
 #include "tmcl/profile.hpp"
 
 namespace {
@@ -58,10 +59,8 @@ struct Def {
 
 // Reads a bundled include file. Every line must be empty, a // comment, or `Name = integer`
 // with an optional trailing comment; anything else fails the calling test.
-std::vector<Def> read_include(const std::string& file) {
+std::vector<Def> parse_include(const std::string& file, std::istream& in) {
   std::vector<Def> defs;
-  std::ifstream in(std::string(TMCL_INCLUDE_FILES_DIR) + "/" + file);
-  CHECK(in.good());
   std::string raw;
   int line = 0;
   while (std::getline(in, raw)) {
@@ -95,6 +94,12 @@ std::vector<Def> read_include(const std::string& file) {
   }
   CHECK(!defs.empty());
   return defs;
+}
+
+std::vector<Def> read_include(const std::string& file) {
+  std::ifstream in(std::string(TMCL_INCLUDE_FILES_DIR) + "/" + file);
+  CHECK(in.good());
+  return parse_include(file, in);
 }
 
 // Upper-cased name -> value; a name defined twice in one file fails the test.
@@ -483,4 +488,83 @@ TEST(include_files_are_ascii) {
     });
     if (!ascii) ::tmcl_test::fail(__FILE__, __LINE__, std::string(file) + " is not plain ASCII");
   }
+}
+
+// ---- The docs that list the bundled modules list them all --------------------------------------
+
+namespace {
+
+// The paragraph of docs/NAME that contains `marker`, from the blank line before it to the next.
+std::string doc_paragraph(const std::string& doc, const std::string& marker) {
+  std::ifstream in(std::string(TMCL_DOCS_DIR) + "/" + doc, std::ios::binary);
+  const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const std::size_t at = text.find(marker);
+  if (at == std::string::npos) return {};
+  std::size_t begin = text.rfind("\n\n", at), end = text.find("\n\n", at);
+  begin = begin == std::string::npos ? 0 : begin;
+  return text.substr(begin, end == std::string::npos ? std::string::npos : end - begin);
+}
+
+}  // namespace
+
+TEST(docs_listing_the_bundled_modules_name_every_profile) {
+  // tmclrun.md's opening and debugger.md's DAP `target` argument name every bundled profile by
+  // its -t name: a profile added to vm/isa/profiles/ fails here until the docs say so.
+  const std::pair<const char*, const char*> lists[] = {{"tmclrun.md", "runs a TMCL program on a virtual module"},
+                                                       {"debugger.md", "`launch` arguments"}};
+  for (const auto& [doc, marker] : lists) {
+    const std::string paragraph = doc_paragraph(doc, marker);
+    CHECK(!paragraph.empty());
+    for (const Profile* p : tmcl::all_profiles())
+      if (paragraph.find("`" + std::string(p->name) + "`") == std::string::npos)
+        ::tmcl_test::fail(__FILE__, __LINE__, std::string(doc) + " does not name " + std::string(p->name) + " where it lists the modules");
+  }
+}
+
+// ---- The include files generated from the profiles (tmcl/param_names.hpp) ------------------------
+
+TEST(generated_module_include_files_name_every_parameter_once_and_clash_with_no_other_file) {
+  // Every bundled module without a file of its own in include_files/ gets NAME.inc from its
+  // profile: one AP_/GP_/GP3_ name per parameter, no name twice, and, with the hand-written files,
+  // a name means the same number in every file (so any of them can be included together) and
+  // none redefines a TMCLParam.tmc name.
+  std::map<std::string, std::pair<long long, std::string>> all;
+  auto add = [&all](const std::string& file, const std::vector<Def>& defs) {
+    for (const auto& d : defs) {
+      const auto [it, fresh] = all.emplace(upper(d.name), std::make_pair(d.value, file));
+      if (!fresh && it->second.first != d.value)
+        ::tmcl_test::fail(__FILE__, __LINE__, d.name + " is " + std::to_string(it->second.first) + " in " + it->second.second +
+                                                  " but " + std::to_string(d.value) + " in " + file);
+    }
+  };
+  for (const char* file : {"USB-2-SD.inc", "TMC2300-MOTOR-EVAL.inc", "Interrupts.inc"}) add(file, read_include(file));
+  const auto tmclparam = as_map("TMCLParam.tmc", read_include("TMCLParam.tmc"));
+  int generated = 0;
+  for (const Profile* p : tmcl::all_profiles()) {
+    if (p->any_parameter || !p->include_file.empty()) continue;
+    ++generated;
+    const std::string file = tmcl::parameter_include_name(*p);
+    CHECK_EQ(file, upper(std::string(p->name)) + ".inc");
+    std::istringstream text(tmcl::parameter_include_text(*p));
+    const auto defs = parse_include(file, text);
+    as_map(file, defs);  // no name twice
+    CHECK(values_with_prefix(defs, "AP_") == numbers(p->axis_params));
+    CHECK(values_with_prefix(defs, "GP_") == numbers(p->bank0));
+    CHECK(values_with_prefix(defs, "GP3_") == numbers(p->bank3));
+    for (const auto& d : defs)
+      if (tmclparam.count(upper(d.name))) ::tmcl_test::fail(__FILE__, __LINE__, file + " redefines " + d.name);
+    add(file, defs);
+  }
+  CHECK_EQ(generated, 8);  // the TMCM modules
+}
+
+TEST(parameter_constants_follow_the_naming_scheme) {
+  auto constant = [](std::string_view name) {
+    return tmcl::parameter_constant(tmcl::ParamInfo{0, name, 0, 0, 0, 0, {}});
+  };
+  CHECK_EQ(constant("Maximum positioning speed"), std::string("MaxPositioningSpeed"));
+  CHECK_EQ(constant("SmartEnergy current minimum (SEIMIN)"), std::string("SmartEnergyCurrentMin"));
+  CHECK_EQ(constant("TMCL tick timer"), std::string("TickTimer"));
+  CHECK_EQ(constant("Chopper hysteresis end / fast decay time"), std::string("ChopperHysteresisEndFastDecayTime"));
+  CHECK_EQ(constant("PWM gradient"), std::string("PWMGradient"));
 }

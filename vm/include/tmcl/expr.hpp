@@ -46,6 +46,8 @@ struct Expr {
     enum Kind : std::uint8_t { Num, Reg, Var, Ap, Gp, In, Ain, Out, Unary, Binary } kind = Num;
     std::int64_t value = 0;  // Num; Reg: which register; Unary/Binary: the operator
     int a = -1, b = -1;      // operand nodes
+    // Where the node is in `text` (bytes), for a caret under it.
+    std::uint32_t at = 0, len = 0;
   };
   std::vector<Node> nodes;
   int root = -1;

@@ -79,7 +79,7 @@ struct WarningOptions {
   std::set<std::string, std::less<>> errors;  // -Werror=name (also turns it on)
   bool enabled(std::string_view name) const;
   bool is_error(std::string_view name) const;
-  // Applies one option: -Werror, -Werror=name, -Wno-name or -Wname. Returns false with `error`
+  // Applies one option: -Werror, -Werror=name, -Wno-name, -Wall or -Wname. Returns false with `error`
   // set when `arg` is such an option with an unknown name; false with `error` empty when `arg`
   // is not a -W option at all.
   bool parse(std::string_view arg, std::string& error);

@@ -51,13 +51,18 @@ class RecordingCore final : public MotionCore {
   // divisor written: also a mark "units: ..."), from when on the new ones held, joined by `sep`:
   // the CSV's comment lines, the plot's title. Empty for a core in pps.
   std::string units_history(std::string_view sep) const;
+  // For the plot's title: "; TMC429 units" (the note's name), with ", changes marked" when they
+  // changed during the run; empty for a core in pps. Never longer with more changes.
+  std::string units_title() const;
 
  private:
   void issued(int motor, std::string label);
+  std::string motor_units(int motor) const;
   MotionCore& inner_;
   MotionRecorder& rec_;
   SimTime now_ = 0;  // the last advance: commands and switches happen at this instant
   std::vector<std::pair<SimTime, std::string>> units_;  // the units note from each instant on
+  std::vector<std::string> motor_units_;                 // each motor's units as last marked
 };
 
 class RecordingTrace final : public TraceSink {

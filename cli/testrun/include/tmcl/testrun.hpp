@@ -138,6 +138,7 @@ struct Failure {
   std::string update;    // --update: the new text of the expectation's value, or "" (cannot)
   int update_col = 0;    // where that value starts in the line (1-based) ...
   int update_len = 0;    // ... and its length
+  std::string no_update;  // --update, when `update` is "": why the failure is not rewritten
 };
 
 struct TestResult {
@@ -226,6 +227,7 @@ struct SuiteOptions {
 struct SuiteResult {
   std::vector<TestResult> tests;  // in the order of the files
   int passed = 0, failed = 0, errors = 0, skipped = 0;
+  int updated = 0;  // --update: failed tests rewritten to what the run did (no longer in `failed`)
   double seconds = 0;
   std::string timestamp;  // when the run started, UTC: "2026-12-03T08:00:00" (JUnit's timestamp)
 };
