@@ -49,12 +49,6 @@ class Tmc5160Core final : public sw::SwitchCore {
   // them: under generic its rows come from the TMCM-1260's profile.
   Tmc5160Core() : SwitchCore(kTmc5160Owned, "tmcm-1260", true, {kLimitSoftStop, false, true, kLastReference}) {}
 
-  void move_relative(int motor, std::int32_t offset) override {
-    const sw::Motor& m = at(motor);
-    const std::int64_t from = m.p[kRelativeOption] == 1 ? m.rm.xactual(now_) : m.p[kApTargetPosition];
-    move_absolute(motor, ramp::wrap32(from + offset));
-  }
-
  protected:
   double vunit(const sw::Motor&) const override { return 1; }  // pps
   // The velocity register's bound: the range of parameter 2 in the profile.

@@ -40,6 +40,10 @@ ParamWrite SwitchCore::set_param(int motor, int param, std::int32_t value) {
     case kApActualSpeed: case kApPositionReached: case kHomeState: case kRightSwitchState:
     case kLeftSwitchState: case kRfsDistance:
       return ParamWrite::ReadOnly;
+    case kApRelativePositioningOption:  // read by the next MVP REL (core_skeleton.hpp): no re-plan
+      if (!in_range(param, value)) return ParamWrite::OutOfRange;
+      m.p[kApRelativePositioningOption] = value;
+      return ParamWrite::Ok;
     case kRfsMode: {
       SearchMode sm;
       if (!in_range(param, value) || !decode(value, sm)) return ParamWrite::OutOfRange;
@@ -86,10 +90,6 @@ void SwitchCore::move_absolute(int motor, std::int32_t target) {
   m.p[kApTargetPosition] = target;
   set_goal(m, Goal::Position);
   replan(m, 1, true);
-}
-
-void SwitchCore::move_relative(int motor, std::int32_t offset) {
-  move_absolute(motor, ramp::wrap32(static_cast<std::int64_t>(at(motor).p[kApTargetPosition]) + offset));
 }
 
 void SwitchCore::rotate(int motor, std::int32_t velocity) {

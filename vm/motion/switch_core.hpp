@@ -88,7 +88,6 @@ class SwitchCore : public ramp::RampCore<Motor> {
   ParamWrite set_param(int motor, int param, std::int32_t value) override;
   std::int32_t get_param(int motor, int param) override;
   void move_absolute(int motor, std::int32_t target) override;
-  void move_relative(int motor, std::int32_t offset) override;  // from the last target
   void rotate(int motor, std::int32_t velocity) override;
   void stop(int motor) override;
   std::int32_t reference_search(int motor, RfsAction action) override;
