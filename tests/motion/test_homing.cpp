@@ -1,7 +1,10 @@
 // The reference search as the manuals describe it where issue 33 found it wrong: the search and
 // switch speeds' defaults (item 6) and the inverted home switch, +128 (item 7).
 #include <cmath>
+#include <cstdlib>
 #include <cstdint>
+#include <cstdio>
+#include <string_view>
 
 #include "check.hpp"
 #include "helpers.hpp"
@@ -42,4 +45,43 @@ TEST(tmc429_search_with_only_4_and_5_set_runs_at_4_and_a_quarter_of_it) {
     b.start();
     b.one_edge(20000);
   }
+}
+
+// Item 7: the home switch inverted (+128). A scenario's home range is where the home input reads
+// active (high, as parameter 9 reports it); +128 makes the search take the input's other level as
+// the switch, so from 0, outside [50000, 60000], every search starts on its (inverted) switch.
+// Between end switches at -100000 and +100000 every mode ends, on an edge of the range, and
+// turns at an end switch rather than running through it (docs/motion.md, *Reference search*).
+namespace {
+
+void inverted_home_search_ends(const char* core, const char* module, int value) {
+  mt::SwitchBench b(core, module);
+  b.set(193, value);
+  b.set(4, std::string_view(core) == "tmc429" ? 2000 : 200000);
+  b.left_at(-100000);
+  b.right_at(100000);
+  b.place(SwitchInput::Home, 50000, 60000);
+  b.to(0);
+  CHECK_EQ(b.core->reference_search(0, tmcl::RfsAction::Start), 0);
+  const bool done = b.until(MotionEventKind::ReferenceDone, 60);
+  if (!done) std::fprintf(stderr, "%s %s mode %d: no end (position %d)\n", core, module, value, b.core->position(0));
+  CHECK(done);
+  // The TMCM-1260 keeps where the reference point was (197): an edge of the home range (modes
+  // 5-8), or the end switch's edge (+64: the right one).
+  if (std::string_view(module) == "tmcm-1260") {
+    const std::int32_t ref = b.get(197);
+    const bool ok = value & 128 ? std::abs(ref - 50000) <= 1 || std::abs(ref - 60000) <= 1 : std::abs(ref - 100000) <= 1;
+    if (!ok) std::fprintf(stderr, "mode %d: reference point at %d\n", value, ref);
+    CHECK(ok);
+  }
+}
+
+}  // namespace
+
+TEST(inverted_home_every_mode_ends_on_the_pd60_1260) {
+  for (int mode : {133, 134, 135, 136, 65, 66, 67, 68}) inverted_home_search_ends("tmc5160", "tmcm-1260", mode);
+}
+
+TEST(inverted_home_every_mode_ends_on_the_tmcm_1110) {
+  for (int mode = 129; mode <= 136; ++mode) inverted_home_search_ends("tmc429", "tmcm-1110", mode);
 }

@@ -140,6 +140,7 @@ class SwitchCore : public ramp::RampCore<Motor> {
   void start_search(Motor& m);
   void search_step(Motor& m, bool stop_first, double vscale = 1);
   void turn_around(Motor& m);
+  bool release_blocked(const Motor& m, int input, int dir) const;
   void search_switch(Motor& m, int input, bool now_closed, std::int64_t edge, int dir);
   void search_met(Motor& m, std::int64_t edge);
   bool far_edge(const Motor& m, int input, int dir) const;
