@@ -230,6 +230,7 @@ std::string_view warning_kind_name(RuntimeWarning::Kind k) {
     case RuntimeWarning::RetiOutsideHandler: return "reti-outside-handler";
     case RuntimeWarning::HandlerWithoutReti: return "handler-without-reti";
     case RuntimeWarning::ValueOutOfRange: return "value-out-of-range";
+    case RuntimeWarning::RampSetting: return "ramp-setting";
   }
   return "unknown";
 }

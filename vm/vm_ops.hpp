@@ -210,8 +210,19 @@ template <bool D> R rotate(Vm& vm, const Instruction& i, std::int64_t velocity) 
 template <bool D> R op_ROR(Vm& vm, const Instruction& i) { return rotate<D>(vm, i, i.value); }
 template <bool D> R op_ROL(Vm& vm, const Instruction& i) { return rotate<D>(vm, i, -static_cast<std::int64_t>(i.value)); }
 template <bool D> R op_MST(Vm& vm, const Instruction& i) { return done<D>(vm, vm.motor_stop(i.motor)); }
-template <bool D> R op_MVP(Vm& vm, const Instruction& i) { return done<D>(vm, vm.move(i.type, i.motor, i.value)); }
-template <bool D> R op_MVPA(Vm& vm, const Instruction& i) { return done<D>(vm, vm.move(i.type, i.motor, vm.acc)); }
+// E47: a positioning the ramp cannot start (or whose ramp the manual forbids) is run as the core
+// plans it, with a run-time warning naming the parameter (a fault under --strict).
+template <bool D> R move(Vm& vm, const Instruction& i, std::int32_t value) {
+  const std::uint8_t st = vm.move(i.type, i.motor, value);
+  if constexpr (!D) {
+    if (st == kStatusOk)
+      if (std::string why = vm.motion->move_problem(i.motor); !why.empty())
+        if (Internal::warn(vm, RuntimeWarning::RampSetting, "MVP on motor " + std::to_string(i.motor) + ": " + why)) return ok();
+  }
+  return done<D>(vm, st);
+}
+template <bool D> R op_MVP(Vm& vm, const Instruction& i) { return move<D>(vm, i, i.value); }
+template <bool D> R op_MVPA(Vm& vm, const Instruction& i) { return move<D>(vm, i, vm.acc); }
 template <bool D> R op_MVPXA(Vm& vm, const Instruction& i) { return op_MVPA<D>(vm, i); }
 template <bool D> R op_RORA(Vm& vm, const Instruction& i) { return rotate<D>(vm, i, vm.acc); }
 template <bool D> R op_ROLA(Vm& vm, const Instruction& i) { return rotate<D>(vm, i, -static_cast<std::int64_t>(vm.acc)); }

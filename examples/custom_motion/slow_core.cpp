@@ -82,7 +82,8 @@ class SlowCore final : public MotionCore {
     m.arrive = now_ + (std::llabs(d) * 1000000 + m.speed - 1) / m.speed;  // rounded up
     m.reported = false;
   }
-  void move_relative(int motor, std::int32_t offset) override { move_absolute(motor, at(motor).target + offset); }
+  // MVP REL counts from the actual position, as the TMCL reference says (docs/motion.md).
+  void move_relative(int motor, std::int32_t offset) override { move_absolute(motor, position(motor) + offset); }
   void rotate(int motor, std::int32_t velocity) override {
     Motor& m = at(motor);
     rebase(m);

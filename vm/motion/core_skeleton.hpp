@@ -1,7 +1,8 @@
 // What every built-in motion core shares, however its motors move: one M per motor (M holds the
 // owned axis parameters in `p`), the owned parameters' power-on defaults and write ranges taken
 // from the module profiles (the only source of both), the instant of the last advance, and the
-// events a command causes at its own instant, reported by the next advance. RampCore
+// events a command causes at its own instant, reported by the next advance, and the one rule of
+// MVP REL (move_relative) every core follows. RampCore
 // (ramp_motor.hpp) adds motion planned in time on top; the ideal core, whose motors jump, adds
 // its jumps (motion_ideal.cpp).
 #pragma once
@@ -14,6 +15,7 @@
 #include <vector>
 
 #include "tmcl/motion.hpp"
+#include "tmcl/params.hpp"
 #include "tmcl/profile.hpp"
 
 namespace tmcl {
@@ -44,11 +46,37 @@ class CoreSkeleton : public MotionCore {
       if (!rule && home) rule = home->axis_param(n);
       range_[static_cast<std::size_t>(n)] = rule;
     }
+    // Parameter 127 where the module has it (under generic: the module the core models), owned
+    // whether or not the core's table lists it, so move_relative always reads the value as set.
+    relative_ = profile.any_parameter ? (home ? home->axis_param(kApRelativePositioningOption) : nullptr)
+                                      : profile.axis_param(kApRelativePositioningOption);
+    if (relative_) {
+      range_[kApRelativePositioningOption] = relative_;
+      for (auto& m : motors_) m.p[kApRelativePositioningOption] = relative_->default_value;
+    }
     now_ = 0;
     pending_.clear();
   }
-  bool owns(int param) const override { return std::find(owned_.begin(), owned_.end(), param) != owned_.end(); }
+  bool owns(int param) const override {
+    return (param == kApRelativePositioningOption && relative_) || std::find(owned_.begin(), owned_.end(), param) != owned_.end();
+  }
   const ParamInfo* range(int param) const override { return range_row(param); }
+
+  // MVP REL, one rule for every core (docs/motion.md, "Relative moves"): the new target is the
+  // actual position + the offset, as the TMCL reference and every module's manual say ("an
+  // offset to the actual position"; the TMC429 code of Trinamic's published firmware computes
+  // XACTUAL + offset too), except on a module whose profile has axis parameter 127 (USB-2-SD,
+  // TMCM-1260), which counts from where 127 says: 0 the last target, 1 the actual position,
+  // 2 the encoder position (a core without an encoder: the actual position).
+  void move_relative(int motor, std::int32_t offset) final {
+    std::int64_t from = position(motor);
+    if (relative_) {
+      const std::int32_t option = at(motor).p[kApRelativePositioningOption];
+      if (option == 0) from = get_param(motor, kApTargetPosition);
+      if (option == 2 && owns(kApEncoderPosition)) from = get_param(motor, kApEncoderPosition);
+    }
+    move_absolute(motor, static_cast<std::int32_t>(static_cast<std::uint32_t>(static_cast<std::uint64_t>(from + offset))));
+  }
 
  protected:
   M& at(int motor) { return motors_[static_cast<std::size_t>(motor)]; }
@@ -82,6 +110,7 @@ class CoreSkeleton : public MotionCore {
 
  private:
   std::array<const ParamInfo*, 256> range_{};  // per owned parameter: the profile row that bounds it
+  const ParamInfo* relative_ = nullptr;        // the module's row of 127, if it has one
   std::vector<MotionEvent> pending_;           // caused by a command, reported by the next advance
 };
 

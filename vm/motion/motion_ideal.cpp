@@ -96,12 +96,6 @@ class IdealCore final : public CoreSkeleton<Motor> {
     emit(motor, MotionEventKind::TargetReached, m);
   }
 
-  void move_relative(int motor, std::int32_t offset) override {
-    Motor& m = at(motor);
-    std::int64_t start = m.p[kApRelativePositioningOption] == 0 ? m.target : m.p[kApRelativePositioningOption] == 1 ? pos(m) : pos(m) + m.encoder_offset;
-    move_absolute(motor, wrap32(start + offset));
-  }
-
   void rotate(int motor, std::int32_t velocity) override {
     Motor& m = at(motor);
     rebase(m);

@@ -66,7 +66,8 @@ class LinearCore final : public ramp::RampCore<LinearMotor> {
         return ParamWrite::Ok;
       case kApTargetSpeed: rotate(motor, value); return ParamWrite::Ok;
       case kApActualSpeed: case kApPositionReached: case kApSmartEnergyActualCurrent: return ParamWrite::ReadOnly;
-      case kApMaxPositioningSpeed: case kApMaxAcceleration: case kApRunCurrent: case kApStandbyCurrent: case kApMicrostepResolution: case kApMicrostepInterpolation:  // within the profile's range (core_skeleton.hpp)
+      case kApMaxPositioningSpeed: case kApMaxAcceleration: case kApRunCurrent: case kApStandbyCurrent: case kApMicrostepResolution: case kApMicrostepInterpolation:
+      case kApRelativePositioningOption:  // (only under a profile that has it: core_skeleton.hpp) within the profile's range (core_skeleton.hpp)
         if (!in_range(param, value)) return ParamWrite::OutOfRange;
         break;
       default: return ParamWrite::ReadOnly;
@@ -97,11 +98,6 @@ class LinearCore final : public ramp::RampCore<LinearMotor> {
     m.p[kApTargetPosition] = target;
     m.goal = LinearGoal::Position;
     replan(m);
-  }
-  // The module has no parameter 127: MVP REL counts from the last target, as the manual says.
-  void move_relative(int motor, std::int32_t offset) override {
-    LinearMotor& m = at(motor);
-    move_absolute(motor, ramp::wrap32(static_cast<std::int64_t>(m.p[kApTargetPosition]) + offset));
   }
   void rotate(int motor, std::int32_t velocity) override {
     LinearMotor& m = at(motor);

@@ -127,12 +127,6 @@ class Tmc4361Core final : public ramp::RampCore<Tmc4361Motor> {
     replan(m, true);
   }
 
-  void move_relative(int motor, std::int32_t offset) override {
-    Tmc4361Motor& m = at(motor);
-    std::int64_t start = m.p[kApRelativePositioningOption] == 0 ? m.p[kApTargetPosition] : m.p[kApRelativePositioningOption] == 1 ? m.rm.xactual(now_) : encoder(m);
-    move_absolute(motor, ramp::wrap32(start + offset));
-  }
-
   void rotate(int motor, std::int32_t velocity) override {
     Tmc4361Motor& m = at(motor);
     m.vt = velocity;

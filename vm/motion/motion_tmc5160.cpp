@@ -49,10 +49,24 @@ class Tmc5160Core final : public sw::SwitchCore {
   // them: under generic its rows come from the TMCM-1260's profile.
   Tmc5160Core() : SwitchCore(kTmc5160Owned, "tmcm-1260", true, {kLimitSoftStop, false, true, kLastReference}) {}
 
-  void move_relative(int motor, std::int32_t offset) override {
-    const sw::Motor& m = at(motor);
-    const std::int64_t from = m.p[kRelativeOption] == 1 ? m.rm.xactual(now_) : m.p[kApTargetPosition];
-    move_absolute(motor, ramp::wrap32(from + offset));
+  // A SixPoint ramp that cannot leave VSTART or reach VSTOP leaves MVP standing; VSTART above
+  // VSTOP the manual forbids ("do not set VSTART higher than VSTOP", parameter 19).
+  std::string move_problem(int motor) const override {
+    const sw::Motor& m = motors_[static_cast<std::size_t>(motor)];
+    if (m.goal != sw::Goal::Position) return {};
+    auto v = [&](int n) { return std::to_string(m.p[static_cast<std::size_t>(n)]); };
+    const bool standing = !target_reached(motor) && m.rm.at_rest(now_);
+    if (standing && m.p[kV1] > 0 && m.p[kA1] == 0)
+      return "the move cannot start: A1 (axis parameter 15) is 0 while V1 (16) is " + v(kV1) + " (set A1, or V1 = 0 for A2 alone)";
+    if (standing && m.p[kV1] > 0 && m.p[kD1] == 0)
+      return "the move cannot start: D1 (axis parameter 18) is 0 while V1 (16) is " + v(kV1) + " (set D1, or V1 = 0 for D2 alone)";
+    if (standing && m.p[kApMaxAcceleration] == 0) return "the move cannot start: A2 (axis parameter 5) is 0";
+    if (standing && m.p[kD2] == 0) return "the move cannot start: D2 (axis parameter 17) is 0";
+    if (standing && m.p[kApMaxPositioningSpeed] == 0) return "the move cannot start: VMAX (axis parameter 4) is 0";
+    if (m.p[kVStart] > m.p[kVStop])
+      return "VSTART (axis parameter 19) is " + v(kVStart) + ", above VSTOP (20) " + v(kVStop) +
+             ": the manual says not to set VSTART higher than VSTOP";
+    return {};
   }
 
  protected:

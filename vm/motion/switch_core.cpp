@@ -40,6 +40,10 @@ ParamWrite SwitchCore::set_param(int motor, int param, std::int32_t value) {
     case kApActualSpeed: case kApPositionReached: case kHomeState: case kRightSwitchState:
     case kLeftSwitchState: case kRfsDistance:
       return ParamWrite::ReadOnly;
+    case kApRelativePositioningOption:  // read by the next MVP REL (core_skeleton.hpp): no re-plan
+      if (!in_range(param, value)) return ParamWrite::OutOfRange;
+      m.p[kApRelativePositioningOption] = value;
+      return ParamWrite::Ok;
     case kRfsMode: {
       SearchMode sm;
       if (!in_range(param, value) || !decode(value, sm)) return ParamWrite::OutOfRange;
@@ -86,10 +90,6 @@ void SwitchCore::move_absolute(int motor, std::int32_t target) {
   m.p[kApTargetPosition] = target;
   set_goal(m, Goal::Position);
   replan(m, 1, true);
-}
-
-void SwitchCore::move_relative(int motor, std::int32_t offset) {
-  move_absolute(motor, ramp::wrap32(static_cast<std::int64_t>(at(motor).p[kApTargetPosition]) + offset));
 }
 
 void SwitchCore::rotate(int motor, std::int32_t velocity) {
@@ -258,6 +258,11 @@ void SwitchCore::search_step(Motor& m, bool stop_first, double vscale) {
     m.rm.rest_on_grid();
     return;
   }
+  // A release toward an end switch that is closed already (a search that started on its switch
+  // right at the end switch): the other way (search_switch).
+  if (s.step == SearchStep::Release && closed(m, s.dir < 0 ? 0 : 1) && release_blocked(m, s.dir < 0 ? 0 : 1, s.dir) &&
+      !closed(m, s.dir < 0 ? 1 : 0))
+    s.dir = -s.dir;
   const bool fast = s.step == SearchStep::Find || s.step == SearchStep::FindFar;
   const Limits lim = search_limits(m, fast ? search_speed(m) : switch_speed(m), false);
   b.plan_velocity(lim, s.dir * lim.vmax);
@@ -267,6 +272,13 @@ void SwitchCore::search_step(Motor& m, bool stop_first, double vscale) {
   const int input = s.step == SearchStep::FindFar ? s.far : s.input;
   const bool want = s.step != SearchStep::Release && s.step != SearchStep::Cross;
   if (search_closed(m, input) == want) search_met(m, m.rm.xactual(now_));
+}
+
+// Whether end switch `input`, met moving `dir` while releasing the searched switch, blocks that
+// way: it lies in the way, and it is not the switch being released.
+bool SwitchCore::release_blocked(const Motor& m, int input, int dir) const {
+  const int awaited = m.search.input;
+  return (input == 0 || input == 1) && input == (dir < 0 ? 0 : 1) && input != awaited && !(awaited == kRefInput && input == 0);
 }
 
 // Modes 5 and 6: the end switch on the way turns the search around, once.
@@ -283,6 +295,14 @@ void SwitchCore::search_switch(Motor& m, int input, bool now_closed, std::int64_
   if (s.step == SearchStep::Off || s.step == SearchStep::ToRef || (dir != 0 && dir != s.dir)) return;
   if (s.step == SearchStep::Find && input == s.reverse_at && now_closed) return turn_around(m);
   const int awaited = s.step == SearchStep::FindFar ? s.far : s.input;
+  // A search that started on its switch (an inverted home switch, +128, is active everywhere
+  // outside its range) leaves it the way it leaves a switch it hit: back. When an end switch
+  // closes on that way first, the switch cannot be left there: the step turns and leaves it the
+  // other way, never running through the end switch (docs/motion.md, *Reference search*).
+  if (s.step == SearchStep::Release && now_closed && release_blocked(m, input, s.dir)) {
+    s.dir = -s.dir;
+    return search_step(m, true);
+  }
   if (awaited == kRefInput ? input == 1 : input != awaited) return;
   if (input == 2 && s.m.invert) now_closed = !now_closed;
   if (awaited == kRefInput) now_closed = search_closed(m, kRefInput);

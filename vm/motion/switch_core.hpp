@@ -88,7 +88,6 @@ class SwitchCore : public ramp::RampCore<Motor> {
   ParamWrite set_param(int motor, int param, std::int32_t value) override;
   std::int32_t get_param(int motor, int param) override;
   void move_absolute(int motor, std::int32_t target) override;
-  void move_relative(int motor, std::int32_t offset) override;  // from the last target
   void rotate(int motor, std::int32_t velocity) override;
   void stop(int motor) override;
   std::int32_t reference_search(int motor, RfsAction action) override;
@@ -141,6 +140,7 @@ class SwitchCore : public ramp::RampCore<Motor> {
   void start_search(Motor& m);
   void search_step(Motor& m, bool stop_first, double vscale = 1);
   void turn_around(Motor& m);
+  bool release_blocked(const Motor& m, int input, int dir) const;
   void search_switch(Motor& m, int input, bool now_closed, std::int64_t edge, int dir);
   void search_met(Motor& m, std::int64_t edge);
   bool far_edge(const Motor& m, int input, int dir) const;

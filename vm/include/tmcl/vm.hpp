@@ -127,6 +127,7 @@ struct RuntimeWarning {
     RetiOutsideHandler,  // RETI while no interrupt is being served (E13)
     HandlerWithoutReti,  // a handler that ends otherwise than with RETI (STOP, a jump out; E42, E43)
     ValueOutOfRange,     // SAP/SGP/AAP/AGP/ROR/ROL with a value outside the parameter's range (E3)
+    RampSetting,         // MVP whose ramp cannot start it, or that the manual forbids (E47)
   };
   SimTime at = 0;        // the instruction's start
   std::int32_t pc = 0;   // its address

@@ -80,8 +80,8 @@ axis 182 "SmartEnergy threshold speed" 0..2047 RW default=0 src=M:5 unverified=d
 axis 183 "SmartEnergy slow run current" 0..255 RW default=0 src=M:5 unverified=default
 axis 184 "Random TOff mode" 0..1 RW default=0 src=P unverified=range,access,default
 axis 193 "Reference search mode" 1..136 RWE default=1 src=M:5 unverified=default  # 1..8, +128 inverts the home switch
-axis 194 "Reference search speed" 0..2047 RWE default=100 src=M:5 unverified=default
-axis 195 "Reference switch speed" 0..2047 RWE default=50 src=M:5 unverified=default
+axis 194 "Reference search speed" 0..2047 RWE default=0 src=M:5 unverified=default  # 0: the maximum positioning speed 4 (5.3; errata M16)
+axis 195 "Reference switch speed" 0..2047 RWE default=0 src=M:5 unverified=default  # 0: a quarter of 4 (5.3; errata M16)
 axis 196 "Distance end switches" 0..2147483647 R default=0 unit=μsteps src=M:5
 axis 204 "Freewheeling" 0..65535 RWE default=0 unit=ms src=M:5 unverified=default  # 0: never
 axis 206 "Actual load value" 0..1023 R default=0 src=M:5

@@ -40,7 +40,7 @@ axis 11 "Left limit switch state" 0..1 R default=0 src=M:4
 axis 12 "Right limit switch disable" 0..1 RW default=0 src=M:4 unverified=default
 axis 13 "Left limit switch disable" 0..1 RW default=0 src=M:4 unverified=default
 axis 14 "Swap limit switches" 0..1 RW default=0 src=M:4 unverified=default
-axis 15 "Acceleration A1" 0..7629278 RW default=0 unit=pps² src=M:4 unverified=default
+axis 15 "Acceleration A1" 0..7629278 RW default=51200 unit=pps² src=M:4 unverified=default  # as D1 (18): errata M17
 axis 16 "Velocity V1" 0..1000000 RW default=0 unit=pps src=M:4 unverified=default  # 0: no first acceleration phase
 axis 17 "Maximum deceleration" 0..7629278 RW default=51200 unit=pps² src=M:4 unverified=default
 axis 18 "Deceleration D1" 0..7629278 RW default=51200 unit=pps² src=M:4 unverified=default

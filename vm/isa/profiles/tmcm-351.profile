@@ -48,8 +48,8 @@ axis 149 "Soft stop flag" 0..1 RWE default=0 src=M:5 unverified=default
 axis 153 "Ramp divisor" 0..13 RWE default=7 src=M:5 unverified=default
 axis 154 "Pulse divisor" 0..13 RWE default=3 src=M:5 unverified=default
 axis 193 "Reference search mode" 1..3 RWE default=1 src=M:5 unverified=default
-axis 194 "Reference search speed" 0..2047 RWE default=100 src=M:5 unverified=default
-axis 195 "Reference switch speed" 0..2047 RWE default=50 src=M:5 unverified=default
+axis 194 "Reference search speed" 0..2047 RWE default=0 src=M:5 unverified=default  # 0: the maximum positioning speed 4 (reference search hints, section 5; errata M16)
+axis 195 "Reference switch speed" 0..2047 RWE default=0 src=M:5 unverified=default  # 0: a quarter of 4 (reference search hints, section 5; errata M16)
 axis 196 "Reference switch distance" 0..2147483647 R default=0 unit=μsteps src=M:5
 axis 197 "Last reference position" -2147483648..2147483647 R default=0 unit=μsteps src=Y unverified=range,access
 axis 200 "Boost current" 0..255 RWE default=0 src=M:5 unverified=default  # 0: the current of parameter 6

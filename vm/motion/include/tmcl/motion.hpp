@@ -102,8 +102,16 @@ class MotionCore {
   virtual std::int32_t get_param(int motor, int param) = 0;
 
   virtual void move_absolute(int motor, std::int32_t target) = 0;  // MVP ABS/COORD, MVPA
-  virtual void move_relative(int motor, std::int32_t offset) = 0;  // MVP REL (start per param 127)
+  // MVP REL: to the actual position + offset, or where the module has axis parameter 127, from
+  // where 127 says (docs/motion.md, "Relative moves"; the built-in cores share CoreSkeleton's rule).
+  virtual void move_relative(int motor, std::int32_t offset) = 0;
   virtual void rotate(int motor, std::int32_t velocity) = 0;       // ROR (+), ROL (-), RORA, ROLA
+  // Why the positioning just commanded cannot start, or which of its ramp settings the manual
+  // forbids, naming the parameters (the VM's run-time warning `ramp-setting`); empty: none.
+  virtual std::string move_problem(int motor) const {
+    (void)motor;
+    return {};
+  }
   virtual void stop(int motor) = 0;                                // MST: soft stop
   // RFS START/STOP; STATUS returns 0 when no search is running (finished), non-zero otherwise.
   virtual std::int32_t reference_search(int motor, RfsAction action) = 0;
