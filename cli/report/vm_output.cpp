@@ -156,6 +156,41 @@ json::Value int_array(const Range& r) {
   return a;
 }
 
+// A motor still turning after STOP (errata E50): STOP ends the program, not the motion, so a
+// ROR/ROL goes on as on the module. `speed` is what axis parameter 3 reads (the core's units),
+// `pps` the physical speed.
+struct Moving {
+  int motor;
+  std::int32_t speed;
+  double pps;
+};
+std::vector<Moving> moving_after_stop(Vm& vm, const RunResult& result) {
+  std::vector<Moving> list;
+  if (result.halt != Halt::Stop) return list;
+  vm.sync_motion();
+  for (int m = 0; m < vm.profile->motors; ++m) {
+    // A core without a recorder's view (sample_at) still reports parameter 3.
+    double pps = vm.motion->sample_at(m, vm.now).velocity;
+    const std::int32_t raw = vm.motion->owns(kApActualSpeed) ? vm.motion->get_param(m, kApActualSpeed) : 0;
+    if (pps == 0.0 && raw != 0) {
+      auto phys = vm.motion->physical(m, kApTargetSpeed, raw);
+      pps = phys ? phys->value : raw;
+    }
+    if (pps == 0.0) continue;
+    list.push_back({m, raw != 0 ? raw : static_cast<std::int32_t>(pps), pps});
+  }
+  return list;
+}
+
+std::string pps_text(double pps) {
+  char buf[48];
+  std::snprintf(buf, sizeof buf, "%.3f", pps);
+  std::string s = buf;
+  while (s.back() == '0') s.pop_back();
+  if (s.back() == '.') s.pop_back();
+  return s;
+}
+
 // Axis parameter numbers worth reporting for a motor: the profile's, the core's, any written.
 std::set<int> axis_numbers(const Vm& vm, int motor) {
   std::set<int> n;
@@ -172,6 +207,15 @@ std::string state_json(Vm& vm, const RunResult& result) {
   json::Value s = json::Value::object();
   s.set("halt", halt_name(result.halt));
   s.set("message", result.message);
+  if (auto moving = moving_after_stop(vm, result); !moving.empty()) {  // only then: no key more otherwise
+    json::Value& list = s.set("moving", json::Value::array());
+    for (const auto& mv : moving) {
+      json::Value& o = list.push(json::Value::object());
+      o.set("motor", mv.motor);
+      o.set("speed", static_cast<long long>(mv.speed));
+      o.set("pps", json::Value::number_text(pps_text(mv.pps)));
+    }
+  }
   s.set("profile", vm.profile->name);
   s.set("motion", vm.motion->name());
   s.set("time_us", static_cast<long long>(vm.now));
@@ -357,7 +401,18 @@ std::string state_summary(Vm& vm, const RunResult& result, const std::array<std:
   else if (!result.message.empty())
     s += " (" + result.message + ")";
   s += "\nsimulated time: " + format_time(vm.now) + "\nsteps: " + std::to_string(vm.steps) + "\n";
-  for (int m : shown_motors(vm)) s += "motor " + std::to_string(m) + ": position " + std::to_string(vm.motion->position(m)) + "\n";
+  const std::vector<Moving> moving = moving_after_stop(vm, result);
+  for (int m : shown_motors(vm)) {
+    s += "motor " + std::to_string(m) + ": position " + std::to_string(vm.motion->position(m));
+    for (const auto& mv : moving)
+      if (mv.motor == m) {
+        const std::string pps = pps_text(mv.pps);
+        s += ", still moving at " + pps + " pps";
+        if (std::to_string(mv.speed) != pps) s += " (actual speed " + std::to_string(mv.speed) + ")";
+      }
+    s += "\n";
+  }
+  if (!moving.empty()) s += "note: STOP ends the program, not the motion: the motors above still move, as on the module\n";
   for (std::size_t v = 0; v < vm.vars.size(); ++v) {
     const std::int32_t start = vars_at_start ? (*vars_at_start)[v] : 0;
     if (vm.vars[v] == start) continue;
