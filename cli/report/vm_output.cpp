@@ -139,8 +139,8 @@ void TextTrace::input_event(const Vm& vm, const std::string& what) {
 // Same form as a wait line: the instant, then the address (and source line) it happened at.
 void TextTrace::warning(const Vm& vm, const RuntimeWarning& w) {
   (void)vm;
-  std::fprintf(out_, "%s  warning at %" PRId32 " %s: %s\n", format_time(w.at).c_str(), w.pc, where(w.pc).c_str(),
-               w.message.c_str());
+  std::fprintf(out_, "%s  %s at %" PRId32 " %s: %s\n", format_time(w.at).c_str(), w.note ? "note" : "warning", w.pc,
+               where(w.pc).c_str(), w.message.c_str());
   written();
 }
 
@@ -246,9 +246,14 @@ std::string state_json(Vm& vm, const RunResult& result) {
   }
   json::Value& coords = s.set("coords", json::Value::array());
   for (const auto& c : vm.coords) coords.push(int_array(c));
-  s.set("inputs", int_array(vm.inputs));
-  s.set("analog", int_array(vm.analog));
-  s.set("outputs", int_array(vm.outputs));
+  // Ports 0 up to the highest the profile lists in that bank, at least 0 … 7 (E53).
+  auto ports = [&](const std::array<std::int32_t, Vm::kPorts>& a, int bank) {
+    const int n = std::max(8, vm.profile->last_port(bank) + 1);
+    return int_array(std::vector<std::int32_t>(a.begin(), a.begin() + n));
+  };
+  s.set("inputs", ports(vm.inputs, 0));
+  s.set("analog", ports(vm.analog, 1));
+  s.set("outputs", ports(vm.outputs, 2));
   json::Value& globals = s.set("globals", json::Value::object());
   {
     json::Value& g0 = globals.set("0", json::Value::object());
@@ -288,6 +293,16 @@ std::string state_json(Vm& vm, const RunResult& result) {
       o.set("message", w.message);
     }
     s.set("warnings_omitted", static_cast<long long>(vm.warnings_total - vm.warnings.size()));
+  }
+  if (!vm.notes.empty()) {  // E52: what the run does not simulate though the program enabled it
+    json::Value& list = s.set("notes", json::Value::array());
+    for (const auto& w : vm.notes) {
+      json::Value& o = list.push(json::Value::object());
+      o.set("time_us", static_cast<long long>(w.at));
+      o.set("pc", static_cast<long long>(w.pc));
+      o.set("kind", warning_kind_name(w.kind));
+      o.set("message", w.message);
+    }
   }
   return json::write_lines(s) + "\n";
 }
@@ -420,6 +435,7 @@ std::string state_summary(Vm& vm, const RunResult& result, const std::array<std:
     s += start != 0 ? " (at start " + std::to_string(start) + ")\n" : "\n";
   }
   for (const auto& w : vm.warnings) s += "warning: " + format_time(w.at) + " at " + vm.where(w.pc) + ": " + w.message + "\n";
+  for (const auto& w : vm.notes) s += "note: " + format_time(w.at) + " at " + vm.where(w.pc) + ": " + w.message + "\n";
   if (vm.warnings_total > vm.warnings.size())
     s += "warning: " + std::to_string(vm.warnings_total - vm.warnings.size()) + " more run-time warnings not shown\n";
   return s;

@@ -132,6 +132,16 @@ global 3 28 "Right stop switch 0 edge type" 0..3 RWE default=0 src=P unverified=
 global 3 39 "Input 0 edge type" 0..3 RWE default=0 src=P unverified=range,access
 global 3 40 "Input 1 edge type" 0..3 RWE default=0 src=P unverified=range,access
 
+# I/O ports (errata E53, M20): no manual here; the profile's input-change vectors 39 and 40 name two
+# inputs (read digital and, as on the TMCM-1110, 12-bit analog); two outputs as the TMCM-1140's.
+# Every port is unverified.
+port 0 0 "IN0" in digital src=R:3.15 unverified
+port 0 1 "IN1" in digital src=R:3.15 unverified
+port 1 0 "IN0" in analog 0..4095 src=R:3.15 unverified
+port 1 1 "IN1" in analog 0..4095 src=R:3.15 unverified
+port 2 0 "OUT0" out digital src=R:3.14 unverified
+port 2 1 "OUT1" out digital src=R:3.14 unverified
+
 # Interrupt vectors (the TI_ names of Interrupts.inc).
 vector 0 TI_TIMER0 "Timer 0" unverified
 vector 1 TI_TIMER1 "Timer 1" unverified

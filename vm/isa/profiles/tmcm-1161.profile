@@ -126,6 +126,20 @@ global 3 40 "Input 1 edge type" 0..3 RWE default=0 src=P unverified=range,access
 global 3 41 "Input 2 edge type" 0..3 RWE default=0 src=P unverified=range,access
 global 3 42 "Input 3 edge type" 0..3 RWE default=0 src=P unverified=range,access
 
+# I/O ports (errata E53, M20): no manual here; the profile's input-change vectors 39 … 42 name four
+# inputs (read digital and, as on the TMCM-1110, 12-bit analog); two outputs as the TMCM-1140's.
+# Every port is unverified.
+port 0 0 "IN0" in digital src=R:3.15 unverified
+port 0 1 "IN1" in digital src=R:3.15 unverified
+port 0 2 "IN2" in digital src=R:3.15 unverified
+port 0 3 "IN3" in digital src=R:3.15 unverified
+port 1 0 "IN0" in analog 0..4095 src=R:3.15 unverified
+port 1 1 "IN1" in analog 0..4095 src=R:3.15 unverified
+port 1 2 "IN2" in analog 0..4095 src=R:3.15 unverified
+port 1 3 "IN3" in analog 0..4095 src=R:3.15 unverified
+port 2 0 "OUT0" out digital src=R:3.14 unverified
+port 2 1 "OUT1" out digital src=R:3.14 unverified
+
 # Interrupt vectors (the TI_ names of Interrupts.inc).
 vector 0 TI_TIMER0 "Timer 0" unverified
 vector 1 TI_TIMER1 "Timer 1" unverified
