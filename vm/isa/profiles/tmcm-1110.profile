@@ -79,7 +79,7 @@ axis 181 "Stop on stall" 0..2047 RW default=0 src=M:5 unverified=default  # 0: o
 axis 182 "SmartEnergy threshold speed" 0..2047 RW default=0 src=M:5 unverified=default
 axis 183 "SmartEnergy slow run current" 0..255 RW default=0 src=M:5 unverified=default
 axis 184 "Random TOff mode" 0..1 RW default=0 src=P unverified=range,access,default
-axis 193 "Reference search mode" 1..136 RWE default=1 src=M:5 unverified=default  # 1..8, +128 inverts the home switch
+axis 193 "Reference search mode" 1..136 RWE default=1 values=1..8,+128 src=M:5 unverified=default  # 1..8, +128 inverts the home switch
 axis 194 "Reference search speed" 0..2047 RWE default=100 src=M:5 unverified=default
 axis 195 "Reference switch speed" 0..2047 RWE default=50 src=M:5 unverified=default
 axis 196 "Distance end switches" 0..2147483647 R default=0 unit=μsteps src=M:5

@@ -77,7 +77,7 @@ axis 181 "Stop on stall" 0..2047 RW default=0 src=F:5,Y,P unverified=range,acces
 axis 182 "SmartEnergy threshold speed" 0..2047 RW default=0 src=F:5,Y,P unverified=range,access,default
 axis 183 "SmartEnergy slow run current" 0..255 RW default=0 src=F:5,Y,P unverified=range,access,default
 axis 184 "Random TOff mode" 0..1 RW default=0 src=Y,P unverified=range,access,default
-axis 193 "Reference search mode" 1..136 RWE default=1 src=F:5,R:4.2,Y,P unverified=range,default  # 1..8, +128 inverts the home switch
+axis 193 "Reference search mode" 1..136 RWE default=1 values=1..8,+128 src=F:5,R:4.2,Y,P unverified=range,default  # 1..8, +128 inverts the home switch
 axis 194 "Reference search speed" 0..2047 RWE default=100 src=F:5,R:4.2,Y,P unverified=range,default
 axis 195 "Reference switch speed" 0..2047 RWE default=50 src=F:5,R:4.2,Y,P unverified=range,default
 axis 196 "Distance end switches" 0..2147483647 R default=0 unit=μsteps src=F:5,Y,P unverified=range,access
