@@ -602,6 +602,7 @@ int run(int argc, char** argv) {
     if (!tmcl::read_file(o.scenario, sb, err, tmcl::kMaxScenarioBytes)) return input_error("", err);
     tmcl::ScenarioOptions sopts;
     sopts.motors = profile->motors;
+    sopts.profile = profile;
     sopts.module = o.target;
     sopts.error_limit = g_failure.error_limit;
     std::vector<tmcl::FileDiag> sdiags;

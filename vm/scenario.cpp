@@ -116,6 +116,40 @@ void parse_placed(const std::vector<LineWord>& w, const ScenarioOptions& options
   out.push_back(ev);
 }
 
+// `input N` / `analog N`: a port the profile lists (E53), a value in its range; without a profile
+// (or under `ports any`) ports 0..7, as before there were port tables.
+template <class AtWord>
+bool port_ok(const ScenarioOptions& options, const KindName& kind, const std::vector<LineWord>& w, std::int64_t value,
+             AtWord at_word) {
+  std::int64_t index = 0;
+  (void)parse_int(w[3].text, 0, 255, index);
+  const bool digital = kind.kind == InputEvent::Digital;
+  const Profile* p = options.profile;
+  const std::string module = options.module.empty() ? std::string("the module") : options.module;
+  if (!p || p->any_port) {
+    if (index <= 7) return true;
+    at_word(w[3], "bad " + w[2].text + " number '" + w[3].text + "' (0..7)");
+    return false;
+  }
+  const IoPort* port = p->read_port(digital ? 0 : 1, static_cast<int>(index));
+  if (!port || port->output || port->kind == PortKind::Bits) {
+    std::string list;
+    for (const auto& q : p->ports)
+      if (q.bank == (digital ? 0 : 1) && !q.output && q.kind != PortKind::Bits)
+        list += (list.empty() ? "" : ", ") + std::to_string(q.number);
+    at_word(w[3], module + " has no " + (digital ? "digital input " : "analog input ") + w[3].text + " (" +
+                      (list.empty() ? std::string("it has none") : w[2].text + " " + list) + ")");
+    return false;
+  }
+  if (!digital && (value < port->min || value > port->max)) {  // a digital input reads any non-zero as 1
+    at_word(w[5], "value " + w[5].text + " is outside the range of " + w[2].text + " " + w[3].text + " (" +
+                      std::string(port->name) + "): " + std::to_string(port->min) + " to " + std::to_string(port->max) +
+                      (port->unit.empty() ? "" : " " + std::string(port->unit)));
+    return false;
+  }
+  return true;
+}
+
 }  // namespace
 
 bool parse_scenario(const std::string& text, const std::string& file, std::vector<InputEvent>& out,
@@ -200,6 +234,7 @@ bool parse_scenario(const std::string& text, const std::string& file, std::vecto
       at_word(w[5], "bad value '" + w[5].text + "' (a 32-bit integer)");
       ok = false;
     }
+    if (ok && kind && !kind->motor && !port_ok(options, *kind, w, value, at_word)) ok = false;
     if (!ok) continue;
     ev.value = static_cast<std::int32_t>(value);
     ev.line = line_no;

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <bit>
 
+#include "tmcl/interrupts.hpp"
 #include "tmcl/params.hpp"
 #include "tmcl/vm.hpp"
 #include "vm_ops.hpp"
@@ -89,6 +90,12 @@ void Vm::power_on(const EepromImage* image) {
   inputs.fill(0);
   analog.fill(0);
   outputs.fill(0);
+  settings.fill(0);
+  for (const auto& port : profile->ports) {  // what an input reads until a scenario sets it (E53)
+    if (port.kind == PortKind::Bits) continue;
+    auto& bank = port.output ? (port.bank == 2 ? outputs : settings) : (port.bank == 1 ? analog : inputs);
+    bank[port.number] = port.default_value;
+  }
   switches.assign(static_cast<std::size_t>(motors), MotorSwitches{});
   vectors.fill(-1);
   enabled.fill(0);
@@ -106,6 +113,7 @@ void Vm::power_on(const EepromImage* image) {
   fault_message_.clear();
   warnings.clear();
   warnings_total = 0;
+  notes.clear();
   input_next = 0;
   next_check_ = 0;
   unplaceable_.clear();
@@ -231,6 +239,10 @@ std::string_view warning_kind_name(RuntimeWarning::Kind k) {
     case RuntimeWarning::HandlerWithoutReti: return "handler-without-reti";
     case RuntimeWarning::ValueOutOfRange: return "value-out-of-range";
     case RuntimeWarning::RampSetting: return "ramp-setting";
+    case RuntimeWarning::NoSuchMotor: return "no-such-motor";
+    case RuntimeWarning::NotWritable: return "not-writable";
+    case RuntimeWarning::NoSuchPort: return "no-such-port";
+    case RuntimeWarning::NotSimulated: return "not-simulated";
   }
   return "unknown";
 }
@@ -245,6 +257,22 @@ bool Vm::warn(RuntimeWarning::Kind kind, std::string message) {
   last_warning = RuntimeWarning{now - instr_time, pc, kind, std::move(message)};
   if (warnings.size() < kMaxWarnings) warnings.push_back(last_warning);
   ++warnings_total;
+  return false;
+}
+
+bool Vm::note_not_simulated(int n) {
+  const std::string why = not_simulated_reason(*profile, motion->name(), n);
+  if (why.empty()) return false;
+  for (const auto& nt : notes)
+    if (nt.message.rfind("interrupt " + std::to_string(n) + " ", 0) == 0) return false;  // once
+  const InterruptVector* v = profile->vector(n);
+  std::string message = "interrupt " + std::to_string(n) + (v ? " (" + std::string(v->name) + ")" : std::string()) +
+                        " is enabled, but this run never raises it (" + vector_source_text(vector_kind(n)) +
+                        " is not simulated: " + why + ")";
+  if (strict) return warn(RuntimeWarning::NotSimulated, std::move(message));
+  RuntimeWarning note{now - instr_time, pc, RuntimeWarning::NotSimulated, std::move(message), true};
+  notes.push_back(note);
+  last_warning = note;
   return false;
 }
 
@@ -325,10 +353,10 @@ void Vm::handle_motion_event(const MotionEvent& ev) {
   if (trace) trace->motion_event(*this, ev);
   if (on_motion_event) on_motion_event(*this, ev);
   switch (ev.kind) {
-    case MotionEventKind::TargetReached: raise(3 + ev.motor); break;
+    case MotionEventKind::TargetReached: raise(kVectorTarget0 + ev.motor); break;
     case MotionEventKind::Deviation:
       errors |= kErrDeviation;
-      raise(21 + ev.motor);
+      raise(kVectorDeviation0 + ev.motor);
       break;
     case MotionEventKind::SwitchChanged: switch_source(ev.motor, ev.input, false, ev.active); break;
     default: break;
@@ -353,10 +381,17 @@ void Vm::apply_input(const InputEvent& ev) {
   auto idx = static_cast<std::size_t>(ev.index);
   std::string what;
   switch (ev.kind) {
-    case InputEvent::Digital:
-      if (idx < inputs.size()) inputs[idx] = ev.value != 0;
-      what = "input " + std::to_string(ev.index) + " = " + std::to_string(ev.value != 0);
-      break;
+    case InputEvent::Digital: {
+      if (idx >= inputs.size()) return;
+      const bool before = inputs[idx] != 0, after = ev.value != 0;
+      inputs[idx] = after;
+      what = "input " + std::to_string(ev.index) + " = " + std::to_string(after);
+      if (trace) trace->input_event(*this, what);
+      // Input change n: vector 39+n on the edges bank-3 parameter 39+n selects (E52).
+      const int n = kVectorInput0 + ev.index;
+      if (n < kVectorGlobal && transition_fires(bank3[static_cast<std::size_t>(n)], before, after)) raise(n);
+      return;
+    }
     case InputEvent::Analog:
       if (idx < analog.size()) analog[idx] = ev.value;
       what = "analog " + std::to_string(ev.index) + " = " + std::to_string(ev.value);
@@ -403,7 +438,7 @@ void Vm::switch_source(int motor, SwitchInput input, bool timed, bool level) {
   bool before = *sw;
   *sw = ((s.timed | s.placed) & bit) != 0;
   if (input == SwitchInput::Home) return;
-  int n = (input == SwitchInput::StopLeft ? 27 : 28) + 2 * motor;
+  int n = kVectorStopLeft0 + (input == SwitchInput::StopLeft ? 0 : 1) + 2 * motor;
   if (n < 255 && transition_fires(bank3[static_cast<std::size_t>(n)], before, *sw)) raise(n);
 }
 

@@ -190,6 +190,7 @@ RunResult Vm::Loop::run_traced(Vm& vm, const Limits& lim) {
     const SimTime t0 = vm.now;
     const bool was_in_handler = vm.in_handler;
     const std::uint64_t warned = vm.warnings_total;
+    const std::size_t noted = vm.notes.size();
     if (vm.in_handler && !vm.handler_code.empty() && vm.check_handler_code()) continue;  // --strict: a fault
     vm.now += vm.instr_time;
     ++vm.steps;
@@ -198,7 +199,7 @@ RunResult Vm::Loop::run_traced(Vm& vm, const Limits& lim) {
     if (vm.trap_hit) continue;
     if (!vm.executed.empty()) count_branch(vm, at);
     vm.trace->instruction(vm, t0, at, vm.program[static_cast<std::size_t>(at)]);
-    if (vm.warnings_total != warned) vm.trace->warning(vm, vm.last_warning);
+    if (vm.warnings_total != warned || vm.notes.size() != noted) vm.trace->warning(vm, vm.last_warning);
     if (was_in_handler && !vm.in_handler) vm.trace->interrupt_leave(vm, vm.pc);  // RETI (or RST)
   }
 }

@@ -22,6 +22,7 @@ struct Internal {
   static void fault(Vm& vm, std::string message) { vm.fault(std::move(message)); }
   // A run-time warning; true when --strict made it a fault (then pc stays on the instruction).
   static bool warn(Vm& vm, RuntimeWarning::Kind k, std::string message) { return vm.warn(k, std::move(message)); }
+  static bool note_not_simulated(Vm& vm, int vector) { return vm.note_not_simulated(vector); }
 };
 
 using R = DirectReply;
@@ -190,29 +191,82 @@ R refused_value(Vm& vm, std::uint8_t st, bool axis, int bank, int param, const c
   }
   return done<D>(vm, st);
 }
+// E51: an instruction naming a motor the module lacks is ignored (status 4 in direct mode), with
+// a run-time warning naming instruction, motor and the motors there are; true when it was
+// missing (then the caller returns `r`, which is ok() when --strict made it a fault).
+template <bool D> bool motor_missing(Vm& vm, const Instruction& i, R& r) {
+  if (vm.motor_ok(i.motor)) return false;
+  if constexpr (!D) {
+    const int motors = vm.profile->motors;
+    if (Internal::warn(vm, RuntimeWarning::NoSuchMotor,
+                       std::string(op_info(i.op)->mnemonic) + " on motor " + std::to_string(i.motor) + ": " +
+                           std::string(vm.profile->title) + " has no motor " + std::to_string(i.motor) +
+                           (motors == 1 ? std::string(" (motor 0 only)") : " (motors 0 to " + std::to_string(motors - 1) + ")"))) {
+      r = ok();
+      return true;
+    }
+  }
+  r = done<D>(vm, kStatusInvalidValue);
+  return true;
+}
+// E51: a write of a parameter that is read-only or that the module does not have (status 3).
+template <bool D> R refused_param(Vm& vm, const Instruction& i, bool axis, int bank, std::int64_t value) {
+  if constexpr (!D) {
+    const ParamInfo* p = axis ? vm.profile->axis_param(i.type) : vm.profile->global_param(bank, i.type);
+    const std::string what = param_text(axis ? "axis parameter" : "global parameter", i.type, p) +
+                             (axis ? "" : " of bank " + std::to_string(bank));
+    if ((axis || bank == 0 || bank == 3) &&
+        Internal::warn(vm, RuntimeWarning::NotWritable,
+                       std::string(op_info(i.op)->mnemonic) + " of value " + std::to_string(value) + ": " + what +
+                           (p ? std::string(" is read-only") : " does not exist on " + std::string(vm.profile->title))))
+      return ok();
+  }
+  return done<D>(vm, kStatusWrongType);
+}
 template <bool D> R set_axis(Vm& vm, const Instruction& i, std::int32_t value) {
+  if (R r{}; motor_missing<D>(vm, i, r)) return r;
   const std::uint8_t st = vm.set_axis(i.motor, i.type, value);
-  if (D || st == kStatusOk || !vm.motor_ok(i.motor)) return done<D>(vm, st);
+  if (D || st == kStatusOk) return done<D>(vm, st);
+  if (st == kStatusWrongType) return refused_param<D>(vm, i, true, 0, value);
   return refused_value<D>(vm, st, true, 0, i.type, "value", value);
 }
 template <bool D> R set_global(Vm& vm, const Instruction& i, std::int32_t value) {
   const std::uint8_t st = vm.set_global(i.motor, i.type, value);
   if (D || st == kStatusOk) return done<D>(vm, st);
+  if (st == kStatusWrongType) return refused_param<D>(vm, i, false, i.motor, value);
   return refused_value<D>(vm, st, false, i.motor, i.type, "value", value);
 }
 template <bool D> R rotate(Vm& vm, const Instruction& i, std::int64_t velocity) {
+  if (R r{}; motor_missing<D>(vm, i, r)) return r;
   const std::uint8_t st = vm.rotate(i.motor, velocity);
-  if (D || st == kStatusOk || !vm.motor_ok(i.motor)) return done<D>(vm, st);
+  if (D || st == kStatusOk) return done<D>(vm, st);
   return refused_value<D>(vm, st, true, 0, kApTargetSpeed, "velocity", velocity);
+}
+// E53: GIO/SIO of a port the module does not have: ignored (status 3), with a warning naming the
+// ports of that bank there are.
+template <bool D> R refused_port(Vm& vm, const Instruction& i, std::uint8_t st, bool write) {
+  if constexpr (!D) {
+    if (st == kStatusWrongType &&
+        Internal::warn(vm, RuntimeWarning::NoSuchPort,
+                       std::string(write ? "SIO " : "GIO ") + std::to_string(i.type) + ", " + std::to_string(i.motor) + ": " +
+                           std::string(vm.profile->title) + " has no port " + std::to_string(i.type) + " in bank " +
+                           std::to_string(i.motor) + " (" + (write ? "SIO" : "GIO") + ": " + vm.ports_text(i.motor, write) + ")"))
+      return ok();
+  }
+  return done<D>(vm, st);
 }
 
 // ---------------------------------------------------------------- motion
 template <bool D> R op_ROR(Vm& vm, const Instruction& i) { return rotate<D>(vm, i, i.value); }
 template <bool D> R op_ROL(Vm& vm, const Instruction& i) { return rotate<D>(vm, i, -static_cast<std::int64_t>(i.value)); }
-template <bool D> R op_MST(Vm& vm, const Instruction& i) { return done<D>(vm, vm.motor_stop(i.motor)); }
+template <bool D> R op_MST(Vm& vm, const Instruction& i) {
+  if (R r{}; motor_missing<D>(vm, i, r)) return r;
+  return done<D>(vm, vm.motor_stop(i.motor));
+}
 // E47: a positioning the ramp cannot start (or whose ramp the manual forbids) is run as the core
 // plans it, with a run-time warning naming the parameter (a fault under --strict).
 template <bool D> R move(Vm& vm, const Instruction& i, std::int32_t value) {
+  if (R r{}; motor_missing<D>(vm, i, r)) return r;
   const std::uint8_t st = vm.move(i.type, i.motor, value);
   if constexpr (!D) {
     if (st == kStatusOk)
@@ -230,6 +284,7 @@ template <bool D> R op_RORXA(Vm& vm, const Instruction& i) { return op_RORA<D>(v
 template <bool D> R op_ROLXA(Vm& vm, const Instruction& i) { return op_ROLA<D>(vm, i); }
 template <bool D> R op_MSTX(Vm& vm, const Instruction& i) { return op_MST<D>(vm, i); }
 template <bool D> R op_RFS(Vm& vm, const Instruction& i) {
+  if (R r{}; motor_missing<D>(vm, i, r)) return r;
   std::int32_t v = 0;
   std::uint8_t st = vm.rfs(i.type, i.motor, v);
   if (i.type == kw::Rfs::STATUS) return load<D>(vm, st, v);  // a read
@@ -239,6 +294,7 @@ template <bool D> R op_RFS(Vm& vm, const Instruction& i) {
 // ---------------------------------------------------------------- parameters
 template <bool D> R op_SAP(Vm& vm, const Instruction& i) { return set_axis<D>(vm, i, i.value); }
 template <bool D> R op_GAP(Vm& vm, const Instruction& i) {
+  if (R r{}; motor_missing<D>(vm, i, r)) return r;
   std::int32_t v = 0;
   std::uint8_t st = vm.get_axis(i.motor, i.type, v);
   return load<D>(vm, st, v);
@@ -247,8 +303,14 @@ template <bool D> R op_AAP(Vm& vm, const Instruction& i) { return set_axis<D>(vm
 template <bool D> R op_SAPX(Vm& vm, const Instruction& i) { return op_SAP<D>(vm, i); }
 template <bool D> R op_GAPX(Vm& vm, const Instruction& i) { return op_GAP<D>(vm, i); }
 template <bool D> R op_AAPX(Vm& vm, const Instruction& i) { return op_AAP<D>(vm, i); }
-template <bool D> R op_STAP(Vm& vm, const Instruction& i) { return done<D>(vm, vm.store_axis(i.motor, i.type)); }
-template <bool D> R op_RSAP(Vm& vm, const Instruction& i) { return done<D>(vm, vm.restore_axis(i.motor, i.type)); }
+template <bool D> R op_STAP(Vm& vm, const Instruction& i) {
+  if (R r{}; motor_missing<D>(vm, i, r)) return r;
+  return done<D>(vm, vm.store_axis(i.motor, i.type));
+}
+template <bool D> R op_RSAP(Vm& vm, const Instruction& i) {
+  if (R r{}; motor_missing<D>(vm, i, r)) return r;
+  return done<D>(vm, vm.restore_axis(i.motor, i.type));
+}
 template <bool D> R op_SGP(Vm& vm, const Instruction& i) { return set_global<D>(vm, i, i.value); }
 template <bool D> R op_GGP(Vm& vm, const Instruction& i) {
   std::int32_t v = 0;
@@ -258,10 +320,17 @@ template <bool D> R op_GGP(Vm& vm, const Instruction& i) {
 template <bool D> R op_AGP(Vm& vm, const Instruction& i) { return set_global<D>(vm, i, vm.acc); }
 template <bool D> R op_STGP(Vm& vm, const Instruction& i) { return done<D>(vm, vm.store_global(i.motor, i.type)); }
 template <bool D> R op_RSGP(Vm& vm, const Instruction& i) { return done<D>(vm, vm.restore_global(i.motor, i.type)); }
-template <bool D> R op_SIO(Vm& vm, const Instruction& i) { return done<D>(vm, vm.set_io(i.type, i.motor, i.value)); }
+template <bool D> R op_SIO(Vm& vm, const Instruction& i) {
+  // SIO 255, 2, -1: the accumulator's lower 8 bits to the outputs (TMCL reference 3.14).
+  const std::int32_t v = i.type == 255 && i.value == -1 ? (vm.acc & 0xFF) : i.value;
+  const std::uint8_t st = vm.set_io(i.type, i.motor, v);
+  if (st == kStatusOk) return done<D>(vm, st);
+  return refused_port<D>(vm, i, st, true);
+}
 template <bool D> R op_GIO(Vm& vm, const Instruction& i) {
   std::int32_t v = 0;
   std::uint8_t st = vm.get_io(i.type, i.motor, v);
+  if (st != kStatusOk) return refused_port<D>(vm, i, st, false);
   return load<D>(vm, st, v);
 }
 
@@ -439,7 +508,9 @@ template <bool D> R op_WAIT(Vm& vm, const Instruction& i) {
   std::int64_t ticks = i.value == -1 ? vm.acc : i.value;  // E7: -1 takes the accumulator
   if (ticks < 0) ticks = 0;                                // E7: negative counts as 0
   const bool timed = i.type == kw::Wait::TICKS;
-  if (i.type > kw::Wait::RFS || (!timed && !vm.motor_ok(i.motor))) return done<D>(vm, kStatusOk);  // ignored
+  if (!timed && i.type <= kw::Wait::RFS)
+    if (R r{}; motor_missing<D>(vm, i, r)) return r;  // ignored (E51: with a warning)
+  if (i.type > kw::Wait::RFS) return done<D>(vm, kStatusOk);  // ignored
   SimTime start = vm.now - vm.instr_time;  // the WAIT's own start instant
   vm.wait.active = true;
   vm.wait.kind = i.type;
@@ -454,6 +525,8 @@ template <bool D> R op_EI(Vm& vm, const Instruction& i) {
   if (i.type == 255) {
     vm.global_enable = true;
   } else if (Internal::vector_ok(vm, i.type)) {
+    if constexpr (!D)
+      if (Internal::note_not_simulated(vm, i.type)) return ok();  // --strict: a fault
     vm.enabled[i.type >> 6] |= std::uint64_t{1} << (i.type & 63);
   } else {
     return done<D>(vm, kStatusWrongType);

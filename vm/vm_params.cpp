@@ -278,24 +278,65 @@ std::uint8_t Vm::capture_coord(int motor, int n, std::int32_t& value) {
 }
 
 // ---------------------------------------------------------------- inputs and outputs
-// Bank 0: digital inputs, bank 1: analog inputs, bank 2: digital outputs (E18).
+// Bank 0: digital inputs, bank 1: analog inputs, bank 2: digital outputs (E18), as the profile's
+// ports list them (E53): a port the module lacks is a wrong type (3), a bank other than 0 … 2 an
+// invalid value (4). `ports any` (generic) takes every port of banks 0 … 2 (SIO: bank 2 only).
+
+namespace {
+// Bit n: digital port n of `bank` (the inputs of bank 0, the outputs of bank 2) that the profile lists.
+std::int32_t bit_vector(const Profile& profile, int bank, const std::array<std::int32_t, Vm::kPorts>& states) {
+  std::uint32_t v = 0;
+  for (const auto& p : profile.ports)
+    if (p.bank == bank && p.kind == PortKind::Digital && p.output == (bank == 2) && p.number < 32 && states[p.number] != 0)
+      v |= 1u << p.number;
+  return static_cast<std::int32_t>(v);
+}
+}  // namespace
 
 std::uint8_t Vm::set_io(int port, int bank, std::int32_t value) {
-  if (bank != 2) return kStatusInvalidValue;
-  if (port < 0 || port >= kPorts) return kStatusWrongType;
-  outputs[static_cast<std::size_t>(port)] = value != 0;
+  if (bank < 0 || bank > 2) return kStatusInvalidValue;
+  auto n = static_cast<std::size_t>(port);
+  if (profile->any_port) {
+    if (port < 0 || port >= kPorts) return kStatusWrongType;
+    if (bank != 2) return kStatusInvalidValue;
+    outputs[n] = value != 0;
+    return kStatusOk;
+  }
+  const IoPort* p = profile->write_port(bank, port);
+  if (!p) return kStatusWrongType;
+  if (p->kind == PortKind::Bits) {  // SIO 255, 2, mask: every output at once
+    if (value < p->min || value > p->max) return kStatusInvalidValue;
+    for (const auto& o : profile->ports)
+      if (o.bank == bank && o.output && o.kind == PortKind::Digital && o.number < 32) outputs[o.number] = (value >> o.number) & 1;
+    return kStatusOk;
+  }
+  if (p->kind == PortKind::Analog && (value < p->min || value > p->max)) return kStatusInvalidValue;
+  auto& states = bank == 2 ? outputs : settings;
+  states[n] = p->kind == PortKind::Digital && bank == 2 ? value != 0 : value;
   return kStatusOk;
 }
 
 std::uint8_t Vm::get_io(int port, int bank, std::int32_t& value) {
-  if (port < 0 || port >= kPorts) return kStatusWrongType;
-  auto p = static_cast<std::size_t>(port);
-  switch (bank) {
-    case 0: value = inputs[p]; return kStatusOk;
-    case 1: value = analog[p]; return kStatusOk;
-    case 2: value = outputs[p]; return kStatusOk;
-    default: return kStatusInvalidValue;
+  if (bank < 0 || bank > 2) return kStatusInvalidValue;
+  auto n = static_cast<std::size_t>(port);
+  auto& states = bank == 0 ? inputs : bank == 1 ? analog : outputs;
+  if (profile->any_port) {
+    if (port < 0 || port >= kPorts) return kStatusWrongType;
+    value = states[n];
+    return kStatusOk;
   }
+  const IoPort* p = profile->read_port(bank, port);
+  if (!p) return kStatusWrongType;
+  value = p->kind == PortKind::Bits ? bit_vector(*profile, bank, states) : states[n];  // listed: n < kPorts
+  return kStatusOk;
+}
+
+std::string Vm::ports_text(int bank, bool write) const {
+  std::string s;
+  for (const auto& p : profile->ports)
+    if (p.bank == bank && (write ? p.output : (!p.output || bank == 2)))
+      s += (s.empty() ? "" : ", ") + std::to_string(p.number);
+  return s.empty() ? "none" : s;
 }
 
 }  // namespace tmcl

@@ -141,8 +141,8 @@ void TextTrace::input_event(const Vm& vm, const std::string& what) {
 // Same form as a wait line: the instant, then the address (and source line) it happened at.
 void TextTrace::warning(const Vm& vm, const RuntimeWarning& w) {
   (void)vm;
-  std::fprintf(out_, "%s  warning at %" PRId32 " %s: %s\n", format_time(w.at).c_str(), w.pc, where(w.pc).c_str(),
-               w.message.c_str());
+  std::fprintf(out_, "%s  %s at %" PRId32 " %s: %s\n", format_time(w.at).c_str(), w.note ? "note" : "warning", w.pc,
+               where(w.pc).c_str(), w.message.c_str());
   written();
 }
 
@@ -156,6 +156,41 @@ json::Value int_array(const Range& r) {
   json::Value a = json::Value::array();
   for (auto v : r) a.push(static_cast<long long>(v));
   return a;
+}
+
+// A motor still turning after STOP (errata E50): STOP ends the program, not the motion, so a
+// ROR/ROL goes on as on the module. `speed` is what axis parameter 3 reads (the core's units),
+// `pps` the physical speed.
+struct Moving {
+  int motor;
+  std::int32_t speed;
+  double pps;
+};
+std::vector<Moving> moving_after_stop(Vm& vm, const RunResult& result) {
+  std::vector<Moving> list;
+  if (result.halt != Halt::Stop) return list;
+  vm.sync_motion();
+  for (int m = 0; m < vm.profile->motors; ++m) {
+    // A core without a recorder's view (sample_at) still reports parameter 3.
+    double pps = vm.motion->sample_at(m, vm.now).velocity;
+    const std::int32_t raw = vm.motion->owns(kApActualSpeed) ? vm.motion->get_param(m, kApActualSpeed) : 0;
+    if (pps == 0.0 && raw != 0) {
+      auto phys = vm.motion->physical(m, kApTargetSpeed, raw);
+      pps = phys ? phys->value : raw;
+    }
+    if (pps == 0.0) continue;
+    list.push_back({m, raw != 0 ? raw : static_cast<std::int32_t>(pps), pps});
+  }
+  return list;
+}
+
+std::string pps_text(double pps) {
+  char buf[48];
+  std::snprintf(buf, sizeof buf, "%.3f", pps);
+  std::string s = buf;
+  while (s.back() == '0') s.pop_back();
+  if (s.back() == '.') s.pop_back();
+  return s;
 }
 
 // Axis parameter numbers worth reporting for a motor: the profile's, the core's, any written.
@@ -174,6 +209,15 @@ std::string state_json(Vm& vm, const RunResult& result) {
   json::Value s = json::Value::object();
   s.set("halt", halt_name(result.halt));
   s.set("message", result.message);
+  if (auto moving = moving_after_stop(vm, result); !moving.empty()) {  // only then: no key more otherwise
+    json::Value& list = s.set("moving", json::Value::array());
+    for (const auto& mv : moving) {
+      json::Value& o = list.push(json::Value::object());
+      o.set("motor", mv.motor);
+      o.set("speed", static_cast<long long>(mv.speed));
+      o.set("pps", json::Value::number_text(pps_text(mv.pps)));
+    }
+  }
   s.set("profile", vm.profile->name);
   s.set("motion", vm.motion->name());
   s.set("time_us", static_cast<long long>(vm.now));
@@ -204,9 +248,14 @@ std::string state_json(Vm& vm, const RunResult& result) {
   }
   json::Value& coords = s.set("coords", json::Value::array());
   for (const auto& c : vm.coords) coords.push(int_array(c));
-  s.set("inputs", int_array(vm.inputs));
-  s.set("analog", int_array(vm.analog));
-  s.set("outputs", int_array(vm.outputs));
+  // Ports 0 up to the highest the profile lists in that bank, at least 0 … 7 (E53).
+  auto ports = [&](const std::array<std::int32_t, Vm::kPorts>& a, int bank) {
+    const int n = std::max(8, vm.profile->last_port(bank) + 1);
+    return int_array(std::vector<std::int32_t>(a.begin(), a.begin() + n));
+  };
+  s.set("inputs", ports(vm.inputs, 0));
+  s.set("analog", ports(vm.analog, 1));
+  s.set("outputs", ports(vm.outputs, 2));
   json::Value& globals = s.set("globals", json::Value::object());
   {
     json::Value& g0 = globals.set("0", json::Value::object());
@@ -246,6 +295,16 @@ std::string state_json(Vm& vm, const RunResult& result) {
       o.set("message", w.message);
     }
     s.set("warnings_omitted", static_cast<long long>(vm.warnings_total - vm.warnings.size()));
+  }
+  if (!vm.notes.empty()) {  // E52: what the run does not simulate though the program enabled it
+    json::Value& list = s.set("notes", json::Value::array());
+    for (const auto& w : vm.notes) {
+      json::Value& o = list.push(json::Value::object());
+      o.set("time_us", static_cast<long long>(w.at));
+      o.set("pc", static_cast<long long>(w.pc));
+      o.set("kind", warning_kind_name(w.kind));
+      o.set("message", w.message);
+    }
   }
   return json::write_lines(s) + "\n";
 }
@@ -359,7 +418,18 @@ std::string state_summary(Vm& vm, const RunResult& result, const std::array<std:
   else if (!result.message.empty())
     s += " (" + result.message + ")";
   s += "\nsimulated time: " + format_time(vm.now) + "\nsteps: " + std::to_string(vm.steps) + "\n";
-  for (int m : shown_motors(vm)) s += "motor " + std::to_string(m) + ": position " + std::to_string(vm.motion->position(m)) + "\n";
+  const std::vector<Moving> moving = moving_after_stop(vm, result);
+  for (int m : shown_motors(vm)) {
+    s += "motor " + std::to_string(m) + ": position " + std::to_string(vm.motion->position(m));
+    for (const auto& mv : moving)
+      if (mv.motor == m) {
+        const std::string pps = pps_text(mv.pps);
+        s += ", still moving at " + pps + " pps";
+        if (std::to_string(mv.speed) != pps) s += " (actual speed " + std::to_string(mv.speed) + ")";
+      }
+    s += "\n";
+  }
+  if (!moving.empty()) s += "note: STOP ends the program, not the motion: the motors above still move, as on the module\n";
   for (std::size_t v = 0; v < vm.vars.size(); ++v) {
     const std::int32_t start = vars_at_start ? (*vars_at_start)[v] : 0;
     if (vm.vars[v] == start) continue;
@@ -367,6 +437,7 @@ std::string state_summary(Vm& vm, const RunResult& result, const std::array<std:
     s += start != 0 ? " (at start " + std::to_string(start) + ")\n" : "\n";
   }
   for (const auto& w : vm.warnings) s += "warning: " + format_time(w.at) + " at " + vm.where(w.pc) + ": " + w.message + "\n";
+  for (const auto& w : vm.notes) s += "note: " + format_time(w.at) + " at " + vm.where(w.pc) + ": " + w.message + "\n";
   if (vm.warnings_total > vm.warnings.size())
     s += "warning: " + std::to_string(vm.warnings_total - vm.warnings.size()) + " more run-time warnings not shown\n";
   return s;

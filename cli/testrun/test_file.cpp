@@ -367,6 +367,7 @@ bool parse_test_file(const std::string& text, const std::string& path, const std
   const Profile* profile = reader.finish(default_target, target_given);
   ScenarioOptions sopts;
   sopts.motors = profile ? profile->motors : 256;
+  sopts.profile = profile;
   sopts.module = profile ? std::string(profile->name) : std::string();
   sopts.error_limit = 0;
   parse_scenario(scenario, path, out.inputs, mine, sopts);

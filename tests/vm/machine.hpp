@@ -66,6 +66,7 @@ inline const tmcl::Profile& test_profile() {
     q.eeprom_user_vars = 56;
     q.coords = 21;
     q.vectors = vectors;
+    q.any_port = true;  // every port 0..15, as E18 had it
     q.program_memory = 2048;
     q.motors = 1;
     q.default_motion = "ideal";

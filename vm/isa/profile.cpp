@@ -63,15 +63,82 @@ const Profile* load_bundled(std::string_view name) {
 
 }  // namespace
 
+namespace {
+// Whether v is in the value set: a plain item holds v less some of the flags (each at most once).
+bool in_value_set(std::span<const ValueItem> set, std::int64_t v) {
+  std::int64_t flags[8];
+  int nflags = 0;
+  for (const auto& i : set)
+    if (i.flag && nflags < 8) flags[nflags++] = i.lo;
+  for (unsigned mask = 0; mask < (1u << nflags); ++mask) {
+    std::int64_t w = v;
+    for (int f = 0; f < nflags; ++f)
+      if (mask & (1u << f)) w -= flags[f];
+    for (const auto& i : set)
+      if (!i.flag && w >= i.lo && w <= i.hi) return true;
+  }
+  return false;
+}
+}  // namespace
+
 bool accepts(const ParamInfo& p, std::int64_t value) {
-  if (value >= p.min && value <= p.max) return true;
-  if (value < INT32_MIN || value > INT32_MAX) return false;
-  const auto u = static_cast<std::int64_t>(static_cast<std::uint32_t>(value));
-  return u >= p.min && u <= p.max;
+  bool in_range = value >= p.min && value <= p.max;
+  if (!in_range && value >= INT32_MIN && value <= INT32_MAX) {
+    const auto u = static_cast<std::int64_t>(static_cast<std::uint32_t>(value));
+    in_range = u >= p.min && u <= p.max;
+    if (in_range) value = u;
+  }
+  return in_range && (p.values.empty() || in_value_set(p.values, value));
 }
 
 std::string range_text(const ParamInfo& p) {
-  return std::to_string(p.min) + " to " + std::to_string(p.max) + (p.unit.empty() ? "" : " " + std::string(p.unit));
+  std::string s;
+  if (p.values.empty()) {
+    s = std::to_string(p.min) + " to " + std::to_string(p.max);
+  } else {
+    const char* sep = "";
+    bool flags = false;
+    for (const auto& i : p.values) {
+      if (i.flag) {
+        s += (flags ? ", +" : ", optionally +") + std::to_string(i.lo);
+        flags = true;
+        continue;
+      }
+      s += sep + std::to_string(i.lo) + (i.hi != i.lo ? " to " + std::to_string(i.hi) : "");
+      sep = ", ";
+    }
+  }
+  return s + (p.unit.empty() ? "" : " " + std::string(p.unit));
+}
+
+std::string port_text(const IoPort& p) {
+  return std::string(p.output ? "SIO " : "GIO ") + std::to_string(p.number) + ", " + std::to_string(p.bank) +
+         (p.name.empty() ? "" : " (" + std::string(p.name) + ")");
+}
+
+const IoPort* Profile::read_port(int bank, int number) const {
+  for (const auto& p : ports)
+    if (p.bank == bank && p.number == number && (!p.output || bank == 2)) return &p;
+  return nullptr;
+}
+
+const IoPort* Profile::write_port(int bank, int number) const {
+  for (const auto& p : ports)
+    if (p.bank == bank && p.number == number && p.output) return &p;
+  return nullptr;
+}
+
+bool Profile::digital_input(int n) const {
+  if (any_port) return n >= 0 && n < kPortCount;
+  const IoPort* p = read_port(0, n);
+  return p && p->kind == PortKind::Digital;
+}
+
+int Profile::last_port(int bank) const {
+  int last = -1;
+  for (const auto& p : ports)
+    if (p.bank == bank && p.kind != PortKind::Bits && (p.output == (bank == 2))) last = std::max(last, static_cast<int>(p.number));
+  return last;
 }
 
 std::string param_text(std::string_view kind, int number, const ParamInfo* p) {

@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cctype>
 #include <map>
+#include <tuple>
 
 #include "tmcl/isa.hpp"
 #include "tmcl/numbers.hpp"
@@ -19,7 +20,7 @@ constexpr std::int64_t kValueMin = -2147483648LL;  // a parameter value is a 32-
 constexpr std::int64_t kValueMax = 4294967295LL;   // signed or unsigned
 
 // Attributes a statement may carry besides src= and unverified, which every statement may.
-enum AttrBit : unsigned { kDefault = 1, kUnit = 2, kEepromVars = 4, kFallback = 8 };
+enum AttrBit : unsigned { kDefault = 1, kUnit = 2, kEepromVars = 4, kFallback = 8, kValues = 16 };
 
 struct KeyInfo {
   std::string_view key;
@@ -47,12 +48,14 @@ constexpr KeyInfo kKeys[] = {
     {"parameters", 1, 1, 0, true, "parameters listed|any"},
     {"motion", 1, 1, kFallback, true, "motion CORE [fallback=CORE]"},
     {"motion-constant", 2, 2, 0, false, "motion-constant NAME VALUE"},
-    {"axis", 4, 4, kDefault | kUnit, false, "axis N \"NAME\" MIN..MAX ACCESS [default=V] [unit=U]"},
-    {"global", 5, 5, kDefault | kUnit, false, "global BANK N \"NAME\" MIN..MAX ACCESS [default=V] [unit=U]"},
+    {"axis", 4, 4, kDefault | kUnit | kValues, false, "axis N \"NAME\" MIN..MAX ACCESS [default=V] [unit=U] [values=SET]"},
+    {"global", 5, 5, kDefault | kUnit | kValues, false, "global BANK N \"NAME\" MIN..MAX ACCESS [default=V] [unit=U] [values=SET]"},
+    {"ports", 1, 1, 0, true, "ports listed|any"},
+    {"port", 5, 6, kDefault | kUnit, false, "port BANK N \"NAME\" in|out digital|analog|bits [MIN..MAX] [default=V] [unit=U]"},
     {"vector", 3, 3, 0, false, "vector N NAME \"MEANING\""},
 };
 
-constexpr std::string_view kAttrNames[] = {"src", "unverified", "default", "unit", "eeprom", "fallback"};
+constexpr std::string_view kAttrNames[] = {"src", "unverified", "default", "unit", "eeprom", "fallback", "values"};
 
 struct Word {
   std::string_view text;
@@ -80,6 +83,7 @@ struct Reader {
   std::map<std::pair<int, int>, int> defined = {};  // (bank or -1 for axis, number) -> line, this file
   std::map<int, int> vectors_defined = {};
   bool started = false, based = false, commands_given = false, stopped = false;
+  const Attr* values_ = nullptr;  // the current line's values=, for parameter()
   bool any_statement_after_header = false;
 
   void error(int col, int len, const std::string& msg) {
@@ -292,6 +296,7 @@ struct Reader {
     const Attr* unit = nullptr;
     const Attr* eeprom = nullptr;
     const Attr* fallback = nullptr;
+    const Attr* values = nullptr;
     const Attr* unverified = nullptr;
     const Attr* src = nullptr;
     bool attrs_ok = true;
@@ -304,6 +309,7 @@ struct Reader {
       else if (a.key == "unit") slot = &unit, need = kUnit;
       else if (a.key == "eeprom") slot = &eeprom, need = kEepromVars;
       else if (a.key == "fallback") slot = &fallback, need = kFallback;
+      else if (a.key == "values") slot = &values, need = kValues;
       if (!slot) {
         std::string hint = closest_match(a.key, std::vector<std::string_view>(std::begin(kAttrNames), std::end(kAttrNames)));
         error(a.col, static_cast<int>(a.key.size()),
@@ -362,6 +368,7 @@ struct Reader {
         info->key != "based-on")
       any_statement_after_header = true;
     if (unverified_facts && !param_line) s.unverified.push_back(keep(std::string(info->key)));
+    values_ = values;
     apply(*info, words, def, unit, eeprom, fallback, src, unverified_facts);
   }
 
@@ -466,6 +473,13 @@ struct Reader {
       s.constants.push_back({w[1].text, n});
     } else if (k == "axis" || k == "global") {
       parameter(k == "axis", w, def, unit, src, unverified_facts);
+    } else if (k == "ports") {
+      if (w[1].text != "any" && w[1].text != "listed")
+        return error(w[1], "ports takes 'listed' (only the port lines) or 'any' (every port 0..255 of banks 0 to 2, "
+                           "unchecked), not '" + std::string(w[1].text) + "'");
+      p.any_port = w[1].text == "any";
+    } else if (k == "port") {
+      port(w, def, unit, src, unverified_facts != 0);
     } else if (k == "vector") {
       if (!number(w[1], 0, 255, n, "an interrupt number")) return;
       if (w[2].quoted || !valid_name(w[2].text)) return error(w[2], "a vector's name is a symbol such as TI_TIMER0");
@@ -539,6 +553,12 @@ struct Reader {
     } else {
       d = std::clamp<std::int64_t>(0, lo, hi);
     }
+    std::span<const ValueItem> set;
+    if (values_ && !value_set(*values_, lo, hi, set)) return;
+    if (!set.empty() && def) {
+      ParamInfo probe{0, {}, lo, hi, 0, 0, {}, {}, 0, set};
+      if (!accepts(probe, d)) return error(def->value, "the default " + std::to_string(d) + " is not in the value set");
+    }
     auto [it, fresh] = defined.emplace(std::make_pair(static_cast<int>(bank), static_cast<int>(n)), line_no);
     if (!fresh)
       return error(num, std::string(axis ? "axis parameter " : "global parameter ") + std::to_string(n) +
@@ -546,7 +566,7 @@ struct Reader {
                             std::to_string(it->second));
     ParamInfo info{static_cast<std::uint16_t>(n), name.text, lo, hi, acc, static_cast<std::int32_t>(static_cast<std::uint32_t>(d)),
                    unit ? unit->value.text : std::string_view{}, src ? src->value.text : std::string_view{},
-                   unverified_facts};
+                   unverified_facts, set};
     auto& table = axis ? s.axis : bank == 0 ? s.bank0 : s.bank3;
     auto old = std::find_if(table.begin(), table.end(), [&](const ParamInfo& x) { return x.number == n; });
     if (old != table.end()) *old = info;
@@ -565,6 +585,78 @@ struct Reader {
     }
   }
 
+  // values=ITEM,ITEM...: N, A..B, or +F (a number that may be added: a flag bit).
+  bool value_set(const Attr& a, std::int64_t lo, std::int64_t hi, std::span<const ValueItem>& out) {
+    std::vector<ValueItem> set;
+    std::string_view v = a.value.text;
+    for (std::size_t p = 0; p <= v.size();) {
+      std::size_t q = std::min(v.find(',', p), v.size());
+      std::string_view item = v.substr(p, q - p);
+      Word w{item, a.value.col + static_cast<int>(p), static_cast<int>(std::max<std::size_t>(item.size(), 1)), false};
+      ValueItem vi{0, 0, false};
+      if (!item.empty() && item[0] == '+') {
+        Word f{item.substr(1), w.col + 1, w.len - 1, false};
+        if (!number(f, 1, kValueMax, vi.lo, "a flag to add")) return false;
+        vi.hi = vi.lo;
+        vi.flag = true;
+      } else if (const std::size_t dots = item.find(".."); dots != std::string_view::npos) {
+        if (!range(w, vi.lo, vi.hi)) return false;
+      } else {
+        if (!number(w, kValueMin, kValueMax, vi.lo, "a value")) return false;
+        vi.hi = vi.lo;
+      }
+      if (!vi.flag && (vi.lo < lo || vi.hi > hi)) {
+        error(w, "value set item '" + std::string(item) + "' is outside the parameter's range " + std::to_string(lo) + ".." +
+                     std::to_string(hi));
+        return false;
+      }
+      set.push_back(vi);
+      p = q + 1;
+    }
+    if (std::none_of(set.begin(), set.end(), [](const ValueItem& i) { return !i.flag; })) {
+      error(a.value, "a value set needs at least one value or range besides the flags");
+      return false;
+    }
+    out = s.value_sets.emplace_back(std::move(set));
+    return true;
+  }
+
+  void port(const std::vector<Word>& w, const Attr* def, const Attr* unit, const Attr* src, bool unverified) {
+    std::int64_t bank = 0, n = 0, lo = 0, hi = 1, d = 0;
+    if (!number(w[1], 0, 2, bank, "an I/O bank (0 digital inputs, 1 analog inputs, 2 outputs)")) return;
+    if (!number(w[2], 0, 255, n, "a port number")) return;
+    if (w[3].text.empty()) return error(w[3], "the port has no name");
+    if (w[4].text != "in" && w[4].text != "out")
+      return error(w[4], "a port is 'in' (GIO reads it) or 'out' (SIO writes it), not '" + std::string(w[4].text) + "'");
+    const bool output = w[4].text == "out";
+    PortKind kind = PortKind::Digital;
+    if (w[5].text == "analog") kind = PortKind::Analog;
+    else if (w[5].text == "bits") kind = PortKind::Bits;
+    else if (w[5].text != "digital")
+      return error(w[5], "a port is digital, analog or bits (every digital port of the bank at once), not '" +
+                             std::string(w[5].text) + "'");
+    if (kind == PortKind::Bits) hi = 255;
+    if ((kind == PortKind::Bits) != (n == 255))
+      return error(w[2], kind == PortKind::Bits ? "a bits port (every port of the bank at once) is number 255"
+                                                : "a port number is 0 to " + std::to_string(kPortCount - 1) + " (255: a bits port)");
+    if (w.size() > 6 && !range(w[6], lo, hi)) return;
+    if (kind == PortKind::Analog && w.size() <= 6) return error(w[5], "an analog port needs its range MIN..MAX (e.g. 0..4095)");
+    if (def) {
+      if (!number(def->value, lo, hi, d, "a default within the port's range")) return;
+    }
+    for (const auto& o : s.ports)
+      if (o.bank == bank && o.number == n && o.output == output && !based)
+        return error(w[2], std::string(output ? "output" : "input") + " port " + std::to_string(n) + " of bank " +
+                               std::to_string(bank) + " is already defined");
+    IoPort port{static_cast<std::uint8_t>(bank), static_cast<std::uint8_t>(n), w[3].text, output, kind, lo, hi,
+                static_cast<std::int32_t>(d), unit ? unit->value.text : std::string_view{}, src ? src->value.text : std::string_view{},
+                unverified};
+    auto old = std::find_if(s.ports.begin(), s.ports.end(),
+                            [&](const IoPort& x) { return x.bank == bank && x.number == n && x.output == output; });
+    if (old != s.ports.end()) *old = port;
+    else s.ports.push_back(port);
+  }
+
   // based-on: everything of the base, which this file's lines then change.
   void inherit(const Profile& b) {
     Profile& p = s.profile;
@@ -576,6 +668,7 @@ struct Reader {
     s.bank0.assign(b.bank0.begin(), b.bank0.end());
     s.bank3.assign(b.bank3.begin(), b.bank3.end());
     s.vectors.assign(b.vectors.begin(), b.vectors.end());
+    s.ports.assign(b.ports.begin(), b.ports.end());
     s.constants.assign(b.motion_constants.begin(), b.motion_constants.end());
     based = true;
   }
@@ -606,6 +699,10 @@ struct Reader {
     p.bank0 = s.bank0;
     p.bank3 = s.bank3;
     p.vectors = s.vectors;
+    std::stable_sort(s.ports.begin(), s.ports.end(), [](const IoPort& a, const IoPort& b) {
+      return std::tie(a.bank, a.number, a.output) < std::tie(b.bank, b.number, b.output);
+    });
+    p.ports = s.ports;
     p.motion_constants = s.constants;
     p.aliases = s.aliases;
     p.unverified = s.unverified;

@@ -2,7 +2,8 @@
 //
 //   # comment; blank lines are ignored
 //   at 10ms  input 0 = 1        digital input 0 (GIO 0, 0)
-//   at 1s    analog 2 = 512     analog input 2 (GIO 2, 1)
+//   at 1s    analog 2 = 512     analog input 2 (GIO 2, 1); with a profile, any analog input
+//                               it lists (analog 8 = 240: the TMCM-1260's supply voltage)
 //   at 2s    left 0 = 1         left stop switch of motor 0 (interrupt 27, WAIT LIMSW)
 //   at 2s    right 0 = 1        right stop switch of motor 0 (interrupt 28, WAIT LIMSW)
 //   at 2500ms home 0 = 1        reference (home) switch of motor 0 (WAIT REFSW)
@@ -33,6 +34,9 @@ struct ScenarioOptions {
   int motors = 256;        // a motor event for motor >= motors is an error naming `module`
   std::string module;      // e.g. "usb-2-sd"
   int error_limit = kDefaultErrorLimit;  // 0 = report every error
+  // The module's profile: `input N` and `analog N` must name a digital input of bank 0 and an
+  // input of bank 1 it lists, with a value in the port's range (errata E53). Null: ports 0..7.
+  const Profile* profile = nullptr;
 };
 
 // Parses every line; returns false when any is bad, with `diags` holding every error in line order.

@@ -126,13 +126,18 @@ struct RuntimeWarning {
     ReturnWithoutCall,   // RSUB with nothing to return to (E6)
     RetiOutsideHandler,  // RETI while no interrupt is being served (E13)
     HandlerWithoutReti,  // a handler that ends otherwise than with RETI (STOP, a jump out; E42, E43)
-    ValueOutOfRange,     // SAP/SGP/AAP/AGP/ROR/ROL with a value outside the parameter's range (E3)
+    ValueOutOfRange,     // SAP/SGP/AAP/AGP/ROR/ROL with a value outside the parameter's range or value set (E3, E51)
+    NoSuchMotor,         // an instruction naming a motor the module does not have (E51)
+    NotWritable,         // SAP/SGP/AAP/AGP on a read-only or unknown parameter (E51)
+    NoSuchPort,          // GIO/SIO on a port the profile does not list (E53)
+    NotSimulated,        // a note, not a warning (but under --strict): EI of an interrupt nothing raises (E52)
     RampSetting,         // MVP whose ramp cannot start it, or that the manual forbids (E47)
   };
   SimTime at = 0;        // the instruction's start
   std::int32_t pc = 0;   // its address
   Kind kind = CallStackFull;
   std::string message;   // without the place: "CSUB to 12 ignored: ..."
+  bool note = false;     // a note (NotSimulated without --strict): in Vm::notes, not a warning
 };
 std::string_view warning_kind_name(RuntimeWarning::Kind k);  // "call-stack-full", ...
 
@@ -168,7 +173,7 @@ struct InputEvent {
 struct Vm {
   static constexpr int kStackDepth = 8;
   static constexpr int kTimers = 3;
-  static constexpr int kPorts = 8;  // digital in, analog in, digital out
+  static constexpr int kPorts = kPortCount;  // port numbers of each I/O bank; the profile says which exist
 
   // ---- configuration (set before power_on) ----
   const Profile* profile;
@@ -208,6 +213,7 @@ struct Vm {
   std::array<std::int32_t, kPorts> inputs{};           // digital inputs (GIO n, 0)
   std::array<std::int32_t, kPorts> analog{};           // analog inputs (GIO n, 1)
   std::array<std::int32_t, kPorts> outputs{};          // digital outputs (SIO n, 2 / GIO n, 2)
+  std::array<std::int32_t, kPorts> settings{};         // SIO n, 0: input settings (pull-ups, input range)
   std::vector<MotorSwitches> switches;
   EepromImage eeprom;
   bool eeprom_dirty = false;
@@ -234,6 +240,9 @@ struct Vm {
   std::vector<RuntimeWarning> warnings;   // the first kMaxWarnings
   std::uint64_t warnings_total = 0;       // including those past the cap
   RuntimeWarning last_warning;            // the latest, for the trace even past the cap
+  // Notes: what the run does not simulate though the program relies on it (E52), once each; with
+  // --strict each is a warning (and so a fault) instead. Cleared by power_on.
+  std::vector<RuntimeWarning> notes;
   // Optional, from the front end's control-flow analysis (tmcl::analyze): per address, non-zero
   // where the instruction is an interrupt handler's own code. When set, a handler that goes on
   // outside that code without a call of its own (a jump out, or running on into other code) is a
@@ -333,6 +342,8 @@ struct Vm {
   std::uint8_t capture_coord(int motor, int n, std::int32_t& value);
   std::uint8_t set_io(int port, int bank, std::int32_t value);
   std::uint8_t get_io(int port, int bank, std::int32_t& value);
+  // The port numbers of `bank` GIO (write: false) or SIO (write: true) reaches, "0, 1, 2, 255" ("none").
+  std::string ports_text(int bank, bool write) const;
   std::uint8_t move(int type, int motor, std::int32_t value);
   std::uint8_t rotate(int motor, std::int64_t velocity);
   std::uint8_t motor_stop(int motor);
@@ -360,6 +371,9 @@ struct Vm {
 
   void fault(std::string message);
   bool warn(RuntimeWarning::Kind kind, std::string message);  // true: strict made it a fault
+  // EI n of a vector nothing raises on this module and core (interrupts.hpp): a note once, a
+  // warning under --strict; true when --strict made it a fault.
+  bool note_not_simulated(int vector);
   // Before the instruction at pc runs inside a handler: reports it when it is outside the
   // handler's code (handler_code); true when --strict made that a fault.
   bool check_handler_code();

@@ -60,3 +60,8 @@ global 0 85 "Do not restore user variables" 0..1 RWA default=0 src=M:6.4 unverif
 global 0 128 "TMCL application status" 0..3 R default=0 src=M:table13
 global 0 130 "TMCL program counter" 0..2047 R default=0 src=M:table13
 global 0 132 "TMCL tick timer" 0..2147483647 RW default=0 unit=ms src=M:table13  # unit from the text
+# I/O ports (errata E53): the manual has no GIO/SIO tables; its first program (2.4) enables the
+# driver with SIO 0, 2, 1, and its AAP example (3.6.25) reads analog input 0.
+port 1 0 "Analog input 0" in analog 0..4095 src=M:3.6.25 unverified  # the AAP example reads it (GIO 0, 1); the range is the 12 bits of the TMCM modules
+port 2 0 "TMC2300 enable" out digital src=M:2.4
+

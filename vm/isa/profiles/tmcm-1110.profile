@@ -79,7 +79,7 @@ axis 181 "Stop on stall" 0..2047 RW default=0 src=M:5 unverified=default  # 0: o
 axis 182 "SmartEnergy threshold speed" 0..2047 RW default=0 src=M:5 unverified=default
 axis 183 "SmartEnergy slow run current" 0..255 RW default=0 src=M:5 unverified=default
 axis 184 "Random TOff mode" 0..1 RW default=0 src=P unverified=range,access,default
-axis 193 "Reference search mode" 1..136 RWE default=1 src=M:5 unverified=default  # 1..8, +128 inverts the home switch
+axis 193 "Reference search mode" 1..136 RWE default=1 values=1..8,+128 src=M:5 unverified=default  # 1..8, +128 inverts the home switch
 axis 194 "Reference search speed" 0..2047 RWE default=0 src=M:5 unverified=default  # 0: the maximum positioning speed 4 (5.3; errata M16)
 axis 195 "Reference switch speed" 0..2047 RWE default=0 src=M:5 unverified=default  # 0: a quarter of 4 (5.3; errata M16)
 axis 196 "Distance end switches" 0..2147483647 R default=0 unit=μsteps src=M:5
@@ -140,6 +140,21 @@ global 3 42 "Input 3 edge type" 0..3 RWE default=0 src=M:6.4
 global 3 43 "Input 4 edge type" 0..3 RWE default=0 src=P unverified=range,access
 global 3 44 "Input 5 edge type" 0..3 RWE default=0 src=P unverified=range,access
 global 3 45 "Input 6 edge type" 0..3 RWE default=0 src=P unverified=range,access
+
+# I/O ports (errata E53): the GIO/SIO tables of sections 4.5.14 and 4.5.15. AIN_0 reads as a
+# digital (bank 0) and an analog (bank 1) input at once; bank 2 reads the outputs back.
+port 0 0 "AIN_0" in digital src=M:4.5.15.1
+port 0 1 "PWMD0" in digital src=M:4.5.15.1
+port 0 2 "PWMD1" in digital src=M:4.5.15.1
+port 0 3 "PWMD2" in digital src=M:4.5.15.1
+port 1 0 "AIN_0" in analog 0..4095 src=M:4.5.15.2
+port 1 1 "ADC7 (+VS)" in analog 0..4095 src=M:4.5.15.2
+port 1 2 "ADC6 (+5V)" in analog 0..4095 src=M:4.5.15.2
+port 2 0 "OpenDrain_1" out digital src=M:4.5.14,M:4.5.15.3
+port 2 1 "OpenDrain_2" out digital src=M:4.5.14,M:4.5.15.3
+port 2 2 "PWMU0" out digital src=M:4.5.14,M:4.5.15.3
+port 2 3 "PWMU1" out digital src=M:4.5.14,M:4.5.15.3
+port 2 4 "PWMU2" out digital src=M:4.5.14,M:4.5.15.3
 
 # Interrupt vectors (the TI_ names of Interrupts.inc).
 vector 0 TI_TIMER0 "Timer 0" src=M:4.4.2.6.3

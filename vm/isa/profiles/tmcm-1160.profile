@@ -77,7 +77,7 @@ axis 181 "Stop on stall" 0..2047 RW default=0 src=F:5,Y,P unverified=range,acces
 axis 182 "SmartEnergy threshold speed" 0..2047 RW default=0 src=F:5,Y,P unverified=range,access,default
 axis 183 "SmartEnergy slow run current" 0..255 RW default=0 src=F:5,Y,P unverified=range,access,default
 axis 184 "Random TOff mode" 0..1 RW default=0 src=Y,P unverified=range,access,default
-axis 193 "Reference search mode" 1..136 RWE default=1 src=F:5,R:4.2,Y,P unverified=range,default  # 1..8, +128 inverts the home switch
+axis 193 "Reference search mode" 1..136 RWE default=1 values=1..8,+128 src=F:5,R:4.2,Y,P unverified=range,default  # 1..8, +128 inverts the home switch
 axis 194 "Reference search speed" 0..2047 RWE default=0 src=F:5,R:4.2,Y,P unverified=range,default  # 0: the maximum positioning speed 4 (5.3; errata M16)
 axis 195 "Reference switch speed" 0..2047 RWE default=0 src=F:5,R:4.2,Y,P unverified=range,default  # 0: a quarter of 4 (5.3; errata M16)
 axis 196 "Distance end switches" 0..2147483647 R default=0 unit=μsteps src=F:5,Y,P unverified=range,access
@@ -131,6 +131,16 @@ global 3 27 "Left stop switch 0 edge type" 0..3 RWE default=0 src=P unverified=r
 global 3 28 "Right stop switch 0 edge type" 0..3 RWE default=0 src=P unverified=range,access
 global 3 39 "Input 0 edge type" 0..3 RWE default=0 src=P unverified=range,access
 global 3 40 "Input 1 edge type" 0..3 RWE default=0 src=P unverified=range,access
+
+# I/O ports (errata E53, M20): no manual here; the profile's input-change vectors 39 and 40 name two
+# inputs (read digital and, as on the TMCM-1110, 12-bit analog); two outputs as the TMCM-1140's.
+# Every port is unverified.
+port 0 0 "IN0" in digital src=R:3.15 unverified
+port 0 1 "IN1" in digital src=R:3.15 unverified
+port 1 0 "IN0" in analog 0..4095 src=R:3.15 unverified
+port 1 1 "IN1" in analog 0..4095 src=R:3.15 unverified
+port 2 0 "OUT0" out digital src=R:3.14 unverified
+port 2 1 "OUT1" out digital src=R:3.14 unverified
 
 # Interrupt vectors (the TI_ names of Interrupts.inc).
 vector 0 TI_TIMER0 "Timer 0" unverified

@@ -88,7 +88,7 @@ axis 189 "PWM scale" 0..255 R default=0 src=M:4
 axis 190 "PWM mode" 0..1 R default=0 src=M:4
 axis 191 "PWM frequency" 0..3 RW default=0 src=M:4 unverified=default
 axis 192 "PWM autoscale" 0..1 RW default=1 src=M:4 unverified=default
-axis 193 "Reference search mode" 1..136 RW default=1 src=M:4 unverified=default  # 1..8; +64: the right switch (1..4); +128: inverted home switch (5..8)
+axis 193 "Reference search mode" 1..136 RW default=1 values=1..8,+64,+128 src=M:4 unverified=default  # 1..8; +64: the right switch (1..4); +128: inverted home switch (5..8)
 axis 194 "Reference search speed" 0..7999774 RW default=51200 unit=pps src=M:4 unverified=default
 axis 195 "Reference switch speed" 0..7999774 RW default=5120 unit=pps src=M:4 unverified=default
 axis 196 "End switch distance" -2147483648..2147483647 R default=0 unit=μsteps src=M:4
@@ -147,6 +147,20 @@ global 3 39 "Input 0 trigger transition" 0..3 RW default=0 src=M:5.4
 global 3 40 "Input 1 trigger transition" 0..3 RW default=0 src=M:5.4
 global 3 41 "Input 2 trigger transition" 0..3 RW default=0 src=M:5.4
 global 3 42 "Input 3 trigger transition" 0..3 RW default=0 src=Y,P unverified=range,access
+
+# I/O ports (errata E53): the GIO/SIO tables of sections 3.6.12 and 3.6.13. GIO 255, 0 reads every
+# input as a bit vector; SIO 0, 0 sets the pull-up resistors (bit 0 IN0/HOME, bit 1 IN1 and IN2,
+# all on by default). The manual gives the supply voltage (1/10 V) and temperature (°C) by unit
+# only: their ranges and the values they read until a scenario sets them (24 V, 25 °C) are ours.
+port 0 0 "IN0" in digital src=M:3.6.13
+port 0 1 "IN1" in digital src=M:3.6.13
+port 0 2 "IN2" in digital src=M:3.6.13
+port 0 255 "All digital inputs" in bits 0..7 src=M:3.6.13
+port 0 0 "Pull-up resistors" out analog 0..3 default=3 src=M:3.6.12
+port 1 0 "IN0" in analog 0..4095 src=M:3.6.13
+port 1 8 "Supply voltage" in analog 0..1000 default=240 unit="0.1 V" src=M:3.6.13 unverified
+port 1 9 "Temperature" in analog -40..150 default=25 unit="°C" src=M:3.6.13 unverified
+port 2 0 "OUT0" out digital src=M:3.6.12,M:3.6.13
 
 # Interrupt vectors (the TI_ names of Interrupts.inc).
 vector 0 TI_TIMER0 "Timer 0" src=M:table12

@@ -112,6 +112,38 @@ global 3 44 "Input 5 edge type" 0..3 RWE default=0 src=M:6.4
 global 3 45 "Input 6 edge type" 0..3 RWE default=0 src=M:6.4
 global 3 46 "Input 7 edge type" 0..3 RWE default=0 src=M:6.4
 
+# I/O ports (errata E53): the GIO/SIO tables of sections 4.6.14 and 4.6.15. GIO 255, 0 reads the
+# eight inputs as a bit vector, SIO 255, 2 sets the eight outputs (-1: the accumulator's lower 8
+# bits); SIO 0, 0 sets the pull-up resistors (a bit per input), SIO 8, 0 the analog input range.
+port 0 0 "IN_0" in digital src=M:4.6.15.1
+port 0 1 "IN_1" in digital src=M:4.6.15.1
+port 0 2 "IN_2" in digital src=M:4.6.15.1
+port 0 3 "IN_3" in digital src=M:4.6.15.1
+port 0 4 "IN_4" in digital src=M:4.6.15.1
+port 0 5 "IN_5" in digital src=M:4.6.15.1
+port 0 6 "ADIN_6" in digital src=M:4.6.15.1
+port 0 7 "ADIN_7" in digital src=M:4.6.15.1
+port 0 255 "All digital inputs" in bits 0..255 src=M:4.6.15.1
+port 0 0 "Pull-up resistors" out analog 0..255 src=M:4.6.14
+port 0 8 "Analog input range (0: 3.3 V, 1: 10 V)" out analog 0..1 src=M:4.6.14
+port 1 0 "AIN_0" in analog 0..1023 src=M:4.6.15.2
+port 1 1 "AIN_1" in analog 0..1023 src=M:4.6.15.2
+port 1 2 "AIN_2" in analog 0..1023 src=M:4.6.15.2
+port 1 3 "AIN_3" in analog 0..1023 src=M:4.6.15.2
+port 1 4 "Power supply" in analog 0..1023 src=M:4.6.15.2
+port 1 5 "Temperature" in analog 0..1023 src=M:4.6.15.2
+port 1 6 "ADIN_6" in analog 0..1023 src=M:4.6.15.2
+port 1 7 "ADIN_7" in analog 0..1023 src=M:4.6.15.2
+port 2 0 "OUT_0" out digital src=M:4.6.14,M:4.6.15.3
+port 2 1 "OUT_1" out digital src=M:4.6.14,M:4.6.15.3
+port 2 2 "OUT_2" out digital src=M:4.6.14,M:4.6.15.3
+port 2 3 "OUT_3" out digital src=M:4.6.14,M:4.6.15.3
+port 2 4 "OUT_4" out digital src=M:4.6.14,M:4.6.15.3
+port 2 5 "OUT_5" out digital src=M:4.6.14,M:4.6.15.3
+port 2 6 "OUT_6" out digital src=M:4.6.14,M:4.6.15.3
+port 2 7 "OUT_7" out digital src=M:4.6.14,M:4.6.15.3
+port 2 255 "All outputs" out bits 0..255 src=M:4.6.14
+
 # Interrupt vectors (the TI_ names of Interrupts.inc).
 vector 0 TI_TIMER0 "Timer 0" src=M:4.4.2.7.3
 vector 1 TI_TIMER1 "Timer 1" src=M:4.4.2.7.3

@@ -77,7 +77,7 @@ axis 181 "Stop on stall" 0..2047 RW default=0 src=F:5,Y,P unverified=range,acces
 axis 182 "SmartEnergy threshold speed" 0..2047 RW default=0 src=F:5,Y,P unverified=range,access,default
 axis 183 "SmartEnergy slow run current" 0..255 RW default=0 src=F:5,Y,P unverified=range,access,default
 axis 184 "Random TOff mode" 0..1 RW default=0 src=Y,P unverified=range,access,default
-axis 193 "Reference search mode" 1..136 RWE default=1 src=F:5,R:4.2,Y,P unverified=range,default  # 1..8, +128 inverts the home switch
+axis 193 "Reference search mode" 1..136 RWE default=1 values=1..8,+128 src=F:5,R:4.2,Y,P unverified=range,default  # 1..8, +128 inverts the home switch
 axis 194 "Reference search speed" 0..2047 RWE default=0 src=F:5,R:4.2,Y,P unverified=range,default  # 0: the maximum positioning speed 4 (5.3; errata M16)
 axis 195 "Reference switch speed" 0..2047 RWE default=0 src=F:5,R:4.2,Y,P unverified=range,default  # 0: a quarter of 4 (5.3; errata M16)
 axis 196 "Distance end switches" 0..2147483647 R default=0 unit=μsteps src=F:5,Y,P unverified=range,access
@@ -140,6 +140,30 @@ global 3 43 "Input 4 edge type" 0..3 RWE default=0 unverified=exists,range,acces
 global 3 44 "Input 5 edge type" 0..3 RWE default=0 unverified=exists,range,access
 global 3 45 "Input 6 edge type" 0..3 RWE default=0 unverified=exists,range,access
 global 3 46 "Input 7 edge type" 0..3 RWE default=0 unverified=exists,range,access
+
+# I/O ports (errata E53, M20): no manual here; the TMCL reference (3.15) gives the TMCM-61x modules
+# eight inputs (its input-change vectors 39..46 name eight), read digital and analog (the
+# TMCM-1110's 12 bits), and GIO 255, 0; PyTrinamic's TMCM6110 names the outputs OUT0 and OUT1.
+# Every port is unverified.
+port 0 0 "IN0" in digital src=R:3.15 unverified
+port 0 1 "IN1" in digital src=R:3.15 unverified
+port 0 2 "IN2" in digital src=R:3.15 unverified
+port 0 3 "IN3" in digital src=R:3.15 unverified
+port 0 4 "IN4" in digital src=R:3.15 unverified
+port 0 5 "IN5" in digital src=R:3.15 unverified
+port 0 6 "IN6" in digital src=R:3.15 unverified
+port 0 7 "IN7" in digital src=R:3.15 unverified
+port 0 255 "All digital inputs" in bits 0..255 src=R:3.15 unverified
+port 1 0 "IN0" in analog 0..4095 src=R:3.15 unverified
+port 1 1 "IN1" in analog 0..4095 src=R:3.15 unverified
+port 1 2 "IN2" in analog 0..4095 src=R:3.15 unverified
+port 1 3 "IN3" in analog 0..4095 src=R:3.15 unverified
+port 1 4 "IN4" in analog 0..4095 src=R:3.15 unverified
+port 1 5 "IN5" in analog 0..4095 src=R:3.15 unverified
+port 1 6 "IN6" in analog 0..4095 src=R:3.15 unverified
+port 1 7 "IN7" in analog 0..4095 src=R:3.15 unverified
+port 2 0 "OUT0" out digital src=P unverified
+port 2 1 "OUT1" out digital src=P unverified
 
 # Interrupt vectors (the TI_ names of Interrupts.inc).
 vector 0 TI_TIMER0 "Timer 0" unverified

@@ -11,6 +11,10 @@ include-file USB-2-SD.inc  # ours, in include_files/: the manual's parameter nam
 motors 1 src=M:1
 standalone yes src=M:3.3
 program-memory 577 ram src=M:1  # "program memory for up to 577 TMCL commands", RAM only
+# I/O: the manual has no GIO/SIO tables (the module has step/direction and encoder lines only),
+# yet lists SIO and GIO and uses outputs 0 and 3 and analog input 0 in its examples: every port
+# number is taken, unchecked (errata E53).
+ports any unverified
 user-variables 256 eeprom=56 src=M:5.3
 coordinates 21 src=M:3.6.19  # 0..20 per motor; 0 is RAM only
 parameters listed

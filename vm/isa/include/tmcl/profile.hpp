@@ -36,6 +36,13 @@ enum Fact : std::uint8_t {
   kFactExists = 32,  // that the module has the parameter at all
 };
 
+// One item of a parameter's value set (`values=` in a profile): the values lo … hi, or (flag) a
+// number that may be added to any of them (+128: "adding 128 inverts the home switch").
+struct ValueItem {
+  std::int64_t lo, hi;
+  bool flag = false;
+};
+
 struct ParamInfo {
   std::uint16_t number;
   std::string_view name;  // the manual's name
@@ -47,13 +54,16 @@ struct ParamInfo {
   std::string_view unit;
   std::string_view source = {};  // where the facts come from, as the file says ("M:5.1")
   std::uint8_t unverified = 0;   // Fact bits no source confirms
+  // The values the manual lists, where a range says too little (193: 1..8, +64, +128); empty: every
+  // value of the range. A value must be in the range and, when there is a set, in the set.
+  std::span<const ValueItem> values = {};
 };
 
 // Whether a parameter takes `value`: within [min, max] read as signed, or (a value that fits 32
 // bits) read as unsigned, since a 32-bit field holds either and either may be the meant one. The
 // one range rule of the assembler's checks, the VM's writes and the debugger's `set`.
 bool accepts(const ParamInfo& p, std::int64_t value);
-// The range as diagnostics write it: "0 to 16777215 pps".
+// The range as diagnostics write it: "0 to 16777215 pps"; a value set as "1 to 8, optionally +64, +128".
 std::string range_text(const ParamInfo& p);
 // "axis parameter 4 (Maximum positioning speed)"; `kind` is "axis parameter" or "global parameter".
 std::string param_text(std::string_view kind, int number, const ParamInfo* p);
@@ -63,6 +73,29 @@ struct InterruptVector {
   std::string_view name;  // e.g. "TI_TIMER0", the Interrupts.inc symbol
   std::string_view meaning;
 };
+
+// An I/O port of the module, as its manual's GIO/SIO tables list it (`port` in a profile). GIO
+// reads bank 0 (digital inputs), bank 1 (analog inputs) and bank 2 (the outputs' states); SIO
+// writes bank 2 (outputs) and, on some modules, settings in bank 0 (pull-up resistors, an input
+// range). A `bits` port reads or writes every digital port of its bank at once as a bit vector
+// (GIO 255, 0; SIO 255, 2).
+enum class PortKind : std::uint8_t { Digital, Analog, Bits };
+// Port numbers a profile may list: 0 … kPortCount-1 (no manual lists more), and 255 for a bits port.
+inline constexpr int kPortCount = 16;
+struct IoPort {
+  std::uint8_t bank;
+  std::uint8_t number;
+  std::string_view name;  // the manual's ("IN0", "Supply voltage")
+  bool output;            // SIO writes it (bank 2: GIO reads it back); else GIO reads it
+  PortKind kind;
+  std::int64_t min, max;  // digital: 0..1; a bits port: 0 .. 2^digital ports - 1
+  std::int32_t default_value;  // what an input reads until a scenario sets it (supply voltage)
+  std::string_view unit;
+  std::string_view source = {};
+  bool unverified = false;
+};
+// "GIO 8, 1 (Supply voltage)"
+std::string port_text(const IoPort& p);
 
 // A named constant of the module's motion core (clock frequency, unit conversions), for the core
 // to read with Profile::motion_constant.
@@ -87,6 +120,8 @@ struct Profile {
   int eeprom_user_vars;       // how many of them STGP/RSGP can back (from 0)
   int coords;                 // coordinates per motor (0..coords-1)
   std::span<const InterruptVector> vectors;
+  std::span<const IoPort> ports;  // sorted by bank, number, then inputs first
+  bool any_port = false;          // `ports any` (generic): every port 0..255 of banks 0..2, unchecked
   int program_memory;         // in instructions; 0 = unlimited
   int motors;
   std::string_view default_motion;  // name of the default motion core
@@ -107,6 +142,14 @@ struct Profile {
   // Bank 0 or 3 parameter; nullptr for other banks or unknown numbers.
   const ParamInfo* global_param(int bank, int number) const;
   const InterruptVector* vector(int number) const;
+  // The port GIO (read) or SIO (write) reaches at `number` of `bank`: for a read an input, or on
+  // bank 2 an output read back; nullptr when the module has none there.
+  const IoPort* read_port(int bank, int number) const;
+  const IoPort* write_port(int bank, int number) const;
+  // Whether digital input n (GIO n, 0) exists: a listed digital input, or any under `ports any`.
+  bool digital_input(int n) const;
+  // The highest port number of `bank` the profile lists (inputs of 0 and 1, outputs of 2), -1: none.
+  int last_port(int bank) const;
   // The motion constant NAME, or `otherwise` when the profile does not give it.
   std::int64_t motion_constant(std::string_view constant, std::int64_t otherwise) const;
 };

@@ -25,6 +25,8 @@ struct ProfileStore {
   std::deque<std::string> strings;   // text made while parsing (unverified phrases)
   std::vector<ParamInfo> axis, bank0, bank3;
   std::vector<InterruptVector> vectors;
+  std::vector<IoPort> ports;
+  std::deque<std::vector<ValueItem>> value_sets;  // the values= sets, at stable addresses
   std::vector<MotionConstant> constants;
   std::vector<std::string_view> aliases, unverified;
   std::string origin_text;

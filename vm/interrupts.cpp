@@ -1,0 +1,74 @@
+// The sources of the interrupt vectors and the table of those the virtual module does not raise
+// (interrupts.hpp). Helpers implementing a source remove its row from kNotSimulated.
+#include "tmcl/interrupts.hpp"
+
+#include <string>
+
+namespace tmcl {
+namespace {
+
+// A source that no run raises on a core ("*": every core), with the reason a run's note gives.
+struct NotSimulated {
+  VectorSource source;
+  std::string_view core;
+  std::string_view why;
+};
+constexpr NotSimulated kNotSimulated[] = {
+    {VectorSource::Stall, "*", "no motion core models stallGuard2 load measurement"},
+    {VectorSource::Deviation, "tmc429", "the tmc429 core has no encoder model"},
+    {VectorSource::Deviation, "tmc5160", "the tmc5160 core has no encoder model"},
+    {VectorSource::Deviation, "linear", "the linear core has no encoder model"},
+};
+
+constexpr int kMaxMotors = 6, kMaxInputs = 8;
+
+}  // namespace
+
+VectorKind vector_kind(int n) {
+  if (n >= kVectorTimer0 && n < kVectorTimer0 + kTimerVectors) return {VectorSource::Timer, n - kVectorTimer0};
+  if (n >= kVectorTarget0 && n < kVectorTarget0 + kMaxMotors) return {VectorSource::TargetReached, n - kVectorTarget0};
+  if (n >= kVectorStall0 && n < kVectorStall0 + kMaxMotors) return {VectorSource::Stall, n - kVectorStall0};
+  if (n >= kVectorDeviation0 && n < kVectorDeviation0 + kMaxMotors) return {VectorSource::Deviation, n - kVectorDeviation0};
+  if (n >= kVectorStopLeft0 && n < kVectorStopLeft0 + 2 * kMaxMotors)
+    return {(n - kVectorStopLeft0) % 2 == 0 ? VectorSource::StopLeft : VectorSource::StopRight, (n - kVectorStopLeft0) / 2};
+  if (n >= kVectorInput0 && n < kVectorInput0 + kMaxInputs) return {VectorSource::InputChange, n - kVectorInput0};
+  if (n == kVectorGlobal) return {VectorSource::GlobalEnable, 0};
+  return {VectorSource::Unknown, 0};
+}
+
+std::string vector_source_text(VectorKind k) {
+  const std::string i = std::to_string(k.index);
+  switch (k.source) {
+    case VectorSource::Timer: return "timer " + i;
+    case VectorSource::TargetReached: return "target position reached of motor " + i;
+    case VectorSource::Stall: return "stallGuard2 stall of motor " + i;
+    case VectorSource::Deviation: return "encoder deviation of motor " + i;
+    case VectorSource::StopLeft: return "left stop switch of motor " + i;
+    case VectorSource::StopRight: return "right stop switch of motor " + i;
+    case VectorSource::InputChange: return "change of input " + i;
+    case VectorSource::GlobalEnable: return "the global enable";
+    case VectorSource::Unknown: break;
+  }
+  return "nothing known";
+}
+
+std::string not_simulated_reason(const Profile& profile, std::string_view core, int n) {
+  const VectorKind k = vector_kind(n);
+  switch (k.source) {
+    case VectorSource::Unknown: return "no TMCL module numbers a source of interrupt " + std::to_string(n);
+    case VectorSource::Timer:
+    case VectorSource::GlobalEnable: return {};
+    case VectorSource::InputChange:
+      if (!profile.any_parameter && !profile.digital_input(k.index))
+        return "the profile has no digital input " + std::to_string(k.index) + " (GIO " + std::to_string(k.index) + ", 0)";
+      break;
+    default:
+      if (k.index >= profile.motors) return "the module has no motor " + std::to_string(k.index);
+      break;
+  }
+  for (const auto& row : kNotSimulated)
+    if (row.source == k.source && (row.core == "*" || row.core == core)) return std::string(row.why);
+  return {};
+}
+
+}  // namespace tmcl
