@@ -194,6 +194,11 @@ bool parse_scenario(const std::string& text, const std::string& file, std::vecto
         ev.kind = kind->kind;
         ev.index = static_cast<int>(index);
       }
+      if (kind->kind == InputEvent::Slip && !options.no_encoder.empty()) {
+        at_word(w[2], "'slip' needs an encoder: the motion core '" + options.no_encoder + "' models none on " +
+                          (options.module.empty() ? std::string("this module") : options.module));
+        ok = false;
+      }
     }
     std::int64_t value = 0;
     if (!parse_int(w[5].text, INT32_MIN, INT32_MAX, value)) {

@@ -374,6 +374,11 @@ void Vm::apply_input(const InputEvent& ev) {
     case InputEvent::Slip:
       if (!motor_ok(ev.index)) return;
       sync_motion();
+      if (!motion->models_encoder(*profile)) {  // a scenario not checked against this core: never silently
+        fault("the motion core '" + std::string(motion->name()) + "' models no encoder on " + std::string(profile->name) +
+              " to slip" + (ev.line > 0 ? " (scenario line " + std::to_string(ev.line) + ")" : std::string()));
+        return;
+      }
       motion->encoder_slip(ev.index, ev.value);
       what = "slip " + std::to_string(ev.index) + " = " + std::to_string(ev.value);
       break;

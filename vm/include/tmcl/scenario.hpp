@@ -6,7 +6,8 @@
 //   at 2s    left 0 = 1         left stop switch of motor 0 (interrupt 27, WAIT LIMSW)
 //   at 2s    right 0 = 1        right stop switch of motor 0 (interrupt 28, WAIT LIMSW)
 //   at 2500ms home 0 = 1        reference (home) switch of motor 0 (WAIT REFSW)
-//   at 3s    slip 0 = -400      the encoder of motor 0 loses 400 counts (deviation check)
+//   at 3s    slip 0 = -400      motor 0's encoder / shaft slips by 400 (deviation check, 212);
+//                               refused where the core models no encoder (ScenarioOptions)
 //   switch left 0 at -20000         closed while motor 0's position is <= -20000
 //   switch right 0 at 30000         closed while motor 0's position is >= 30000
 //   switch home 0 from -150 to 150  closed while the position is in the range (left and right
@@ -32,6 +33,9 @@ namespace tmcl {
 struct ScenarioOptions {
   int motors = 256;        // a motor event for motor >= motors is an error naming `module`
   std::string module;      // e.g. "usb-2-sd"
+  // Non-empty: the motion core (its name) models no encoder on `module`
+  // (MotionCore::models_encoder), and a `slip` line is an error naming it.
+  std::string no_encoder;
   int error_limit = kDefaultErrorLimit;  // 0 = report every error
 };
 

@@ -121,6 +121,13 @@ class MotionCore {
     return false;
   }
   virtual void encoder_slip(int motor, std::int32_t counts) = 0;  // encoder loses/gains counts
+  // Whether a scenario's `slip` means something for motors of `profile` on this core: the core
+  // models an encoder there. A scenario's slip line on a core that does not is a file error
+  // (ScenarioOptions::encoder); the default models none.
+  virtual bool models_encoder(const Profile& profile) const {
+    (void)profile;
+    return false;
+  }
 
   virtual std::int32_t position(int motor) const = 0;  // actual position (axis parameter 1)
   virtual bool target_reached(int motor) const = 0;    // WAIT POS condition
