@@ -136,6 +136,8 @@ void SwitchCore::set_switch(int motor, SwitchInput input, bool active) {
     replan(m);  // the trip scan stops the motor at once if it moves toward the switch
 }
 
+void SwitchCore::encoder_slip(int motor, std::int32_t counts) { at(motor).shaft.slip(counts); }
+
 bool SwitchCore::closed(const Motor& m, int input) const {
   if (input == kRefInput) return closed(m, 0) || closed(m, 2);
   return ((m.timed >> input) & 1) || m.rm.zones[static_cast<std::size_t>(input)].in;

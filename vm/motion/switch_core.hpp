@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "ramp_motor.hpp"
+#include "shaft.hpp"
 
 namespace tmcl::sw {
 
@@ -69,6 +70,8 @@ struct Motor {
   std::uint8_t timed = 0;             // bit (1 << SwitchInput): closed by a timed scenario line
   double trip_t = ramp::kInf;         // plan instant of a pending limit-switch stop
   Search search;
+  shaft::Shaft shaft;                 // the rotor, apart from the counter (shaft.hpp)
+  shaft::Encoder enc;                 // axis parameter 209, counting the shaft
 };
 
 // Where the modules differ in what this part does.
@@ -94,7 +97,8 @@ class SwitchCore : public ramp::RampCore<Motor> {
   std::int32_t reference_search(int motor, RfsAction action) override;
   bool reference_done(int motor) const override;
   void set_switch(int motor, SwitchInput input, bool active) override;
-  void encoder_slip(int, std::int32_t) override {}  // the encoder is not modelled (docs/motion.md)
+  // The shaft slips `counts` microsteps against the counter (scenario `slip`); the encoder sees it.
+  void encoder_slip(int motor, std::int32_t counts) override;
 
  protected:
   // ---- what a core says
@@ -125,6 +129,15 @@ class SwitchCore : public ramp::RampCore<Motor> {
   // re-plan not `by_command` (a parameter, a switch) keeps a cruise's "velocity reached" quiet.
   void replan(Motor& m, double vscale = 1, bool by_command = false);
   void abort_search(Motor& m) { m.search.step = SearchStep::Off; }
+  // ---- the shaft (shaft.hpp), for the cores and for what blocks or slips a rotor
+  // The counter in the machine's frame (XACTUAL + phys), and the shaft's place, now.
+  std::int64_t commanded(const Motor& m) const { return m.rm.xactual(now_) + m.rm.phys; }
+  std::int64_t shaft_at(const Motor& m) const { return m.shaft.at(commanded(m)); }
+  // Steps lost now: the counter moved `steps` the shaft did not follow.
+  void lose_steps(Motor& m, std::int64_t steps) { m.shaft.lose(steps); }
+  // The shaft stands from now (a hard stop, a stall without stop) / follows again from now.
+  void hold_shaft(Motor& m) { m.shaft.hold(commanded(m)); }
+  void release_shaft(Motor& m) { m.shaft.release(commanded(m)); }
   void set_goal(Motor& m, Goal goal) {
     abort_search(m);
     m.goal = goal;
