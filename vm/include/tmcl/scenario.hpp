@@ -12,7 +12,12 @@
 //   switch right 0 at 30000         closed while motor 0's position is >= 30000
 //   switch home 0 from -150 to 150  closed while the position is in the range (left and right
 //                                   take a range too: a cam on that input)
-// Switches at positions belong to the machine: the position is the motor's physical one, in
+//   hardstop left 0 at -21000       a mechanical end: motor 0's shaft cannot go below -21000
+//   hardstop right 0 at 31000       ... nor above 31000 (it may lie inside a switch's range)
+//   at 4s    load 0 = 60%           from 4 s on a load of 60 % of the holding torque (100 % and
+//                                   above: the motor stalls), until the next such line
+//   load 0 from 5000 to 6000 = 80%  a load while the shaft is between the positions (a clamp)
+// Switches, hard stops and loads at positions belong to the machine: the position is the motor's physical one, in
 // microsteps from where it stood at power-on (SAP 1 and reference searches do not move them);
 // the motion core reports each closing and opening at its exact instant. Both kinds may be mixed:
 // an input is closed while either closes it.
