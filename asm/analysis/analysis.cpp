@@ -350,17 +350,13 @@ void Walker::pass() {
   // Every call and VECT target is an entry, whether or not its caller is reachable, so that a
   // walk stops at a subroutine's label even before the CSUB naming it has been seen.
   const Instruction* const program = in.program.data();
-  for (int i = 0; i < n; ++i) {
-    const Instruction& ins = program[i];
-    const OpClass c = op_class[ins.op];
-    if (c < kFirstScanned) continue;
-    if (c == OpClass::Store) {
-      keep_call_sites = keep_call_sites || writes_eeprom(ins);
-    } else if (ins.value >= 0 && ins.value < n) {
-      entry.set(ins.value);
-      if (c == OpClass::Vect) vect_target.set(ins.value);
-    }
-  }
+  scan(
+      [&](int i, OpClass c) {
+        if (c < OpClass::Call) return;  // a jump's target is no region's entry
+        entry.set(program[i].value);
+        if (c == OpClass::Vect) vect_target.set(program[i].value);
+      },
+      [&](int i) { keep_call_sites = keep_call_sites || writes_eeprom(program[i]); });
   // One region per entry at most (exported labels nothing calls add a few later).
   std::size_t entries = 1;
   for (std::uint64_t w : entry.words) entries += static_cast<std::size_t>(std::popcount(w));
@@ -474,11 +470,7 @@ Analysis analyze(const AnalysisInput& in, Diagnostics& diags, const AnalysisOpti
   w.build();
   w.name_regions();
   w.depths();
-  w.check_flow();
-  w.check_interrupts();
-  w.check_unreachable();
-  w.check_depth();
-  w.check_eeprom();
+  for (detail::Check check : detail::kChecks) (w.*check)();
   return std::move(w.a);
 }
 

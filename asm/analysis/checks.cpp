@@ -1,6 +1,7 @@
-// The checks of the analysis, each reading the regions the walk built (analysis.cpp): call
-// depth and recursion over the graph of regions, flows out of subroutines and handlers, RSUB
-// and RETI where nothing can be returned to, interrupts, unreachable code and EEPROM wear.
+// The checks of the analysis listed in kChecks (analysis_internal.hpp) but -Weeprom-wear's
+// (eeprom_wear.cpp), each reading the regions the walk built (analysis.cpp): call depth and
+// recursion over the graph of regions, flows out of subroutines and handlers, RSUB and RETI where
+// nothing can be returned to, interrupts and unreachable code.
 #include <algorithm>
 #include <cstdio>
 #include <set>
