@@ -604,6 +604,7 @@ int run(int argc, char** argv) {
     sopts.motors = profile->motors;
     sopts.profile = profile;
     sopts.module = o.target;
+    if (!core->models_encoder(*profile)) sopts.no_encoder = std::string(core->name());
     sopts.error_limit = g_failure.error_limit;
     std::vector<tmcl::FileDiag> sdiags;
     if (!tmcl::parse_scenario(std::string(sb.begin(), sb.end()), o.scenario, inputs, sdiags, sopts))

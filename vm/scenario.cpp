@@ -1,4 +1,5 @@
-// Scenario files (format in scenario.hpp): timed input changes and switches placed at positions.
+// Scenario files (format in scenario.hpp): timed input changes and loads, and the machine's
+// switches, hard stops and loads placed at positions.
 // Every line is checked and every
 // error collected with its column, so a user mends the whole file in one go, as with the
 // assembler. Numbers and times go through the one decimal reader (numbers.hpp, duration.hpp).
@@ -17,12 +18,126 @@ struct KindName {
   InputEvent::Kind kind;
   int max_index;  // inclusive
   bool motor;     // the index is a motor
+  bool percent = false;  // the value is a load: P%
 };
 constexpr KindName kKinds[] = {
     {"input", InputEvent::Digital, Vm::kPorts - 1, false}, {"analog", InputEvent::Analog, Vm::kPorts - 1, false},
     {"left", InputEvent::StopLeft, 255, true},            {"right", InputEvent::StopRight, 255, true},
     {"home", InputEvent::Home, 255, true},                {"slip", InputEvent::Slip, 255, true},
+    {"load", InputEvent::Load, 255, true, true},
 };
+
+// The largest load a line may give: 100 % and above all stall the motor alike (docs/motion.md).
+constexpr std::int64_t kMaxLoad = 1000;
+
+// `P%`: a load in whole percent of the motor's holding torque, 0%..1000%.
+bool parse_percent(const std::string& text, std::int64_t& out) {
+  if (text.size() < 2 || text.back() != '%') return false;
+  return parse_int(text.substr(0, text.size() - 1), 0, kMaxLoad, out) && text[0] != '+' && text[0] != '-';
+}
+std::string percent_error(const std::string& text) {
+  std::string why = text.empty() || text.back() != '%' ? " (a percentage needs its '%': 50%)" : " (0%..1000%)";
+  return "bad load '" + text + "'" + why;
+}
+
+// The motor word of a machine line: a number the module has, or an error at it.
+template <class AtWord>
+bool parse_motor(const LineWord& x, const ScenarioOptions& options, AtWord at_word, std::int64_t& motor) {
+  const int max = std::min(255, options.motors - 1);
+  if (!parse_int(x.text, 0, 255, motor)) {
+    at_word(x, "bad motor number '" + x.text + "' (0.." + std::to_string(max) + ")");
+    return false;
+  }
+  if (motor > max) {
+    at_word(x, (options.module.empty() ? std::string("the module") : options.module) + " has no motor " +
+                   std::to_string(motor) + " (0.." + std::to_string(max) + ")");
+    return false;
+  }
+  return true;
+}
+
+template <class AtWord>
+bool parse_position(const LineWord& x, AtWord at_word, std::int64_t& v) {
+  if (parse_int(x.text, INT32_MIN, INT32_MAX, v)) return true;
+  at_word(x, "bad position '" + x.text + "' (microsteps, a 32-bit integer)");
+  return false;
+}
+
+// `hardstop left|right MOTOR at POS`: a mechanical end the shaft cannot pass (below POS: left,
+// above: right). It may lie inside a switch's range (a switch that closes before the end).
+// `first_line[motor * 2 + side]`: the line that placed that hard stop (0: none yet).
+template <class Error, class AtWord>
+void parse_hardstop(const std::vector<LineWord>& w, const ScenarioOptions& options, std::vector<InputEvent>& out,
+                    std::vector<int>& first_line, int line_no, Error error, AtWord at_word, const std::string& line) {
+  static const char* kShape = "expected 'hardstop left|right MOTOR at POSITION'";
+  if (w.size() < 5) {
+    error(static_cast<int>(line.find_last_not_of(" \t")) + 2, 1, std::string(kShape) + ": the line ends early");
+    return;
+  }
+  int side = w[1].text == "left" ? 0 : w[1].text == "right" ? 1 : -1;
+  if (side < 0) {
+    std::string hint = closest_match(w[1].text, {"left", "right"});
+    at_word(w[1], "unknown hard stop '" + w[1].text + "' (left, right)" + (hint.empty() ? "" : "; did you mean '" + hint + "'?"));
+    return;
+  }
+  std::int64_t motor = 0, p = 0;
+  bool ok = parse_motor(w[2], options, at_word, motor);
+  if (w[3].text != "at") {
+    at_word(w[3], std::string(kShape) + ": 'at' expected here");
+    return;
+  }
+  if (w.size() > 5) {
+    at_word(w[5], "unexpected '" + w[5].text + "' after the position (a comment starts with '#')");
+    return;
+  }
+  if (!parse_position(w[4], at_word, p) || !ok) return;
+  int& first = first_line[static_cast<std::size_t>(motor * 2 + side)];
+  if (first != 0) {
+    at_word(w[1], "hardstop " + w[1].text + " " + w[2].text + " is already placed at line " + std::to_string(first));
+    return;
+  }
+  first = line_no;
+  InputEvent ev;
+  ev.kind = InputEvent::HardStop;
+  ev.index = static_cast<int>(motor);
+  ev.input = side == 0 ? SwitchInput::StopLeft : SwitchInput::StopRight;
+  ev.from = ev.to = p;
+  ev.line = line_no;
+  out.push_back(ev);
+}
+
+// `load MOTOR from A to B = P%`: a load while the shaft is between A and B (a tight spot, a clamp).
+template <class Error, class AtWord>
+void parse_load_zone(const std::vector<LineWord>& w, const ScenarioOptions& options, std::vector<InputEvent>& out,
+                     int line_no, Error error, AtWord at_word, const std::string& line) {
+  static const char* kShape = "expected 'load MOTOR from POSITION to POSITION = P%' (or 'at TIME load MOTOR = P%')";
+  if (w.size() < 8) {
+    error(static_cast<int>(line.find_last_not_of(" \t")) + 2, 1, std::string(kShape) + ": the line ends early");
+    return;
+  }
+  std::int64_t motor = 0, lo = 0, hi = 0, percent = 0;
+  bool ok = parse_motor(w[1], options, at_word, motor);
+  if (w[2].text != "from") return at_word(w[2], std::string(kShape) + ": 'from' expected here");
+  if (w[4].text != "to") return at_word(w[4], "'to' expected here");
+  if (w[6].text != "=") return at_word(w[6], "'=' expected here");
+  if (w.size() > 8) return at_word(w[8], "unexpected '" + w[8].text + "' after the load (a comment starts with '#')");
+  ok = parse_position(w[3], at_word, lo) && ok;
+  ok = parse_position(w[5], at_word, hi) && ok;
+  if (!parse_percent(w[7].text, percent)) {
+    at_word(w[7], percent_error(w[7].text));
+    ok = false;
+  }
+  if (!ok) return;
+  if (lo > hi) return at_word(w[5], "the range ends below its start (" + w[3].text + " > " + w[5].text + ")");
+  InputEvent ev;
+  ev.kind = InputEvent::LoadZone;
+  ev.index = static_cast<int>(motor);
+  ev.from = lo;
+  ev.to = hi;
+  ev.value = static_cast<std::int32_t>(percent);
+  ev.line = line_no;
+  out.push_back(ev);
+}
 
 constexpr KindName kPlaced[] = {
     {"left", InputEvent::Placed, 255, true}, {"right", InputEvent::Placed, 255, true}, {"home", InputEvent::Placed, 255, true}};
@@ -47,22 +162,9 @@ void parse_placed(const std::vector<LineWord>& w, const ScenarioOptions& options
     at_word(w[1], "unknown switch '" + w[1].text + "' (left, right, home)" + (hint.empty() ? "" : "; did you mean '" + hint + "'?"));
     return;
   }
-  bool ok = true;
   std::int64_t motor = 0;
-  const int max = std::min(255, options.motors - 1);
-  if (!parse_int(w[2].text, 0, 255, motor)) {
-    at_word(w[2], "bad motor number '" + w[2].text + "' (0.." + std::to_string(max) + ")");
-    ok = false;
-  } else if (motor > max) {
-    at_word(w[2], (options.module.empty() ? std::string("the module") : options.module) + " has no motor " +
-                      std::to_string(motor) + " (0.." + std::to_string(max) + ")");
-    ok = false;
-  }
-  auto position = [&](const LineWord& x, std::int64_t& v) {
-    if (parse_int(x.text, INT32_MIN, INT32_MAX, v)) return true;
-    at_word(x, "bad position '" + x.text + "' (microsteps, a 32-bit integer)");
-    return false;
-  };
+  const bool ok = parse_motor(w[2], options, at_word, motor);
+  auto position = [&](const LineWord& x, std::int64_t& v) { return parse_position(x, at_word, v); };
   InputEvent ev;
   ev.kind = InputEvent::Placed;
   ev.index = static_cast<int>(motor);
@@ -156,6 +258,7 @@ bool parse_scenario(const std::string& text, const std::string& file, std::vecto
                     std::vector<FileDiag>& diags, const ScenarioOptions& options) {
   const std::size_t errors_before = diags.size();
   std::vector<int> placed_at(256 * 3, 0);  // per motor and switch: the line that placed it
+  std::vector<int> stop_at(256 * 2, 0);    // per motor and side: the line that placed a hard stop
   int line_no = 0;
   for (std::size_t pos = 0; pos < text.size();) {
     std::size_t end = text.find('\n', pos);
@@ -172,9 +275,17 @@ bool parse_scenario(const std::string& text, const std::string& file, std::vecto
       diags.push_back({file, line_no, col, len, msg, source});
     };
     auto at_word = [&](const LineWord& x, const std::string& msg) { error(x.col, static_cast<int>(x.text.size()), msg); };
-    static const char* kShape = "expected 'at TIME WHAT INDEX = VALUE'";
+    static const char* kShape = "expected 'at TIME WHAT INDEX = VALUE'";  // (or a switch, hardstop or load line)
     if (w[0].text == "switch") {
       parse_placed(w, options, out, placed_at, line_no, error, at_word, line);
+      continue;
+    }
+    if (w[0].text == "hardstop") {
+      parse_hardstop(w, options, out, stop_at, line_no, error, at_word, line);
+      continue;
+    }
+    if (w[0].text == "load") {
+      parse_load_zone(w, options, out, line_no, error, at_word, line);
       continue;
     }
     if (w[0].text != "at") {
@@ -211,7 +322,7 @@ bool parse_scenario(const std::string& text, const std::string& file, std::vecto
       std::vector<std::string_view> names;
       for (const auto& k : kKinds) names.emplace_back(k.name);
       std::string hint = closest_match(w[2].text, names);
-      at_word(w[2], "unknown input '" + w[2].text + "' (input, analog, left, right, home, slip)" +
+      at_word(w[2], "unknown input '" + w[2].text + "' (input, analog, left, right, home, slip, load)" +
                         (hint.empty() ? "" : "; did you mean '" + hint + "'?"));
       ok = false;
     } else {
@@ -228,9 +339,19 @@ bool parse_scenario(const std::string& text, const std::string& file, std::vecto
         ev.kind = kind->kind;
         ev.index = static_cast<int>(index);
       }
+      if (kind->kind == InputEvent::Slip && !options.no_encoder.empty()) {
+        at_word(w[2], "'slip' needs an encoder: the motion core '" + options.no_encoder + "' models none on " +
+                          (options.module.empty() ? std::string("this module") : options.module));
+        ok = false;
+      }
     }
     std::int64_t value = 0;
-    if (!parse_int(w[5].text, INT32_MIN, INT32_MAX, value)) {
+    if (kind && kind->percent) {
+      if (!parse_percent(w[5].text, value)) {
+        at_word(w[5], percent_error(w[5].text));
+        ok = false;
+      }
+    } else if (!parse_int(w[5].text, INT32_MIN, INT32_MAX, value)) {
       at_word(w[5], "bad value '" + w[5].text + "' (a 32-bit integer)");
       ok = false;
     }

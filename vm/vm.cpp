@@ -202,7 +202,7 @@ void Vm::add_inputs(std::vector<InputEvent> events) {
   inputs_queue.erase(inputs_queue.begin(), inputs_queue.begin() + static_cast<std::ptrdiff_t>(input_next));
   input_next = 0;
   for (auto& e : events) {
-    if (e.kind != InputEvent::Placed) {
+    if (!e.placed_kind()) {
       inputs_queue.push_back(e);
       continue;
     }
@@ -359,6 +359,7 @@ void Vm::handle_motion_event(const MotionEvent& ev) {
       raise(kVectorDeviation0 + ev.motor);
       break;
     case MotionEventKind::SwitchChanged: switch_source(ev.motor, ev.input, false, ev.active); break;
+    case MotionEventKind::Stall: raise(15 + ev.motor); break;
     default: break;
   }
 }
@@ -418,9 +419,37 @@ void Vm::apply_input(const InputEvent& ev) {
         unplaceable_ = "the motion core '" + std::string(motion->name()) + "' cannot place switches at positions" +
                        (ev.line > 0 ? " (scenario line " + std::to_string(ev.line) + ")" : std::string());
       return;
+    case InputEvent::HardStop:
+    case InputEvent::LoadZone: {
+      if (!motor_ok(ev.index)) return;
+      sync_motion();
+      const bool hard = ev.kind == InputEvent::HardStop;
+      const bool ok = hard ? motion->place_hard_stop(ev.index, ev.input, ev.from)
+                           : motion->place_load(ev.index, ev.from, ev.to, ev.value);
+      if (!ok && unplaceable_.empty())
+        unplaceable_ = "the motion core '" + std::string(motion->name()) + "' cannot model " +
+                       (hard ? "hard stops" : "loads") +
+                       (ev.line > 0 ? " (scenario line " + std::to_string(ev.line) + ")" : std::string());
+      return;
+    }
+    case InputEvent::Load:
+      if (!motor_ok(ev.index)) return;
+      sync_motion();
+      if (!motion->set_load(ev.index, ev.value)) {
+        fault("the motion core '" + std::string(motion->name()) + "' cannot model loads" +
+              (ev.line > 0 ? " (scenario line " + std::to_string(ev.line) + ")" : std::string()));
+        return;
+      }
+      what = "load " + std::to_string(ev.index) + " = " + std::to_string(ev.value) + "%";
+      break;
     case InputEvent::Slip:
       if (!motor_ok(ev.index)) return;
       sync_motion();
+      if (!motion->models_encoder(*profile)) {  // a scenario not checked against this core: never silently
+        fault("the motion core '" + std::string(motion->name()) + "' models no encoder on " + std::string(profile->name) +
+              " to slip" + (ev.line > 0 ? " (scenario line " + std::to_string(ev.line) + ")" : std::string()));
+        return;
+      }
       motion->encoder_slip(ev.index, ev.value);
       what = "slip " + std::to_string(ev.index) + " = " + std::to_string(ev.value);
       break;

@@ -142,6 +142,7 @@ class Cli {
   void info_interrupts();
   void info_timers();
   void info_motors();
+  std::string encoder_text(int motor);
 
   Engine& e_;
   std::FILE* out_;
@@ -407,6 +408,16 @@ void Cli::info_timers() {
   }
 }
 
+// ", encoder N (deviation D)" where the core models the module's encoder: 209 and its distance
+// from the position counter (axis parameter 1), which 212 bounds (docs/motion.md).
+std::string Cli::encoder_text(int m) {
+  Vm& vm = e_.vm();
+  std::int32_t enc = 0, pos = 0;
+  if (!vm.motion->models_encoder(*vm.profile) || vm.get_axis(m, 209, enc) != kStatusOk || vm.get_axis(m, 1, pos) != kStatusOk)
+    return {};
+  return ", encoder " + std::to_string(enc) + " (deviation " + std::to_string(static_cast<std::int64_t>(pos) - enc) + ")";
+}
+
 void Cli::info_motors() {
   Vm& vm = e_.vm();
   for (int m = 0; m < vm.profile->motors; ++m) {
@@ -428,6 +439,7 @@ void Cli::info_motors() {
       std::string on = std::string(sw.left ? " left" : "") + (sw.right ? " right" : "") + (sw.home ? " home" : "");
       if (!on.empty()) line += ", switches on:" + on;
     }
+    line += encoder_text(m);
     println(line);
   }
   // The lines above are physical; an expression reads the parameters as the module gives them,

@@ -369,6 +369,10 @@ bool parse_test_file(const std::string& text, const std::string& path, const std
   sopts.motors = profile ? profile->motors : 256;
   sopts.profile = profile;
   sopts.module = profile ? std::string(profile->name) : std::string();
+  if (profile) {  // the core the file names, else the module's (a --motion given at run time: the VM refuses)
+    auto core = out.motion.empty() ? make_profile_motion_core(*profile) : make_motion_core(out.motion);
+    if (core && !core->models_encoder(*profile)) sopts.no_encoder = std::string(core->name());
+  }
   sopts.error_limit = 0;
   parse_scenario(scenario, path, out.inputs, mine, sopts);
   std::stable_sort(mine.begin(), mine.end(),

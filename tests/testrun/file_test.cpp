@@ -195,6 +195,18 @@ TEST(file_scenario_motors_follow_the_target) {
            "t.tmctest:3:12: error: usb-2-sd has no motor 3 (0..0)\n at 1s left 3 = 1\n            ^\n");
 }
 
+// A slip needs an encoder the test's core models on its module: the file's `motion` line, else
+// the module's core (issue 34).
+TEST(file_slip_needs_an_encoder) {
+  CHECK_EQ(errors("program p.tmc\ntarget tmcm-6110\nat 1s slip 0 = -400\n"),
+           "t.tmctest:3:7: error: 'slip' needs an encoder: the motion core 'tmc429' models none on tmcm-6110\n"
+           " at 1s slip 0 = -400\n       ^~~~\n");
+  CHECK_EQ(errors("program p.tmc\ntarget tmcm-1260\nmotion linear\nat 1s slip 0 = -400\n"),
+           "t.tmctest:4:7: error: 'slip' needs an encoder: the motion core 'linear' models none on tmcm-1260\n"
+           " at 1s slip 0 = -400\n       ^~~~\n");
+  CHECK_EQ(parsed("program p.tmc\ntarget tmcm-1260\nat 1s slip 0 = -400\n").inputs.size(), std::size_t{1});
+}
+
 // Switches at positions are scenario lines of a test file too, read by the scenario reader
 // (its errors included); they are placed switches, not timed inputs.
 TEST(file_switch_lines_are_scenario_lines) {

@@ -126,6 +126,7 @@ class IdealCore final : public CoreSkeleton<Motor> {
 
   void set_switch(int, SwitchInput, bool) override {}
 
+  bool models_encoder(const Profile&) const override { return true; }
   void encoder_slip(int motor, std::int32_t counts) override {
     Motor& m = at(motor);
     m.encoder_offset += counts;

@@ -11,7 +11,8 @@
 // the home switch in series with the left one (mode 3 searches either). docs/motion.md explains
 // every decision.
 //
-// Parameters it owns: 0-5, 8-13, 130, 135, 138, 140, 149, 153, 154, 193-196.
+// Parameters it owns: 0-5, 8-13, 130, 135, 138, 140, 149, 153, 154, 193-196, and 207, 209, 210, 212
+// (the encoder where the profile declares one, switch_core.hpp).
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -45,7 +46,8 @@ constexpr int kTmc429Owned[] = {kApTargetPosition, kApActualPosition, kApTargetS
                                 sw::kHomeState, sw::kRightSwitchState, sw::kLeftSwitchState,
                                 sw::kRightStopDisable, sw::kLeftStopDisable, kMinSpeed, kActualAcceleration,
                                 kRampMode, kApMicrostepResolution, kSoftStop, kRampDivisor, kPulseDivisor,
-                                sw::kRfsMode, sw::kRfsSpeed, sw::kRfsSwitchSpeed, sw::kRfsDistance};
+                                sw::kRfsMode, sw::kRfsSpeed, sw::kRfsSwitchSpeed, sw::kRfsDistance,
+                                sw::kErrorFlags, sw::kEncoderPosition, sw::kEncoderPrescaler, sw::kMaxDeviation};
 
 class Tmc429Core final : public sw::SwitchCore {
  public:

@@ -165,6 +165,7 @@ class Tmc4361Core final : public ramp::RampCore<Tmc4361Motor> {
     if (input != SwitchInput::Home && active && (m.goal == Tmc4361Goal::Position || m.goal == Tmc4361Goal::Velocity)) replan(m);
   }
 
+  bool models_encoder(const Profile&) const override { return true; }
   void encoder_slip(int motor, std::int32_t counts) override {
     Tmc4361Motor& m = at(motor);
     double res = std::abs(m.p[kApEncoderResolution]);

@@ -13,10 +13,41 @@ using ramp::EventKind;
 using ramp::Limits;
 using ramp::SwitchHit;
 
+EncoderSpec EncoderSpec::of(const Profile& profile) {
+  EncoderSpec e;
+  e.present = profile.motion_constant("encoder", 0) != 0;
+  e.prescaler_one = std::max<std::int64_t>(0, profile.motion_constant("encoder-prescaler", 0));
+  e.prescaler_flags = static_cast<std::int32_t>(profile.motion_constant("encoder-prescaler-flags", 0));
+  e.deviation_flag = static_cast<std::int32_t>(profile.motion_constant("deviation-flag", 0));
+  e.flags_clear_on_read = profile.motion_constant("error-flags-read-clears", 0) != 0;
+  return e;
+}
+
+// The encoder's facts come from the active profile, or under generic from the module the core
+// models (as its units do).
+void SwitchCore::reset(const Profile& profile, int motors) {
+  RampCore::reset(profile, motors);
+  const Profile* spec = profile.any_parameter ? find_profile(home_) : &profile;
+  enc_spec_ = spec ? EncoderSpec::of(*spec) : EncoderSpec{};
+  for (auto& m : motors_) set_prescaler(m);
+}
+
+bool SwitchCore::models_encoder(const Profile& profile) const {
+  const Profile* spec = profile.any_parameter ? find_profile(home_) : &profile;
+  return spec && EncoderSpec::of(*spec).present;
+}
+
+// 210 as the prescaler: (value without the function bits) / encoder-prescaler.
+void SwitchCore::set_prescaler(Motor& m) {
+  if (!enc_spec_.present || enc_spec_.prescaler_one <= 0) return;
+  m.enc.rescale(shaft_at(m), m.p[kEncoderPrescaler] & ~enc_spec_.prescaler_flags, enc_spec_.prescaler_one);
+}
+
 void SwitchCore::advance(SimTime to, std::vector<MotionEvent>& out) {
   collect(
       to, out,
-      [](Motor& m, EventKind k) {
+      [this](Motor& m, EventKind k) {
+        if (k == EventKind::Deviation) m.errors |= enc_spec_.deviation_flag, abort_search(m);
         if (k == EventKind::ReferenceDone) m.search.step = SearchStep::Off;
         if (k != EventKind::VelocityReached) m.goal = Goal::Idle, m.trip_t = ramp::kInf;
       },
@@ -38,11 +69,25 @@ ParamWrite SwitchCore::set_param(int motor, int param, std::int32_t value) {
       rotate(motor, value);
       return ParamWrite::Ok;
     case kApActualSpeed: case kApPositionReached: case kHomeState: case kRightSwitchState:
-    case kLeftSwitchState: case kRfsDistance:
+    case kLeftSwitchState: case kRfsDistance: case kErrorFlags:
       return ParamWrite::ReadOnly;
     case kApRelativePositioningOption:  // read by the next MVP REL (core_skeleton.hpp): no re-plan
       if (!in_range(param, value)) return ParamWrite::OutOfRange;
       m.p[kApRelativePositioningOption] = value;
+      return ParamWrite::Ok;
+    case kEncoderPosition:  // the count becomes the value where the shaft is
+      if (!enc_spec_.present) break;
+      if (!in_range(param, value)) return ParamWrite::OutOfRange;
+      m.p[kEncoderPosition] = value;
+      m.enc.set(shaft_at(m), value);
+      shaft_changed(m, false);
+      return ParamWrite::Ok;
+    case kEncoderPrescaler:
+      if (!enc_spec_.present || enc_spec_.prescaler_one <= 0) break;
+      if (!in_range(param, value)) return ParamWrite::OutOfRange;
+      m.p[kEncoderPrescaler] = value;
+      set_prescaler(m);
+      shaft_changed(m, false);
       return ParamWrite::Ok;
     case kRfsMode: {
       SearchMode sm;
@@ -52,8 +97,9 @@ ParamWrite SwitchCore::set_param(int motor, int param, std::int32_t value) {
     }
     default:
       if (cfg_.last_reference != 0 && param == cfg_.last_reference) return ParamWrite::ReadOnly;
-      return set_other(m, param, value);
+      break;
   }
+  return set_other(m, param, value);
 }
 
 ParamWrite SwitchCore::set_other(Motor& m, int param, std::int32_t value) {
@@ -75,6 +121,12 @@ std::int32_t SwitchCore::get_param(int motor, int param) {
     case kHomeState: return home_state(m) ? 1 : 0;
     case kRightSwitchState: return closed(m, 1) ? 1 : 0;
     case kLeftSwitchState: return closed(m, 0) ? 1 : 0;
+    case kErrorFlags: {
+      const std::int32_t e = m.errors;
+      if (enc_spec_.flags_clear_on_read) m.errors = 0;
+      return e;
+    }
+    case kEncoderPosition: return enc_spec_.present ? ramp::wrap32(encoder(m)) : m.p[kEncoderPosition];
     default: return m.p[static_cast<std::size_t>(param)];
   }
 }
@@ -88,6 +140,7 @@ std::int32_t SwitchCore::units(double v) { return static_cast<std::int32_t>(std:
 void SwitchCore::move_absolute(int motor, std::int32_t target) {
   Motor& m = at(motor);
   m.p[kApTargetPosition] = target;
+  m.errors = 0;  // "cleared with the next movement command" (TMCM-351 manual, 207)
   set_goal(m, Goal::Position);
   replan(m, 1, true);
 }
@@ -95,12 +148,14 @@ void SwitchCore::move_absolute(int motor, std::int32_t target) {
 void SwitchCore::rotate(int motor, std::int32_t velocity) {
   Motor& m = at(motor);
   m.vt = std::clamp(velocity, -max_speed(), max_speed());  // the chip's register holds no more
+  m.errors = 0;
   set_goal(m, Goal::Velocity);
   replan(m, 1, true);
 }
 
 void SwitchCore::stop(int motor) {
   Motor& m = at(motor);
+  m.errors = 0;
   if (m.goal == Goal::Idle && m.rm.at_rest(now_)) return;
   m.vt = 0;
   set_goal(m, Goal::Velocity);
@@ -110,7 +165,10 @@ void SwitchCore::stop(int motor) {
 std::int32_t SwitchCore::reference_search(int motor, RfsAction action) {
   Motor& m = at(motor);
   switch (action) {
-    case RfsAction::Start: start_search(m); return 0;
+    case RfsAction::Start:
+      m.errors = 0;
+      start_search(m);
+      return 0;
     case RfsAction::Stop:
       if (m.search.step != SearchStep::Off) stop(motor);
       return 0;
@@ -134,6 +192,24 @@ void SwitchCore::set_switch(int motor, SwitchInput input, bool active) {
     search_switch(m, k, closed(m, k), m.rm.xactual(now_), 0);
   else if (active && (m.goal == Goal::Position || m.goal == Goal::Velocity))
     replan(m);  // the trip scan stops the motor at once if it moves toward the switch
+}
+
+void SwitchCore::encoder_slip(int motor, std::int32_t counts) {
+  Motor& m = at(motor);
+  m.shaft.slip(counts);
+  shaft_changed(m, true);
+}
+
+void SwitchCore::shaft_changed(Motor& m, bool stop_at_rest) {
+  if (!deviation_on(m)) return;
+  if (m.goal != Goal::Idle) return replan(m);
+  if (!stop_at_rest || !m.rm.at_rest(now_)) return;
+  const std::int64_t d = deviation(m).at(m.rm.xactual(now_));
+  if (d <= m.p[kMaxDeviation] && d >= -m.p[kMaxDeviation]) return;
+  Builder b = m.rm.restart(now_);
+  b.stop_hard();
+  b.event(EventKind::Deviation);
+  b.finish_rest();
 }
 
 bool SwitchCore::closed(const Motor& m, int input) const {
@@ -165,6 +241,7 @@ void SwitchCore::replan(Motor& m, double vscale, bool by_command) {
   // a few thousand pps the last nanosecond is more than the step tolerance).
   m.rm.rest_on_grid();
   scan_trips(m, lim);
+  scan_deviation(m);
 }
 
 // A limit switch stops the motor with the ramp (soft-stop flag 1) or at once (0).
@@ -192,6 +269,27 @@ void SwitchCore::scan_trips(Motor& m, const Limits& lim) {
     Builder b(m.rm.plan, {}, 0);
     b.truncate(m.trip_t);
     switch_stop(m, b, lim);
+    m.rm.rest_on_grid();
+    return;
+  }
+}
+
+// The first step of the plan at which |XACTUAL - 209| exceeds 212: there the motor stops at once
+// with a deviation event (manuals: "the motor will be stopped"; docs/motion.md).
+void SwitchCore::scan_deviation(Motor& m) {
+  if (!deviation_on(m)) return;
+  const shaft::Deviation dev = deviation(m);
+  for (const auto& seg : m.rm.plan.segs) {
+    if (seg.dir == 0) continue;
+    const auto x = dev.trip(m.rm.base + ramp::step_of(seg.x0, seg.dir), seg.dir, m.p[kMaxDeviation]);
+    if (!x) continue;
+    const double dt = ramp::crossing(seg, static_cast<double>(*x - m.rm.base));
+    if (dt < 0) continue;
+    Builder b(m.rm.plan, {}, 0);
+    b.truncate(seg.t0 + dt);
+    b.stop_hard();
+    b.event(EventKind::Deviation);
+    b.finish_rest();
     m.rm.rest_on_grid();
     return;
   }
@@ -256,7 +354,7 @@ void SwitchCore::search_step(Motor& m, bool stop_first, double vscale) {
     auto& ev = m.rm.plan.events;  // none when the ramp cannot move (an acceleration or the speed 0)
     if (!ev.empty()) ev.back().kind = EventKind::ReferenceDone;  // the arrival ends the search
     m.rm.rest_on_grid();
-    return;
+    return scan_deviation(m);
   }
   // A release toward an end switch that is closed already (a search that started on its switch
   // right at the end switch): the other way (search_switch).
@@ -267,6 +365,7 @@ void SwitchCore::search_step(Motor& m, bool stop_first, double vscale) {
   const Limits lim = search_limits(m, fast ? search_speed(m) : switch_speed(m), false);
   b.plan_velocity(lim, s.dir * lim.vmax);
   m.rm.plan.events.clear();  // the search's own stops and speeds are no events of the program
+  scan_deviation(m);
   // A switch already as the step awaits it counts at once (e.g. a search started inside it).
   if (s.step == SearchStep::Find && s.reverse_at >= 0 && closed(m, s.reverse_at)) return turn_around(m);
   const int input = s.step == SearchStep::FindFar ? s.far : s.input;
@@ -363,6 +462,7 @@ void SwitchCore::reference_at(Motor& m, std::int64_t a, std::int64_t b) {
   }
   if (cfg_.last_reference != 0) m.p[static_cast<std::size_t>(cfg_.last_reference)] = ramp::wrap32(ref);
   m.rm.shift(-ref);
+  m.enc.off -= ref;  // the encoder moves with the counter: the deviation stays (docs/errata.md E68)
   m.p[kApTargetPosition] = 0;
   s.step = SearchStep::ToRef;
   search_step(m, true);

@@ -5,7 +5,8 @@
 // ramps and the parameter numbers where they differ. docs/motion.md explains every decision.
 //
 // Parameters this part gives a meaning: 0-3, 8-13, 193-196 (and the core's soft-stop flag and
-// last-reference parameter, SwitchConfig).
+// last-reference parameter, SwitchConfig), and where the profile declares an encoder (EncoderSpec)
+// 207, 209, 210 and 212: the encoder counting the shaft (shaft.hpp) and the deviation stop.
 #pragma once
 
 #include <array>
@@ -15,6 +16,7 @@
 #include <vector>
 
 #include "ramp_motor.hpp"
+#include "shaft.hpp"
 
 namespace tmcl::sw {
 
@@ -28,6 +30,21 @@ enum Param : int {
   kRfsSpeed = 194,
   kRfsSwitchSpeed = 195,
   kRfsDistance = 196,      // between the end switches, after modes 2 and 3
+  kErrorFlags = 207,       // extended error flags: the deviation (and stall) stops
+  kEncoderPosition = 209,
+  kEncoderPrescaler = 210, // TMC429 modules: prescaler = value / 512; TMCM-1260: clear on null
+  kMaxDeviation = 212,     // |XACTUAL - 209| beyond it stops the motor; 0: off
+};
+
+// What the profile declares of the module's encoder (motion-constant lines; docs/profiles.md).
+struct EncoderSpec {
+  bool present = false;            // `encoder 1`: 209 counts the shaft, 212 stops the motor
+  std::int64_t prescaler_one = 0;  // `encoder-prescaler`: the 210 value of prescaler 1 (0: none,
+                                   // the encoder is matched to the microsteps)
+  std::int32_t prescaler_flags = 0;  // `encoder-prescaler-flags`: 210's bits that select functions
+  std::int32_t deviation_flag = 0;   // `deviation-flag`: what a deviation stop sets in 207
+  bool flags_clear_on_read = false;  // `error-flags-read-clears`: reading 207 clears it
+  static EncoderSpec of(const Profile& profile);
 };
 
 enum class Goal : std::uint8_t { Idle, Position, Velocity, Halt, Search };
@@ -69,6 +86,9 @@ struct Motor {
   std::uint8_t timed = 0;             // bit (1 << SwitchInput): closed by a timed scenario line
   double trip_t = ramp::kInf;         // plan instant of a pending limit-switch stop
   Search search;
+  shaft::Shaft shaft;                 // the rotor, apart from the counter (shaft.hpp)
+  shaft::Encoder enc;                 // axis parameter 209, counting the shaft
+  std::int32_t errors = 0;            // axis parameter 207: cleared by a motion command
 };
 
 // Where the modules differ in what this part does.
@@ -84,6 +104,7 @@ class SwitchCore : public ramp::RampCore<Motor> {
   SwitchCore(std::span<const int> owned, std::string_view home, bool chip_units, SwitchConfig cfg)
       : RampCore(owned, home, chip_units), cfg_(cfg) {}
 
+  void reset(const Profile& profile, int motors) override;
   void advance(SimTime to, std::vector<MotionEvent>& out) override;
   ParamWrite set_param(int motor, int param, std::int32_t value) override;
   std::int32_t get_param(int motor, int param) override;
@@ -93,7 +114,9 @@ class SwitchCore : public ramp::RampCore<Motor> {
   std::int32_t reference_search(int motor, RfsAction action) override;
   bool reference_done(int motor) const override;
   void set_switch(int motor, SwitchInput input, bool active) override;
-  void encoder_slip(int, std::int32_t) override {}  // the encoder is not modelled (docs/motion.md)
+  // The shaft slips `counts` microsteps against the counter (scenario `slip`); the encoder sees it.
+  void encoder_slip(int motor, std::int32_t counts) override;
+  bool models_encoder(const Profile& profile) const override;
 
  protected:
   // ---- what a core says
@@ -124,6 +147,22 @@ class SwitchCore : public ramp::RampCore<Motor> {
   // re-plan not `by_command` (a parameter, a switch) keeps a cruise's "velocity reached" quiet.
   void replan(Motor& m, double vscale = 1, bool by_command = false);
   void abort_search(Motor& m) { m.search.step = SearchStep::Off; }
+  const EncoderSpec& encoder_spec() const { return enc_spec_; }
+  // ---- the shaft (shaft.hpp), for the cores and for what blocks or slips a rotor
+  // The counter in the machine's frame (XACTUAL + phys), and the shaft's place, now.
+  std::int64_t commanded(const Motor& m) const { return m.rm.xactual(now_) + m.rm.phys; }
+  std::int64_t shaft_at(const Motor& m) const { return m.shaft.at(commanded(m)); }
+  // Steps lost now: the counter moved `steps` the shaft did not follow.
+  void lose_steps(Motor& m, std::int64_t steps) { m.shaft.lose(steps); }
+  // The shaft stands from now (a hard stop, a stall without stop) / follows again from now.
+  void hold_shaft(Motor& m) { m.shaft.hold(commanded(m)); }
+  void release_shaft(Motor& m) { m.shaft.release(commanded(m)); }
+  // After the shaft or the encoder changed apart from the plan: a moving motor is re-planned (the
+  // deviation scan finds the new trip), one at rest stops with a deviation now if beyond 212.
+  // `stop_at_rest`: a slip, not a write of 209 or 210 (a program re-aligning the encoder).
+  void shaft_changed(Motor& m, bool stop_at_rest);
+  // XACTUAL - 209 as a function of the register position, for the deviation stop.
+  shaft::Deviation deviation(const Motor& m) const { return {m.rm.phys, m.shaft, m.enc}; }
   void set_goal(Motor& m, Goal goal) {
     abort_search(m);
     m.goal = goal;
@@ -134,6 +173,10 @@ class SwitchCore : public ramp::RampCore<Motor> {
   bool decode(std::int32_t value, SearchMode& out) const;
   void switch_stop(Motor& m, ramp::Builder& b, const ramp::Limits& lim);
   void scan_trips(Motor& m, const ramp::Limits& lim);
+  void scan_deviation(Motor& m);
+  void set_prescaler(Motor& m);
+  bool deviation_on(const Motor& m) const { return enc_spec_.present && m.p[kMaxDeviation] > 0; }
+  std::int64_t encoder(const Motor& m) const { return m.enc.read(shaft_at(m)); }
   std::int32_t search_speed(const Motor& m) const;
   std::int32_t switch_speed(const Motor& m) const;
   bool search_closed(const Motor& m, int input) const;
@@ -147,6 +190,7 @@ class SwitchCore : public ramp::RampCore<Motor> {
   void reference_at(Motor& m, std::int64_t a, std::int64_t b);
 
   SwitchConfig cfg_;
+  EncoderSpec enc_spec_;
 };
 
 }  // namespace tmcl::sw

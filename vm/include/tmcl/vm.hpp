@@ -158,7 +158,7 @@ class TraceSink {
 
 // One external input change at an instant (from a scenario, or pushed by a server).
 struct InputEvent {
-  enum Kind : std::uint8_t { Digital, Analog, StopLeft, StopRight, Home, Slip, Placed };
+  enum Kind : std::uint8_t { Digital, Analog, StopLeft, StopRight, Home, Slip, Placed, Load, HardStop, LoadZone };
   SimTime at = 0;
   Kind kind = Digital;
   int index = 0;  // input number, or motor
@@ -168,6 +168,11 @@ struct InputEvent {
   // lies in [from, to] (MotionCore::place_switch; scenario `switch left 0 at -20000`).
   SwitchInput input = SwitchInput::StopLeft;
   std::int64_t from = 0, to = 0;
+  // Load (timed): from `at` on, motor `index` carries a load of `value` % of its holding torque.
+  // HardStop (at 0): a mechanical end of motor `index` at physical position `from`, on side
+  // `input` (StopLeft: the shaft cannot go below it; StopRight: above it). LoadZone (at 0): a load
+  // of `value` % while the shaft is in [from, to]. (MotionCore::set_load, place_hard_stop, place_load.)
+  bool placed_kind() const { return kind == Placed || kind == HardStop || kind == LoadZone; }
 };
 
 struct Vm {
@@ -260,7 +265,7 @@ struct Vm {
   // ---- external inputs queued by time ----
   std::vector<InputEvent> inputs_queue;  // sorted by time; consumed from input_next
   std::size_t input_next = 0;
-  // Switches placed at positions (InputEvent::Placed): they belong to the machine, not to time,
+  // Switches, hard stops and loads placed at positions (InputEvent::placed_kind): they belong to the machine, not to time,
   // so add_inputs places them at once and power_on again on the reset core, program or not.
   std::vector<InputEvent> placed;
 

@@ -22,6 +22,12 @@ motion tmc429 fallback=linear src=M:1,M:5.5 # the TMC429's units (pulse and ramp
 motion-constant clock 16000000 src=M:5.5  # fCLK, Hz
 motion-constant velocity-divisor 65536 src=M:5.5  # µsteps/s = clock * v / (2^pulse_div * 2048 * 32)
 motion-constant acceleration-shift 29 src=M:5.5  # µsteps/s² = clock² * a / 2^(pulse_div + ramp_div + 29)
+# The encoder the core simulates (docs/motion.md): 209 counts the shaft through the prescaler, a
+# deviation beyond 212 stops the motor and sets 207.
+motion-constant encoder 1 src=M:5.4
+motion-constant encoder-prescaler 512 src=M:5.4.1  # prescaler = 210 / 512
+motion-constant encoder-prescaler-flags 28 src=M:5.4.1  # bits 2..4 of 210 select special functions
+motion-constant deviation-flag 2 src=P  # 207: '2: deviation error'
 # Commands: table 4.4.1, CLE 36 (4.5.31), UF0..UF7 (4.5.36), 138 (4.5.37) and the control commands
 # (4.5.38; 128..135 as in every TMCL module, the TMCL reference 3.35). 255 (software reset) is not
 # in the manual but in newer firmware.

@@ -24,6 +24,12 @@ motion tmc429 fallback=linear src=Y,P # the TMC429's units (pulse and ramp divis
 motion-constant clock 16000000 src=F:5.5 unverified  # fCLK, Hz
 motion-constant velocity-divisor 65536 src=F:5.5 unverified  # µsteps/s = clock * v / (2^pulse_div * 2048 * 32)
 motion-constant acceleration-shift 29 src=F:5.5 unverified  # µsteps/s² = clock² * a / 2^(pulse_div + ramp_div + 29)
+# The encoder the core simulates (docs/motion.md): 209 counts the shaft through the prescaler, a
+# deviation beyond 212 stops the motor and sets 207.
+motion-constant encoder 1 src=Y,P  # they list 209, 210 and 212
+motion-constant encoder-prescaler 512 src=F:5.4.1 unverified  # prescaler = 210 / 512
+motion-constant encoder-prescaler-flags 28 src=F:5.4.1 unverified  # bits 2..4 of 210 select special functions
+motion-constant deviation-flag 2 src=Y,P  # 207: '2: deviation error'
 # Commands: those of the TMCM-1110, the same firmware family.
 commands 1-15 19-28 30-39 64-71 128-138 src=F:4.4.1 unverified
 commands 255 unverified

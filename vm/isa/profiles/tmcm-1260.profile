@@ -19,6 +19,13 @@ user-variables 256 eeprom=56 src=M:5.3
 coordinates 21 src=M:3.6.22  # 'up to 20 position values' per axis, and 0
 parameters listed
 motion tmc5160 fallback=linear src=M:1,M:7.5  # pps and pps², SixPoint ramps (sections 1.3, 7.5)
+# The SensOstep encoder the core simulates (docs/motion.md): 209 counts the shaft in microsteps
+# ("automatically matched to the microstep resolution", 6.2; 210 is clear-on-null, no prescaler),
+# a deviation beyond 212 stops the motor and sets 207, which reading clears.
+motion-constant encoder 1 src=M:6.2
+motion-constant encoder-prescaler 0 src=M:6.2
+motion-constant deviation-flag 2 src=M:4  # 207: '2 deviation error'
+motion-constant error-flags-read-clears 1 src=M:4  # 207: 'cleared automatically when this parameter has been read out'
 # Commands: table 5 (no STAP/RSAP), UF0..UF7 (3.6.34), 138 (3.6.35) and the control commands of
 # table 13.
 commands 1-6 9-15 19-28 30-39 64-71 src=M:table5,M:3.6.34

@@ -18,6 +18,12 @@ motion tmc429 fallback=linear src=M:5  # TMC428/429 units (the formulas of secti
 motion-constant clock 16000000 src=M:5  # fCLK, Hz
 motion-constant velocity-divisor 65536 src=M:5  # µsteps/s = clock * 2^pulse_div ... / 65536 (section 5)
 motion-constant acceleration-shift 29 src=M:5  # 536870912 = 2^29 in the unit of acceleration
+# The encoder the core simulates (docs/motion.md): 209 counts the shaft through the prescaler, a
+# deviation beyond 212 stops the motor and sets 207.
+motion-constant encoder 1 src=M:7.2  # the optional encoder interface
+motion-constant encoder-prescaler 512 src=M:7.2  # prescaler = 210 / 512
+motion-constant encoder-prescaler-flags 31 src=M:7.2  # adding 1, 2, 4, 8, 16 to 210 selects special functions
+motion-constant deviation-flag 1 src=M:5  # 207 bit 0: 'stopped due to encoder deviation error'
 # Commands: table 4.4.1, CLE 36 (4.6.32), UF0..UF7 (4.6.37), 138 (4.6.38) and the control commands
 # (4.4.2.9), SAC 29 (4.6.24). 139 (enter ASCII mode) is a control command tmcl does not have.
 commands 1-15 19-39 64-71 src=M:4.4.1,M:4.6.24,M:4.6.32,M:4.6.37

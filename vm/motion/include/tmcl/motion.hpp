@@ -38,6 +38,8 @@ enum class MotionEventKind : std::uint8_t {
   Deviation,        // encoder deviation beyond axis parameter 212: motor stopped (interrupt 21+motor)
   ReferenceDone,    // a reference search completed
   SwitchChanged,    // a switch placed at a position (place_switch) closed or opened
+  Stall,            // stop on stall (axis parameter 181): the load value reached 0, motor stopped (interrupt 15+motor)
+  StepsLost,        // the shaft stands (a hard stop, a load of 100 % or more) while the counter runs on
 };
 std::string_view motion_event_name(MotionEventKind kind);
 
@@ -129,6 +131,32 @@ class MotionCore {
     return false;
   }
   virtual void encoder_slip(int motor, std::int32_t counts) = 0;  // encoder loses/gains counts
+  // Whether a scenario's `slip` means something for motors of `profile` on this core: the core
+  // models an encoder there. A scenario's slip line on a core that does not is a file error
+  // (ScenarioOptions::encoder); the default models none.
+  virtual bool models_encoder(const Profile& profile) const {
+    (void)profile;
+    return false;
+  }
+
+  // The machine's mechanics (scenario `hardstop` and `load` lines; docs/motion.md, "Loads, stalls
+  // and lost steps"), in the physical frame of place_switch: a mechanical end on `side` (StopLeft:
+  // the shaft cannot go below `position`; StopRight: above it); from now on a load of `percent` %
+  // of the motor's holding torque (100 and above: the motor stalls); a load of `percent` % while
+  // the shaft is in [lo, hi]. A core that models them returns true; the default cannot, and the
+  // VM ends the run with a fault naming the core and the scenario line.
+  virtual bool place_hard_stop(int motor, SwitchInput side, std::int64_t position) {
+    (void)motor, (void)side, (void)position;
+    return false;
+  }
+  virtual bool set_load(int motor, int percent) {
+    (void)motor, (void)percent;
+    return false;
+  }
+  virtual bool place_load(int motor, std::int64_t lo, std::int64_t hi, int percent) {
+    (void)motor, (void)lo, (void)hi, (void)percent;
+    return false;
+  }
 
   virtual std::int32_t position(int motor) const = 0;  // actual position (axis parameter 1)
   virtual bool target_reached(int motor) const = 0;    // WAIT POS condition

@@ -1,0 +1,70 @@
+// The encoder as a program meets it (issue 34): a scenario's slip on a TMCM core stops the motor
+// beyond 212 and raises the deviation interrupt 21 + motor with the EDV error flag; a slip line on
+// a core that models no encoder is a file error naming the core (line and column), and a VM
+// whose scenario was not checked against its core faults at the slip, never silently.
+#include <string>
+
+#include "check.hpp"
+#include "machine.hpp"
+#include "tmcl/scenario.hpp"
+
+using namespace vmtest;
+using tmcl::Halt;
+using tmcl::InputEvent;
+using tmcl::Op;
+
+namespace {
+
+struct Slipping {
+  std::unique_ptr<tmcl::MotionCore> core;
+  tmcl::Vm vm;
+  Slipping(const char* core_name, const tmcl::Profile& profile, const std::vector<Instruction>& prog, const char* scenario)
+      : core(tmcl::make_motion_core(core_name)), vm(profile, *core) {
+    vm.instr_time = 20;
+    vm.load(prog);
+    vm.power_on(nullptr);
+    std::vector<InputEvent> ev;
+    std::string err;
+    CHECK(tmcl::parse_scenario(scenario, "s.txt", ev, err));
+    vm.add_inputs(ev);
+    vm.start(0);
+  }
+};
+
+}  // namespace
+
+TEST(slip_beyond_212_raises_the_deviation_interrupt) {
+  Slipping w("tmc429", tmcl::generic_profile(),
+             {I(Op::VECT, 21, 0, 7), I(Op::EI, 21), I(Op::EI, 255), I(Op::SAP, 212, 0, 1000), I(Op::ROR, 0, 0, 500),
+              I(Op::WAIT, 0, 0, 300), I(Op::STOP), I(Op::CALCV, 0, 21, 1), I(Op::RETI)},
+             "at 1s slip 0 = -900\nat 2s slip 0 = -200\n");
+  auto r = w.vm.run({100000, tmcl::kNever});
+  CHECK(r.halt == Halt::Stop);
+  CHECK_EQ(w.vm.vars[21], 1);  // once, at 2 s: 900 was within 212
+  CHECK(w.vm.errors & tmcl::kErrDeviation);
+  CHECK_EQ(w.core->get_param(0, 3), 0);
+  CHECK_EQ(w.core->get_param(0, 207), 2);
+  CHECK_EQ(w.core->get_param(0, 209), w.core->position(0) - 1100);
+}
+
+TEST(slip_on_a_core_without_encoder_is_a_file_error) {
+  tmcl::ScenarioOptions o;
+  o.motors = 1;
+  o.module = "tmc2300-eval";
+  o.no_encoder = "linear";
+  std::vector<InputEvent> ev;
+  std::string err;
+  CHECK(!tmcl::parse_scenario("at 1s input 0 = 1\nat 2s  slip 0 = -400\n", "s.txt", ev, err, o));
+  CHECK_EQ(err, std::string("s.txt:2:8: error: 'slip' needs an encoder: the motion core 'linear' models none on "
+                            "tmc2300-eval\n at 2s  slip 0 = -400\n        ^~~~\n"));
+  o.no_encoder.clear();  // the same line where the core has one
+  CHECK(tmcl::parse_scenario("at 2s slip 0 = -400\n", "s.txt", ev, err, o));
+}
+
+TEST(unchecked_slip_on_a_core_without_encoder_faults) {
+  Slipping w("linear", *tmcl::find_profile("tmc2300-eval"), {I(Op::WAIT, 0, 0, 300), I(Op::STOP)},
+             "\nat 1s slip 0 = -400\n");
+  auto r = w.vm.run({100000, tmcl::kNever});
+  CHECK(r.halt == Halt::Fault);
+  CHECK_EQ(r.message, std::string("the motion core 'linear' models no encoder on tmc2300-eval to slip (scenario line 2)"));
+}
