@@ -16,6 +16,7 @@
 
 #include "ramp_motor.hpp"
 #include "shaft.hpp"
+#include "stall.hpp"
 
 namespace tmcl::sw {
 
@@ -72,6 +73,7 @@ struct Motor {
   Search search;
   shaft::Shaft shaft;                 // the rotor, apart from the counter (shaft.hpp)
   shaft::Encoder enc;                 // axis parameter 209, counting the shaft
+  stall::Axis sg;                     // hard stops, loads and the load value (stall_core.cpp)
 };
 
 // Where the modules differ in what this part does.
@@ -99,6 +101,12 @@ class SwitchCore : public ramp::RampCore<Motor> {
   void set_switch(int motor, SwitchInput input, bool active) override;
   // The shaft slips `counts` microsteps against the counter (scenario `slip`); the encoder sees it.
   void encoder_slip(int motor, std::int32_t counts) override;
+  // ---- loads, stalls and lost steps (stall_core.cpp; docs/motion.md)
+  void reset(const Profile& profile, int motors) override;
+  SimTime next_event() const override;
+  bool place_hard_stop(int motor, SwitchInput side, std::int64_t position) override;
+  bool set_load(int motor, int percent) override;
+  bool place_load(int motor, std::int64_t lo, std::int64_t hi, int percent) override;
 
  protected:
   // ---- what a core says
@@ -138,6 +146,13 @@ class SwitchCore : public ramp::RampCore<Motor> {
   // The shaft stands from now (a hard stop, a stall without stop) / follows again from now.
   void hold_shaft(Motor& m) { m.shaft.hold(commanded(m)); }
   void release_shaft(Motor& m) { m.shaft.release(commanded(m)); }
+  // ---- the load value and stop on stall (stall_core.cpp)
+  // Starts a new plan now: first brings the load value up to now (what the old plan measured).
+  ramp::Builder restart(Motor& m, double vscale = 1);
+  // Before a write of `param`: a parameter the load value depends on brings it up to now.
+  void stall_input(Motor& m, int param);
+  // 206 and 208 as read; false when `param` is neither (or the module has no stallGuard2).
+  bool stall_param(const Motor& m, int param, std::int32_t& value) const;
   void set_goal(Motor& m, Goal goal) {
     abort_search(m);
     m.goal = goal;
@@ -160,6 +175,24 @@ class SwitchCore : public ramp::RampCore<Motor> {
   void reference_at(Motor& m, std::int64_t a, std::int64_t b);
 
   SwitchConfig cfg_;
+
+  // ---- stall_core.cpp
+  bool sg_on_ = false;    // the module has stallGuard2 (its profile lists 174)
+  bool flags208_ = false; // ... and flags a stall in 208 bit 0
+  std::int64_t current_steps_ = 256;  // the run current's range (6) in 32 steps of the current scale
+  struct Window;
+  SimTime next_mech(const Motor& m) const;
+  void on_mech(Motor& m, std::vector<MotionEvent>& out);
+  void commit(Motor& m);
+  bool last_reading(const Motor& m, int& value) const;
+  int current_scale(const Motor& m) const;
+  double fullstep(const Motor& m) const;
+  double period(const Motor& m) const;
+  int load_at(const Motor& m, double shaft_pos) const;
+  double shaft_pos(const Motor& m, const ramp::Segment& seg, double t) const;
+  double contact(const Motor& m, const ramp::Segment& seg, double t1, double t2, int& why) const;
+  double first_stall(const Motor& m, const ramp::Segment& seg, double t1, double t2) const;
+  bool stops_on_stall(const Motor& m) const;
 };
 
 }  // namespace tmcl::sw
