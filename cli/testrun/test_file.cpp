@@ -30,8 +30,8 @@ std::string_view end_name(End e) {
 
 namespace {
 
-constexpr std::string_view kDirectives[] = {"program", "target", "motion", "instr-time", "max-time",
-                                            "define",  "skip",   "at",     "switch", "expect"};
+constexpr std::string_view kDirectives[] = {"program", "target", "motion",   "instr-time", "max-time", "define",
+                                            "skip",    "at",     "switch", "hardstop",   "load",     "expect"};
 constexpr std::string_view kExpectForms[] = {"at", "never", "no"};
 constexpr std::string_view kTolerance = "\xC2\xB1";  // ±
 
@@ -72,7 +72,7 @@ class LineReader {
     std::vector<LineWord> w = split_words(line);
     if (w.empty()) return;
     const std::string& d = w[0].text;
-    if (d == "at" || d == "switch") return;  // a scenario line (timed, or a switch at a position): the scenario reader's
+    if (is_scenario_line(d)) return;  // a scenario line (timed, a switch, hard stop or load at positions): the scenario reader's
     if (d == "expect") return expect(line, w);
     if (d == "skip") {
       int start = 0;
@@ -85,7 +85,7 @@ class LineReader {
     if (!known) {
       std::vector<std::string_view> names(std::begin(kDirectives), std::end(kDirectives));
       return error_at(w[0], "unknown line '" + d + "' (program, target, motion, instr-time, max-time, define, skip, " +
-                                "at, switch, expect)" + hint_of(d, names));
+                                "at, switch, hardstop, load, expect)" + hint_of(d, names));
     }
     if (w.size() < 2) return error(end_col(line), 1, "'" + d + "' needs a value");
     int start = 0;
@@ -361,7 +361,7 @@ bool parse_test_file(const std::string& text, const std::string& path, const std
     std::string line = out.lines[i];
     if (auto hash = line.find('#'); hash != std::string::npos) line.resize(hash);
     std::vector<LineWord> w = split_words(line);
-    scenario += (!w.empty() && (w[0].text == "at" || w[0].text == "switch") ? out.lines[i] : std::string()) + "\n";
+    scenario += (!w.empty() && is_scenario_line(w[0].text) ? out.lines[i] : std::string()) + "\n";
     reader.read(static_cast<int>(i) + 1, out.lines[i], line);
   }
   const Profile* profile = reader.finish(default_target, target_given);

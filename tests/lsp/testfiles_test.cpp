@@ -57,7 +57,7 @@ TEST(testfile_diagnostics_on_open_and_change) {
   start(c, "{}");
   open_test(c, "a.tmctest", "program prog.tmc\nexpect at end acc = 5\nexpcet at end v[1] = 7\nexpect at end pc = lop\n");
   CHECK_EQ(messages(c.last_diagnostics(uri("a.tmctest"))),
-           "2:0-6 unknown line 'expcet' (program, target, motion, instr-time, max-time, define, skip, at, switch, expect); did you "
+           "2:0-6 unknown line 'expcet' (program, target, motion, instr-time, max-time, define, skip, at, switch, hardstop, load, expect); did you "
            "mean 'expect'?\n"
            "3:19-22 no register, label or constant named 'lop'; did you mean 'loop'?\n");
   c.notify("textDocument/didChange", R"({"textDocument":{"uri":")" + uri("a.tmctest") +

@@ -8,8 +8,8 @@
 // part of switch_core.hpp; the home switch has its own input. docs/motion.md explains every
 // decision, docs/errata.md where the manual is silent.
 //
-// Parameters it owns: 0-5, 8-13, 15-20, 26, 127, 193-197, and 207, 209, 210, 212 (the SensOstep
-// encoder, switch_core.hpp).
+// Parameters it owns: 0-6, 8-13, 15-20, 26, 127, 140, 173, 174, 181, 193-197, 206, 208, and 207, 209,
+// 210, 212 (the SensOstep encoder, switch_core.hpp).
 #include <algorithm>
 #include <cstdint>
 #include <limits>
@@ -40,7 +40,9 @@ constexpr int kTmc5160Owned[] = {kApTargetPosition, kApActualPosition, kApTarget
                                  sw::kRightStopDisable, sw::kLeftStopDisable, kA1, kV1, kD2, kD1, kVStart,
                                  kVStop, kLimitSoftStop, kRelativeOption, sw::kRfsMode, sw::kRfsSpeed,
                                  sw::kRfsSwitchSpeed, sw::kRfsDistance, kLastReference,
-                                sw::kErrorFlags, sw::kEncoderPosition, sw::kEncoderPrescaler, sw::kMaxDeviation};
+                                 sw::kErrorFlags, sw::kEncoderPosition, sw::kEncoderPrescaler, sw::kMaxDeviation,
+                                 // stallGuard2 (stall_core.cpp): run current, microsteps, filter, threshold, stop on stall, load value, driver flags
+                                 6, 140, 173, 174, 181, 206, 208};
 
 class Tmc5160Core final : public sw::SwitchCore {
  public:

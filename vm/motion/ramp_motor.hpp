@@ -59,6 +59,7 @@ struct RampMotor {
   std::int64_t phys = 0;  // physical position - XACTUAL: moved by SAP 1 and reference searches
   std::array<Zone, 3> zones{};  // by SwitchInput
   bool has_zones = false;
+  std::uint32_t gen = 0;  // counts changes of the plan and the register (restart, shift): keys caches
 
   RampMotor() { plan.segs.push_back({0, kInf, 0, 0, 0, 0, 0}), plan.t_rest = 0; }
 
@@ -91,6 +92,7 @@ struct RampMotor {
     next = 0;
     plan.clear();
     hit_valid_ = false;
+    ++gen;
     return Builder(plan, st, dir);
   }
 
@@ -121,6 +123,7 @@ struct RampMotor {
     base += d;
     phys -= d;
     hit_valid_ = false;
+    ++gen;
   }
   void place(int input, std::int64_t lo, std::int64_t hi) {
     zones[static_cast<std::size_t>(input)] = {true, false, lo, hi};  // reported closed by the scan if inside
@@ -243,18 +246,27 @@ class RampCore : public CoreSkeleton<M> {
   // Advances to `to` and appends the events on the way, each motor's plan events and switch
   // changes in time order (a switch first at the same microsecond). After each, with now_ at its
   // instant, on_event(motor, kind) or on_switch(motor, hit) runs; either may re-plan the motor.
+  // `next_extra(m)` and `on_extra(m, out)`: a third source of events a core adds (stall.hpp: stalls
+  // and the shaft meeting a hard stop), after a plan event at the same microsecond.
   template <class OnEvent, class OnSwitch>
   void collect(SimTime to, std::vector<MotionEvent>& out, OnEvent on_event, OnSwitch on_switch) {
+    collect(to, out, on_event, on_switch, [](const M&) { return kNever; }, [](M&, std::vector<MotionEvent>&) {});
+  }
+  template <class OnEvent, class OnSwitch, class NextExtra, class OnExtra>
+  void collect(SimTime to, std::vector<MotionEvent>& out, OnEvent on_event, OnSwitch on_switch, NextExtra next_extra,
+               OnExtra on_extra) {
     const SimTime from = now_, end = std::max(to, now_);
     std::size_t first = out.size();
     this->take_pending(out);
     for (std::size_t i = 0; i < motors_.size(); ++i) {
       M& m = motors_[i];
       for (;;) {
-        const SimTime tp = m.rm.next_event(), ts = m.rm.next_switch_at(now_);
-        if (std::min(tp, ts) > end) break;
-        now_ = std::min(tp, ts);
-        if (ts <= tp) {
+        const SimTime tp = m.rm.next_event(), ts = m.rm.next_switch_at(now_), tx = next_extra(m);
+        if (std::min({tp, ts, tx}) > end) break;
+        now_ = std::min({tp, ts, tx});
+        if (tx < std::min(tp, ts)) {
+          on_extra(m, out);
+        } else if (ts <= tp) {
           const SwitchHit h = m.rm.next_switch(now_);
           m.rm.switched(h);
           MotionEvent ev{h.at, static_cast<std::uint8_t>(i), MotionEventKind::SwitchChanged, wrap32(h.position)};

@@ -53,11 +53,13 @@ void SwitchCore::advance(SimTime to, std::vector<MotionEvent>& out) {
       },
       [this](Motor& m, const SwitchHit& h) {
         if (m.goal == Goal::Search) search_switch(m, h.input, h.in, h.edge, h.dir);
-      });
+      },
+      [this](const Motor& m) { return next_mech(m); }, [this](Motor& m, std::vector<MotionEvent>& ev) { on_mech(m, ev); });
 }
 
 ParamWrite SwitchCore::set_param(int motor, int param, std::int32_t value) {
   Motor& m = at(motor);
+  stall_input(m, param);
   switch (param) {
     case kApTargetPosition: move_absolute(motor, value); return ParamWrite::Ok;
     case kApActualPosition:  // shifts the register; a move in progress still goes to its target
@@ -113,6 +115,7 @@ ParamWrite SwitchCore::set_other(Motor& m, int param, std::int32_t value) {
 std::int32_t SwitchCore::get_param(int motor, int param) {
   Motor& m = at(motor);
   const ramp::State s = m.rm.state(now_);
+  if (std::int32_t v = 0; stall_param(m, param, v)) return v;
   switch (param) {
     case kApActualPosition: return ramp::wrap32(m.rm.xactual(now_));
     case kApTargetSpeed: return target_speed(m, s);
@@ -228,7 +231,7 @@ void SwitchCore::replan(Motor& m, double vscale, bool by_command) {
   m.trip_t = ramp::kInf;
   if (m.goal == Goal::Idle) return;
   const Limits lim = ramp_limits(m);
-  Builder b = m.rm.restart(now_, vscale);
+  Builder b = restart(m, vscale);
   switch (m.goal) {
     case Goal::Position: plan_position(m, b, lim); break;
     case Goal::Velocity: b.plan_velocity(lim, m.vt * vunit(m)); break;
@@ -347,7 +350,7 @@ void SwitchCore::start_search(Motor& m) {
 // the turn).
 void SwitchCore::search_step(Motor& m, bool stop_first, double vscale) {
   Search& s = m.search;
-  Builder b = m.rm.restart(now_, vscale);
+  Builder b = restart(m, vscale);
   if (stop_first && !m.p[static_cast<std::size_t>(cfg_.soft_stop)]) b.stop_hard();
   if (s.step == SearchStep::ToRef) {
     b.plan_position(search_limits(m, switch_speed(m), true), static_cast<double>(-m.rm.base));

@@ -17,6 +17,7 @@
 
 #include "ramp_motor.hpp"
 #include "shaft.hpp"
+#include "stall.hpp"
 
 namespace tmcl::sw {
 
@@ -89,6 +90,7 @@ struct Motor {
   shaft::Shaft shaft;                 // the rotor, apart from the counter (shaft.hpp)
   shaft::Encoder enc;                 // axis parameter 209, counting the shaft
   std::int32_t errors = 0;            // axis parameter 207: cleared by a motion command
+  stall::Axis sg;                     // hard stops, loads and the load value (stall_core.cpp)
 };
 
 // Where the modules differ in what this part does.
@@ -117,6 +119,12 @@ class SwitchCore : public ramp::RampCore<Motor> {
   // The shaft slips `counts` microsteps against the counter (scenario `slip`); the encoder sees it.
   void encoder_slip(int motor, std::int32_t counts) override;
   bool models_encoder(const Profile& profile) const override;
+  // ---- loads, stalls and lost steps (stall_core.cpp; docs/motion.md)
+  void reset(const Profile& profile, int motors) override;
+  SimTime next_event() const override;
+  bool place_hard_stop(int motor, SwitchInput side, std::int64_t position) override;
+  bool set_load(int motor, int percent) override;
+  bool place_load(int motor, std::int64_t lo, std::int64_t hi, int percent) override;
 
  protected:
   // ---- what a core says
@@ -163,6 +171,13 @@ class SwitchCore : public ramp::RampCore<Motor> {
   void shaft_changed(Motor& m, bool stop_at_rest);
   // XACTUAL - 209 as a function of the register position, for the deviation stop.
   shaft::Deviation deviation(const Motor& m) const { return {m.rm.phys, m.shaft, m.enc}; }
+  // ---- the load value and stop on stall (stall_core.cpp)
+  // Starts a new plan now: first brings the load value up to now (what the old plan measured).
+  ramp::Builder restart(Motor& m, double vscale = 1);
+  // Before a write of `param`: a parameter the load value depends on brings it up to now.
+  void stall_input(Motor& m, int param);
+  // 206 and 208 as read; false when `param` is neither (or the module has no stallGuard2).
+  bool stall_param(const Motor& m, int param, std::int32_t& value) const;
   void set_goal(Motor& m, Goal goal) {
     abort_search(m);
     m.goal = goal;
@@ -191,6 +206,24 @@ class SwitchCore : public ramp::RampCore<Motor> {
 
   SwitchConfig cfg_;
   EncoderSpec enc_spec_;
+
+  // ---- stall_core.cpp
+  bool sg_on_ = false;    // the module has stallGuard2 (its profile lists 174)
+  bool flags208_ = false; // ... and flags a stall in 208 bit 0
+  std::int64_t current_steps_ = 256;  // the run current's range (6) in 32 steps of the current scale
+  struct Window;
+  SimTime next_mech(const Motor& m) const;
+  void on_mech(Motor& m, std::vector<MotionEvent>& out);
+  void commit(Motor& m);
+  bool last_reading(const Motor& m, int& value) const;
+  int current_scale(const Motor& m) const;
+  double fullstep(const Motor& m) const;
+  double period(const Motor& m) const;
+  int load_at(const Motor& m, double shaft_pos) const;
+  double shaft_pos(const Motor& m, const ramp::Segment& seg, double t) const;
+  double contact(const Motor& m, const ramp::Segment& seg, double t1, double t2, int& why) const;
+  double first_stall(const Motor& m, const ramp::Segment& seg, double t1, double t2) const;
+  bool stops_on_stall(const Motor& m) const;
 };
 
 }  // namespace tmcl::sw

@@ -29,12 +29,22 @@
 #pragma once
 
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "tmcl/diag_text.hpp"
 #include "tmcl/vm.hpp"
 
 namespace tmcl {
+
+// The first words of a scenario line; a test file hands its lines that start with one of them to
+// parse_scenario (one reader for both).
+inline constexpr std::string_view kScenarioLineWords[] = {"at", "switch", "hardstop", "load"};
+inline bool is_scenario_line(std::string_view first_word) {
+  for (auto w : kScenarioLineWords)
+    if (w == first_word) return true;
+  return false;
+}
 
 struct ScenarioOptions {
   int motors = 256;        // a motor event for motor >= motors is an error naming `module`

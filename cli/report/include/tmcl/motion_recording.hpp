@@ -40,6 +40,13 @@ class RecordingCore final : public MotionCore {
   bool place_switch(int motor, SwitchInput input, std::int64_t lo, std::int64_t hi) override {
     return inner_.place_switch(motor, input, lo, hi);
   }
+  bool place_hard_stop(int motor, SwitchInput side, std::int64_t position) override {
+    return inner_.place_hard_stop(motor, side, position);
+  }
+  bool set_load(int motor, int percent) override { return inner_.set_load(motor, percent); }
+  bool place_load(int motor, std::int64_t lo, std::int64_t hi, int percent) override {
+    return inner_.place_load(motor, lo, hi, percent);
+  }
   std::optional<PhysicalValue> physical(int motor, int param, std::int32_t raw) const override {
     return inner_.physical(motor, param, raw);
   }

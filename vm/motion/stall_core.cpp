@@ -1,0 +1,357 @@
+// Loads, stalls and lost steps on the TMCM modules' cores (switch_core.hpp; the model's formulas
+// in stall.hpp, the whole in docs/motion.md, "Loads, stalls and lost steps"):
+//   - the load value 206, measured when the position counter passes a fullstep (every fourth with
+//     the filter 173) at a speed the driver measures at, held in between, at rest and below that
+//     speed; 208 bit 0 reads 1 while the last measurement was 0;
+//   - stop on stall (181 > 0): at the first measurement that reads 0 at a speed >= 181 the motor
+//     stops at once and a `stall` event is reported (the VM raises interrupt 15 + motor);
+//   - the machine: a hard stop holds the shaft (shaft.hpp) while the counter pushes on into it, a
+//     load of 100 % or more holds it where it stands; the counter runs on (steps lost, said once
+//     per hold) until the motor stops or turns away from the hard stop.
+// Like the rest of the ramp cores it works in closed form: the next stall, contact or release is
+// found on the current plan by root solving (at most a few per segment), never by stepping.
+#include <algorithm>
+#include <cmath>
+
+#include "switch_core.hpp"
+#include "tmcl/params.hpp"
+
+namespace tmcl::sw {
+
+using ramp::Builder;
+using ramp::Segment;
+
+namespace {
+
+enum StallParam : int {
+  kRunCurrent = 6,
+  kMicrostepResolution = 140,
+  kSgFilter = 173,
+  kSgThreshold = 174,
+  kStopOnStall = 181,
+  kLoadValue = 206,
+  kDriverFlags = 208,
+};
+enum MechKind : int { kNone = 0, kStall = 1, kContact = 2, kRelease = 3 };
+
+constexpr double kTol = 1e-9;
+
+// |v| on [t1, t2] of a segment (plan seconds) is monotone (constant jerk, one direction); the
+// instant in it where |v| = c, by the closed form or bisection. c lies between the ends.
+double speed_at(const Segment& seg, double t) { return std::fabs(seg.v(t - seg.t0)); }
+double when_speed(const Segment& seg, double t1, double t2, double c) {
+  if (seg.j == 0 && seg.a0 != 0) {
+    const double t = seg.t0 + (seg.dir * c - seg.v0) / seg.a0;
+    return std::clamp(t, t1, t2);
+  }
+  const bool rising = speed_at(seg, t2) >= speed_at(seg, t1);
+  double lo = t1, hi = t2;
+  for (int i = 0; i < 80 && hi - lo > 1e-12; ++i) {
+    const double mid = (lo + hi) / 2;
+    ((speed_at(seg, mid) < c) == rising ? lo : hi) = mid;
+  }
+  return (lo + hi) / 2;
+}
+
+// The part of [t1, t2] where vlo <= |v| < vhi: false when empty.
+bool speed_window(const Segment& seg, double& t1, double& t2, double vlo, double vhi) {
+  if (!(vlo < vhi)) return false;
+  const double e2 = std::isinf(t2) ? t1 : t2;  // the last, infinite segment keeps its speed
+  const double s1 = speed_at(seg, t1), s2 = speed_at(seg, e2);
+  const double lo_s = std::min(s1, s2), hi_s = std::max(s1, s2);
+  if (hi_s < vlo || lo_s >= vhi) return false;
+  if (s2 >= s1) {  // rising (or constant)
+    if (s1 < vlo) t1 = when_speed(seg, t1, e2, vlo);
+    if (s2 >= vhi) t2 = when_speed(seg, t1, e2, vhi);
+  } else {
+    if (s1 >= vhi) t1 = when_speed(seg, t1, e2, vhi);
+    if (s2 < vlo) t2 = when_speed(seg, t1, e2, vlo);
+  }
+  return t1 <= t2;
+}
+
+// The segment from instant t on (its own t0 = t).
+Segment from(const Segment& seg, double t) {
+  const double dt = t - seg.t0;
+  return {t, seg.dur - dt, seg.x(dt), seg.v(dt), seg.a(dt), seg.j, seg.dir};
+}
+
+// The first instant in [t1, t2] at which the counter (plan x + cbase) passes a multiple of P
+// moving seg.dir; -1 when none.
+double first_point(const Segment& seg, double t1, double t2, double cbase, double P) {
+  const Segment s = from(seg, t1);
+  const double c = cbase + s.x0;
+  const double k = seg.dir > 0 ? std::ceil((c - kTol) / P) * P : std::floor((c + kTol) / P) * P;
+  const double dt = ramp::crossing(s, k - cbase);
+  if (dt < 0 || t1 + dt > t2 + kTol) return -1;
+  return t1 + dt;
+}
+
+// The last such instant in [t1, t2]; -1 when none.
+double last_point(const Segment& seg, double t1, double t2, double cbase, double P) {
+  const double c = cbase + seg.x(t2 - seg.t0);
+  const double k = seg.dir > 0 ? std::floor((c + kTol) / P) * P : std::ceil((c - kTol) / P) * P;
+  const Segment s = from(seg, t1);
+  const double dt = ramp::crossing(s, k - cbase);
+  if (dt < 0 || t1 + dt > t2 + kTol) return -1;
+  return t1 + dt;
+}
+
+}  // namespace
+
+void SwitchCore::reset(const Profile& profile, int motors) {
+  RampCore::reset(profile, motors);
+  // The model applies where the module has stallGuard2: its profile lists the threshold 174
+  // (generic: the TMCM-1110's rows stand in, as for every parameter of the core).
+  sg_on_ = profile.any_parameter || profile.axis_param(kSgThreshold) != nullptr;
+  flags208_ = profile.any_parameter || profile.axis_param(kDriverFlags) != nullptr;
+  const ParamInfo* run = range_row(kRunCurrent);
+  current_steps_ = run && run->max > 0 ? run->max + 1 : 256;
+}
+
+// ---------------------------------------------------------------- the model's inputs
+
+// The current scale 0..31: the run current in 32 steps of its range (TMCM-1110 manual 5.1:
+// "0..255 ... adjusted in 32 steps"; the TMC2300's 0..31 are the steps themselves).
+int SwitchCore::current_scale(const Motor& m) const {
+  return static_cast<int>(std::clamp<std::int64_t>(std::int64_t{m.p[kRunCurrent]} * 32 / current_steps_, 0, 31));
+}
+double SwitchCore::fullstep(const Motor& m) const { return std::ldexp(1.0, std::clamp(m.p[kMicrostepResolution], 0, 8)); }
+// Microsteps between two measurements: one fullstep, four with the filter (173).
+double SwitchCore::period(const Motor& m) const { return fullstep(m) * (m.p[kSgFilter] ? 4 : 1); }
+
+// The load on a shaft at `pos` (machine frame): the timed load plus every zone it lies in.
+int SwitchCore::load_at(const Motor& m, double pos) const {
+  int load = m.sg.load;
+  for (const auto& z : m.sg.zones)
+    if (pos >= static_cast<double>(z.lo) - kTol && pos < static_cast<double>(z.hi) + 1 - kTol) load += z.percent;
+  return load;
+}
+double SwitchCore::shaft_pos(const Motor& m, const Segment& seg, double t) const {
+  if (m.shaft.held) return static_cast<double>(m.shaft.held_at);
+  return static_cast<double>(m.rm.base + m.rm.phys + m.shaft.offset) + seg.x(t - seg.t0);
+}
+
+bool SwitchCore::stops_on_stall(const Motor& m) const { return sg_on_ && m.p[kStopOnStall] > 0; }
+
+// ---------------------------------------------------------------- reading the load value
+
+bool SwitchCore::last_reading(const Motor& m, int& value) const {
+  if (!sg_on_) return false;
+  const auto& segs = m.rm.plan.segs;
+  const double s_now = m.rm.secs(now_) + kTol, s_lo = m.rm.secs(m.sg.commit_us) + kTol;
+  const double cbase = static_cast<double>(m.rm.base + m.rm.phys), F = fullstep(m);
+  const double vmin = stall::kMinFullstepRate * F;
+  for (std::size_t i = m.rm.plan.find(s_now - kTol) + 1; i-- > 0;) {
+    const Segment& seg = segs[i];
+    const double end = std::isinf(seg.dur) ? s_now : std::min(seg.t0 + seg.dur, s_now);
+    if (end <= s_lo) break;  // and every segment before it
+    if (seg.dir == 0) continue;
+    double t1 = std::max(seg.t0, s_lo), t2 = end;
+    if (!(t1 < t2) || !speed_window(seg, t1, t2, vmin, INFINITY)) continue;
+    const double t = last_point(seg, t1, t2, cbase, period(m));
+    if (t < 0 || t <= s_lo) continue;
+    const int load = m.shaft.held ? 100 : load_at(m, shaft_pos(m, seg, t));
+    value = stall::reading(speed_at(seg, t) / F, current_scale(m), load, m.p[kSgThreshold]);
+    return true;
+  }
+  return false;
+}
+
+void SwitchCore::commit(Motor& m) {
+  if (int v = 0; last_reading(m, v)) m.sg.value = v, m.sg.measured = true;
+  m.sg.commit_us = now_;
+  m.sg.next_valid = false;
+}
+
+Builder SwitchCore::restart(Motor& m, double vscale) {
+  commit(m);
+  return m.rm.restart(now_, vscale);
+}
+
+void SwitchCore::stall_input(Motor& m, int param) {
+  switch (param) {
+    case kRunCurrent: case kMicrostepResolution: case kSgFilter: case kSgThreshold: case kStopOnStall:
+      commit(m);
+      break;
+    default: break;
+  }
+}
+
+bool SwitchCore::stall_param(const Motor& m, int param, std::int32_t& value) const {
+  if (!sg_on_ || (param != kLoadValue && param != kDriverFlags)) return false;
+  int v = m.sg.value;
+  const bool measured = last_reading(m, v) || m.sg.measured;
+  if (param == kLoadValue) {
+    value = measured ? v : m.p[kLoadValue];
+    return true;
+  }
+  if (!flags208_) return false;
+  value = measured && v == 0 ? 1 : 0;  // bit 0: stallGuard2 status
+  return true;
+}
+
+// ---------------------------------------------------------------- the machine
+
+bool SwitchCore::place_hard_stop(int motor, SwitchInput side, std::int64_t position) {
+  Motor& m = at(motor);
+  const int k = side == SwitchInput::StopRight ? 1 : 0;
+  m.sg.hard[k] = true;
+  m.sg.hard_at[k] = position;
+  m.sg.next_valid = false;
+  return true;
+}
+
+bool SwitchCore::set_load(int motor, int percent) {
+  Motor& m = at(motor);
+  commit(m);
+  m.sg.load = percent;
+  if (m.sg.block == 2 && load_at(m, static_cast<double>(shaft_at(m))) < 100) {  // the load lets go
+    release_shaft(m);
+    m.sg.block = 0;
+  }
+  return true;
+}
+
+bool SwitchCore::place_load(int motor, std::int64_t lo, std::int64_t hi, int percent) {
+  Motor& m = at(motor);
+  commit(m);
+  m.sg.zones.push_back({lo, hi, percent});
+  return true;
+}
+
+// ---------------------------------------------------------------- events
+
+SimTime SwitchCore::next_event() const {
+  SimTime t = RampCore::next_event();
+  for (const auto& m : motors_) t = std::min(t, next_mech(m));
+  return t;
+}
+
+// Where a segment moving from t1 (not held) meets what holds its shaft: a hard stop ahead, a zone
+// whose load reaches 100 % ahead, or a load of 100 % or more where it is. -1: nothing before t2.
+// `why`: the block it makes (seg.dir for a hard stop, 2 for a load).
+double SwitchCore::contact(const Motor& m, const Segment& seg, double t1, double t2, int& why) const {
+  const double pos = shaft_pos(m, seg, t1), shift = static_cast<double>(m.rm.base + m.rm.phys + m.shaft.offset);
+  const Segment s = from(seg, t1);
+  double best = -1;
+  auto take = [&](double edge, int kind) {
+    double dt = seg.dir * (pos - edge) >= -kTol ? 0 : ramp::crossing(s, edge - shift);
+    if (dt < 0 || t1 + dt > t2) return;
+    if (best < 0 || t1 + dt < best) best = t1 + dt, why = kind;
+  };
+  if (load_at(m, pos) >= 100) {
+    why = 2;
+    return t1;
+  }
+  const int side = seg.dir > 0 ? 1 : 0;
+  if (m.sg.hard[side]) take(static_cast<double>(m.sg.hard_at[side]), seg.dir);
+  for (const auto& z : m.sg.zones) {
+    const double edge = seg.dir > 0 ? static_cast<double>(z.lo) : static_cast<double>(z.hi);
+    if (seg.dir * (edge - pos) > 0 && load_at(m, edge) >= 100) take(edge, 2);
+  }
+  return best;
+}
+
+// The first measurement in [t1, t2] of a moving segment that reads 0 at a speed >= 181; -1 none.
+double SwitchCore::first_stall(const Motor& m, const Segment& seg, double t1, double t2) const {
+  const double F = fullstep(m), cbase = static_cast<double>(m.rm.base + m.rm.phys);
+  const double vlo = std::max(m.p[kStopOnStall] * vunit(m), stall::kMinFullstepRate * F);
+  // Pieces of constant load: split at the zones' edges on the way (none held: the blocked rotor).
+  std::vector<double> cuts{t1};
+  if (!m.shaft.held) {
+    const double shift = static_cast<double>(m.rm.base + m.rm.phys + m.shaft.offset);
+    const Segment s = from(seg, t1);
+    for (const auto& z : m.sg.zones)
+      for (double edge : {static_cast<double>(z.lo) - kTol, static_cast<double>(z.hi) + 1 - kTol}) {
+        const double dt = ramp::crossing(s, edge - shift);
+        if (dt > 0 && t1 + dt < t2) cuts.push_back(t1 + dt);
+      }
+    std::sort(cuts.begin(), cuts.end());
+  }
+  cuts.push_back(t2);
+  for (std::size_t i = 0; i + 1 < cuts.size(); ++i) {
+    double a = cuts[i], b = cuts[i + 1];
+    const double mid = std::isinf(b) ? a : (a + b) / 2;
+    const int load = m.shaft.held ? 100 : load_at(m, shaft_pos(m, seg, mid));
+    const double vhi = stall::zero_below(current_scale(m), load, m.p[kSgThreshold]) * F;
+    if (!speed_window(seg, a, b, vlo, vhi)) continue;
+    const double t = first_point(seg, a, b, cbase, period(m));
+    if (t >= 0) return t;
+  }
+  return -1;
+}
+
+// The next stall, contact or release under the current plan (cached until the plan or an input
+// changes).
+SimTime SwitchCore::next_mech(const Motor& m) const {
+  const stall::Axis& g = m.sg;
+  if (g.next_valid && g.next_gen == m.rm.gen) return g.next_at;
+  g.next_valid = true, g.next_gen = m.rm.gen, g.next_at = kNever, g.next_kind = kNone;
+  const bool stops = stops_on_stall(m);
+  if (!stops && !g.has_machine() && g.block == 0) return kNever;
+  const auto& segs = m.rm.plan.segs;
+  const double s_now = m.rm.secs(now_);
+  auto found = [&](double t, int kind) {
+    g.next_at = m.rm.origin + ramp::ceil_us(t), g.next_kind = kind;
+    return g.next_at;
+  };
+  for (std::size_t i = m.rm.plan.find(s_now); i < segs.size(); ++i) {
+    const Segment& seg = segs[i];
+    if (seg.dir == 0) continue;
+    const double t1 = std::max(seg.t0, s_now), t2 = std::isinf(seg.dur) ? ramp::kInf : seg.t0 + seg.dur;
+    if (m.shaft.held) {
+      if (g.block != 2 && seg.dir == -g.block) return found(t1, kRelease);
+      if (stops)
+        if (double t = first_stall(m, seg, t1, t2); t >= 0) return found(t, kStall);
+      continue;
+    }
+    int why = 0;
+    const double tc = contact(m, seg, t1, t2, why);
+    if (stops)
+      if (double t = first_stall(m, seg, t1, tc >= 0 ? tc : t2); t >= 0) return found(t, kStall);
+    if (tc >= 0) {
+      g.next_kind = kContact;
+      return found(tc, kContact);
+    }
+  }
+  return kNever;
+}
+
+void SwitchCore::on_mech(Motor& m, std::vector<MotionEvent>& out) {
+  const int kind = m.sg.next_kind;
+  const auto motor = static_cast<std::uint8_t>(&m - motors_.data());
+  commit(m);
+  switch (kind) {
+    case kStall: {  // stop on stall: at once, the target kept; the VM raises 15 + motor
+      Builder b = restart(m);
+      m.sg.value = 0, m.sg.measured = true;  // this measurement (it may share its microsecond with a contact)
+      b.stop_hard();
+      b.finish_rest();
+      m.rm.plan.events.clear();
+      set_goal(m, Goal::Idle);
+      out.push_back({now_, motor, MotionEventKind::Stall, ramp::wrap32(m.rm.xactual(now_))});
+      break;
+    }
+    case kContact: {
+      const Segment& seg = m.rm.plan.segs[m.rm.plan.find(m.rm.secs(now_))];
+      int why = 0;
+      (void)contact(m, seg, m.rm.secs(now_), m.rm.secs(now_), why);
+      hold_shaft(m);
+      m.sg.block = why == 0 ? seg.dir : why;
+      m.sg.next_valid = false;
+      // Steps are lost from here; said once, unless stop on stall stops the motor (a few microsteps on).
+      if (!(next_mech(m) != kNever && m.sg.next_kind == kStall))
+        out.push_back({now_, motor, MotionEventKind::StepsLost, ramp::wrap32(m.rm.xactual(now_))});
+      break;
+    }
+    case kRelease:
+      release_shaft(m);
+      m.sg.block = 0;
+      break;
+    default: break;
+  }
+  m.sg.next_valid = false;
+}
+
+}  // namespace tmcl::sw
