@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "check.hpp"
+#include "conformance_table.hpp"
 #include "text_file.hpp"
 #include "tmcl/isa.hpp"
 #include "tmcl/profile.hpp"
@@ -26,83 +27,12 @@ using tmcl_test::read_text;
 
 namespace {
 
-const fs::path kRoot = TMCL_SOURCE_DIR;
-
-struct Row {
-  int line;
-  std::string key, name, status, text;
-  std::vector<std::string> tests;
-};
-
-enum class Section { None, Commands, Axis, Bank0, Bank3, Vectors, Other };
-
-struct Table {
-  std::map<Section, std::vector<Row>> rows;
-  std::vector<std::string> errors;  // malformed lines
-};
-
-std::string trim(std::string s) {
-  const auto b = s.find_first_not_of(" \t");
-  if (b == std::string::npos) return {};
-  return s.substr(b, s.find_last_not_of(" \t") - b + 1);
-}
-
-std::vector<std::string> cells(const std::string& line) {
-  std::vector<std::string> out;
-  std::string cur;
-  for (std::size_t i = 1; i < line.size(); ++i) {  // after the leading '|'
-    if (line[i] == '\\' && i + 1 < line.size() && line[i + 1] == '|') {
-      cur += '|';
-      ++i;
-    } else if (line[i] == '|') {
-      out.push_back(trim(cur));
-      cur.clear();
-    } else {
-      cur += line[i];
-    }
-  }
-  return out;
-}
-
-Section section_of(const std::string& heading) {
-  if (heading == "Commands") return Section::Commands;
-  if (heading == "Axis parameters") return Section::Axis;
-  if (heading == "Global parameters, bank 0") return Section::Bank0;
-  if (heading == "Global parameters, bank 3") return Section::Bank3;
-  if (heading == "Interrupt vectors") return Section::Vectors;
-  return Section::Other;
-}
-
-// The backticked names of a Tests cell.
-std::vector<std::string> test_names(const std::string& cell) {
-  std::vector<std::string> out;
-  static const std::regex tick("`([^`]+)`");
-  for (std::sregex_iterator it(cell.begin(), cell.end(), tick), end; it != end; ++it) out.push_back((*it)[1]);
-  return out;
-}
-
-Table read_table(const fs::path& file) {
-  Table t;
-  Section sec = Section::None;
-  std::istringstream in(read_text(file.string()));
-  std::string line;
-  for (int n = 1; std::getline(in, line); ++n) {
-    if (line.rfind("## ", 0) == 0) {
-      sec = section_of(trim(line.substr(3)));
-      continue;
-    }
-    if (sec == Section::None || sec == Section::Other || line.empty() || line[0] != '|') continue;
-    std::vector<std::string> c = cells(line);
-    if (c.empty() || c[0] == "#" || c[0].find("---") != std::string::npos) continue;  // header, rule
-    if (c.size() != 5) {
-      t.errors.push_back(file.filename().string() + ":" + std::to_string(n) + ": a row has 5 cells, this one " +
-                         std::to_string(c.size()));
-      continue;
-    }
-    t.rows[sec].push_back(Row{n, c[0], c[1], c[2], c[3], test_names(c[4])});
-  }
-  return t;
-}
+using conformance::kRoot;
+using conformance::modules;
+using conformance::read_table;
+using conformance::Row;
+using conformance::Section;
+using conformance::Table;
 
 // Every test name the repository defines: golden cases, unit cases, CTest tests.
 const std::set<std::string>& known_tests() {
@@ -265,14 +195,6 @@ void check_vectors(Errors& errs, const fs::path& file, const tmcl::Profile& p, c
       errs.push_back(file.filename().string() + ": no row for vector " + std::to_string(v.number));
 }
 
-// The modules a table is kept for: every bundled profile but generic, which is no module.
-std::vector<const tmcl::Profile*> modules() {
-  std::vector<const tmcl::Profile*> out;
-  for (const tmcl::Profile* p : tmcl::all_profiles())
-    if (!p->any_parameter) out.push_back(p);
-  return out;
-}
-
 // Each message a failed check of the test.
 void report(const Errors& errs) {
   for (const std::string& e : errs) tmcl_test::fail(__FILE__, __LINE__, e);
@@ -317,7 +239,7 @@ TEST(every_bundled_module_has_a_table_and_every_table_a_module) {
 
 TEST(every_table_matches_its_profile_row_by_row) {
   for (const tmcl::Profile* p : modules()) {
-    const fs::path file = kRoot / "docs" / "conformance" / (std::string(p->name) + ".md");
+    const fs::path file = conformance::table_file(*p);
     if (fs::exists(file)) report(check_table(file, *p));  // a missing one: the test above
   }
 }
