@@ -5,6 +5,8 @@
 // docs/conformance/README.md's; the tables are read as conformance_tables_test.cpp reads them.
 #include <filesystem>
 #include <memory>
+#include <utility>
+#include <vector>
 #include <string>
 
 #include "check.hpp"
@@ -117,4 +119,70 @@ TEST(wait_rfs_ends_at_once_without_a_search) {
     CHECK(r.halt == tmcl::Halt::Stop);
     CHECK(m.vm.now < 1000);  // two instructions' time, no wait
   }
+}
+
+namespace {
+
+// Runs `body` (instructions from address 0) with a handler at address 20 that counts its calls in
+// user variable 0, on module `p` with its own core; returns the count. `inputs` are scenario events.
+std::int32_t handler_calls(const tmcl::Profile& p, std::vector<tmcl::Instruction> body, std::vector<tmcl::InputEvent> inputs = {}) {
+  using tmcl::Op;
+  auto op = [](Op o) { return static_cast<int>(o); };
+  body.resize(20, ins(op(Op::STOP), 0, 0, 0));
+  body.push_back(ins(op(Op::GGP), 0, 2, 0));
+  body.push_back(ins(op(Op::CALC), 0, 0, 1));  // ADD 1
+  body.push_back(ins(op(Op::AGP), 0, 2, 0));
+  body.push_back(ins(op(Op::RETI), 0, 0, 0));
+  Module m(p);
+  m.vm.load(body);
+  m.vm.add_inputs(std::move(inputs));
+  m.vm.start(0);
+  const tmcl::RunResult r = m.vm.run(tmcl::Limits{100000, 60'000'000});
+  if (r.halt != tmcl::Halt::Stop) tmcl_test::fail(__FILE__, __LINE__, std::string(p.name) + ": " + std::string(tmcl::halt_name(r.halt)) + " " + r.message);
+  return m.vm.vars[0];
+}
+
+}  // namespace
+
+// The rows of the timer, target-reached and stop-switch vectors and of their bank-3 settings,
+// for every timer and every motor of every module, each raised by what raises it.
+TEST(every_timer_and_motor_raises_its_own_vectors) {
+  using tmcl::Op;
+  auto op = [](Op o) { return static_cast<int>(o); };
+  int checked = 0;
+  for (const tmcl::Profile* p : conformance::modules()) {
+    const std::string name(p->name);
+    for (int n = 0; n < 3; ++n) {
+      if (!p->vector(n)) continue;
+      const std::int32_t calls = handler_calls(*p, {ins(op(Op::VECT), n, 0, 20), ins(op(Op::SGP), n, 3, 100), ins(op(Op::EI), n, 0, 0),
+                                                    ins(op(Op::EI), 255, 0, 0), ins(op(Op::WAIT), 0, 0, 55), ins(op(Op::STOP), 0, 0, 0)});
+      if (calls != 5) tmcl_test::fail(__FILE__, __LINE__, name + ": timer " + std::to_string(n) + " every 100 ms for 550 ms: " + std::to_string(calls) + " calls");
+      ++checked;
+    }
+    for (int motor = 0; motor < p->motors; ++motor) {
+      const int target = 3 + motor;
+      if (p->vector(target)) {
+        const std::int32_t calls = handler_calls(*p, {ins(op(Op::VECT), target, 0, 20), ins(op(Op::EI), target, 0, 0), ins(op(Op::EI), 255, 0, 0),
+                                                      ins(op(Op::MVP), 0, motor, 100), ins(op(Op::WAIT), 1, motor, 0),
+                                                      ins(op(Op::WAIT), 0, 0, 1), ins(op(Op::STOP), 0, 0, 0)});
+        if (calls != 1) tmcl_test::fail(__FILE__, __LINE__, name + ": motor " + std::to_string(motor) + " reached its target: " + std::to_string(calls) + " calls of vector " + std::to_string(target));
+        ++checked;
+      }
+      for (int side = 0; side < 2; ++side) {
+        const int v = 27 + 2 * motor + side;
+        if (!p->vector(v) || !p->global_param(3, v)) continue;
+        const auto kind = side == 0 ? tmcl::InputEvent::StopLeft : tmcl::InputEvent::StopRight;
+        std::vector<tmcl::InputEvent> inputs(2);
+        inputs[0].at = 100'000, inputs[0].kind = kind, inputs[0].index = motor, inputs[0].value = 1;
+        inputs[1].at = 200'000, inputs[1].kind = kind, inputs[1].index = motor, inputs[1].value = 0;
+        // 1: low to high only; the opening at 200 ms raises nothing.
+        const std::int32_t calls = handler_calls(*p, {ins(op(Op::VECT), v, 0, 20), ins(op(Op::SGP), v, 3, 1), ins(op(Op::EI), v, 0, 0),
+                                                      ins(op(Op::EI), 255, 0, 0), ins(op(Op::WAIT), 0, 0, 30), ins(op(Op::STOP), 0, 0, 0)},
+                                                 inputs);
+        if (calls != 1) tmcl_test::fail(__FILE__, __LINE__, name + ": switch of vector " + std::to_string(v) + " closed and opened: " + std::to_string(calls) + " calls");
+        ++checked;
+      }
+    }
+  }
+  CHECK(checked > 40);
 }
