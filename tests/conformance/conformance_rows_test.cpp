@@ -1,8 +1,9 @@
 // The conformance tables' rows against the virtual machine itself, on every bundled module with
 // its own profile and motion core: a `stored` row reads back what was written (or, read-only,
-// its power-on default), a `refused` command (not a control command: those are the protocol's)
-// is refused in direct mode (status 6) and faults a program, and a module without a reference search ends a WAIT RFS at once. The row format is
-// docs/conformance/README.md's; the tables are read as conformance_tables_test.cpp reads them.
+// its power-on default); a `refused` command (not a control command: those are the protocol's)
+// is refused in direct mode (status 6) and faults a program; a module without a reference
+// search ends a WAIT RFS at once; every timer and motor raises its own vectors. The row format
+// is docs/conformance/README.md's; the tables are read as conformance_tables_test.cpp reads them.
 #include <filesystem>
 #include <memory>
 #include <utility>
