@@ -497,7 +497,9 @@ struct Session {
     std::size_t at = 0;
     host::ParamRef p;
     std::string err;
-    if (!host::parse_param(o.args, at, *o.profile, false, p, err)) return usage_error(err);
+    // set keeps its last word for the value: an optional motor must not swallow it.
+    const std::size_t keep = action == host::ParamAction::Set ? 1 : 0;
+    if (!host::parse_param(o.args, at, *o.profile, false, p, err, keep)) return usage_error(err);
     long value = 0;
     if (action == host::ParamAction::Set) {
       if (at >= o.args.size() || !parse_long(o.args[at], INT32_MIN, INT32_MAX, value))
@@ -567,6 +569,13 @@ struct Session {
       std::fputs(r.diags.render(r.sources).c_str(), stderr);
       if (!r.ok()) {
         std::fprintf(stderr, "tmclctl: the program has errors (warnings count, as with tmclasm -Werror); nothing sent\n");
+        // Refused for warnings alone: perhaps one this version added to a program an older one
+        // sent. Say how to go on (docs/analysis.md, "New warnings").
+        bool only_warnings = true;
+        for (const auto& d : r.diags.all()) only_warnings = only_warnings && (d.severity != tmcl::Severity::Error || !d.name.empty());
+        if (only_warnings)
+          std::fprintf(stderr, "tmclctl: note: a warning counts as an error here, a new one too; fix the line, or allow the "
+                               "warning there with a comment '// tmcl: allow NAME' (docs/analysis.md, \"New warnings\")\n");
         return kExitInput;
       }
       program = r.program;
@@ -849,7 +858,9 @@ struct Session {
       if (line == "help") {
         if (!session) enter("");
         std::string files;
-        for (const auto& f : session->predefined()) files += (files.empty() ? "" : " and ") + f;
+        const auto& predefined = session->predefined();
+        for (std::size_t i = 0; i < predefined.size(); ++i)
+          files += (i == 0 ? "" : i + 1 == predefined.size() ? " and " : ", ") + predefined[i];
         std::printf(
             "Type an instruction in source syntax (SAP 4, 0, 51200; GAP 1, 0; MVP ABS, 0, 1000; .raw 136, 0, 0, 0).\n"
             "Names work as in a program: %s are included, and NAME = VALUE and\n"

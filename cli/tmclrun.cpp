@@ -516,10 +516,33 @@ void tmclrun::set_up_vm(tmcl::Vm& vm, const Options& o, const std::vector<tmcl::
                         std::vector<tmcl::InputEvent> inputs) {
   vm.instr_time = o.instr_time;
   vm.strict = o.strict;
-  vm.load(program);
+  // Program memory in the EEPROM (errata E55): without a PROGRAM (a served module) the module
+  // comes up with what the file holds; a PROGRAM given is stored there, as a download stores it.
+  const bool from_eeprom = o.program.empty() && image && vm.program_in_eeprom();
+  vm.load(from_eeprom ? image->program : program);
   vm.source_of = sources;
   vm.power_on(image);
+  if (!o.program.empty() && image) vm.store_program();
   vm.add_inputs(std::move(inputs));
+}
+
+// A program in the EEPROM file must fit the module: a module that keeps its program in RAM has
+// none there, and program memory has the profile's size.
+int tmclrun::check_stored_program(const Options& o, const tmcl::Profile& profile, const tmcl::EepromImage& image) {
+  if (image.program.empty()) return -1;
+  const std::string words = std::to_string(image.program.size()) + " instruction" + (image.program.size() == 1 ? "" : "s");
+  if (profile.program_store != tmcl::ProgramStore::Eeprom)
+    return located_error(o.eeprom + ": error: the EEPROM file holds a program (" + words + "), but " + std::string(profile.name) +
+                         " keeps its program in " + (profile.program_store == tmcl::ProgramStore::Ram ? "RAM" : "memory the profile does not name") +
+                         ": delete its program records and run tmclrun --eeprom-seal");
+  const int memory = profile.program_memory;
+  if (memory > 0 && image.program.size() > static_cast<std::size_t>(memory)) {
+    // The file is sorted (written or sealed): the program records come last, before the checksum.
+    const std::size_t first = 3 + image.vars.size() + image.globals.size() + image.bank3.size() + image.axis.size() + image.coords.size();
+    return located_error(o.eeprom + ":" + std::to_string(first + static_cast<std::size_t>(memory)) + ": error: the stored program (" +
+                         words + ") does not fit the " + std::to_string(memory) + " of " + std::string(profile.name) + "'s program memory");
+  }
+  return -1;
 }
 
 int run(int argc, char** argv) {
@@ -592,6 +615,7 @@ int run(int argc, char** argv) {
     if (!tmcl::load_eeprom_file(o.eeprom, image, existed, ediags, err)) return ediags.empty() ? located_error(err) : file_errors(ediags);
     if (existed && image.profile != profile->name)
       return located_error(o.eeprom + ":2: error: EEPROM written for module '" + image.profile + "', not '" + o.target + "'");
+    if (int r = check_stored_program(o, *profile, image); r >= 0) return r;
   }
 
   // --serve, --debug, --dap: tmclrun_modes.cpp.

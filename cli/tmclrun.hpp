@@ -58,6 +58,9 @@ int load_program(Options& o, const tmcl::Profile* profile, std::vector<tmcl::Ins
 // and the scenario's inputs, and powers it on.
 void set_up_vm(tmcl::Vm& vm, const Options& o, const std::vector<tmcl::Instruction>& program,
                const tmcl::SourceMap& sources, const tmcl::EepromImage* image, std::vector<tmcl::InputEvent> inputs);
+// An EEPROM file's program against the module (kept in RAM, too large): -1 when it fits, else
+// the exit status after the error.
+int check_stored_program(const Options& o, const tmcl::Profile& profile, const tmcl::EepromImage& image);
 
 // ---- tmclrun_modes.cpp ----
 // After all arguments: the checks that involve serving and debugging (--module sets o.program

@@ -4,6 +4,7 @@
 
 #include <sys/stat.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
@@ -42,19 +43,27 @@ bool parse_eeprom_int(const std::string& s, long long lo, long long hi, long lon
   return true;
 }
 
-// A record's shape: its word count with the keyword, and what each number after it is.
+// A record's shape: its word count with the keyword, and what each number after it is (the
+// last one is the value, any 32-bit integer; the others are 0..`max`).
+struct RecordField {
+  const char* name;
+  long long max;
+};
 struct RecordKind {
   const char* name;
   std::size_t words;
   const char* shape;
-  const char* fields[3];
+  RecordField fields[5];
 };
+constexpr RecordField kValue{"value", INT32_MAX};
 constexpr RecordKind kRecords[] = {
-    {"var", 3, "var INDEX VALUE", {"variable number", "value", nullptr}},
-    {"global", 3, "global PARAM VALUE", {"parameter number", "value", nullptr}},
-    {"global3", 3, "global3 PARAM VALUE", {"parameter number", "value", nullptr}},
-    {"axis", 4, "axis MOTOR PARAM VALUE", {"motor number", "parameter number", "value"}},
-    {"coord", 4, "coord MOTOR N VALUE", {"motor number", "coordinate number", "value"}},
+    {"var", 3, "var INDEX VALUE", {{"variable number", 255}, kValue}},
+    {"global", 3, "global PARAM VALUE", {{"parameter number", 255}, kValue}},
+    {"global3", 3, "global3 PARAM VALUE", {{"parameter number", 255}, kValue}},
+    {"axis", 4, "axis MOTOR PARAM VALUE", {{"motor number", 255}, {"parameter number", 255}, kValue}},
+    {"coord", 4, "coord MOTOR N VALUE", {{"motor number", 255}, {"coordinate number", 255}, kValue}},
+    {"program", 6, "program ADDRESS OP TYPE MOTOR VALUE",
+     {{"address", 65535}, {"opcode", 255}, {"type", 255}, {"motor", 255}, kValue}},
 };
 const RecordKind* find_record(const std::string& word) {
   for (const auto& k : kRecords)
@@ -81,6 +90,10 @@ std::string eeprom_to_text(const EepromImage& image) {
   for (const auto& [n, v] : image.bank3) os << "global3 " << n << " " << v << "\n";
   for (const auto& [k, v] : image.axis) os << "axis " << k.first << " " << k.second << " " << v << "\n";
   for (const auto& [k, v] : image.coords) os << "coord " << k.first << " " << k.second << " " << v << "\n";
+  for (std::size_t a = 0; a < image.program.size(); ++a) {
+    const Instruction& i = image.program[a];
+    os << "program " << a << " " << int{i.op} << " " << int{i.type} << " " << int{i.motor} << " " << i.value << "\n";
+  }
   std::string body = os.str();
   char check[32];
   std::snprintf(check, sizeof check, "check %08x\n", fnv1a(body));
@@ -92,6 +105,12 @@ bool eeprom_from_text(const std::string& text, const std::string& file, EepromIm
   image = EepromImage{};
   const std::size_t errors_before = diags.size();
   std::map<std::string, int> seen;  // "var 3" -> the line that set it, for duplicates
+  // Program words by address, with their lines: the program must run from 0 without a gap.
+  struct ProgramLine {
+    int line;
+    std::string source;
+  };
+  std::map<int, std::pair<Instruction, ProgramLine>> program;
   std::size_t pos = 0;
   int line_no = 0;
   bool checked = false;
@@ -145,13 +164,14 @@ bool eeprom_from_text(const std::string& text, const std::string& file, EepromIm
       if (w.size() != kind->words) {
         at_line("malformed EEPROM record '" + source + "' (expected '" + kind->shape + "')");
       } else {
-        long long n[3] = {0, 0, 0};
+        long long n[5] = {0, 0, 0, 0, 0};
         bool ok = true;
         for (std::size_t i = 1; i < w.size(); ++i) {
+          const RecordField& f = kind->fields[i - 1];
           const bool value = i + 1 == w.size();
-          if (!parse_eeprom_int(w[i].text, value ? INT32_MIN : 0, value ? INT32_MAX : 255, n[i - 1])) {
-            at_word(i, "malformed EEPROM record '" + source + "': bad " + kind->fields[i - 1] + " '" + w[i].text + "' (" +
-                           (value ? "a 32-bit integer" : "0..255") + ")");
+          if (!parse_eeprom_int(w[i].text, value ? INT32_MIN : 0, f.max, n[i - 1])) {
+            at_word(i, "malformed EEPROM record '" + source + "': bad " + f.name + " '" + w[i].text + "' (" +
+                           (value ? std::string("a 32-bit integer") : "0.." + std::to_string(f.max)) + ")");
             ok = false;
           }
         }
@@ -159,6 +179,11 @@ bool eeprom_from_text(const std::string& text, const std::string& file, EepromIm
           std::string key = w[0].text + " " + w[1].text + (kind->words == 4 ? " " + w[2].text : std::string());
           if (auto [it, fresh] = seen.emplace(key, line_no); !fresh) {
             at_line("duplicate record: " + key + " is already set on line " + std::to_string(it->second));
+          } else if (kind->words == 6) {
+            program.emplace(static_cast<int>(n[0]),
+                            std::pair{Instruction{static_cast<std::uint8_t>(n[1]), static_cast<std::uint8_t>(n[2]),
+                                                  static_cast<std::uint8_t>(n[3]), static_cast<std::int32_t>(n[4])},
+                                      ProgramLine{line_no, source}});
           } else if (kind->words == 3) {
             auto& map = w[0].text == "var" ? image.vars : w[0].text == "global" ? image.globals : image.bank3;
             map.emplace(static_cast<int>(n[0]), static_cast<std::int32_t>(n[1]));
@@ -169,13 +194,33 @@ bool eeprom_from_text(const std::string& text, const std::string& file, EepromIm
         }
       }
     } else {
-      std::vector<std::string_view> names{"var", "global", "global3", "axis", "coord", "profile", "check"};
+      // Every record this reader knows, from its one table.
+      std::vector<std::string_view> names;
+      std::string listed;
+      for (const auto& k : kRecords) names.push_back(k.name);
+      names.insert(names.end(), {"profile", "check"});
+      for (std::string_view n : names) listed += (listed.empty() ? "" : ", ") + std::string(n);
       std::string hint = closest_match(w[0].text, names);
-      at_word(0, "malformed EEPROM record '" + source + "': unknown record '" + w[0].text +
-                     "' (var, global, global3, axis, coord, profile, check)" + (hint.empty() ? "" : "; did you mean '" + hint + "'?"));
+      at_word(0, "malformed EEPROM record '" + source + "': unknown record '" + w[0].text + "' (" + listed + ")" +
+                     (hint.empty() ? "" : "; did you mean '" + hint + "'?"));
     }
     pos = end + 1;
   }
+  // Program memory is read from address 0 to the first gap on a module: a gap is a broken file.
+  int expect_address = 0;
+  for (const auto& [address, word] : program) {
+    if (address != expect_address) {
+      diags.push_back({file, word.second.line, 1, static_cast<int>(word.second.source.size()),
+                       "program record for address " + std::to_string(address) + ", but address " +
+                           std::to_string(expect_address) + " has none (program memory runs from address 0 without a gap)",
+                       word.second.source});
+      break;
+    }
+    image.program.push_back(word.first);
+    ++expect_address;
+  }
+  std::stable_sort(diags.begin() + static_cast<std::ptrdiff_t>(errors_before), diags.end(),
+                   [](const FileDiag& a, const FileDiag& b) { return a.line < b.line; });
   if (line_no == 0) {
     diags.push_back({file, 1, 0, 1, "EEPROM file is empty", ""});
   } else if (!checked && check_checksum) {

@@ -1,6 +1,7 @@
 // The VM's life cycle and its slow path: power-up, program loading, interrupts, timers, external
 // inputs, motion events and the choice of the next instant to wake up at. The run loop and the
-// instruction semantics are in vm_exec.cpp; parameter access in vm_params.cpp.
+// instruction semantics are in vm_exec.cpp; parameter access in vm_params.cpp; the motion commands in
+// vm_motion.cpp.
 #include <algorithm>
 #include <bit>
 
@@ -138,6 +139,16 @@ void Vm::power_on(const EepromImage* image) {
       if (motor_ok(motor) && n > 0 && n < profile->coords)
         coords[static_cast<std::size_t>(motor)][static_cast<std::size_t>(n)] = value;
     }
+}
+
+bool Vm::program_in_eeprom() const { return profile->program_store == ProgramStore::Eeprom; }
+
+void Vm::store_program() {
+  if (!program_in_eeprom()) return;
+  std::vector<Instruction> words(program.begin(), program.begin() + program_size);
+  if (eeprom.program == words) return;
+  eeprom.program = std::move(words);
+  eeprom_dirty = true;
 }
 
 void Vm::start(std::int32_t address) {
@@ -399,11 +410,11 @@ int Vm::wait_check() {
   int m = wait.motor;
   bool done = false;
   switch (wait.kind) {
-    case 0: return now >= wait.deadline ? 1 : 0;
-    case 1: done = motion->target_reached(m); break;
-    case 2: done = switches[static_cast<std::size_t>(m)].home; break;
-    case 3: done = switches[static_cast<std::size_t>(m)].left || switches[static_cast<std::size_t>(m)].right; break;
-    case 4: done = motion->reference_done(m); break;
+    case kw::Wait::TICKS: return now >= wait.deadline ? 1 : 0;
+    case kw::Wait::POS: done = motion->target_reached(m); break;
+    case kw::Wait::REFSW: done = switches[static_cast<std::size_t>(m)].home; break;
+    case kw::Wait::LIMSW: done = switches[static_cast<std::size_t>(m)].left || switches[static_cast<std::size_t>(m)].right; break;
+    case kw::Wait::RFS: done = motion->reference_done(m); break;
     default: done = true; break;
   }
   if (done) return 1;

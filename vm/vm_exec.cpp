@@ -23,7 +23,7 @@ std::string wait_text(const Vm& vm) {
 // A reference search is motion that runs on: the module would search until RFS STOP; say so
 // rather than "no motion" (issue 25).
 std::string never_ending_wait_reason(const Vm& vm) {
-  if (vm.wait.kind == 4 && !vm.motion->reference_done(vm.wait.motor))
+  if (vm.wait.kind == kw::Wait::RFS && !vm.motion->reference_done(vm.wait.motor))
     return " can never end: motor " + std::to_string(vm.wait.motor) +
            "'s reference search runs on, but no switch on its way can end it and no timer, input or timeout is"
            " pending (the module would search until RFS STOP; give WAIT RFS a timeout, or run with --max-time)";

@@ -62,7 +62,8 @@ inline R done(Vm& vm, std::uint8_t st, std::int32_t v = 0) {
 // E1: two's-complement wrap-around for ADD/SUB/MUL; DIV and MOD by zero leave the target
 // unchanged; INT_MIN / -1 wraps to INT_MIN, INT_MIN % -1 is 0; DIV truncates toward zero and MOD
 // takes the sign of the dividend (C semantics, as the firmware is written in C).
-enum CalcOp : std::uint8_t { ADD, SUB, MUL, DIV, MOD, AND, OR, XOR, NOT, LOAD, SWAP, COMP };
+// The CALC types by name (ADD ... COMP), from keywords.def: CALCVV's set has every one of them.
+using namespace kw::CalcVV;
 
 inline std::int32_t wrap(std::uint32_t v) { return static_cast<std::int32_t>(v); }
 
@@ -118,6 +119,10 @@ inline constexpr CondBits kConditions[16] = {
     {kErrTimeout << 4, false}, {kErrAlarm << 4, false}, {kErrDeviation << 4, false}, {kErrPosition << 4, false},
     {0, false}, {0, false}, {0, false}, {0, false},  // E11: unknown conditions never hold
 };
+static_assert(kw::Cond::ZE == 0 && kw::Cond::NZ == 1 && kw::Cond::EQ == 2 && kw::Cond::NE == 3 && kw::Cond::GT == 4 &&
+              kw::Cond::GE == 5 && kw::Cond::LT == 6 && kw::Cond::LE == 7 && kw::Cond::ETO == 8 && kw::Cond::EAL == 9 &&
+              kw::Cond::EDV == 10 && kw::Cond::EPO == 11,
+              "kConditions is indexed by the JC conditions of keywords.def");
 inline bool condition(std::uint8_t flags, std::uint8_t errors, std::uint8_t cond) {
   if (cond > 15) return false;
   const CondBits c = kConditions[cond];
@@ -216,7 +221,7 @@ template <bool D> R op_MSTX(Vm& vm, const Instruction& i) { return op_MST<D>(vm,
 template <bool D> R op_RFS(Vm& vm, const Instruction& i) {
   std::int32_t v = 0;
   std::uint8_t st = vm.rfs(i.type, i.motor, v);
-  if (i.type == 2) return load<D>(vm, st, v);  // RFS STATUS is a read
+  if (i.type == kw::Rfs::STATUS) return load<D>(vm, st, v);  // a read
   return done<D>(vm, st);
 }
 
@@ -422,12 +427,13 @@ template <bool D> R op_WAIT(Vm& vm, const Instruction& i) {
   TMCL_FLOW_IN_DIRECT(i);
   std::int64_t ticks = i.value == -1 ? vm.acc : i.value;  // E7: -1 takes the accumulator
   if (ticks < 0) ticks = 0;                                // E7: negative counts as 0
-  if (i.type > 4 || (i.type != 0 && !vm.motor_ok(i.motor))) return done<D>(vm, kStatusOk);  // ignored
+  const bool timed = i.type == kw::Wait::TICKS;
+  if (i.type > kw::Wait::RFS || (!timed && !vm.motor_ok(i.motor))) return done<D>(vm, kStatusOk);  // ignored
   SimTime start = vm.now - vm.instr_time;  // the WAIT's own start instant
   vm.wait.active = true;
   vm.wait.kind = i.type;
-  vm.wait.motor = i.type == 0 ? 0 : i.motor;
-  vm.wait.deadline = (i.type == 0 || ticks > 0) ? start + ticks * kUsPerTick : kNever;
+  vm.wait.motor = timed ? 0 : i.motor;
+  vm.wait.deadline = (timed || ticks > 0) ? start + ticks * kUsPerTick : kNever;
   Internal::recheck(vm);
   return ok();  // pc stays on the WAIT until it ends (the run loop's slow path)
 }
@@ -493,8 +499,11 @@ template <bool D> R op_SAC(Vm& vm, const Instruction& i) {
   return load<D>(vm, kStatusOk, 0);
 }
 template <bool D> R op_CLE(Vm& vm, const Instruction& i) {
+  // By CLE's keyword: ALL, ETO, EAL, EDV, EPO, ESD.
   static constexpr std::uint8_t kMask[] = {0x1F, kErrTimeout, kErrAlarm, kErrDeviation, kErrPosition, kErrShutdown};
-  if (i.type > 5) return done<D>(vm, kStatusWrongType);
+  static_assert(kw::Cle::ALL == 0 && kw::Cle::ETO == 1 && kw::Cle::EAL == 2 && kw::Cle::EDV == 3 && kw::Cle::EPO == 4 &&
+                kw::Cle::ESD == 5);
+  if (i.type > kw::Cle::ESD) return done<D>(vm, kStatusWrongType);
   vm.errors = static_cast<std::uint8_t>(vm.errors & ~kMask[i.type]);
   return done<D>(vm, kStatusOk);
 }

@@ -1,6 +1,7 @@
-// Parameter, coordinate, I/O and motion-command access with the module profile's rules. Each
-// function returns a direct-mode status; standalone mode ignores a command whose status is not
-// 100 (E3). Motion parameters the core owns are forwarded to it, everything else lives in the VM.
+// Parameter, coordinate and I/O access with the module profile's rules. Each function returns a
+// direct-mode status; standalone mode ignores a command whose status is not 100 (E3). Motion
+// parameters the core owns are forwarded to it, everything else lives in the VM. The motion
+// commands are in vm_motion.cpp.
 #include "tmcl/params.hpp"
 #include "tmcl/vm.hpp"
 
@@ -295,51 +296,6 @@ std::uint8_t Vm::get_io(int port, int bank, std::int32_t& value) {
     case 2: value = outputs[p]; return kStatusOk;
     default: return kStatusInvalidValue;
   }
-}
-
-// ---------------------------------------------------------------- motion commands
-
-std::uint8_t Vm::move(int type, int motor, std::int32_t value) {
-  if (!motor_ok(motor)) return kStatusInvalidValue;
-  sync_motion();
-  switch (type) {
-    case 0: motion->move_absolute(motor, value); break;
-    case 1: motion->move_relative(motor, value); break;
-    case 2:
-      if (value < 0 || value >= profile->coords) return kStatusInvalidValue;
-      motion->move_absolute(motor, coords[static_cast<std::size_t>(motor)][static_cast<std::size_t>(value)]);
-      break;
-    default: return kStatusWrongType;
-  }
-  next_check_ = 0;
-  return kStatusOk;
-}
-
-std::uint8_t Vm::rotate(int motor, std::int64_t velocity) {
-  if (!motor_ok(motor)) return kStatusInvalidValue;
-  const ParamInfo* p = profile->axis_param(kApTargetSpeed);
-  if (p ? !accepts(*p, velocity) : (velocity < INT32_MIN || velocity > INT32_MAX)) return kStatusInvalidValue;
-  sync_motion();
-  motion->rotate(motor, static_cast<std::int32_t>(velocity));
-  next_check_ = 0;
-  return kStatusOk;
-}
-
-std::uint8_t Vm::motor_stop(int motor) {
-  if (!motor_ok(motor)) return kStatusInvalidValue;
-  sync_motion();
-  motion->stop(motor);
-  next_check_ = 0;
-  return kStatusOk;
-}
-
-std::uint8_t Vm::rfs(int type, int motor, std::int32_t& value) {
-  if (!motor_ok(motor)) return kStatusInvalidValue;
-  if (type > 2) return kStatusWrongType;
-  sync_motion();
-  value = motion->reference_search(motor, static_cast<RfsAction>(type));
-  next_check_ = 0;
-  return kStatusOk;
 }
 
 }  // namespace tmcl

@@ -291,15 +291,26 @@ void Walker::build() {
       returns[static_cast<std::size_t>(r)] = 1;
       stack.push_back(r);
     }
-  std::vector<std::vector<int>> flow_in(static_cast<std::size_t>(nr));
+  // The flows between subroutines by the region they enter, in one array (a count, a prefix sum,
+  // a fill): a vector per region cost an allocation per subroutine on call-dense programs.
+  auto between_subroutines = [&](const Flow& fl) {
+    return region(fl.from_region).kind == RegionKind::Subroutine && region(fl.to_region).kind == RegionKind::Subroutine;
+  };
+  std::vector<int> first_in(static_cast<std::size_t>(nr) + 1, 0);
   for (const auto& fl : flows)
-    if (region(fl.from_region).kind == RegionKind::Subroutine && region(fl.to_region).kind == RegionKind::Subroutine)
-      flow_in[static_cast<std::size_t>(fl.to_region)].push_back(fl.from_region);
+    if (between_subroutines(fl)) ++first_in[static_cast<std::size_t>(fl.to_region) + 1];
+  for (std::size_t v = 0; v < static_cast<std::size_t>(nr); ++v) first_in[v + 1] += first_in[v];
+  std::vector<int> flow_in(static_cast<std::size_t>(first_in.back()));
+  {
+    std::vector<int> fill(first_in.begin(), first_in.end() - 1);
+    for (const auto& fl : flows)
+      if (between_subroutines(fl)) flow_in[static_cast<std::size_t>(fill[static_cast<std::size_t>(fl.to_region)]++)] = fl.from_region;
+  }
   while (!stack.empty()) {
     int v = stack.back();
     stack.pop_back();
-    for (int u : flow_in[static_cast<std::size_t>(v)])
-      if (!returns[static_cast<std::size_t>(u)]) {
+    for (int k = first_in[static_cast<std::size_t>(v)]; k < first_in[static_cast<std::size_t>(v) + 1]; ++k)
+      if (int u = flow_in[static_cast<std::size_t>(k)]; !returns[static_cast<std::size_t>(u)]) {
         returns[static_cast<std::size_t>(u)] = 1;
         stack.push_back(u);
       }
@@ -339,17 +350,13 @@ void Walker::pass() {
   // Every call and VECT target is an entry, whether or not its caller is reachable, so that a
   // walk stops at a subroutine's label even before the CSUB naming it has been seen.
   const Instruction* const program = in.program.data();
-  for (int i = 0; i < n; ++i) {
-    const Instruction& ins = program[i];
-    const OpClass c = op_class[ins.op];
-    if (c < kFirstScanned) continue;
-    if (c == OpClass::Store) {
-      keep_call_sites = keep_call_sites || writes_eeprom(ins);
-    } else if (ins.value >= 0 && ins.value < n) {
-      entry.set(ins.value);
-      if (c == OpClass::Vect) vect_target.set(ins.value);
-    }
-  }
+  scan(
+      [&](int i, OpClass c) {
+        if (c < OpClass::Call) return;  // a jump's target is no region's entry
+        entry.set(program[i].value);
+        if (c == OpClass::Vect) vect_target.set(program[i].value);
+      },
+      [&](int i) { keep_call_sites = keep_call_sites || writes_eeprom(program[i]); });
   // One region per entry at most (exported labels nothing calls add a few later).
   std::size_t entries = 1;
   for (std::uint64_t w : entry.words) entries += static_cast<std::size_t>(std::popcount(w));
@@ -463,11 +470,7 @@ Analysis analyze(const AnalysisInput& in, Diagnostics& diags, const AnalysisOpti
   w.build();
   w.name_regions();
   w.depths();
-  w.check_flow();
-  w.check_interrupts();
-  w.check_unreachable();
-  w.check_depth();
-  w.check_eeprom();
+  for (detail::Check check : detail::kChecks) (w.*check)();
   return std::move(w.a);
 }
 

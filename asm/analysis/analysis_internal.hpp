@@ -102,10 +102,11 @@ struct CounterFacts {
 };
 
 // What the walk does at an instruction, by opcode (op_classes(), made once): most instructions
-// are Plain and go on to the next without a look at their operands. The last three are also what
-// the first scan of the program looks for (>= kFirstScanned).
-enum class OpClass : std::uint8_t { Plain, Ja, Branch, Rst, Ei, Rsub, Reti, Stop, Wait, NotOp, Call, Vect, Store };
-inline constexpr OpClass kFirstScanned = OpClass::Call;
+// are Plain and go on to the next without a look at their operands. From kFirstScanned on, the
+// classes Walker::scan() looks for; from kFirstTarget on, those that name an address.
+enum class OpClass : std::uint8_t { Plain, Ei, Rsub, Reti, Stop, Wait, NotOp, Store, Ja, Branch, Rst, Call, Vect };
+inline constexpr OpClass kFirstScanned = OpClass::Store;
+inline constexpr OpClass kFirstTarget = OpClass::Ja;
 const std::array<OpClass, 256>& op_classes();
 
 struct Walker {
@@ -149,6 +150,20 @@ struct Walker {
   int region_at(int address);
   int region_of_entry(int address) const;
   bool is_target(int address) const { return entry.test(address); }
+  // The one search for where control lands other than by running on, before any walk: target(i,
+  // class) for each jump, RST, call and VECT whose target is inside the program (the walk's region
+  // entries; -Weeprom-wear's landing points), store(i) for each STAP, STGP, SCO and SGP.
+  template <class Target, class Store>
+  void scan(Target target, Store store) const {
+    const int n = static_cast<int>(in.program.size());
+    const Instruction* const program = in.program.data();
+    for (int i = 0; i < n; ++i) {
+      const OpClass c = op_class[program[i].op];
+      if (c < kFirstScanned) continue;
+      if (c == OpClass::Store) store(i);
+      else if (c >= kFirstTarget && program[i].value >= 0 && program[i].value < n) target(i, c);
+    }
+  }
   void name_regions();
   void edge(int from, int to, EdgeKind kind);
   bool claim(int r, int from, int to);
@@ -163,11 +178,13 @@ struct Walker {
   // only counted) when the tool keeps no more of its kind, so 80,000 of one kind cost little; also
   // false (not counted) when a comment allows it there (Diagnostics::take).
   bool want(std::string_view name, int address);
-  void check_flow();
-  void check_interrupts();
-  void check_unreachable();
-  void check_depth();
-  void check_eeprom();
+  // The checks (kChecks below): each reads the regions, facts and graph built above and reports
+  // its warnings through want() and diags.
+  void check_flow();         // checks.cpp: flows out of regions, RSUB, RETI, STOP, WAIT, fall-off, addresses
+  void check_interrupts();   // checks.cpp: VECT and EI
+  void check_unreachable();  // checks.cpp
+  void check_depth();        // checks.cpp: recursion and the call stack's depth
+  void check_eeprom();       // eeprom_wear.cpp
   // -Weeprom-wear's loops bounded by a counter (counters.cpp).
   bool counter_test(int jc, const std::vector<int>& scc, const AddressBits& landing, CounterTest& t) const;
   void counter_facts(const std::vector<int>& scc, const std::vector<CounterTest>& tests, CounterFacts& cf) const;
@@ -187,5 +204,12 @@ struct Walker {
   std::string mnemonic(int i) const;
   bool writes_eeprom(const Instruction& x) const;
 };
+
+// The checks analyze() runs after the walk, in the order their warnings come out. A new warning
+// (docs/architecture.md, "A new warning"): its check is a member of Walker, in a file of its own
+// when it is more than a few lines, and a row here.
+using Check = void (Walker::*)();
+inline constexpr Check kChecks[] = {&Walker::check_flow, &Walker::check_interrupts, &Walker::check_unreachable,
+                                    &Walker::check_depth, &Walker::check_eeprom};
 
 }  // namespace tmcl::detail

@@ -1,6 +1,7 @@
-// The checks of the analysis, each reading the regions the walk built (analysis.cpp): call
-// depth and recursion over the graph of regions, flows out of subroutines and handlers, RSUB
-// and RETI where nothing can be returned to, interrupts, unreachable code and EEPROM wear.
+// The checks of the analysis listed in kChecks (analysis_internal.hpp) but -Weeprom-wear's
+// (eeprom_wear.cpp), each reading the regions the walk built (analysis.cpp): call depth and
+// recursion over the graph of regions, flows out of subroutines and handlers, RSUB and RETI where
+// nothing can be returned to, interrupts and unreachable code.
 #include <algorithm>
 #include <cstdio>
 #include <set>
@@ -370,9 +371,14 @@ void Walker::check_depth() {
     for (int x = v; x != call->to && x >= 0; x = prev_region[static_cast<std::size_t>(x)])
       if (prev_site[static_cast<std::size_t>(x)] >= 0) sites.push_back(prev_site[static_cast<std::size_t>(x)]);
     std::reverse(sites.begin(), sites.end());
-    for (int s : sites) {
-      int to = region_of_entry(ins(s).value);
-      diags.note(d, loc(s), "which calls " + (to >= 0 ? region_word(region(to)) : std::string("a subroutine")) + " here");
+    // A cycle through thousands of subroutines is shown by its first calls and its last: the
+    // notes between say nothing new, and building them cost more than the analysis itself.
+    constexpr std::size_t kShownCalls = 8;
+    for (std::size_t k = 0; k < sites.size(); ++k) {
+      if (k == kShownCalls && sites.size() > kShownCalls + 1) k = sites.size() - 1;
+      int s = sites[k], to = region_of_entry(ins(s).value);
+      std::string skipped = k > kShownCalls ? std::to_string(k - kShownCalls) + " calls further on, " : std::string();
+      diags.note(d, loc(s), skipped + "which calls " + (to >= 0 ? region_word(region(to)) : std::string("a subroutine")) + " here");
     }
   }
 

@@ -55,21 +55,7 @@ void Walker::check_eeprom() {
   // Where control lands other than by running on: the counted-loop patterns stop there.
   AddressBits landing;
   landing.reset(n);
-  for (int i = 0; i < n; ++i) {
-    const Instruction& x = ins(i);
-    switch (static_cast<Op>(x.op)) {
-      case Op::JA:
-      case Op::JC:
-      case Op::DJNZ:
-      case Op::RST:
-      case Op::CSUB:
-      case Op::CALL:
-      case Op::VECT:
-        if (x.value >= 0 && x.value < n) landing.set(x.value);
-        break;
-      default: break;
-    }
-  }
+  scan([&](int i, OpClass) { landing.set(ins(i).value); }, [](int) {});
   // Per instruction, the edge cut as one that goes round a counted loop again: 1 its jump,
   // 2 running on.
   std::vector<std::uint8_t> cut(static_cast<std::size_t>(n), 0);
@@ -156,7 +142,7 @@ void Walker::check_eeprom() {
   std::vector<int> parent(static_cast<std::size_t>(n), -1), touched, next;
   auto time_of = [this](int i) {
     const Instruction& x = ins(i);
-    if (x.op == static_cast<std::uint8_t>(Op::WAIT) && x.type == 0 && x.value > 0) return x.value * kTickUs;
+    if (x.op == static_cast<std::uint8_t>(Op::WAIT) && x.type == kw::Wait::TICKS && x.value > 0) return x.value * kTickUs;
     return in.instr_time_us;
   };
   auto shortest_round = [&](int at, bool outer) {
@@ -200,7 +186,7 @@ void Walker::check_eeprom() {
       const Instruction& x = ins(v);
       ++way.instructions;
       if (x.op == static_cast<std::uint8_t>(Op::WAIT)) {
-        if (x.type == 0 && x.value > 0) way.ticks += x.value, ++way.waits;
+        if (x.type == kw::Wait::TICKS && x.value > 0) way.ticks += x.value, ++way.waits;
         else way.event_wait = true;
       }
       if (v == at) break;

@@ -4,6 +4,7 @@
 
 #include <cctype>
 #include <cstdlib>
+#include <span>
 
 #include "tmcl/asm/assembler.hpp"
 #include "tmcl/asm/diag.hpp"
@@ -36,6 +37,34 @@ std::vector<std::string> split(const std::string& s, char sep) {
   }
 }
 
+// "(next)" and the like left out: "Target (next) position" is what a user calls "target position".
+std::string without_parentheses(const std::string& s) {
+  std::string out;
+  int depth = 0;
+  for (char c : s) {
+    if (c == '(') ++depth;
+    else if (c == ')' && depth > 0) --depth;
+    else if (depth == 0) out += c;
+  }
+  std::string squeezed;  // "target  position" -> "target position"
+  for (char c : out)
+    if (c != ' ' || (!squeezed.empty() && squeezed.back() != ' ')) squeezed += c;
+  while (!squeezed.empty() && squeezed.back() == ' ') squeezed.pop_back();
+  return squeezed;
+}
+
+// The did-you-mean for a parameter name (`name` and `keys` in lower case, `shown` as the profile
+// spells them): a name that matches once its parenthesised words are left out, else the closest
+// by edit distance.
+std::string closest_name(const std::string& name, const std::vector<std::string>& keys, const std::vector<std::string_view>& shown) {
+  for (std::size_t i = 0; i < keys.size(); ++i)
+    if (without_parentheses(keys[i]) == name) return std::string(shown[i]);
+  const std::string best = closest_match(name, std::vector<std::string_view>(keys.begin(), keys.end()));
+  for (std::size_t i = 0; i < keys.size(); ++i)
+    if (keys[i] == best) return std::string(shown[i]);
+  return {};
+}
+
 }  // namespace
 
 std::string ParamRef::label() const {
@@ -47,7 +76,7 @@ std::string ParamRef::label() const {
 }
 
 bool parse_param(const std::vector<std::string>& words, std::size_t& at, const Profile& profile, bool single_word,
-                 ParamRef& out, std::string& error) {
+                 ParamRef& out, std::string& error, std::size_t keep) {
   if (at >= words.size()) {
     error = "a parameter is missing (ap N [MOTOR], gp N [BANK], io N [BANK], or a name)";
     return false;
@@ -92,7 +121,7 @@ bool parse_param(const std::vector<std::string>& words, std::size_t& at, const P
     at += 2;
     std::string idx;
     int dummy;
-    if (at < words.size() && number(words[at], 0, 255, dummy)) idx = words[at++];
+    if (words.size() - at > keep && number(words[at], 0, 255, dummy)) idx = words[at++];
     return finish(kind, num, idx.empty() ? nullptr : &idx);
   }
   // NAME[@I] or NAME [I]
@@ -102,21 +131,25 @@ bool parse_param(const std::vector<std::string>& words, std::size_t& at, const P
     name = name.substr(0, atsign);
   }
   ++at;
-  std::vector<std::string_view> names;
-  for (const auto& p : profile.axis_params) {
-    names.push_back(p.name);
-    if (lower(std::string(p.name)) == name) {
-      out.kind = ParamRef::Axis;
-      out.number = p.number;
-      out.info = &p;
-    }
-  }
-  if (!out.info)
-    for (const auto& p : profile.bank0) {
-      names.push_back(p.name);
-      if (lower(std::string(p.name)) == name) {
-        out.kind = ParamRef::Global;
+  // The profile's names: axis parameters, then banks 0 and 3 (the interrupt settings); the first
+  // that matches wins.
+  struct Table {
+    std::span<const ParamInfo> params;
+    ParamRef::Kind kind;
+    int bank;
+  };
+  const Table tables[] = {{profile.axis_params, ParamRef::Axis, 0}, {profile.bank0, ParamRef::Global, 0},
+                          {profile.bank3, ParamRef::Global, 3}};
+  std::vector<std::string> keys;  // every name in lower case, for the did-you-mean
+  std::vector<std::string_view> shown;
+  for (const Table& t : tables)
+    for (const auto& p : t.params) {
+      keys.push_back(lower(std::string(p.name)));
+      shown.push_back(p.name);
+      if (!out.info && keys.back() == name) {
+        out.kind = t.kind;
         out.number = p.number;
+        out.index = t.bank;
         out.info = &p;
       }
     }
@@ -126,18 +159,30 @@ bool parse_param(const std::vector<std::string>& words, std::size_t& at, const P
       error = "'" + words[at - 1] + "': say which kind of parameter (ap " + name + ", gp " + name + ", io " + name + ")";
     else {
       error = "unknown parameter '" + words[at - 1] + "' for " + std::string(profile.name);
-      const std::string hint = closest_match(name, names);
+      const std::string hint = closest_name(name, keys, shown);
       if (!hint.empty()) error += "; did you mean '" + hint + "'?";
     }
     return false;
   }
-  if (idx.empty() && !single_word && at < words.size()) {
+  // A number after the name is its motor (or bank) only when the command has words left for
+  // itself: `set 'soft stop enable' 1` sets 1 (motor 0), `set NAME 0 1` sets 1 on motor 0.
+  if (idx.empty() && !single_word && words.size() - at > keep) {
     int dummy;
     if (number(words[at], 0, 255, dummy)) idx = words[at++];
   }
-  if (!idx.empty() && !number(idx, 0, 255, out.index)) {
-    error = "bad motor or bank '" + idx + "' (0 to 255)";
-    return false;
+  if (!idx.empty()) {
+    int given = 0;
+    if (!number(idx, 0, 255, given)) {
+      error = "bad motor or bank '" + idx + "' (0 to 255)";
+      return false;
+    }
+    // A global parameter's name says its bank; a motor number belongs to axis parameters.
+    if (out.kind == ParamRef::Global && given != out.index) {
+      error = "'" + std::string(out.info->name) + "' is a global parameter of bank " + std::to_string(out.index) +
+              ", not of bank " + idx;
+      return false;
+    }
+    out.index = given;
   }
   return true;
 }
@@ -155,6 +200,19 @@ bool param_instruction(const ParamRef& p, ParamAction action, std::int32_t value
     error = p.label() + " " + what + " on " + std::string(profile.name);
     return false;
   };
+  // What the module lacks is refused before anything is sent: a motor beyond its axes, a user
+  // variable beyond bank 2, and a store of one that has no EEPROM copy (as the module answers 3).
+  if (p.kind == ParamRef::Axis && p.index >= profile.motors) {
+    error = p.label() + ": " + std::string(profile.name) + " has no motor " + std::to_string(p.index) + " (" +
+            (profile.motors == 1 ? std::string("motor 0 only") : "motors 0 to " + std::to_string(profile.motors - 1)) + ")";
+    return false;
+  }
+  if (p.kind == ParamRef::Global && p.index == 2 && p.number >= profile.user_vars)
+    return refuse(("is no user variable (bank 2 has 0 to " + std::to_string(profile.user_vars - 1) + ")").c_str());
+  if (p.kind == ParamRef::Global && p.index == 2 && action == ParamAction::Store && p.number >= profile.eeprom_user_vars)
+    return refuse(profile.eeprom_user_vars == 0
+                      ? "has no EEPROM copy (no user variable has one)"
+                      : ("has no EEPROM copy (user variables 0 to " + std::to_string(profile.eeprom_user_vars - 1) + " have one)").c_str());
   switch (action) {
     case ParamAction::Get:
       if (known && !(p.info->access & kRead)) return refuse("cannot be read");

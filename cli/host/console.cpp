@@ -49,7 +49,10 @@ std::string module_include_file(const Profile& profile) { return std::string(pro
 
 ConsoleSession::ConsoleSession(const Profile& profile, std::vector<std::string> include_dirs)
     : profile_(profile), include_dirs_(std::move(include_dirs)) {
-  for (const std::string& file : {std::string("TMCLParam.tmc"), module_include_file(profile)}) {
+  // Interrupts.inc (TI_TIMER0, ...) on a module with interrupt vectors, as a program would
+  // include it for EI, DI and VECT.
+  const std::string interrupts = profile.vectors.empty() ? std::string() : std::string("Interrupts.inc");
+  for (const std::string& file : {std::string("TMCLParam.tmc"), interrupts, module_include_file(profile)}) {
     if (file.empty()) continue;
     // The bundled files assemble for every profile; a failure here would be a defect of ours,
     // and the session would merely lack the names.

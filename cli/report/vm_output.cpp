@@ -1,5 +1,5 @@
 // Stable text views of a run: instruction text, --trace lines, the --json state and the summary.
-// Every format here is pinned by golden files in tests/vm/golden; change them deliberately.
+// Every format here is pinned by golden files in tests/golden/vm; change them deliberately.
 #include "tmcl/vm_output.hpp"
 
 #include <algorithm>

@@ -4,7 +4,8 @@
 // so an instant is met within a few milliseconds at best, and the failure says when the values
 // were read); then the run waits for the program to stop, or for max-time, and checks the rest.
 // A module cannot be given inputs, and reports no faults or run-time warnings: a test with
-// scenario lines is skipped, and `expect never fault` / `expect no warnings` are noted as not
+// input changes is skipped (one with only switch lines, which describe the machine, runs with a
+// note that the machine must match), and `expect never fault` / `expect no warnings` are noted as not
 // checked.
 #include <algorithm>
 #include <chrono>
@@ -62,14 +63,22 @@ TestResult run_test_live(const std::string& path, const RunOptions& options, Pro
   const std::string text(bytes.begin(), bytes.end());
   TestFile t;
   std::vector<FileDiag> diags;
-  if (parse_test_file(text, path, options.target, t, diags, options.target_given) &&
-      (t.skipped || !t.inputs.empty() || (!t.target.empty() && test_profile(t) != resolve_target(options.target).profile))) {
+  // Switches at positions (`switch left 0 at -20000`) describe the machine, which the hardware
+  // has: such a test runs, with a note that the machine must match. Input changes in time are
+  // what a host cannot make: such a test is skipped.
+  const bool parsed = parse_test_file(text, path, options.target, t, diags, options.target_given);
+  const auto changes = std::find_if(t.inputs.begin(), t.inputs.end(), [](const InputEvent& e) { return e.kind != InputEvent::Placed; });
+  if (parsed && (t.skipped || changes != t.inputs.end() || (!t.target.empty() && test_profile(t) != resolve_target(options.target).profile))) {
     r.skip_reason = t.skipped ? t.skip
-                    : !t.inputs.empty()
+                    : changes != t.inputs.end()
                         ? "its scenario lines change the program's inputs, which a module's host cannot"
                         : "written for " + t.target + ", and the module is " + options.target + " (-t)";
     return finish(TestResult::Skip);
   }
+  if (parsed && !t.inputs.empty())
+    r.notes.push_back(path + ":" + std::to_string(t.inputs.front().line) +
+                      ": note: the switch lines describe the machine; on a module they are not simulated: the machine's "
+                      "switches must be where they say");
   diags.clear();
   std::shared_ptr<const Program> program = check_test_source(path, text, options, cache, t, diags, err);
   if (!diags.empty() || !program) {

@@ -13,7 +13,8 @@ using Kind = ConsoleSession::Entry::Kind;
 const tmcl::Profile& profile(const char* name) { return *tmcl::find_profile(name); }
 
 TEST(console_predefines_tmclparam_and_the_module_include) {
-  CHECK_EQ(ConsoleSession(profile("usb-2-sd"), {}).predefined(), (std::vector<std::string>{"TMCLParam.tmc", "USB-2-SD.inc"}));
+  CHECK_EQ(ConsoleSession(profile("usb-2-sd"), {}).predefined(),
+           (std::vector<std::string>{"TMCLParam.tmc", "Interrupts.inc", "USB-2-SD.inc"}));
   CHECK_EQ(ConsoleSession(profile("tmc2300-eval"), {}).predefined(),
            (std::vector<std::string>{"TMCLParam.tmc", "TMC2300-MOTOR-EVAL.inc"}));
   // generic has the USB-2-SD's parameter tables, so the USB-2-SD's names.

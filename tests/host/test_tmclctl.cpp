@@ -437,7 +437,7 @@ TEST(console_session) {
   Output o = hosttest::run({"/bin/sh", "-c", kCtl + " -t usb-2-sd " + server.port() + " console < " + in});
   CHECK_EQ(o.status, 0);
   CHECK(has(o.out, "tmcl> help\nType an instruction"));
-  CHECK(has(o.out, "TMCLParam.tmc and USB-2-SD.inc are included"));
+  CHECK(has(o.out, "TMCLParam.tmc, Interrupts.inc and USB-2-SD.inc are included"));
   CHECK(has(o.out, "tmcl> SAP 4, 0, 99\n100 success, value 0\ntmcl> GAP 4, 0\n100 success, value 99\n"));
   CHECK(has(o.out, "tmcl> !!\nGAP 4, 0\n100 success, value 99\n"));
   CHECK(has(o.out, "tmcl> SAP 4, 0\ntmcl> history\n"));  // the error went to standard error

@@ -44,11 +44,19 @@ TEST(download_checks_like_tmclasm_werror) {
   CHECK(has(d.err, "error: value 5000 is outside the range of axis parameter 4"));
   CHECK(has(d.err, "[-Werror=target]"));
   CHECK(has(d.err, "nothing sent"));
+  // Refused for warnings alone: how to go on, for a warning new since the last download too.
+  CHECK(has(d.err, "tmclctl: note: a warning counts as an error here, a new one too; fix the line, or allow the warning "
+                   "there with a comment '// tmcl: allow NAME' (docs/analysis.md, \"New warnings\")"));
   // The control-flow analysis too: a subroutine without RSUB.
   const std::string flow = write_temp("flow.tmc", "CSUB Sub\nSTOP\nSub:\nSAP 4, 0, 100\n");
   d = ctl({p, "download", flow});
   CHECK_EQ(d.status, 65);
   CHECK(has(d.err, "-Werror="));
+  // A true error is no warning to allow: no such note.
+  const std::string wrong = write_temp("wrong.tmc", "SAPP 4, 0, 100\nSTOP\n");
+  d = ctl({p, "download", wrong});
+  CHECK_EQ(d.status, 65);
+  CHECK(!has(d.err, "tmcl: allow"));
   // A clean program goes through.
   const std::string good = write_temp("good.tmc", "SAP 4, 0, 1000\nSTOP\n");
   d = ctl({"-q", p, "download", good});

@@ -10,6 +10,9 @@ export PATH="$tools:$PATH"
 work=$(mktemp -d "${TMPDIR:-/tmp}/tmcl-completion.XXXXXX")
 trap 'rm -rf "$work"' EXIT
 cd "$work" || exit 1
+# Only the bundled profiles: none of the user's (~/.config/tmcl/profiles, TMCL_PROFILE_PATH).
+export HOME="$work" XDG_CONFIG_HOME="$work/config"
+unset TMCL_PROFILE_PATH
 mkdir sub && touch prog.tmc lib.inc prog.bin prog.dgm motion.svg notes.txt sub/x.tmc homing.tmctest
 
 failures=0
@@ -37,9 +40,22 @@ expect() {
   fi
 }
 
+# The bundled targets, by name and alias, read from the profile folder: no list is kept here, so
+# a new profile file changes nothing in this test.
+targets=()
+for f in "$root"/vm/isa/profiles/*.profile; do
+  targets+=("$(basename "$f" .profile)")
+  read -ra aliases <<< "$(sed -n 's/^alias[[:space:]]\{1,\}//p' "$f" | sed 's/#.*//')"
+  targets+=("${aliases[@]}")
+done
+# starting PREFIX: the targets that start with PREFIX.
+starting() { local t; for t in "${targets[@]}"; do [[ $t == "$1"* ]] && echo "$t"; done; }
+((${#targets[@]} >= 11)) || { echo "no profiles found in $root/vm/isa/profiles"; failures=$((failures + 1)); }
+
 expect "tmclasm --tar" --target
-expect "tmclasm --target=us" usb-2-sd
-expect "tmclasm -t tmc" tmc2300-eval tmcm-1110 tmcm-1140 tmcm-1160 tmcm-1161 tmcm-1260 tmcm-3110 tmcm-351 tmcm-6110
+expect "tmclasm --target=us" $(starting us)
+expect "tmclasm -t tmc" $(starting tmc)
+expect "tmclasm -t " $(starting "")
 expect "tmclasm --format l" listing lib
 expect "tmclasm -Wno-unr" -Wno-unreachable
 expect "tmclasm -Werror=eeprom" eeprom-wear  # bash replaces what follows the "="

@@ -1,6 +1,9 @@
 // Behaviour of the tmc4361 core through its public API: velocity mode, re-planning mid-move,
 // virtual stops, stop switches, encoder deviation, reverse shaft, relative positioning.
+#include <algorithm>
+#include <filesystem>
 #include <string>
+#include <vector>
 #include "check.hpp"
 #include "helpers.hpp"
 
@@ -347,6 +350,24 @@ TEST(registry_names) {
   CHECK(std::find(names.begin(), names.end(), "linear") != names.end());
   CHECK_EQ(tmcl::find_profile("usb-2-sd")->default_motion, std::string_view("tmc4361"));
   CHECK_EQ(tmcl::find_profile("tmc2300-eval")->default_motion, std::string_view("linear"));
+}
+
+// The registry is motion_cores.def: every core file vm/motion/motion_NAME.cpp is a core named
+// NAME, made by its name, and nothing else is built in.
+TEST(registry_is_the_core_files) {
+  std::vector<std::string> files;
+  for (const auto& e : std::filesystem::directory_iterator(TMCL_MOTION_DIR)) {
+    const std::string f = e.path().filename().string();
+    if (f.rfind("motion_", 0) == 0 && e.path().extension() == ".cpp") files.push_back(e.path().stem().string().substr(7));
+  }
+  std::sort(files.begin(), files.end());
+  CHECK(files.size() >= 5u);
+  CHECK(files == tmcl::motion_core_names());
+  for (const auto& name : files) {
+    auto core = tmcl::make_motion_core(name);
+    CHECK(core != nullptr);
+    if (core) CHECK_EQ(core->name(), std::string_view(name));
+  }
 }
 
 TEST(two_motors_events_in_time_order) {

@@ -9,6 +9,7 @@
 #include <cerrno>
 #include <cstdint>
 #include <cstdlib>
+#include <filesystem>
 #include <fstream>
 #include <iterator>
 #include <map>
@@ -127,12 +128,24 @@ bool has_write(const ParamInfo* p) { return p != nullptr && (p->access & kWrite)
 
 // ---- The profile registry ------------------------------------------------------------------
 
+// The profile folder's files, generic first, then in name order: what the build bundles
+// (vm/isa/embed_files.cmake), so a new file there is a new target with nothing registered by hand.
+std::vector<std::string> profile_folder_names() {
+  std::vector<std::string> names;
+  for (const auto& entry : std::filesystem::directory_iterator(TMCL_PROFILES_DIR))
+    if (entry.path().extension() == ".profile") names.push_back(entry.path().stem().string());
+  std::sort(names.begin(), names.end(), [](const std::string& a, const std::string& b) {
+    return (a == "generic") != (b == "generic") ? a == "generic" : a < b;
+  });
+  return names;
+}
+
 TEST(registry_lists_every_bundled_profile_generic_first) {
   const auto all = tmcl::all_profiles();
   std::vector<std::string> names;
   for (const Profile* p : all) names.emplace_back(p->name);
-  CHECK(names == (std::vector<std::string>{"generic", "tmc2300-eval", "tmcm-1110", "tmcm-1140", "tmcm-1160", "tmcm-1161",
-                                           "tmcm-1260", "tmcm-3110", "tmcm-351", "tmcm-6110", "usb-2-sd"}));
+  CHECK(names.size() >= 11u);
+  CHECK(names == profile_folder_names());
   CHECK_EQ(all[0], &tmcl::generic_profile());
   CHECK(tmcl::find_profile("usb-2-sd") != nullptr);
   CHECK(tmcl::find_profile("tmc2300-eval") != nullptr);

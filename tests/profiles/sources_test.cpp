@@ -1,4 +1,4 @@
-// Every bundled TMCM profile against its sources, as copied into tests/data/modules/ (each file
+// Every bundled profile (but generic) against its sources, as copied into tests/data/modules/ (each file
 // names its source on its first lines): the manuals' tables (number and access), the vendor's ROS
 // driver and host library (the numbers newer firmware has). A profile has every parameter its
 // sources list, and no parameter no source lists unless it says `unverified=exists`; its access is
@@ -8,6 +8,9 @@
 #include "check.hpp"
 #include "data_file.hpp"
 
+#include <algorithm>
+#include <cctype>
+#include <filesystem>
 #include <fstream>
 #include <iterator>
 #include <map>
@@ -26,18 +29,19 @@ using tmcl::Profile;
 struct Row {
   std::string kind;  // axis, global0, global3
   int number = 0;
-  std::string access;  // manuals only
+  std::string access;     // manuals only: as the table prints it ("" where no table has it)
+  std::string corrected;  // our access where docs/errata.md corrects the manual, else ""
 };
 
 std::vector<Row> rows(const std::string& file) {
   std::vector<Row> out;
   for (const std::string& line : DATA_LINES("modules/" + file)) {
     const auto f = tmcl_test::tsv_fields(line);
-    if (f.size() < 2) {
-      ::tmcl_test::fail(__FILE__, __LINE__, file + ": a row is KIND NUMBER [ACCESS]: " + line);
+    if (f.size() < 2 || f.size() == 4) {
+      ::tmcl_test::fail(__FILE__, __LINE__, file + ": a row is KIND NUMBER [ACCESS [OURS ERRATUM [WHERE]]]: " + line);
       continue;
     }
-    out.push_back({f[0], std::stoi(f[1]), f.size() > 2 ? f[2] : ""});
+    out.push_back({f[0], std::stoi(f[1]), f.size() > 2 && f[2] != "-" ? f[2] : "", f.size() > 3 ? f[3] : ""});
   }
   return out;
 }
@@ -49,56 +53,84 @@ const ParamInfo* param(const Profile& p, const Row& r) {
   return nullptr;
 }
 
+// A bundled profile's source table: the files tests/data/modules/NAME-*.tsv, NAME its name in
+// capitals (TMCM-1110-manual.tsv, TMCM-1110-pytrinamic.tsv for tmcm-1110); NAME-manual.tsv is the
+// module's own manual. Found by name, so a new profile is checked as soon as its files are there,
+// and a profile without them fails (sources_of) instead of passing unchecked.
 struct Module {
-  const char* name;
+  std::string name;
   std::vector<std::string> sources;  // files in tests/data/modules/
-  const char* manual;                // the one of them that is the module's own manual, or nullptr
+  std::string manual;                // the one of them that is the module's own manual, or ""
 };
 
-const Module kModules[] = {
-    {"tmcm-1110", {"TMCM-1110-manual.tsv", "TMCM-1110-pytrinamic.tsv"}, "TMCM-1110-manual.tsv"},
-    {"tmcm-3110", {"TMCM-3110-ros.tsv", "TMCM-3110-pytrinamic.tsv"}, nullptr},
-    {"tmcm-6110", {"TMCM-6110-ros.tsv", "TMCM-6110-pytrinamic.tsv"}, nullptr},
-    {"tmcm-1140", {"TMCM-1140-ros.tsv", "TMCM-1140-pytrinamic.tsv"}, nullptr},
-    {"tmcm-1160", {"TMCM-1160-ros.tsv", "TMCM-1160-pytrinamic.tsv"}, nullptr},
-    {"tmcm-1161", {"TMCM-1161-pytrinamic.tsv"}, nullptr},
-    {"tmcm-1260", {"PD57-60-1260-manual.tsv", "TMCM-1260-ros.tsv", "TMCM-1260-pytrinamic.tsv"}, "PD57-60-1260-manual.tsv"},
-    {"tmcm-351", {"TMCM-351-manual.tsv", "TMCM-351-ros.tsv"}, "TMCM-351-manual.tsv"},
-};
+std::string capitals(std::string_view name) {
+  std::string out(name);
+  for (char& c : out) c = static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
+  return out;
+}
+
+Module sources_of(const Profile& p) {
+  Module m{std::string(p.name), {}, ""};
+  const std::string prefix = capitals(p.name) + "-";
+  std::error_code ec;
+  for (const auto& entry : std::filesystem::directory_iterator(tmcl_test::data_path("modules"), ec)) {
+    const std::string file = entry.path().filename().string();
+    if (file.rfind(prefix, 0) != 0 || file.size() < 4 || file.substr(file.size() - 4) != ".tsv") continue;
+    m.sources.push_back(file);
+    if (file == prefix + "manual.tsv") m.manual = file;
+  }
+  std::sort(m.sources.begin(), m.sources.end());
+  return m;
+}
+
+// Every bundled profile but generic (made up by design: it is no module, docs/profiles.md).
+std::vector<Module> bundled_modules() {
+  std::vector<Module> out;
+  for (const Profile* p : tmcl::all_profiles())
+    if (p->name != "generic") out.push_back(sources_of(*p));
+  return out;
+}
 
 // The manuals' access letters in our terms: in a TMCM manual's bank 0 table, E on 64..127 means
-// "stored at every SGP" (the text of section 6.1 / 5.1), our A. And the corrections of the manual
-// (docs/errata.md): a measurement the table calls RW is R.
-std::string expected_access(const char* module, const Row& r) {
+// "stored at every SGP" (the text of section 6.1 / 5.1), our A. A row's own correction (a fourth
+// field, with its docs/errata.md entry) wins.
+std::string expected_access(const Row& r) {
+  if (!r.corrected.empty()) return r.corrected;
   std::string a = r.access;
   if (r.kind == "global0" && r.number >= 64 && r.number < 128 && a == "RWE") a = "RWA";
-  const std::string m = module;
-  if (r.kind == "axis" && r.number == 3 && (m == "tmcm-1110" || m == "tmcm-351")) a = "R";
-  if (r.kind == "axis" && r.number == 180 && m == "tmcm-1110") a = "R";
   return a;
 }
 
 }  // namespace
 
+TEST(every_bundled_module_has_a_source_table) {
+  CHECK(bundled_modules().size() + 1 == tmcl::all_profiles().size());
+  for (const Module& m : bundled_modules())
+    if (m.sources.empty())
+      ::tmcl_test::fail(__FILE__, __LINE__, m.name + ": no source table: tests/data/modules/" + capitals(m.name) +
+                                                "-*.tsv (its manual's parameter tables, KIND NUMBER ACCESS, as " +
+                                                "TMCM-1110-manual.tsv)");
+}
+
 TEST(every_parameter_of_the_sources_is_in_the_profile) {
-  for (const Module& m : kModules) {
+  for (const Module& m : bundled_modules()) {
     const Profile* p = tmcl::find_profile(m.name);
     CHECK(p != nullptr);
-    if (!p) continue;
+    if (!p || m.sources.empty()) continue;
     std::set<std::pair<std::string, int>> listed;
     for (const std::string& file : m.sources) {
       for (const Row& r : rows(file)) {
         listed.insert({r.kind, r.number});
         const ParamInfo* info = param(*p, r);
         if (!info) {
-          ::tmcl_test::fail(__FILE__, __LINE__, std::string(m.name) + " lacks " + r.kind + " " + std::to_string(r.number) + " of " + file);
+          ::tmcl_test::fail(__FILE__, __LINE__, m.name + " lacks " + r.kind + " " + std::to_string(r.number) + " of " + file);
           continue;
         }
-        if (m.manual && file == m.manual && tmcl::access_letters(info->access) != expected_access(m.name, r))
-          ::tmcl_test::fail(__FILE__, __LINE__, std::string(m.name) + " " + r.kind + " " + std::to_string(r.number) + ": access " +
+        if (file == m.manual && !expected_access(r).empty() && tmcl::access_letters(info->access) != expected_access(r))
+          ::tmcl_test::fail(__FILE__, __LINE__, m.name + " " + r.kind + " " + std::to_string(r.number) + ": access " +
                                                     tmcl::access_letters(info->access) + ", the manual " + r.access);
-        if (m.manual && file == m.manual && (info->unverified & (tmcl::kFactAccess | tmcl::kFactExists)))
-          ::tmcl_test::fail(__FILE__, __LINE__, std::string(m.name) + " " + r.kind + " " + std::to_string(r.number) +
+        if (file == m.manual && (info->unverified & (tmcl::kFactAccess | tmcl::kFactExists)))
+          ::tmcl_test::fail(__FILE__, __LINE__, m.name + " " + r.kind + " " + std::to_string(r.number) +
                                                     ": the manual gives it, yet it is marked unverified");
       }
     }
@@ -106,7 +138,7 @@ TEST(every_parameter_of_the_sources_is_in_the_profile) {
     auto check_table = [&](const char* kind, std::span<const ParamInfo> table) {
       for (const ParamInfo& info : table)
         if (!listed.count({kind, info.number}) && !(info.unverified & tmcl::kFactExists))
-          ::tmcl_test::fail(__FILE__, __LINE__, std::string(m.name) + " " + kind + " " + std::to_string(info.number) +
+          ::tmcl_test::fail(__FILE__, __LINE__, m.name + " " + kind + " " + std::to_string(info.number) +
                                                     ": in no source and not marked unverified=exists");
     };
     check_table("axis", p->axis_params);
@@ -208,15 +240,19 @@ bool cites(const ParamInfo& info, const std::string& id, const std::string& sect
 TEST(the_tmcl_reference_confirms_or_leaves_unverified) {
   const std::vector<RefRow> ref = reference_rows();
   CHECK(ref.size() > 100u);
-  for (const char* name : {"tmcm-3110", "tmcm-6110", "tmcm-1140", "tmcm-1160", "tmcm-1161"}) {
+  int without_manual = 0;
+  for (const Module& m : bundled_modules()) {
+    if (!m.manual.empty()) continue;  // a module without a manual of its own rests on the reference
+    ++without_manual;
+    const std::string& name = m.name;
     const Profile* p = tmcl::find_profile(name);
     CHECK(p != nullptr);
     if (!p) continue;
-    CHECK_EQ(reference_id(*p), "R");
+    if (reference_id(*p) != "R") ::tmcl_test::fail(__FILE__, __LINE__, name + ": no manual of its own in its source table, and it names not the TMCL reference as source R");
     int confirmed = 0;
     for (const RefRow& r : ref) {
       if (r.scope != "all") continue;
-      const ParamInfo* info = param(*p, Row{r.kind, r.number, ""});
+      const ParamInfo* info = param(*p, Row{r.kind, r.number, "", ""});
       if (!info) continue;  // the reference lists parameters of other modules and older firmware too
       const std::string what = std::string(name) + " " + r.kind + " " + std::to_string(r.number);
       bool any = false;
@@ -240,16 +276,17 @@ TEST(the_tmcl_reference_confirms_or_leaves_unverified) {
     }
     CHECK(confirmed >= 25);  // the basic and advanced parameters and the interface settings
   }
+  CHECK(without_manual >= 5);  // tmcm-3110, -6110, -1140, -1160, -1161
   // Every TMCM profile: a fact sourced from the reference, and not marked unverified, is its row's.
-  for (const Module& m : kModules) {
+  for (const Module& m : bundled_modules()) {
     const Profile* p = tmcl::find_profile(m.name);
     if (!p) continue;
     const std::string id = reference_id(*p);
     if (id.empty()) continue;
     for (const RefRow& r : ref) {
-      const ParamInfo* info = param(*p, Row{r.kind, r.number, ""});
+      const ParamInfo* info = param(*p, Row{r.kind, r.number, "", ""});
       if (!info || std::string(info->source).find(id + ":") == std::string::npos) continue;
-      const std::string what = std::string(m.name) + " " + r.kind + " " + std::to_string(r.number);
+      const std::string what = m.name + " " + r.kind + " " + std::to_string(r.number);
       const bool any_section = std::string("," + std::string(info->source)).find("," + id + ":4.") != std::string::npos ||
                                std::string("," + std::string(info->source)).find("," + id + ":5.") != std::string::npos;
       if (any_section && !cites(*info, id, r.section)) ::tmcl_test::fail(__FILE__, __LINE__, what + ": the reference has it in section " + r.section + ", not where src= says: " + std::string(info->source));
@@ -317,15 +354,15 @@ TEST(docs_list_every_unverified_fact) {
       if (it != documented.end()) ::tmcl_test::fail(__FILE__, __LINE__, "docs/profiles.md lists unverified facts of " + std::string(p->name) + ", which has none");
       continue;
     }
+    std::string want;  // the block to paste
+    for (const auto& f : facts) want += f + "\n";
     if (it == documented.end()) {
-      ::tmcl_test::fail(__FILE__, __LINE__, "docs/profiles.md has no ```unverified " + std::string(p->name) + " block");
+      ::tmcl_test::fail(__FILE__, __LINE__, "docs/profiles.md has no ```unverified " + std::string(p->name) + " block; it is:\n```unverified " +
+                                                std::string(p->name) + "\n" + want + "```");
       continue;
     }
-    if (it->second != facts) {
-      std::string want;
-      for (const auto& f : facts) want += f + "\n";
+    if (it->second != facts)
       ::tmcl_test::fail(__FILE__, __LINE__, "docs/profiles.md: the unverified facts of " + std::string(p->name) + " are:\n" + want);
-    }
   }
   for (const auto& [name, facts] : documented)
     if (!tmcl::find_profile(name)) ::tmcl_test::fail(__FILE__, __LINE__, "docs/profiles.md lists unverified facts of an unknown module " + name);

@@ -1,5 +1,6 @@
 // The EEPROM: STGP/RSGP, STAP/RSAP, SCO/GCO bank-255 forms, global 84/85, auto-stored bank 0,
-// power-up restore, the file format (round trip, corruption, atomic save) (E16).
+// power-up restore, the file format (round trip, corruption, atomic save) (E16), program memory
+// in the EEPROM (E55).
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -299,4 +300,57 @@ TEST(file_round_trip_with_bank3) {
     CHECK(diags[1].message.find("bad parameter number '256'") != std::string::npos);
     CHECK(diags[2].message.find("did you mean 'global3'?") != std::string::npos);
   }
+}
+
+// Program memory in the EEPROM (E55): `program` records round-trip; a file written before them
+// (here the one golden case serve/eeprom-bank3 pins, byte for byte) still loads, with no program;
+// a gap, a bad opcode and a duplicate address are errors naming their line.
+TEST(file_program_records) {
+  tmcl::EepromImage img;
+  img.profile = "tmcm-1110";
+  img.globals[77] = 1;
+  img.program = {{9, 1, 2, 5}, {0, 0, 0, 0}, {28, 0, 0, -1}};  // an opcode-0 word inside is kept
+  const std::string text = tmcl::eeprom_to_text(img);
+  CHECK(text.find("global 77 1\nprogram 0 9 1 2 5\nprogram 1 0 0 0 0\nprogram 2 28 0 0 -1\ncheck ") != std::string::npos);
+  tmcl::EepromImage back;
+  std::string err;
+  CHECK(tmcl::eeprom_from_text(text, "e.txt", back, err));
+  CHECK(back == img);
+  const std::string old = "tmcl-eeprom 1\nprofile tmcm-1110\nglobal3 0 250\nglobal3 27 2\ncheck 26c9a35b\n";
+  CHECK(tmcl::eeprom_from_text(old, "old.eeprom", back, err));
+  CHECK(back.program.empty());
+  CHECK_EQ(back.bank3.at(0), 250);
+  std::vector<tmcl::FileDiag> diags;
+  const std::string bad = "tmcl-eeprom 1\nprofile tmcm-1110\nprogram 0 9 1 2 5\nprogram 2 28 0 0 0\nprogram 3 256 0 0 0\n"
+                          "program 0 1 0 0 0\n";
+  CHECK(!tmcl::eeprom_from_text(bad, "bad.eeprom", back, diags, false));
+  CHECK_EQ(diags.size(), 3u);
+  if (diags.size() == 3) {
+    CHECK_EQ(diags[0].line, 4);
+    CHECK_EQ(diags[0].message, std::string("program record for address 2, but address 1 has none (program memory runs from "
+                                           "address 0 without a gap)"));
+    CHECK_EQ(diags[1].line, 5);
+    CHECK_EQ(diags[1].message, std::string("malformed EEPROM record 'program 3 256 0 0 0': bad opcode '256' (0..255)"));
+    CHECK_EQ(diags[2].line, 6);
+    CHECK_EQ(diags[2].message, std::string("duplicate record: program 0 is already set on line 3"));
+  }
+}
+
+// A download's end and a run with an EEPROM file store the program where the profile keeps it in
+// EEPROM; a module with program RAM stores nothing.
+TEST(store_program_follows_the_profile) {
+  Machine eeprom({I(Op::SGP, 1, 2, 5), I(Op::STOP)}, *tmcl::find_profile("tmcm-1110"));
+  CHECK(eeprom.vm.program_in_eeprom());
+  eeprom.vm.store_program();
+  CHECK_EQ(eeprom.vm.eeprom.program.size(), 2u);
+  CHECK(eeprom.vm.eeprom_dirty);
+  Machine ram({I(Op::SGP, 1, 2, 5), I(Op::STOP)}, *tmcl::find_profile("usb-2-sd"));
+  CHECK(!ram.vm.program_in_eeprom());
+  ram.vm.store_program();
+  CHECK(ram.vm.eeprom.program.empty());
+  CHECK(!ram.vm.eeprom_dirty);
+  // Power-up keeps the image's program in the EEPROM (what the server's 255 goes through).
+  tmcl::EepromImage img = eeprom.vm.eeprom;
+  eeprom.vm.power_on(&img);
+  CHECK_EQ(eeprom.vm.eeprom.program.size(), 2u);
 }

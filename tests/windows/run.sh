@@ -103,7 +103,7 @@ t2=$(date +%s)
 tools=()
 for exe in tmclasm tmclrun tmclctl tmcl-lsp; do tools+=(--tool "$exe=$win/cli/$exe.exe"); done
 tools+=(--tool "motion_csv=$linux/tests/motion/motion_csv" --tool sh=/bin/sh)
-(cd "$src" && "$linux/tests/golden_runner" "${tools[@]}" --emulator "$(command -v wine)" tests/golden tests/vm/golden) \
+(cd "$src" && "$linux/tests/golden_runner" "${tools[@]}" --emulator "$(command -v wine)" tests/golden) \
   >"$win/golden.log" 2>&1
 summary=$(grep -E '^[0-9]+ passed, [0-9]+ failed' "$win/golden.log" | tail -1)
 grep -E '^(FAIL|SKIP) ' "$win/golden.log"

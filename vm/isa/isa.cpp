@@ -39,7 +39,7 @@ constexpr OpInfo kOps[] = {
 #undef LABEL
 
 constexpr Keyword kKeywords[] = {
-#define KEYWORD(set, name, value) Keyword{KwSet::set, name, value},
+#define KEYWORD(set, name, value) Keyword{KwSet::set, #name, value},
 #include "tmcl/keywords.def"
 #undef KEYWORD
 };

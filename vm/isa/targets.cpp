@@ -230,10 +230,9 @@ TargetResult resolve_target(std::string_view value, const TargetSearch& search) 
   const std::vector<std::string> names = known_names(search);
   std::vector<std::string_view> views(names.begin(), names.end());
   const std::string hint = closest_match(value, views);
-  std::string list;
-  for (const auto& n : names) list += (list.empty() ? "" : ", ") + n;
+  // Not the whole list: it grows with every profile, and every message that quoted it would too.
   r.error = "unknown target '" + std::string(value) + "'" + (hint.empty() ? "" : "; did you mean '" + hint + "'?") +
-            " (targets: " + list + "; or a profile file, docs/profiles.md)";
+            " (see tmclasm --list-targets; or a profile file, docs/profiles.md)";
   return r;
 }
 

@@ -171,7 +171,7 @@ void TmclModule::control(const Instruction& ins) {
         reply(kStatusEepromLocked, op, ins.value);
         return;
       }
-      note("restore factory settings: EEPROM cleared, module restarted");
+      note("restore factory settings: EEPROM settings cleared (program memory kept), module restarted");
       power_cycle(true);
       return;
 

@@ -261,6 +261,7 @@ void TmclModule::commit_download() {
   if (!pending_dirty_) return;
   pending_dirty_ = false;
   vm_.load(pending_);
+  vm_.store_program();  // a module with program EEPROM keeps what was downloaded (errata E55)
 }
 
 // ---- time and events ----
@@ -319,13 +320,17 @@ bool TmclModule::take_power_cycle() {
 }
 
 // 255 (and 137): like switching the module off and on. Program memory survives (it is EEPROM on
-// a module), so does the EEPROM image; every register, parameter and variable starts over from
+// a module and in the image, errata E55; a RAM one is kept too, as a host would download it
+// again), so does the EEPROM image; every register, parameter and variable starts over from
 // the defaults and what the EEPROM restores, simulated time restarts at 0, and global 77 may
 // start the program.
 void TmclModule::power_cycle(bool clear_eeprom) {
   commit_download();
   download_ = false;
   EepromImage image = clear_eeprom ? EepromImage{} : vm_.eeprom;
+  // 137 resets "all settings stored in the EEPROM" (TMCM-1110 manual 4.5.38): the
+  // program is no setting and stays (errata E55).
+  if (clear_eeprom) image.program = vm_.eeprom.program;
   vm_.power_on(&image);
   if (clear_eeprom) vm_.eeprom_dirty = true;
   apply_address_overrides();

@@ -1,4 +1,5 @@
-// The motion-core registry (tmclrun --motion NAME) and event names.
+// The motion-core registry (tmclrun --motion NAME: the built-in cores of motion_cores.def, and an
+// embedder's) and event names.
 #include <algorithm>
 #include <map>
 #include <mutex>
@@ -12,11 +13,9 @@ struct Registry {
   std::mutex lock;
   std::map<std::string, MotionFactory, std::less<>> factories;
   Registry() {
-    factories.emplace("ideal", [] { return make_ideal_motion_core(); });
-    factories.emplace("tmc4361", [] { return make_tmc4361_motion_core(); });
-    factories.emplace("linear", [] { return make_linear_motion_core(); });
-    factories.emplace("tmc429", [] { return make_tmc429_motion_core(); });
-    factories.emplace("tmc5160", [] { return make_tmc5160_motion_core(); });
+#define TMCL_MOTION_CORE(name) factories.emplace(#name, [] { return make_##name##_motion_core(); });
+#include "tmcl/motion_cores.def"
+#undef TMCL_MOTION_CORE
   }
 };
 

@@ -9,9 +9,12 @@
 //   global3 <param> <value>         (bank 3, the interrupt settings: STGP of a parameter with E)
 //   axis <motor> <param> <value>
 //   coord <motor> <n> <value>
+//   program <address> <op> <type> <motor> <value>   (program memory, on a module that keeps it
+//                                   in EEPROM: every word from address 0, without a gap)
 //   check <8 hex digits>            FNV-1a 32 of every byte before this line
-// global3 came after the first files were written; a file without it reads as before, and the
-// version stays 1 (an older tmclrun refuses a file with it as an unknown record, by name).
+// global3 and program came after the first files were written; a file without them reads as
+// before, and the version stays 1 (an older tmclrun refuses a file with one as an unknown
+// record, by name).
 // A file that does not match (header, syntax, duplicate record, checksum) is rejected with every
 // error in one go, each FILE:LINE:COL: error: ... with the line and a caret, like the assembler. Saving writes FILE.tmp, flushes it, then renames it over FILE, so a
 // killed process leaves either the old or the new file, never half of one.
@@ -27,6 +30,7 @@
 #include <utility>
 #include <vector>
 
+#include "tmcl/codec.hpp"
 #include "tmcl/diag_text.hpp"
 
 namespace tmcl {
@@ -38,6 +42,9 @@ struct EepromImage {
   std::map<int, std::int32_t> bank3;                    // bank 3 (STGP of a parameter with E)
   std::map<std::pair<int, int>, std::int32_t> axis;     // (motor, param) (STAP)
   std::map<std::pair<int, int>, std::int32_t> coords;   // (motor, n) (SCO n, 255 / global 84)
+  // Program memory, on a module whose profile keeps it in EEPROM (program-memory N eeprom):
+  // what a host downloaded (132/133), or the program of a plain run (docs/errata.md E55).
+  std::vector<Instruction> program;
   friend bool operator==(const EepromImage&, const EepromImage&) = default;
 };
 

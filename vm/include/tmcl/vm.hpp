@@ -262,6 +262,11 @@ struct Vm {
   // Power-up: every register, parameter and variable to its default, then what `image`
   // restores (user variables, axis parameters, coordinates, bank 0). Time restarts at 0.
   void power_on(const EepromImage* image = nullptr);
+  // Program memory in the EEPROM, on a module whose profile says `program-memory N eeprom`:
+  // store_program() copies program memory into `eeprom` (a download's end, the program of a
+  // run with an EEPROM file; docs/errata.md E55); a module that keeps it in RAM stores nothing.
+  bool program_in_eeprom() const;
+  void store_program();
   // Starts (or continues) the program at `address` (control command 129); clears a fault.
   void start(std::int32_t address);
   // Control command 130: exactly one instruction from `pc` at the current instant (a WAIT is

@@ -1,8 +1,7 @@
 // Static analysis of a linked TMCL program's control flow (docs/analysis.md): the control-flow
 // graph of the whole image, with the main program, every subroutine (CSUB/CALL target) and every
 // interrupt handler (VECT target) as a region, the call-stack depth along every path, and the
-// warnings -Wcall-depth, -Wrecursion, -Wstack-leak, -Wrsub, -Wreti, -Wvect, -Wunreachable,
-// -Wfall-off, -Weeprom-wear and -Wwait-in-handler as Diagnostics with notes showing the path.
+// analysis' warnings (warning_table(), docs/analysis.md) as Diagnostics with notes showing the path.
 //
 // It needs only instructions, so it runs alike on sources, linked units and .bin images; source
 // positions (AsmResult::lines and sources) and label names (symbols) are optional. It is linear

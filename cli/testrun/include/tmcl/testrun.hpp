@@ -202,9 +202,9 @@ class Module : public ExprReader {
   virtual bool cancelled() const { return false; }  // Ctrl-C: the test ends as an error
 };
 // Runs one test file on the module by the wall clock: values polled when their instant comes,
-// then the end awaited (the program stops, or max-time). A test with scenario lines, or written
-// for another module than options.target, is skipped; `never fault` and `no warnings` become
-// notes (a module reports neither).
+// then the end awaited (the program stops, or max-time). A test that changes inputs in time, or
+// written for another module than options.target, is skipped; `switch` lines (the machine) and
+// `never fault` and `no warnings` become notes (a module simulates none of them).
 TestResult run_test_live(const std::string& path, const RunOptions& options, ProgramCache& cache, Module& module);
 
 // ---- several tests ----

@@ -40,6 +40,17 @@ enum class Role : std::uint8_t {
 
 enum class KwSet : std::uint8_t { None, Move, CalcA, CalcX, CalcV, CalcVV, Cond, Wait, Cle, Rfs };
 
+// Every keyword's value by name, for the code that executes them: `case kw::Move::REL:`, not
+// `case 1:`. Generated from keywords.def, as the assembler's table is.
+namespace kw {
+#define KEYWORD(set, name, value) \
+  namespace set {                 \
+  inline constexpr int name = value; \
+  }
+#include "tmcl/keywords.def"
+#undef KEYWORD
+}  // namespace kw
+
 struct OperandSpec {
   Field field;
   Role role;

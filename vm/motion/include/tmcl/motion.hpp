@@ -163,26 +163,10 @@ std::vector<std::string> motion_core_names();
 // may name one a newer tmcl has), its `fallback=` core, else `ideal`, with `note` saying so.
 std::unique_ptr<MotionCore> make_profile_motion_core(const Profile& profile, std::string* note = nullptr);
 
-// The built-in `ideal` core: every move completes at the instant it is commanded, rotation runs
-// at the commanded speed from that instant (infinite acceleration).
-std::unique_ptr<MotionCore> make_ideal_motion_core();
-
-// The built-in `tmc4361` core (USB-2-SD): trapezoid/SixPoint and S-shaped ramps, velocity mode,
-// re-planning, virtual stops, stop switches, encoder deviation (docs/motion.md).
-std::unique_ptr<MotionCore> make_tmc4361_motion_core();
-
-// The built-in `linear` core (TMC2300-MOTOR-EVAL): one acceleration for both directions of
-// speed change, speeds limited to ±32767 pps (docs/motion.md).
-std::unique_ptr<MotionCore> make_linear_motion_core();
-
-// The built-in `tmc429` core (TMCM-1110, -3110, -6110, -351): the TMC429's velocities and
-// accelerations in chip units with pulse and ramp divisors, limit switches with their stop
-// functions, and the modules' reference search (docs/motion.md).
-std::unique_ptr<MotionCore> make_tmc429_motion_core();
-
-// The built-in `tmc5160` core (TMCM-1260, PD57/60-1260): SixPoint positioning ramps in pps,
-// velocity mode, limit switches with their stop functions, and the module's reference search
-// with its +64 modes (docs/motion.md).
-std::unique_ptr<MotionCore> make_tmc5160_motion_core();
+// The built-in cores' factories: make_ideal_motion_core(), make_tmc4361_motion_core(), ... one
+// for each line of motion_cores.def, which says what each core is.
+#define TMCL_MOTION_CORE(name) std::unique_ptr<MotionCore> make_##name##_motion_core();
+#include "tmcl/motion_cores.def"
+#undef TMCL_MOTION_CORE
 
 }  // namespace tmcl

@@ -24,15 +24,18 @@ struct ParamRef {
 
 // Reads a parameter from words[at..], advancing `at`:
 //   ap N [MOTOR] | gp N [BANK] | io N [BANK] | ap:N[:MOTOR] | gp:N[:BANK] | io:N[:BANK]
-//   | NAME [MOTOR]   (an axis or bank-0 global parameter of the profile, any case, e.g.
-//                     'actual position'; an unknown name gets a did-you-mean)
-// With `single_word`, only the one-word forms (for monitor, which takes a list).
+//   | NAME [MOTOR]   (an axis, bank-0 or bank-3 global parameter of the profile, any case, e.g.
+//                     'actual position', 'timer 0 period'; an unknown name gets a did-you-mean)
+// With `single_word`, only the one-word forms (for monitor, which takes a list). `keep` words
+// after the parameter belong to the command (set: its value): an optional motor or bank is
+// taken only from words beyond them.
 bool parse_param(const std::vector<std::string>& words, std::size_t& at, const Profile& profile, bool single_word,
-                 ParamRef& out, std::string& error);
+                 ParamRef& out, std::string& error, std::size_t keep = 0);
 
 enum class ParamAction : std::uint8_t { Get, Set, Store };
 // The instruction for an action on `p` (Set with `value`); false with `error` when the module's
-// profile says the parameter cannot do it (not writable, not stored in EEPROM, I/O store).
+// profile says the parameter cannot do it (not writable, not stored in EEPROM, I/O store, a
+// motor the module lacks, a user variable beyond bank 2 or without an EEPROM copy).
 bool param_instruction(const ParamRef& p, ParamAction action, std::int32_t value, const Profile& profile, Instruction& out,
                        std::string& error);
 

@@ -1,6 +1,6 @@
 // The names of a direct-mode session (tmclctl console and send): each line is assembled by the
-// project's assembler, with TMCLParam.tmc and the module's include file (USB-2-SD.inc, ...)
-// predefined and every `NAME = VALUE` and `#include` typed so far kept for the session. Nothing
+// project's assembler, with TMCLParam.tmc, Interrupts.inc (on a module with interrupt vectors)
+// and the module's include file (USB-2-SD.inc, ...) predefined and every `NAME = VALUE` and `#include` typed so far kept for the session. Nothing
 // here reads source itself: what a line defines is what the assembler reports (its symbols), and
 // the session hands those back to it as -D definitions with every later line, so names resolve
 // and misspellings get a did-you-mean exactly as in a program. One liberty a console needs: a
@@ -23,7 +23,8 @@ std::string module_include_file(const Profile& profile);
 
 class ConsoleSession {
  public:
-  // Predefines TMCLParam.tmc and module_include_file(profile).
+  // Predefines TMCLParam.tmc, Interrupts.inc (when the profile lists interrupt vectors) and
+  // module_include_file(profile).
   ConsoleSession(const Profile& profile, std::vector<std::string> include_dirs);
 
   struct Entry {
@@ -42,7 +43,7 @@ class ConsoleSession {
   // folders cannot be searched.
   Entry enter(const std::string& line);
 
-  // The files predefined at the start ("TMCLParam.tmc", "USB-2-SD.inc").
+  // The files predefined at the start ("TMCLParam.tmc", "Interrupts.inc", "USB-2-SD.inc").
   const std::vector<std::string>& predefined() const { return predefined_; }
   std::size_t name_count() const { return defines_.size(); }
 
