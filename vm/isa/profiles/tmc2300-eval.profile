@@ -56,7 +56,7 @@ axis 220 "Supply voltage" 0..51 R default=37 unit="0.1 V" src=M:table11 unverifi
 global 0 65 "UART baud rate" 0..7 RWA default=0 src=M:table13
 global 0 66 "Serial address" 1..255 RWA default=1 src=M:3.6.9 unverified=default  # not in table 13: the SGP/GGP examples
 global 0 77 "Auto start mode" 0..1 RWA default=0 src=M:table13
-global 0 85 "Do not restore user variables" 0..1 RWA default=0 src=M:6.4 unverified=default  # not in table 13
+global 0 85 "Do not restore user variables" 0..1 RWA default=0 src=M:6.4  # not in table 13; 6.4: restoring at startup is "the default setting"
 global 0 128 "TMCL application status" 0..3 R default=0 src=M:table13
 global 0 130 "TMCL program counter" 0..2047 R default=0 src=M:table13
 global 0 132 "TMCL tick timer" 0..2147483647 RW default=0 unit=ms src=M:table13  # unit from the text

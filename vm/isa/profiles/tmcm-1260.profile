@@ -66,7 +66,7 @@ axis 31 "Power down ramp" 0..15 RW default=0 unit="0.16384 s" src=M:4 unverified
 axis 32 "DcStep time" 0..1023 RW default=0 src=M:4 unverified=default
 axis 33 "DcStep stallGuard" 0..255 RW default=0 src=M:4 unverified=default
 axis 127 "Relative positioning option" 0..1 RW default=0 src=M:4 unverified=default  # 0: from the last target position
-axis 140 "Microstep resolution" 0..8 RW default=8 src=M:4 unverified=default
+axis 140 "Microstep resolution" 0..8 RW default=8 src=M:4,M:6.1  # 6.1: "default setting is 256 microsteps per full step"
 axis 160 "Step interpolation enable" 0..1 RW default=0 src=M:4 unverified=default
 axis 161 "Double step enable" 0..1 RW default=0 src=M:4 unverified=default
 axis 162 "Chopper blank time" 0..3 RW default=2 src=M:4 unverified=default
@@ -142,7 +142,7 @@ global 0 130 "TMCL program counter" 0..2047 R default=0 src=M:5.1  # no range in
 global 0 131 "Last TMCL error" 0..255 R default=0 src=Y,P unverified=range,access
 global 0 132 "TMCL tick timer" 0..2147483647 RW default=0 unit=ms src=M:5.1
 global 0 133 "Random number" 0..2147483647 RW default=0 src=M:5.1
-global 0 255 "Suppress reply" 0..1 RW default=0 src=M:5.1 unverified=default
+global 0 255 "Suppress reply" 0..1 RW default=0 src=M:5.1  # "will be reset to 0 on startup"
 
 # Interrupt configuration, bank 3.
 global 3 0 "Timer 0 period" 0..4294967295 RW default=0 unit=ms src=M:5.4

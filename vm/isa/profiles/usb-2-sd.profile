@@ -76,7 +76,7 @@ global 0 129 "Download mode" 0..1 R default=0 src=M:table16
 global 0 130 "TMCL program counter" 0..576 R default=0 src=M:table16
 global 0 132 "TMCL tick timer" 0..2147483647 RW default=0 unit=ms src=M:table16  # unit from the text
 global 0 133 "Random number" 0..2147483647 RW default=0 src=M:table16
-global 0 255 "Suppress reply" 0..1 RW default=0 src=M:table16 unverified=default
+global 0 255 "Suppress reply" 0..1 RW default=0 src=M:table16  # "will be reset to 0 on startup"
 
 # Table 18: interrupt configuration. Timer periods are unsigned 32-bit values.
 global 3 0 "Timer 0 period (ms)" 0..4294967295 RW default=0 unit=ms src=M:table18 unverified=default
