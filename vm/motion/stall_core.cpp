@@ -99,8 +99,7 @@ double last_point(const Segment& seg, double t1, double t2, double cbase, double
 
 }  // namespace
 
-void SwitchCore::reset(const Profile& profile, int motors) {
-  RampCore::reset(profile, motors);
+void SwitchCore::reset_stall(const Profile& profile) {
   // The model applies where the module has stallGuard2: its profile lists the threshold 174
   // (generic: the TMCM-1110's rows stand in, as for every parameter of the core).
   sg_on_ = profile.any_parameter || profile.axis_param(kSgThreshold) != nullptr;

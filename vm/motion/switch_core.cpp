@@ -30,6 +30,7 @@ void SwitchCore::reset(const Profile& profile, int motors) {
   const Profile* spec = profile.any_parameter ? find_profile(home_) : &profile;
   enc_spec_ = spec ? EncoderSpec::of(*spec) : EncoderSpec{};
   for (auto& m : motors_) set_prescaler(m);
+  reset_stall(profile);
 }
 
 bool SwitchCore::models_encoder(const Profile& profile) const {

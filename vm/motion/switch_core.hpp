@@ -120,7 +120,6 @@ class SwitchCore : public ramp::RampCore<Motor> {
   void encoder_slip(int motor, std::int32_t counts) override;
   bool models_encoder(const Profile& profile) const override;
   // ---- loads, stalls and lost steps (stall_core.cpp; docs/motion.md)
-  void reset(const Profile& profile, int motors) override;
   SimTime next_event() const override;
   bool place_hard_stop(int motor, SwitchInput side, std::int64_t position) override;
   bool set_load(int motor, int percent) override;
@@ -208,6 +207,7 @@ class SwitchCore : public ramp::RampCore<Motor> {
   EncoderSpec enc_spec_;
 
   // ---- stall_core.cpp
+  void reset_stall(const Profile& profile);  // from reset(): which stallGuard2 the module has
   bool sg_on_ = false;    // the module has stallGuard2 (its profile lists 174)
   bool flags208_ = false; // ... and flags a stall in 208 bit 0
   std::int64_t current_steps_ = 256;  // the run current's range (6) in 32 steps of the current scale
