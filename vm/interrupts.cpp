@@ -14,9 +14,10 @@ struct NotSimulated {
   std::string_view why;
 };
 constexpr NotSimulated kNotSimulated[] = {
-    {VectorSource::Stall, "*", "no motion core models stallGuard2 load measurement"},
-    {VectorSource::Deviation, "tmc429", "the tmc429 core has no encoder model"},
-    {VectorSource::Deviation, "tmc5160", "the tmc5160 core has no encoder model"},
+    // stallGuard2 is modelled by the TMCM cores only (vm/motion/stall_core.cpp, docs/motion.md)
+    {VectorSource::Stall, "ideal", "the ideal core models no load and no stallGuard2"},
+    {VectorSource::Stall, "tmc4361", "the tmc4361 core models no load and no stallGuard2"},
+    {VectorSource::Stall, "linear", "the linear core models no load and no StallGuard4"},
     {VectorSource::Deviation, "linear", "the linear core has no encoder model"},
 };
 
