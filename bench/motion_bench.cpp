@@ -5,7 +5,8 @@
 // and duration (short, long and very long moves are timed separately). The same for the tmc429
 // core's trapezoids and the tmc5160 core's SixPoint ramps (TMCM-1260), and a whole program on the
 // tmc429 core in the VM: a reference search on switches placed at positions, then moves for one
-// simulated hour (goal: under 50 ms).
+// simulated hour (goal: under 50 ms); and the same hour after homing by stall instead (issue 34:
+// a TMCM-1110 driving into a hard stop until stop on stall, its interrupt, back off, SAP 1).
 // Prints rows "figure<TAB>goal<TAB>measured".
 #include <chrono>
 #include <cstdio>
@@ -90,6 +91,48 @@ double homing_hour_ms(long& moves, tmcl::SimTime& simulated) {
   return ms;
 }
 
+// Wall milliseconds of examples/tmcm1110/stall_homing.tmc with its scenario's left hard stop at
+// -20000, on the TMCM-1110 profile, its loop running until the tick timer passes one hour instead
+// of two round trips: ROL into the stop until stop on stall (181) stops the motor, the stall
+// interrupt (vector 15) sets user variable 0, back off 1600 microsteps, SAP 1 to 0, then MVP ABS
+// 60000 / WAIT POS / MVP ABS 10000 / WAIT POS. `moves` gets the number of moves made
+// (user variable 1 counts the round trips, as in the example).
+double stall_homing_hour_ms(long& moves, tmcl::SimTime& simulated) {
+  using tmcl::Op;
+  namespace kw = tmcl::kw;
+  auto core = tmcl::make_motion_core("tmc429");
+  tmcl::Vm vm(*tmcl::find_profile("tmcm-1110"), *core);
+  const int kStalled = 33, kWaitStall = 12, kLoop = 22;
+  vm.load({I(Op::VECT, 15, 0, kStalled), I(Op::EI, 15), I(Op::EI, 255),
+           I(Op::SAP, 140, 0, 4), I(Op::SAP, 154, 0, 3), I(Op::SAP, 153, 0, 7), I(Op::SAP, 4, 0, 1000),
+           I(Op::SAP, 5, 0, 100), I(Op::SAP, 173, 0, 0), I(Op::SAP, 174, 0, 0), I(Op::SAP, 181, 0, 200),
+           I(Op::ROL, 0, 0, 400),
+           /* 12 WaitStall: */ I(Op::WAIT, kw::Wait::TICKS, 0, 10), I(Op::GGP, 0, 2), I(Op::COMP, 0, 0, 0),
+           I(Op::JC, kw::Cond::EQ, 0, kWaitStall),
+           I(Op::GAP, 1, 0), I(Op::CALC, kw::CalcA::ADD, 0, 1600), I(Op::AAP, 0, 0), I(Op::WAIT, kw::Wait::POS, 0, 0),
+           I(Op::SAP, 1, 0, 0), I(Op::SAP, 181, 0, 0),
+           /* 22 Loop: */ I(Op::MVP, kw::Move::ABS, 0, 60000), I(Op::WAIT, kw::Wait::POS, 0, 0),
+           I(Op::MVP, kw::Move::ABS, 0, 10000), I(Op::WAIT, kw::Wait::POS, 0, 0),
+           I(Op::GGP, 1, 2), I(Op::CALC, kw::CalcA::ADD, 0, 1), I(Op::AGP, 1, 2),  // (no CALCV on the TMCM-1110)
+           I(Op::GGP, 132, 0), I(Op::COMP, 0, 0, 3600000), I(Op::JC, kw::Cond::LT, 0, kLoop), I(Op::STOP),
+           /* 33 Stalled: */ I(Op::SGP, 0, 2, 1), I(Op::RETI)});
+  vm.power_on(nullptr);
+  tmcl::InputEvent stop;
+  stop.kind = tmcl::InputEvent::HardStop;
+  stop.input = tmcl::SwitchInput::StopLeft;
+  stop.from = stop.to = -20000;
+  vm.add_inputs({stop});
+  vm.start(0);
+  auto start = std::chrono::steady_clock::now();
+  tmcl::RunResult r = vm.run({});
+  double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  if (r.halt != tmcl::Halt::Stop) std::fprintf(stderr, "motion_bench: the stall-homing program did not stop: %s\n", r.message.c_str());
+  if (vm.vars[0] != 1) std::fprintf(stderr, "motion_bench: the stall-homing program never stalled\n");
+  moves = 2L * vm.vars[1];
+  simulated = vm.now;
+  return ms;
+}
+
 }  // namespace
 
 int main() {
@@ -112,5 +155,9 @@ int main() {
   double ms = homing_hour_ms(moves, simulated);
   std::printf("tmc429 program: RFS, then moves for one simulated hour (%ld moves, %.0f s) (ms)\t< 50\t%.2f\n", moves,
               static_cast<double>(simulated) * 1e-6, ms);
+  stall_homing_hour_ms(moves, simulated);  // warm up
+  ms = stall_homing_hour_ms(moves, simulated);
+  std::printf("tmc429 program (TMCM-1110): homing by stall at a hard stop, then moves for one simulated hour (%ld moves, %.0f s) (ms)\t< 50\t%.2f\n",
+              moves, static_cast<double>(simulated) * 1e-6, ms);
   return 0;
 }
