@@ -1,7 +1,7 @@
 // Checks an encoded instruction against a module profile. A command the module lacks is an
 // error (the module would answer "invalid command"); everything the module would accept but
 // probably not as meant — an unknown parameter, a write to a read-only one, a store or restore of
-// one the EEPROM does not keep, a value outside the documented range, a motor or variable that does not exist — is a warning.
+// one the EEPROM does not keep, a value outside the documented range, a motor, variable or I/O port that does not exist — is a warning.
 #include "internal.hpp"
 #include "tmcl/param_names.hpp"
 #include "tmcl/params.hpp"
@@ -68,10 +68,26 @@ class Checker {
         d_.warning(operand_loc(s_, spec.field),
                    "interrupt " + std::to_string(v) + " does not exist on " + std::string(p_.title), "target");
     }
+    if (op == Op::GIO || op == Op::SIO) port(op == Op::SIO);
     velocity(op);
   }
 
  private:
+  // GIO/SIO of a port the profile does not list (errata E53): the module answers "wrong type" and
+  // the VM warns no-such-port; say it here with the ports of that bank there are. `ports any`
+  // (generic, USB-2-SD) checks nothing; a bank outside 0 … 2 is not a port question.
+  void port(bool write) {
+    const int bank = ins_.motor;
+    if (p_.any_port || bank > 2) return;
+    if (write ? p_.write_port(bank, ins_.type) : p_.read_port(bank, ins_.type)) return;
+    const std::string there = p_.port_numbers(bank, write);
+    const std::string reaches = there == "none" ? "no port" : (there.find(',') == std::string::npos ? "port " : "ports ") + there;
+    d_.warning(operand_loc(s_, Field::Type), "port " + std::to_string(ins_.type) + " of bank " + std::to_string(bank) +
+                                                 " does not exist on " + std::string(p_.title) + " (" + (write ? "SIO" : "GIO") +
+                                                 " reaches " + reaches + " of bank " + std::to_string(bank) + ")",
+               "target");
+  }
+
   void velocity(Op op) {
     if ((op == Op::ROR || op == Op::ROL))
       if (const ParamInfo* speed = p_.axis_param(kApTargetSpeed); speed && !accepts(*speed, ins_.value))

@@ -331,12 +331,6 @@ std::uint8_t Vm::get_io(int port, int bank, std::int32_t& value) {
   return kStatusOk;
 }
 
-std::string Vm::ports_text(int bank, bool write) const {
-  std::string s;
-  for (const auto& p : profile->ports)
-    if (p.bank == bank && (write ? p.output : (!p.output || bank == 2)))
-      s += (s.empty() ? "" : ", ") + std::to_string(p.number);
-  return s.empty() ? "none" : s;
-}
+std::string Vm::ports_text(int bank, bool write) const { return profile->port_numbers(bank, write); }
 
 }  // namespace tmcl

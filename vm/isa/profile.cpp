@@ -128,6 +128,14 @@ const IoPort* Profile::write_port(int bank, int number) const {
   return nullptr;
 }
 
+std::string Profile::port_numbers(int bank, bool write) const {
+  std::string s;
+  for (const auto& p : ports)
+    if (p.bank == bank && (write ? p.output : (!p.output || bank == 2)))
+      s += (s.empty() ? "" : ", ") + std::to_string(p.number);
+  return s.empty() ? "none" : s;
+}
+
 bool Profile::digital_input(int n) const {
   if (any_port) return n >= 0 && n < kPortCount;
   const IoPort* p = read_port(0, n);

@@ -146,6 +146,9 @@ struct Profile {
   // bank 2 an output read back; nullptr when the module has none there.
   const IoPort* read_port(int bank, int number) const;
   const IoPort* write_port(int bank, int number) const;
+  // The port numbers GIO (read) or SIO (write) reaches in `bank`, as "0, 1, 2, 255" ("none"):
+  // what the VM's no-such-port warning and the assembler's port warning list.
+  std::string port_numbers(int bank, bool write) const;
   // Whether digital input n (GIO n, 0) exists: a listed digital input, or any under `ports any`.
   bool digital_input(int n) const;
   // The highest port number of `bank` the profile lists (inputs of 0 and 1, outputs of 2), -1: none.
