@@ -151,6 +151,18 @@ void TextTrace::warning(const Vm& vm, const RuntimeWarning& w) {
 namespace {
 
 // Every JSON text of tmclrun is written by the project's JSON library (tmcl/json.hpp).
+// The run-time warnings (or notes) of a run as a JSON list under `key`.
+void set_warnings(json::Value& s, const char* key, const std::vector<RuntimeWarning>& list) {
+  json::Value& out = s.set(key, json::Value::array());
+  for (const auto& w : list) {
+    json::Value& o = out.push(json::Value::object());
+    o.set("time_us", static_cast<long long>(w.at));
+    o.set("pc", static_cast<long long>(w.pc));
+    o.set("kind", warning_kind_name(w.kind));
+    o.set("message", w.message);
+  }
+}
+
 template <typename Range>
 json::Value int_array(const Range& r) {
   json::Value a = json::Value::array();
@@ -286,25 +298,11 @@ std::string state_json(Vm& vm, const RunResult& result) {
   interrupts.set("in_handler", vm.in_handler);
   // Only when there are any, so that a clean run's JSON has no key more.
   if (vm.warnings_total != 0) {
-    json::Value& list = s.set("warnings", json::Value::array());
-    for (const auto& w : vm.warnings) {
-      json::Value& o = list.push(json::Value::object());
-      o.set("time_us", static_cast<long long>(w.at));
-      o.set("pc", static_cast<long long>(w.pc));
-      o.set("kind", warning_kind_name(w.kind));
-      o.set("message", w.message);
-    }
+    set_warnings(s, "warnings", vm.warnings);
     s.set("warnings_omitted", static_cast<long long>(vm.warnings_total - vm.warnings.size()));
   }
   if (!vm.notes.empty()) {  // E52: what the run does not simulate though the program enabled it
-    json::Value& list = s.set("notes", json::Value::array());
-    for (const auto& w : vm.notes) {
-      json::Value& o = list.push(json::Value::object());
-      o.set("time_us", static_cast<long long>(w.at));
-      o.set("pc", static_cast<long long>(w.pc));
-      o.set("kind", warning_kind_name(w.kind));
-      o.set("message", w.message);
-    }
+    set_warnings(s, "notes", vm.notes);
   }
   return json::write_lines(s) + "\n";
 }

@@ -6,6 +6,7 @@
 
 #include "check.hpp"
 #include "machine.hpp"
+#include "scenario_errors.hpp"
 #include "tmcl/scenario.hpp"
 
 using namespace vmtest;
@@ -33,11 +34,7 @@ TEST(scenario_hardstop_and_load_lines) {
 }
 
 TEST(scenario_hardstop_and_load_errors) {
-  struct Case {
-    const char* line;
-    const char* message;
-  };
-  const Case cases[] = {
+  const ScenarioError cases[] = {
       {"hardstop up 0 at 5", "s.txt:1:10: error: unknown hard stop 'up' (left, right)"},
       {"hardstop rihgt 0 at 5", "s.txt:1:10: error: unknown hard stop 'rihgt' (left, right); did you mean 'right'?"},
       {"hardstop left 3 at 5", "s.txt:1:15: error: tmcm-1110 has no motor 3 (0..2)"},
@@ -64,11 +61,5 @@ TEST(scenario_hardstop_and_load_errors) {
   tmcl::ScenarioOptions opts;
   opts.motors = 3;
   opts.module = "tmcm-1110";
-  for (const auto& c : cases) {
-    std::vector<InputEvent> ev;
-    std::string err;
-    CHECK(!tmcl::parse_scenario(std::string(c.line) + "\n", "s.txt", ev, err, opts));
-    if (err.rfind(c.message, 0) != 0) std::fprintf(stderr, "%s\n  gave: %s\n", c.line, err.c_str());
-    CHECK(err.rfind(c.message, 0) == 0);
-  }
+  expect_scenario_errors(cases, opts);
 }

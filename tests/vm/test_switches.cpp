@@ -5,6 +5,7 @@
 
 #include "check.hpp"
 #include "machine.hpp"
+#include "scenario_errors.hpp"
 #include "tmcl/scenario.hpp"
 
 using namespace vmtest;
@@ -51,11 +52,7 @@ TEST(scenario_switch_lines) {
 }
 
 TEST(scenario_switch_line_errors) {
-  struct Case {
-    const char* line;
-    const char* message;
-  };
-  const Case cases[] = {
+  const ScenarioError cases[] = {
       {"switch home 0 at 5", "s.txt:1:15: error: a home switch closes over a range"},
       {"switch lfet 0 at 5", "s.txt:1:8: error: unknown switch 'lfet' (left, right, home); did you mean 'left'?"},
       {"switch left 0 from 5 to 1", "s.txt:1:25: error: the range ends below its start (5 > 1)"},
@@ -72,13 +69,7 @@ TEST(scenario_switch_line_errors) {
   tmcl::ScenarioOptions opts;
   opts.motors = 1;
   opts.module = "usb-2-sd";
-  for (const auto& c : cases) {
-    std::vector<InputEvent> ev;
-    std::string err;
-    CHECK(!tmcl::parse_scenario(std::string(c.line) + "\n", "s.txt", ev, err, opts));
-    if (err.rfind(c.message, 0) != 0) std::fprintf(stderr, "%s\n  gave: %s\n", c.line, err.c_str());
-    CHECK(err.rfind(c.message, 0) == 0);
-  }
+  expect_scenario_errors(cases, opts);
 }
 
 // The left switch at -2000 stops a ROL (tmc429: hard stop by default), ends WAIT LIMSW at that
