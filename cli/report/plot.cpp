@@ -235,9 +235,10 @@ void write_svg(std::ostream& out, const Plot& whole, const PlotOptions& opt) {
                           o << "<text x=\"" << x + 28 << "\" y=\"" << y << "\" font-size=\"13\" fill=\"#333\">" << xml_text(name) << "</text>\n";
                         }});
     }
-  bool present[5] = {};
+  constexpr int kMarkKinds = static_cast<int>(Mark::Other) + 1;  // Other is the enum's last
+  bool present[kMarkKinds] = {};
   for (const auto& m : plot.marks) present[static_cast<int>(m.kind)] = true;
-  for (int k = 0; k < 5; ++k) {
+  for (int k = 0; k < kMarkKinds; ++k) {
     if (!present[k]) continue;
     const auto kind = static_cast<Mark>(k);
     legend.push_back({16 + 6.8 * static_cast<double>(mark_name(kind).size()) + 14, [kind](std::ostream& o, double x, double y) {
