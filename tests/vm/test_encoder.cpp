@@ -6,6 +6,7 @@
 
 #include "check.hpp"
 #include "machine.hpp"
+#include "scenario_world.hpp"
 #include "tmcl/scenario.hpp"
 
 using namespace vmtest;
@@ -13,28 +14,9 @@ using tmcl::Halt;
 using tmcl::InputEvent;
 using tmcl::Op;
 
-namespace {
-
-struct Slipping {
-  std::unique_ptr<tmcl::MotionCore> core;
-  tmcl::Vm vm;
-  Slipping(const char* core_name, const tmcl::Profile& profile, const std::vector<Instruction>& prog, const char* scenario)
-      : core(tmcl::make_motion_core(core_name)), vm(profile, *core) {
-    vm.instr_time = 20;
-    vm.load(prog);
-    vm.power_on(nullptr);
-    std::vector<InputEvent> ev;
-    std::string err;
-    CHECK(tmcl::parse_scenario(scenario, "s.txt", ev, err));
-    vm.add_inputs(ev);
-    vm.start(0);
-  }
-};
-
-}  // namespace
 
 TEST(slip_beyond_212_raises_the_deviation_interrupt) {
-  Slipping w("tmc429", tmcl::generic_profile(),
+  World w("tmc429", tmcl::generic_profile(),
              {I(Op::VECT, 21, 0, 7), I(Op::EI, 21), I(Op::EI, 255), I(Op::SAP, 212, 0, 1000), I(Op::ROR, 0, 0, 500),
               I(Op::WAIT, 0, 0, 300), I(Op::STOP), I(Op::CALCV, 0, 21, 1), I(Op::RETI)},
              "at 1s slip 0 = -900\nat 2s slip 0 = -200\n");
@@ -62,7 +44,7 @@ TEST(slip_on_a_core_without_encoder_is_a_file_error) {
 }
 
 TEST(unchecked_slip_on_a_core_without_encoder_faults) {
-  Slipping w("linear", *tmcl::find_profile("tmc2300-eval"), {I(Op::WAIT, 0, 0, 300), I(Op::STOP)},
+  World w("linear", *tmcl::find_profile("tmc2300-eval"), {I(Op::WAIT, 0, 0, 300), I(Op::STOP)},
              "\nat 1s slip 0 = -400\n");
   auto r = w.vm.run({100000, tmcl::kNever});
   CHECK(r.halt == Halt::Fault);

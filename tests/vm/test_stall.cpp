@@ -6,7 +6,7 @@
 
 #include "check.hpp"
 #include "machine.hpp"
-#include "scenario_errors.hpp"
+#include "scenario_world.hpp"
 #include "tmcl/scenario.hpp"
 
 using namespace vmtest;

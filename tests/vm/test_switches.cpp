@@ -5,7 +5,7 @@
 
 #include "check.hpp"
 #include "machine.hpp"
-#include "scenario_errors.hpp"
+#include "scenario_world.hpp"
 #include "tmcl/scenario.hpp"
 
 using namespace vmtest;
@@ -14,27 +14,6 @@ using tmcl::InputEvent;
 using tmcl::Op;
 using tmcl::SwitchInput;
 
-namespace {
-
-// A machine on the generic profile with a core by name and a scenario.
-struct World {
-  std::unique_ptr<tmcl::MotionCore> core;
-  tmcl::Vm vm;
-  World(const char* core_name, const std::vector<Instruction>& prog, const std::string& scenario)
-      : core(tmcl::make_motion_core(core_name)), vm(tmcl::generic_profile(), *core) {
-    vm.instr_time = 20;
-    vm.load(prog);
-    vm.power_on(nullptr);
-    std::vector<InputEvent> ev;
-    std::string err;
-    CHECK(tmcl::parse_scenario(scenario, "s.txt", ev, err));
-    CHECK_EQ(err, std::string());
-    vm.add_inputs(ev);
-    vm.start(0);
-  }
-};
-
-}  // namespace
 
 TEST(scenario_switch_lines) {
   std::vector<InputEvent> ev;
