@@ -12,6 +12,7 @@ struct NotSimulated {
   VectorSource source;
   std::string_view core;
   std::string_view why;
+  std::string_view unless_constant = {};  // the row does not apply where the profile sets this motion constant
 };
 constexpr NotSimulated kNotSimulated[] = {
     // stallGuard2 is modelled by the TMCM cores only (vm/motion/stall_core.cpp, docs/motion.md)
@@ -19,6 +20,9 @@ constexpr NotSimulated kNotSimulated[] = {
     {VectorSource::Stall, "tmc4361", "the tmc4361 core models no load and no stallGuard2"},
     {VectorSource::Stall, "linear", "the linear core models no load and no StallGuard4"},
     {VectorSource::Deviation, "linear", "the linear core has no encoder model"},
+    // the TMCM cores model the encoder where the profile declares one (switch_core.cpp)
+    {VectorSource::Deviation, "tmc429", "the profile declares no encoder (motion-constant encoder)", "encoder"},
+    {VectorSource::Deviation, "tmc5160", "the profile declares no encoder (motion-constant encoder)", "encoder"},
 };
 
 constexpr int kMaxMotors = 6, kMaxInputs = 8;
@@ -71,7 +75,9 @@ std::string not_simulated_reason(const Profile& profile, std::string_view core, 
       break;
   }
   for (const auto& row : kNotSimulated)
-    if (row.source == k.source && (row.core == "*" || row.core == core)) return std::string(row.why);
+    if (row.source == k.source && (row.core == "*" || row.core == core) &&
+        (row.unless_constant.empty() || (!profile.any_parameter && profile.motion_constant(row.unless_constant, 0) == 0)))
+      return std::string(row.why);
   return {};
 }
 
