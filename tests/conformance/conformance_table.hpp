@@ -78,6 +78,7 @@ inline Table read_table(const fs::path& file) {
   std::istringstream in(tmcl_test::read_text(file.string()));
   std::string line;
   for (int n = 1; std::getline(in, line); ++n) {
+    if (!line.empty() && line.back() == '\r') line.pop_back();  // a checkout with CRLF line ends
     if (line.rfind("## ", 0) == 0) {
       sec = section_of(trim(line.substr(3)));
       continue;

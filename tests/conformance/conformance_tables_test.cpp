@@ -69,16 +69,13 @@ const std::set<std::string>& known_tests() {
           if (p.filename() == "CMakeLists.txt" && std::regex_search(line, m, ctest)) out.insert(m[1]);
         }
       } else if (ext == ".tmc" || ext == ".run") {
-        // A golden case: tests/golden/SUITE/CASE or tests/vm/golden/CASE (suite vm), with a RUN: line.
+        // A golden case: tests/golden/SUITE/CASE, with a RUN: line. Compared as a relative path,
+        // not by a '/' prefix, so that Windows' backslash separators name the same case.
         const std::string text = read_text(p.string());
         if (!std::regex_search(text, run_line)) continue;
-        const fs::path golden = kRoot / "tests" / "golden", vm_golden = kRoot / "tests" / "vm" / "golden";
-        std::string rel;
-        const std::string s = p.string();
-        if (s.rfind(golden.string() + "/", 0) == 0)
-          rel = fs::relative(p, golden).replace_extension().generic_string();
-        else if (s.rfind(vm_golden.string() + "/", 0) == 0)
-          rel = "vm/" + fs::relative(p, vm_golden).replace_extension().generic_string();
+        const fs::path rel_path = p.lexically_relative(kRoot / "tests" / "golden");
+        const std::string rel = rel_path.empty() || *rel_path.begin() == ".." ? std::string()
+                                                                            : fs::path(rel_path).replace_extension().generic_string();
         if (!rel.empty()) out.insert("golden/" + rel);
       }
     }
@@ -251,7 +248,7 @@ TEST(the_checker_finds_each_kind_of_mistake) {
   if (!p) return;
   const fs::path tmp = fs::temp_directory_path() / "tmcl_conformance_selftest.md";
   {
-    std::ofstream out(tmp);
+    std::ofstream out(tmp, std::ios::binary);  // "\n", also on Windows
     out << "## Commands\n| # | Command | Status | At run time | Tests |\n|---|---|---|---|---|\n"
         << "| 1 | ROR | simulated | turns | |\n"
         << "| 2 | ROR | simulated | turns | `no_such_test_anywhere` |\n"
