@@ -8,6 +8,7 @@
 
 #include "tmcl/asm/assembler.hpp"
 #include "tmcl/host/commands.hpp"
+#include "tmcl/param_names.hpp"
 
 namespace tmcl::host {
 namespace {
@@ -45,7 +46,18 @@ AsmResult assemble_line(const std::string& line, const Profile& profile, const s
 
 }  // namespace
 
-std::string module_include_file(const Profile& profile) { return std::string(profile.include_file); }
+// The module's own include file (include-file in its profile), or the one generated from a
+// bundled profile (TMCM-1260.inc: asm/include_files.cpp); none for a profile of one's own without
+// an include-file line (also one that hides a bundled name but differs from it), whose generated
+// names no program could include either.
+std::string module_include_file(const Profile& profile) {
+  if (!profile.include_file.empty()) return std::string(profile.include_file);
+  if (profile.any_parameter) return {};
+  const std::string file = parameter_include_name(profile);
+  const auto& bundled = bundled_includes();
+  const auto found = bundled.find(file);
+  return found != bundled.end() && found->second == parameter_include_text(profile) ? file : std::string();
+}
 
 ConsoleSession::ConsoleSession(const Profile& profile, std::vector<std::string> include_dirs)
     : profile_(profile), include_dirs_(std::move(include_dirs)) {

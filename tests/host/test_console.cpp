@@ -17,6 +17,21 @@ TEST(console_predefines_tmclparam_and_the_module_include) {
            (std::vector<std::string>{"TMCLParam.tmc", "Interrupts.inc", "USB-2-SD.inc"}));
   CHECK_EQ(ConsoleSession(profile("tmc2300-eval"), {}).predefined(),
            (std::vector<std::string>{"TMCLParam.tmc", "TMC2300-MOTOR-EVAL.inc"}));
+  // A bundled module without an include-file line gets the file generated from its profile, so
+  // its own parameter names work (issue 33, 3: AP_SoftStopEnable is 26 on the 1260, not 149).
+  CHECK_EQ(ConsoleSession(profile("tmcm-1260"), {}).predefined(),
+           (std::vector<std::string>{"TMCLParam.tmc", "Interrupts.inc", "TMCM-1260.inc"}));
+  CHECK_EQ(ConsoleSession(profile("tmcm-3110"), {}).predefined(),
+           (std::vector<std::string>{"TMCLParam.tmc", "Interrupts.inc", "TMCM-3110.inc"}));
+  {
+    ConsoleSession pd(profile("pd60-1260"), {});
+    auto e = pd.enter("GAP AP_SoftStopEnable, 0");
+    CHECK(e.kind == Kind::Send);
+    CHECK(e.ins == (tmcl::Instruction{6, 26, 0, 0}));
+    e = pd.enter("SGP GP3_Timer0Period, 3, 100");
+    CHECK(e.kind == Kind::Send);
+    CHECK(e.ins == (tmcl::Instruction{9, 0, 3, 100}));
+  }
   // generic has the USB-2-SD's parameter tables, so the USB-2-SD's names.
   CHECK_EQ(tmcl::host::module_include_file(profile("generic")), std::string("USB-2-SD.inc"));
   ConsoleSession s(profile("usb-2-sd"), {});

@@ -17,8 +17,9 @@
 
 namespace tmcl::host {
 
-// The bundled include file with the names of `profile`'s parameters ("USB-2-SD.inc"), as the
-// profile's include-file line names it (generic inherits the USB-2-SD's); "" when there is none.
+// The bundled include file with the names of `profile`'s parameters: the one its include-file
+// line names ("USB-2-SD.inc"; generic inherits the USB-2-SD's), else the one generated from a
+// bundled profile ("TMCM-1260.inc"); "" when there is none.
 std::string module_include_file(const Profile& profile);
 
 class ConsoleSession {
