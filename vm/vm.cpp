@@ -86,6 +86,10 @@ void Vm::power_on(const EepromImage* image) {
     a.fill(0);
     for (const auto& ap : profile->axis_params) a[ap.number & 255] = ap.default_value;
   }
+  for (auto& marked : not_simulated_params_) marked.reset();
+  for (int t = 0; t < 3; ++t)
+    for (const ParamInfo& p : t == 0 ? profile->axis_params : t == 1 ? profile->bank0 : profile->bank3)
+      if (!p.not_simulated.empty()) not_simulated_params_[static_cast<std::size_t>(t)].set(p.number & 255);
   coords.assign(static_cast<std::size_t>(motors), std::vector<std::int32_t>(static_cast<std::size_t>(profile->coords), 0));
   inputs.fill(0);
   analog.fill(0);
@@ -269,6 +273,25 @@ bool Vm::note_not_simulated(int n) {
   std::string message = "interrupt " + std::to_string(n) + (v ? " (" + std::string(v->name) + ")" : std::string()) +
                         " is enabled, but this run never raises it (" + vector_source_text(vector_kind(n)) +
                         " is not simulated: " + why + ")";
+  if (strict) return warn(RuntimeWarning::NotSimulated, std::move(message));
+  RuntimeWarning note{now - instr_time, pc, RuntimeWarning::NotSimulated, std::move(message), true};
+  notes.push_back(note);
+  last_warning = note;
+  return false;
+}
+
+bool Vm::note_not_simulated_param(int bank, int number, std::string_view mnemonic, bool read) {
+  const int table = bank < 0 ? 0 : bank == 0 ? 1 : bank == 3 ? 2 : -1;
+  if (table < 0 || number < 0 || number > 255 || !not_simulated_params_[static_cast<std::size_t>(table)].test(static_cast<std::size_t>(number)))
+    return false;
+  const ParamInfo* p = bank < 0 ? profile->axis_param(number) : profile->global_param(bank, number);
+  if (!p || p->not_simulated.empty()) return false;
+  const std::string what = param_text(bank < 0 ? "axis parameter" : "global parameter", number, p) +
+                           (bank < 0 ? std::string() : " of bank " + std::to_string(bank));
+  for (const auto& nt : notes)
+    if (nt.message.rfind(what + " ", 0) == 0) return false;  // once per parameter, whatever the motor
+  std::string message = what + " is " + (read ? "read" : "written") + " (" + std::string(mnemonic) +
+                        "), but this run does not simulate it: " + std::string(p->not_simulated);
   if (strict) return warn(RuntimeWarning::NotSimulated, std::move(message));
   RuntimeWarning note{now - instr_time, pc, RuntimeWarning::NotSimulated, std::move(message), true};
   notes.push_back(note);

@@ -23,6 +23,9 @@ struct Internal {
   // A run-time warning; true when --strict made it a fault (then pc stays on the instruction).
   static bool warn(Vm& vm, RuntimeWarning::Kind k, std::string message) { return vm.warn(k, std::move(message)); }
   static bool note_not_simulated(Vm& vm, int vector) { return vm.note_not_simulated(vector); }
+  static bool note_not_simulated_param(Vm& vm, int bank, const Instruction& i, bool read) {
+    return vm.note_not_simulated_param(bank, i.type, op_info(i.op)->mnemonic, read);
+  }
 };
 
 using R = DirectReply;
@@ -223,16 +226,23 @@ template <bool D> R refused_param(Vm& vm, const Instruction& i, bool axis, int b
   }
   return done<D>(vm, kStatusWrongType);
 }
+// E77: an instruction that used a parameter (axis: bank -1) the profile marks not-simulated: a
+// note once per run (--strict: a fault, pc left on it).
+template <bool D> R used(Vm& vm, const Instruction& i, int bank, std::uint8_t st, bool read, std::int32_t v = 0) {
+  if constexpr (!D)
+    if (st == kStatusOk && Internal::note_not_simulated_param(vm, bank, i, read)) return ok();
+  return read ? load<D>(vm, st, v) : done<D>(vm, st);
+}
 template <bool D> R set_axis(Vm& vm, const Instruction& i, std::int32_t value) {
   if (R r{}; motor_missing<D>(vm, i, r)) return r;
   const std::uint8_t st = vm.set_axis(i.motor, i.type, value);
-  if (D || st == kStatusOk) return done<D>(vm, st);
+  if (D || st == kStatusOk) return used<D>(vm, i, -1, st, false);
   if (st == kStatusWrongType) return refused_param<D>(vm, i, true, 0, value);
   return refused_value<D>(vm, st, true, 0, i.type, "value", value);
 }
 template <bool D> R set_global(Vm& vm, const Instruction& i, std::int32_t value) {
   const std::uint8_t st = vm.set_global(i.motor, i.type, value);
-  if (D || st == kStatusOk) return done<D>(vm, st);
+  if (D || st == kStatusOk) return used<D>(vm, i, i.motor, st, false);
   if (st == kStatusWrongType) return refused_param<D>(vm, i, false, i.motor, value);
   return refused_value<D>(vm, st, false, i.motor, i.type, "value", value);
 }
@@ -297,7 +307,7 @@ template <bool D> R op_GAP(Vm& vm, const Instruction& i) {
   if (R r{}; motor_missing<D>(vm, i, r)) return r;
   std::int32_t v = 0;
   std::uint8_t st = vm.get_axis(i.motor, i.type, v);
-  return load<D>(vm, st, v);
+  return used<D>(vm, i, -1, st, true, v);
 }
 template <bool D> R op_AAP(Vm& vm, const Instruction& i) { return set_axis<D>(vm, i, vm.acc); }
 template <bool D> R op_SAPX(Vm& vm, const Instruction& i) { return op_SAP<D>(vm, i); }
@@ -305,21 +315,21 @@ template <bool D> R op_GAPX(Vm& vm, const Instruction& i) { return op_GAP<D>(vm,
 template <bool D> R op_AAPX(Vm& vm, const Instruction& i) { return op_AAP<D>(vm, i); }
 template <bool D> R op_STAP(Vm& vm, const Instruction& i) {
   if (R r{}; motor_missing<D>(vm, i, r)) return r;
-  return done<D>(vm, vm.store_axis(i.motor, i.type));
+  return used<D>(vm, i, -1, vm.store_axis(i.motor, i.type), false);
 }
 template <bool D> R op_RSAP(Vm& vm, const Instruction& i) {
   if (R r{}; motor_missing<D>(vm, i, r)) return r;
-  return done<D>(vm, vm.restore_axis(i.motor, i.type));
+  return used<D>(vm, i, -1, vm.restore_axis(i.motor, i.type), false);
 }
 template <bool D> R op_SGP(Vm& vm, const Instruction& i) { return set_global<D>(vm, i, i.value); }
 template <bool D> R op_GGP(Vm& vm, const Instruction& i) {
   std::int32_t v = 0;
   std::uint8_t st = vm.get_global(i.motor, i.type, v);
-  return load<D>(vm, st, v);
+  return used<D>(vm, i, i.motor, st, true, v);
 }
 template <bool D> R op_AGP(Vm& vm, const Instruction& i) { return set_global<D>(vm, i, vm.acc); }
-template <bool D> R op_STGP(Vm& vm, const Instruction& i) { return done<D>(vm, vm.store_global(i.motor, i.type)); }
-template <bool D> R op_RSGP(Vm& vm, const Instruction& i) { return done<D>(vm, vm.restore_global(i.motor, i.type)); }
+template <bool D> R op_STGP(Vm& vm, const Instruction& i) { return used<D>(vm, i, i.motor, vm.store_global(i.motor, i.type), false); }
+template <bool D> R op_RSGP(Vm& vm, const Instruction& i) { return used<D>(vm, i, i.motor, vm.restore_global(i.motor, i.type), false); }
 template <bool D> R op_SIO(Vm& vm, const Instruction& i) {
   // SIO 255, 2, -1: the accumulator's lower 8 bits to the outputs (TMCL reference 3.14).
   const std::int32_t v = i.type == 255 && i.value == -1 ? (vm.acc & 0xFF) : i.value;

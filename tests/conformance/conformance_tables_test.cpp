@@ -19,7 +19,9 @@
 #include "check.hpp"
 #include "conformance_table.hpp"
 #include "text_file.hpp"
+#include "tmcl/interrupts.hpp"
 #include "tmcl/isa.hpp"
+#include "tmcl/motion.hpp"
 #include "tmcl/profile.hpp"
 
 namespace fs = std::filesystem;
@@ -161,6 +163,16 @@ void check_params(Errors& errs, const fs::path& file, std::string_view what, std
     if (r.name != it->second->name)
       errs.push_back(where(file, r) + ": " + std::string(what) + " " + r.key + " is '" +
                                               std::string(it->second->name) + "' in the profile, '" + r.name + "' here");
+    // The profile's not-simulated= is the one source (a run's note quotes it); the row agrees.
+    const std::string why(it->second->not_simulated);
+    if (why.empty() && r.status == "not simulated")
+      errs.push_back(where(file, r) + ": a not simulated row, but the profile's " + std::string(what) + " " + r.key +
+                     " has no not-simulated=\"REASON\" (the run's note comes from it)");
+    if (!why.empty() && r.status != "not simulated")
+      errs.push_back(where(file, r) + ": the profile marks " + std::string(what) + " " + r.key + " not-simulated, the row says '" +
+                     r.status + "'");
+    if (!why.empty() && r.text.find(why) == std::string::npos)
+      errs.push_back(where(file, r) + ": the row does not say the profile's reason '" + why + "'");
   }
   for (const auto& [n, pi] : want)
     if (!seen.count(n))
@@ -186,6 +198,11 @@ void check_vectors(Errors& errs, const fs::path& file, const tmcl::Profile& p, c
     }
     if (r.name != v->name)
       errs.push_back(where(file, r) + ": vector " + r.key + " is " + std::string(v->name) + ", the row says '" + r.name + "'");
+    // vm/interrupts.cpp's table is the one source of the vectors a run never raises (E52).
+    const bool never = !tmcl::not_simulated_reason(p, tmcl::make_profile_motion_core(p)->name(), n).empty();
+    if (n != tmcl::kVectorGlobal && never != (r.status == "not simulated"))
+      errs.push_back(where(file, r) + ": vector " + r.key + (never ? " is never raised (not_simulated_reason), the row says '"
+                                                                   : " is raised, the row says '") + r.status + "'");
   }
   for (const tmcl::InterruptVector& v : p.vectors)
     if (!seen.count(v.number))
@@ -258,6 +275,7 @@ TEST(the_checker_finds_each_kind_of_mistake) {
         << "## Axis parameters\n| 9999 | Nothing | stored | x | |\n"
         << "| 4 | Top speed | stored | x | |\n"
         << "| 5 | Maximum acceleration | not simulated | | |\n"
+        << "| 29 | Measured speed | stored | reads what was written | |\n"
         << "## Interrupt vectors\n| 0 | TI_TIMER0 | simulated | x | `calc_every_operation` |\n";
   }
   const Errors errs = check_table(tmp, *p);
@@ -276,8 +294,36 @@ TEST(the_checker_finds_each_kind_of_mistake) {
   says(":10: the profile has no axis parameter 9999");
   says(":11: axis parameter 4 is 'Maximum positioning speed' in the profile, 'Top speed' here");
   says(":12: a not simulated row says what and why");
+  says(":12: a not simulated row, but the profile's axis parameter 5 has no not-simulated=\"REASON\"");
+  says(":13: the profile marks axis parameter 29 not-simulated, the row says 'stored'");
+  says(":13: the row does not say the profile's reason 'reads 0 while the motor turns");
   says("no row for axis parameter 0 (Target position)");
-  says(":14: the profile has no vector 0");
+  says(":15: the profile has no vector 0");
   // A real table passes.
   CHECK(check_table(kRoot / "docs" / "conformance" / "tmc2300-eval.md", *p).empty());
+}
+
+// A vector row disagreeing with vm/interrupts.cpp's table either way gets a message.
+TEST(the_checker_holds_vector_rows_to_the_not_simulated_table) {
+  const tmcl::Profile* p = tmcl::find_profile("tmcm-1110");
+  CHECK(p != nullptr);
+  if (!p) return;
+  std::string text = tmcl_test::read_text((kRoot / "docs" / "conformance" / "tmcm-1110.md").string());
+  auto swap = [&](const std::string& from, const std::string& to) {
+    const auto at = text.find(from);
+    CHECK(at != std::string::npos);
+    if (at != std::string::npos) text.replace(at, from.size(), to);
+  };
+  swap("| 0 | TI_TIMER0 | simulated |", "| 0 | TI_TIMER0 | not simulated |");
+  swap("| 43 | TI_INPUT4 | not simulated |", "| 43 | TI_INPUT4 | simulated |");
+  const fs::path tmp = fs::temp_directory_path() / "tmcl_conformance_vectors_selftest.md";
+  std::ofstream(tmp, std::ios::binary) << text;
+  const Errors errs = check_table(tmp, *p);
+  fs::remove(tmp);
+  auto says = [&](const std::string& what) {
+    if (std::none_of(errs.begin(), errs.end(), [&](const std::string& e) { return e.find(what) != std::string::npos; }))
+      tmcl_test::fail(__FILE__, __LINE__, "no message saying '" + what + "'");
+  };
+  says("vector 0 is raised, the row says 'not simulated'");
+  says("vector 43 is never raised (not_simulated_reason), the row says 'simulated'");
 }

@@ -31,7 +31,7 @@ motion linear fallback=ideal
 motion-constant clock 16000000 src=MAN:5.5
 commands 1-6 SIO GIO 19-28 128-137 255
 axis 4 "Maximum speed" 0..2047 RWE default=100 unit=pps src=MAN:5 unverified=default
-axis 0 "Target position" -2147483648..2147483647 RW src=MAN:5
+axis 0 "Target position" -2147483648..2147483647 RW src=MAN:5 not-simulated="never moves"
 global 0 77 "Auto start mode" 0..1 RWE
 global 3 0 "Timer 0 period" 0..4294967295 RW default=4294967295 unit=ms
 vector 0 TI_TIMER0 "Timer 0"
@@ -104,6 +104,8 @@ TEST(good_file_gives_every_fact) {
   CHECK(a4 && a4->access == (tmcl::kRead | tmcl::kWrite | tmcl::kEeprom));
   CHECK(a4 && a4->unverified == tmcl::kFactDefault);
   CHECK(p.axis_param(0) && p.axis_param(0)->default_value == 0);  // no default=: 0
+  CHECK(p.axis_param(0) && p.axis_param(0)->not_simulated == "never moves");
+  CHECK(a4 && a4->not_simulated.empty());
   CHECK(p.global_param(0, 77) != nullptr);
   CHECK(p.global_param(3, 0) && p.global_param(3, 0)->default_value == -1);  // 4294967295 as a 32-bit field
   CHECK(p.vector(0) && p.vector(0)->name == "TI_TIMER0");
@@ -193,6 +195,9 @@ TEST(bad_values_are_errors_at_their_column) {
       {22, "default=1", "22:1: error: a line starts with a key, not an attribute"},
       {22, "based-on usb-2-sd", "22:1: error: 'based-on' must come before the facts"},
       {22, "motion-constant clock 1", "22:17: error: motion constant clock is given twice"},
+      {17, "axis 4 \"Maximum speed\" 0..2047 RW not-simulated=\"\"", "17:35: error: not-simulated= needs the reason"},
+      {21, "vector 0 TI_TIMER0 \"Timer 0\" not-simulated=x", "21:30: error: 'vector' takes no not-simulated= (expected:"},
+      {17, "axis 4 \"Maximum speed\" 0..2047 RW not-simulatd=x", "17:35: error: unknown attribute 'not-simulatd'; did you mean 'not-simulated'?"},
   };
   for (const auto& c : cases) {
     std::string text = kGood;
@@ -263,6 +268,7 @@ TEST(written_drafts_read_back_to_the_same_facts) {
         CHECK_EQ(a[i].default_value, b[i].default_value);
         CHECK_EQ(a[i].unit, b[i].unit);
         CHECK_EQ(a[i].unverified, b[i].unverified);
+        CHECK_EQ(a[i].not_simulated, b[i].not_simulated);
       }
     }
     CHECK(text.rfind("# a draft\n# of two lines\ntmcl-profile 1\n", 0) == 0);

@@ -20,7 +20,7 @@ constexpr std::int64_t kValueMin = -2147483648LL;  // a parameter value is a 32-
 constexpr std::int64_t kValueMax = 4294967295LL;   // signed or unsigned
 
 // Attributes a statement may carry besides src= and unverified, which every statement may.
-enum AttrBit : unsigned { kDefault = 1, kUnit = 2, kEepromVars = 4, kFallback = 8, kValues = 16 };
+enum AttrBit : unsigned { kDefault = 1, kUnit = 2, kEepromVars = 4, kFallback = 8, kValues = 16, kNotSimulated = 32 };
 
 struct KeyInfo {
   std::string_view key;
@@ -48,14 +48,16 @@ constexpr KeyInfo kKeys[] = {
     {"parameters", 1, 1, 0, true, "parameters listed|any"},
     {"motion", 1, 1, kFallback, true, "motion CORE [fallback=CORE]"},
     {"motion-constant", 2, 2, 0, false, "motion-constant NAME VALUE"},
-    {"axis", 4, 4, kDefault | kUnit | kValues, false, "axis N \"NAME\" MIN..MAX ACCESS [default=V] [unit=U] [values=SET]"},
-    {"global", 5, 5, kDefault | kUnit | kValues, false, "global BANK N \"NAME\" MIN..MAX ACCESS [default=V] [unit=U] [values=SET]"},
+    {"axis", 4, 4, kDefault | kUnit | kValues | kNotSimulated, false,
+     "axis N \"NAME\" MIN..MAX ACCESS [default=V] [unit=U] [values=SET] [not-simulated=\"REASON\"]"},
+    {"global", 5, 5, kDefault | kUnit | kValues | kNotSimulated, false,
+     "global BANK N \"NAME\" MIN..MAX ACCESS [default=V] [unit=U] [values=SET] [not-simulated=\"REASON\"]"},
     {"ports", 1, 1, 0, true, "ports listed|any"},
     {"port", 5, 6, kDefault | kUnit, false, "port BANK N \"NAME\" in|out digital|analog|bits [MIN..MAX] [default=V] [unit=U]"},
     {"vector", 3, 3, 0, false, "vector N NAME \"MEANING\""},
 };
 
-constexpr std::string_view kAttrNames[] = {"src", "unverified", "default", "unit", "eeprom", "fallback", "values"};
+constexpr std::string_view kAttrNames[] = {"src", "unverified", "default", "unit", "eeprom", "fallback", "values", "not-simulated"};
 
 struct Word {
   std::string_view text;
@@ -84,6 +86,7 @@ struct Reader {
   std::map<int, int> vectors_defined = {};
   bool started = false, based = false, commands_given = false, stopped = false;
   const Attr* values_ = nullptr;  // the current line's values=, for parameter()
+  const Attr* not_simulated_ = nullptr;  // the current line's not-simulated=, for parameter()
   bool any_statement_after_header = false;
 
   void error(int col, int len, const std::string& msg) {
@@ -297,6 +300,7 @@ struct Reader {
     const Attr* eeprom = nullptr;
     const Attr* fallback = nullptr;
     const Attr* values = nullptr;
+    const Attr* not_simulated = nullptr;
     const Attr* unverified = nullptr;
     const Attr* src = nullptr;
     bool attrs_ok = true;
@@ -310,6 +314,7 @@ struct Reader {
       else if (a.key == "eeprom") slot = &eeprom, need = kEepromVars;
       else if (a.key == "fallback") slot = &fallback, need = kFallback;
       else if (a.key == "values") slot = &values, need = kValues;
+      else if (a.key == "not-simulated") slot = &not_simulated, need = kNotSimulated;
       if (!slot) {
         std::string hint = closest_match(a.key, std::vector<std::string_view>(std::begin(kAttrNames), std::end(kAttrNames)));
         error(a.col, static_cast<int>(a.key.size()),
@@ -368,7 +373,12 @@ struct Reader {
         info->key != "based-on")
       any_statement_after_header = true;
     if (unverified_facts && !param_line) s.unverified.push_back(keep(std::string(info->key)));
+    if (not_simulated && not_simulated->value.text.empty()) {
+      error(*not_simulated, "not-simulated= needs the reason the virtual module does not simulate the parameter");
+      return;
+    }
     values_ = values;
+    not_simulated_ = not_simulated;
     apply(*info, words, def, unit, eeprom, fallback, src, unverified_facts);
   }
 
@@ -566,7 +576,7 @@ struct Reader {
                             std::to_string(it->second));
     ParamInfo info{static_cast<std::uint16_t>(n), name.text, lo, hi, acc, static_cast<std::int32_t>(static_cast<std::uint32_t>(d)),
                    unit ? unit->value.text : std::string_view{}, src ? src->value.text : std::string_view{},
-                   unverified_facts, set};
+                   unverified_facts, set, not_simulated_ ? not_simulated_->value.text : std::string_view{}};
     auto& table = axis ? s.axis : bank == 0 ? s.bank0 : s.bank3;
     auto old = std::find_if(table.begin(), table.end(), [&](const ParamInfo& x) { return x.number == n; });
     if (old != table.end()) *old = info;

@@ -41,6 +41,7 @@ std::string param(const ParamInfo& q) {
   if (d < q.min) d = static_cast<std::uint32_t>(q.default_value);  // an unsigned range's high half
   line += " default=" + std::to_string(d);
   if (!q.unit.empty()) line += " unit=" + attr_value(q.unit);
+  if (!q.not_simulated.empty()) line += " not-simulated=" + quoted(q.not_simulated);
   return line + facts(q.unverified);
 }
 

@@ -18,6 +18,7 @@
 
 #include <array>
 #include <atomic>
+#include <bitset>
 #include <cstdint>
 #include <functional>
 #include <string>
@@ -130,7 +131,8 @@ struct RuntimeWarning {
     NoSuchMotor,         // an instruction naming a motor the module does not have (E51)
     NotWritable,         // SAP/SGP/AAP/AGP on a read-only or unknown parameter (E51)
     NoSuchPort,          // GIO/SIO on a port the profile does not list (E53)
-    NotSimulated,        // a note, not a warning (but under --strict): EI of an interrupt nothing raises (E52)
+    NotSimulated,        // a note, not a warning (but under --strict): EI of an interrupt nothing raises (E52),
+                         // a parameter the profile marks not-simulated written or read (E77)
     RampSetting,         // MVP whose ramp cannot start it, or that the manual forbids (E47)
   };
   SimTime at = 0;        // the instruction's start
@@ -373,12 +375,19 @@ struct Vm {
   std::string fault_message_;
   std::string unplaceable_;  // a placed switch the core refused: every run() is this fault
   std::vector<MotionEvent> event_buf_;
+  // The parameters the profile marks not-simulated (axis, bank 0, bank 3), set by power_on: the
+  // one test on the parameter instructions' path.
+  std::array<std::bitset<256>, 3> not_simulated_params_{};
 
   void fault(std::string message);
   bool warn(RuntimeWarning::Kind kind, std::string message);  // true: strict made it a fault
   // EI n of a vector nothing raises on this module and core (interrupts.hpp): a note once, a
   // warning under --strict; true when --strict made it a fault.
   bool note_not_simulated(int vector);
+  // An instruction (`mnemonic`, `read` for GAP/GGP) that uses a parameter whose profile line says
+  // not-simulated= (axis: bank -1): a note once per parameter per run, a warning under --strict;
+  // true when --strict made it a fault.
+  bool note_not_simulated_param(int bank, int number, std::string_view mnemonic, bool read);
   // Before the instruction at pc runs inside a handler: reports it when it is outside the
   // handler's code (handler_code); true when --strict made that a fault.
   bool check_handler_code();

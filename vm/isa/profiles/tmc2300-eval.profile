@@ -31,8 +31,8 @@ axis 5 "Maximum acceleration" 0..2147483647 RWE default=10000 unit=pps² src=M:t
 axis 6 "Maximum current" 0..31 RWE default=16 src=M:table11 unverified=default
 axis 7 "Standby current" 0..31 RWE default=8 src=M:table11 unverified=default
 axis 8 "Position reached flag" 0..1 R default=1 src=M:table11
-axis 29 "Measured speed" 0..7999774 R default=0 unit=pps src=M:table11
-axis 100 "Step generator" -2147483648..2147483647 RW default=0 unit=pps src=M:table11  # the unit from the text
+axis 29 "Measured speed" 0..7999774 R default=0 unit=pps src=M:table11 not-simulated="reads 0 while the motor turns: the driver's measured speed is not computed"
+axis 100 "Step generator" -2147483648..2147483647 RW default=0 unit=pps src=M:table11 not-simulated="on the module a non-zero value turns the motor at that many steps per second (the TMC2300's own step generator), in the VM the motor stays"  # the unit from the text
 axis 140 "Microstep resolution" 0..8 RWE default=8 src=M:table11 unverified=default
 axis 141 "Microstep interpolation enable" 0..1 RWE default=1 src=M:table11 unverified=default
 axis 162 "Chopper blank time" 0..3 RWE default=2 src=M:table11 unverified=default
@@ -41,15 +41,15 @@ axis 169 "SmartEnergy current down step" 0..3 RWE default=0 src=M:table11 unveri
 axis 170 "SmartEnergy hysteresis" 0..15 RWE default=0 src=M:table11 unverified=default
 axis 171 "SmartEnergy current up step" 0..3 RWE default=0 src=M:table11 unverified=default
 axis 172 "SmartEnergy hysteresis start" 0..15 RWE default=0 src=M:table11 unverified=default
-axis 174 "StallGuard2 threshold" 0..255 RWE default=0 src=M:table11
+axis 174 "StallGuard2 threshold" 0..255 RWE default=0 src=M:table11 not-simulated="the linear core models no load and no StallGuard4 (the load model is the TMCM cores'): a stall never happens"
 axis 180 "SmartEnergy actual current" 0..31 R default=0 src=M:table11
-axis 181 "Stop on stall" 0..2147483647 RWE default=0 unit=pps src=M:table11 unverified=default
+axis 181 "Stop on stall" 0..2147483647 RWE default=0 unit=pps src=M:table11 unverified=default not-simulated="the linear core models no load and no StallGuard4: a stall never happens, so the motor never stops on one"
 axis 182 "SmartEnergy threshold speed" 0..1048574 RWE default=0 unit=pps src=M:table11 unverified=default
 axis 187 "PWM gradient" 0..15 RWE default=1 src=M:table11 unverified=default
 axis 191 "PWM frequency" 0..3 RWE default=1 src=M:table11 unverified=default
 axis 192 "PWM autoscale" 0..1 RWE default=1 src=M:table11 unverified=default
 axis 204 "Freewheeling mode" 0..3 RWE default=0 src=M:table11 unverified=default
-axis 206 "Actual load value" 0..1023 R default=0 src=M:table11
+axis 206 "Actual load value" 0..1023 R default=0 src=M:table11 not-simulated="reads 0: the linear core models no load"
 axis 220 "Supply voltage" 0..51 R default=37 unit="0.1 V" src=M:table11 unverified=default  # the table says RW (a measurement) and 1/10V
 
 # Table 13, plus 66 (the SGP/GGP examples) and 85 (section 6.4). Banks: 0 and 2 only.

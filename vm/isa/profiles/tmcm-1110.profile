@@ -55,7 +55,7 @@ axis 130 "Minimum speed" 0..2047 RWE default=1 src=M:5  # 'should always be set 
 axis 135 "Actual acceleration" 0..2047 R default=0 src=M:5
 axis 138 "Ramp mode" 0..2 RWE default=0 src=M:5 unverified=default
 axis 140 "Microstep resolution" 0..8 RWE default=8 src=M:5 unverified=default
-axis 141 "Reference switch tolerance" 0..4095 RW default=0 unit=μsteps src=R:4.2,P unverified=default
+axis 141 "Reference switch tolerance" 0..4095 RW default=0 unit=μsteps src=R:4.2,P unverified=default not-simulated="the three-switch mode's range in which the reference switch does not stop the motor is not modelled"
 axis 149 "Soft stop flag" 0..1 RWE default=0 src=R:4.2,P unverified=default
 axis 150 "End switch power down" 0..1 RWE default=0 src=P unverified=range,access,default  # use the standby current when stopped at an end switch
 axis 153 "Ramp divisor" 0..13 RWE default=7 src=M:5 unverified=default  # section 5.5 says 'Default: 0' for both divisors in cells copied from one another; see errata
@@ -80,7 +80,7 @@ axis 176 "Slope control low side" 0..3 RW default=3 src=M:5 unverified=default
 axis 177 "Short protection disable" 0..1 RW default=0 src=M:5 unverified=default
 axis 178 "Short detection timer" 0..3 RW default=0 src=M:5 unverified=default
 axis 179 "Vsense" 0..1 RW default=0 src=M:5 unverified=default
-axis 180 "SmartEnergy actual current" 0..31 R default=0 src=M:5  # a status the table calls RW (errata)
+axis 180 "SmartEnergy actual current" 0..31 R default=0 src=M:5 not-simulated="reads 0: coolStep (168-172, 182) is not simulated, so no current is adapted to the load"  # a status the table calls RW (errata)
 axis 181 "Stop on stall" 0..2047 RW default=0 src=M:5 unverified=default  # 0: off
 axis 182 "SmartEnergy threshold speed" 0..2047 RW default=0 src=M:5 unverified=default
 axis 183 "SmartEnergy slow run current" 0..255 RW default=0 src=M:5 unverified=default
@@ -96,32 +96,32 @@ axis 208 "TMC262 driver error flags" 0..255 R default=0 src=M:5
 axis 209 "Encoder position" -2147483648..2147483647 RW default=0 unit="encoder steps" src=M:5.4  # the range from section 5.4
 axis 210 "Encoder prescaler" 0..65535 RWE default=512 src=M:5.4.1 unverified=default  # prescaler = value / 512; bits 2..4 select special functions
 axis 212 "Maximum encoder deviation" 0..65535 RWE default=0 unit="encoder steps" src=M:5 unverified=default  # 0: off
-axis 213 "Group index" 0..255 RW default=0 src=R:4.2,P unverified=range,access,default  # not in the manual; the reference gives 0..255 RW for the TMCM-610, -611, -612 and -34x only (errata M15)
+axis 213 "Group index" 0..255 RW default=0 src=R:4.2,P unverified=range,access,default not-simulated="group moves are not modelled"  # not in the manual; the reference gives 0..255 RW for the TMCM-610, -611, -612 and -34x only (errata M15)
 axis 214 "Power down delay" 1..65535 RWE default=200 unit="10 ms" src=M:5  # 'the standard value is 200'
-axis 254 "Step/direction mode" 0..1 RWE default=0 src=M:5 unverified=default
+axis 254 "Step/direction mode" 0..1 RWE default=0 src=M:5 unverified=default not-simulated="no step/direction input"
 
 # Global parameters, bank 0. Numbers 64..127 are stored in the EEPROM at every SGP (M:6.1): access A.
-global 0 64 "EEPROM magic" 0..255 RWA default=228 src=M:6.1  # not $E4 (228): factory defaults at the next power-up
+global 0 64 "EEPROM magic" 0..255 RWA default=228 src=M:6.1 not-simulated="a value other than 228 does not restore the factory defaults at the next power-on"  # not $E4 (228): factory defaults at the next power-up
 global 0 65 "RS485 baud rate" 0..11 RWA default=0 src=M:6.1  # 0 = 9600 baud
 global 0 66 "Serial address" 0..255 RWA default=1 src=M:6.1 unverified=default
-global 0 68 "Serial heartbeat" 0..65535 RWA default=0 unit=ms src=M:6.1 unverified=default  # 0: off; the range is not in the table
+global 0 68 "Serial heartbeat" 0..65535 RWA default=0 unit=ms src=M:6.1 unverified=default not-simulated="no heartbeat supervision"  # 0: off; the range is not in the table
 global 0 69 "CAN bit rate" 2..8 RWA default=8 src=M:6.1  # 8 = 1000 kbit/s
 global 0 70 "CAN reply ID" 0..2047 RWA default=2 src=M:6.1
 global 0 71 "CAN ID" 0..2047 RWA default=1 src=M:6.1
-global 0 73 "Configuration EEPROM lock flag" 0..4321 RWA default=0 src=M:6.1 unverified=default  # reads 0/1; write 1234 to lock, 4321 to unlock
+global 0 73 "Configuration EEPROM lock flag" 0..4321 RWA default=0 src=M:6.1 unverified=default not-simulated="the lock is tmclrun --serve's option, not this flag"  # reads 0/1; write 1234 to lock, 4321 to unlock
 global 0 75 "Telegram pause time" 0..255 RWA default=0 src=M:6.1 unverified=default
 global 0 76 "Serial host address" 0..255 RWA default=2 src=M:6.1 unverified=default
 global 0 77 "Auto start mode" 0..1 RWA default=0 src=M:6.1
 global 0 78 "IO mode" 0..255 RWA default=0 src=P unverified=range,access,default
-global 0 79 "End switch polarity" 0..3 RWA default=0 src=P unverified=range,access,default
-global 0 81 "TMCL code protection" 0..3 RWA default=0 src=M:6.1 unverified=default
+global 0 79 "End switch polarity" 0..3 RWA default=0 src=P unverified=range,access,default not-simulated="the end switches' polarity is not inverted"
+global 0 81 "TMCL code protection" 0..3 RWA default=0 src=M:6.1 unverified=default not-simulated="program memory is not protected"
 global 0 82 "CAN heartbeat" 0..65535 RWA default=0 unit=ms src=M:6.1 unverified=default  # 0: off; the range is not in the table
 global 0 83 "CAN secondary address" 0..2047 RWA default=0 src=M:6.1 unverified=default  # 0: off
 global 0 84 "Coordinate storage" 0..1 RWA default=0 src=M:6.1  # 0: RAM only (the default, SCO)
 global 0 85 "Do not restore user variables" 0..1 RWA default=0 src=M:6.1
 global 0 86 "Step pulse length" 0..15 RWA default=0 src=M:6.1  # 0 = 1 µs
-global 0 87 "Serial secondary address" 0..255 RWA default=0 src=P unverified=range,access,default  # 0: off
-global 0 90 "Reverse shaft direction" 0..255 RWA default=0 src=P unverified=range,access,default  # a bit per motor
+global 0 87 "Serial secondary address" 0..255 RWA default=0 src=P unverified=range,access,default not-simulated="the virtual module answers only its address"  # 0: off
+global 0 90 "Reverse shaft direction" 0..255 RWA default=0 src=P unverified=range,access,default not-simulated="no motor direction is reversed"  # a bit per motor
 global 0 128 "TMCL application status" 0..3 R default=0 src=M:6.1
 global 0 129 "Download mode" 0..1 R default=0 src=M:6.1
 global 0 130 "TMCL program counter" 0..2047 R default=0 src=M:6.1  # the range: the 2048 instructions of program memory
@@ -143,9 +143,9 @@ global 3 39 "Input 0 edge type" 0..3 RWE default=0 src=M:6.4
 global 3 40 "Input 1 edge type" 0..3 RWE default=0 src=M:6.4
 global 3 41 "Input 2 edge type" 0..3 RWE default=0 src=M:6.4
 global 3 42 "Input 3 edge type" 0..3 RWE default=0 src=M:6.4
-global 3 43 "Input 4 edge type" 0..3 RWE default=0 src=P unverified=range,access
-global 3 44 "Input 5 edge type" 0..3 RWE default=0 src=P unverified=range,access
-global 3 45 "Input 6 edge type" 0..3 RWE default=0 src=P unverified=range,access
+global 3 43 "Input 4 edge type" 0..3 RWE default=0 src=P unverified=range,access not-simulated="the profile has no digital input 4 (GIO 4, 0 lists inputs 0 to 3, manual 4.5.15.1), so no input change raises vector 43"
+global 3 44 "Input 5 edge type" 0..3 RWE default=0 src=P unverified=range,access not-simulated="the profile has no digital input 5 (GIO 5, 0 lists inputs 0 to 3, manual 4.5.15.1), so no input change raises vector 44"
+global 3 45 "Input 6 edge type" 0..3 RWE default=0 src=P unverified=range,access not-simulated="the profile has no digital input 6 (GIO 6, 0 lists inputs 0 to 3, manual 4.5.15.1), so no input change raises vector 45"
 
 # I/O ports (errata E53): the GIO/SIO tables of sections 4.5.14 and 4.5.15. AIN_0 reads as a
 # digital (bank 0) and an analog (bank 1) input at once; bank 2 reads the outputs back.

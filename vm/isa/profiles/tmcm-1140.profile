@@ -53,7 +53,7 @@ axis 130 "Minimum speed" 0..2047 RWE default=1 src=F:5,R:4.2,Y,P  # 'should alwa
 axis 135 "Actual acceleration" 0..2047 R default=0 src=F:5,R:4.2,Y,P
 axis 138 "Ramp mode" 0..2 RWE default=0 src=F:5,R:4.2,Y,P unverified=default
 axis 140 "Microstep resolution" 0..8 RWE default=8 src=F:5,R:4.2,Y,P unverified=range,default
-axis 141 "Reference switch tolerance" 0..4095 RW default=0 unit=μsteps src=R:4.2,Y,P unverified=default
+axis 141 "Reference switch tolerance" 0..4095 RW default=0 unit=μsteps src=R:4.2,Y,P unverified=default not-simulated="the three-switch mode's range in which the reference switch does not stop the motor is not modelled"
 axis 149 "Soft stop flag" 0..1 RWE default=0 src=R:4.2,Y,P unverified=default
 axis 150 "End switch power down" 0..1 RWE default=0 src=Y,P unverified=range,access,default  # use the standby current when stopped at an end switch
 axis 153 "Ramp divisor" 0..13 RWE default=7 src=F:5,R:4.2,Y,P unverified=default  # section 5.5 says 'Default: 0' for both divisors in cells copied from one another; see errata
@@ -78,7 +78,7 @@ axis 176 "Slope control low side" 0..3 RW default=3 src=F:5,Y,P unverified=range
 axis 177 "Short protection disable" 0..1 RW default=0 src=F:5,Y,P unverified=range,access,default
 axis 178 "Short detection timer" 0..3 RW default=0 src=F:5,Y,P unverified=range,access,default
 axis 179 "Vsense" 0..1 RW default=0 src=F:5,Y,P unverified=range,access,default
-axis 180 "SmartEnergy actual current" 0..31 R default=0 src=F:5,Y,P unverified=range,access  # a status the table calls RW (errata)
+axis 180 "SmartEnergy actual current" 0..31 R default=0 src=F:5,Y,P unverified=range,access not-simulated="reads 0: coolStep (168-172, 182) is not simulated, so no current is adapted to the load"  # a status the table calls RW (errata)
 axis 181 "Stop on stall" 0..2047 RW default=0 src=F:5,Y,P unverified=range,access,default  # 0: off
 axis 182 "SmartEnergy threshold speed" 0..2047 RW default=0 src=F:5,Y,P unverified=range,access,default
 axis 183 "SmartEnergy slow run current" 0..255 RW default=0 src=F:5,Y,P unverified=range,access,default
@@ -87,7 +87,7 @@ axis 193 "Reference search mode" 1..136 RWE default=1 values=1..8,+128 src=F:5,R
 axis 194 "Reference search speed" 0..2047 RWE default=0 src=F:5,R:4.2,Y,P unverified=range,default  # 0: the maximum positioning speed 4 (5.3; errata M16)
 axis 195 "Reference switch speed" 0..2047 RWE default=0 src=F:5,R:4.2,Y,P unverified=range,default  # 0: a quarter of 4 (5.3; errata M16)
 axis 196 "Distance end switches" 0..2147483647 R default=0 unit=μsteps src=F:5,Y,P unverified=range,access
-axis 197 "Last reference position" -2147483648..2147483647 R default=0 unit=μsteps src=Y,P unverified=range,access
+axis 197 "Last reference position" -2147483648..2147483647 R default=0 unit=μsteps src=Y,P unverified=range,access not-simulated="reads 0: the tmc429 core does not record the position where the search found its switch"
 axis 200 "Boost current" 0..255 RWE default=0 src=Y,P unverified=range,access,default  # 0: the current of parameter 6
 axis 204 "Freewheeling" 0..65535 RWE default=0 unit=ms src=F:5,Y,P unverified=range,access,default  # 0: never
 axis 206 "Actual load value" 0..1023 R default=0 src=F:5,Y,P unverified=range,access
@@ -97,34 +97,34 @@ axis 209 "Encoder position" -2147483648..2147483647 RW default=0 unit="encoder s
 axis 210 "Encoder prescaler" 0..65535 RWE default=512 src=F:5.4.1,Y,P unverified=range,access,default  # prescaler = value / 512; bits 2..4 select special functions
 axis 212 "Maximum encoder deviation" 0..65535 RWE default=0 unit="encoder steps" src=F:5,Y,P unverified=range,access,default  # 0: off
 axis 214 "Power down delay" 1..65535 RWE default=200 unit="10 ms" src=F:5,Y,P unverified=range,access  # 'the standard value is 200'
-axis 215 "Absolute resolver value" 0..1023 R default=0 src=Y,P unverified=range,access
-axis 216 "External encoder position" -2147483648..2147483647 RW default=0 unit=μsteps src=Y,P unverified=range,access
+axis 215 "Absolute resolver value" 0..1023 R default=0 src=Y,P unverified=range,access not-simulated="reads 0: not modelled"
+axis 216 "External encoder position" -2147483648..2147483647 RW default=0 unit=μsteps src=Y,P unverified=range,access not-simulated="reads what was written: only the encoder of 209 is modelled, no external encoder follows the motor"
 axis 217 "External encoder prescaler" 0..2147483647 RW default=0 src=Y,P unverified=range,access,default
-axis 218 "Maximum external encoder deviation" 0..2147483647 RW default=0 unit="encoder steps" src=Y,P unverified=range,access,default  # 0: off
+axis 218 "Maximum external encoder deviation" 0..2147483647 RW default=0 unit="encoder steps" src=Y,P unverified=range,access,default not-simulated="no external encoder is modelled, so no deviation check (212 checks the encoder of 209)"  # 0: off
 
 # Global parameters, bank 0. Numbers 64..127 are stored in the EEPROM at every SGP (F:6.1): access A.
 global 0 65 "RS485 baud rate" 0..11 RWA default=0 src=F:6.1,R:5.1,Y,P unverified=range  # 0 = 9600 baud
 global 0 66 "Serial address" 0..255 RWA default=1 src=F:6.1,R:5.1,Y,P unverified=default
-global 0 67 "ASCII mode" 0..255 RWA default=0 src=R:5.1,Y,P unverified=range,default  # bit 0: start in ASCII mode; bits 4, 5: echo
-global 0 68 "Serial heartbeat" 0..65535 RWA default=0 unit=ms src=F:6.1,Y,P unverified=range,access,default  # 0: off; the range is not in the table
+global 0 67 "ASCII mode" 0..255 RWA default=0 src=R:5.1,Y,P unverified=range,default not-simulated="there is no ASCII interface"  # bit 0: start in ASCII mode; bits 4, 5: echo
+global 0 68 "Serial heartbeat" 0..65535 RWA default=0 unit=ms src=F:6.1,Y,P unverified=range,access,default not-simulated="no heartbeat supervision"  # 0: off; the range is not in the table
 global 0 69 "CAN bit rate" 2..8 RWA default=8 src=F:6.1,R:5.1,Y,P unverified=range  # 8 = 1000 kbit/s
 global 0 70 "CAN reply ID" 0..2047 RWA default=2 src=F:6.1,R:5.1,Y,P
 global 0 71 "CAN ID" 0..2047 RWA default=1 src=F:6.1,R:5.1,Y,P
 global 0 75 "Telegram pause time" 0..255 RWA default=0 src=F:6.1,R:5.1,Y,P unverified=default
 global 0 76 "Serial host address" 0..255 RWA default=2 src=F:6.1,R:5.1,Y,P unverified=default
 global 0 77 "Auto start mode" 0..1 RWA default=0 src=F:6.1,R:5.1,Y,P
-global 0 79 "End switch polarity" 0..3 RWA default=0 src=Y,P unverified=range,access,default
-global 0 81 "TMCL code protection" 0..3 RWA default=0 src=F:6.1,R:5.1,Y,P unverified=default
+global 0 79 "End switch polarity" 0..3 RWA default=0 src=Y,P unverified=range,access,default not-simulated="the end switches' polarity is not inverted"
+global 0 81 "TMCL code protection" 0..3 RWA default=0 src=F:6.1,R:5.1,Y,P unverified=default not-simulated="program memory is not protected"
 global 0 82 "CAN heartbeat" 0..65535 RWA default=0 unit=ms src=F:6.1,Y,P unverified=range,access,default  # 0: off; the range is not in the table
 global 0 83 "CAN secondary address" 0..2047 RWA default=0 src=F:6.1,Y,P unverified=range,access,default  # 0: off
 global 0 84 "Coordinate storage" 0..1 RWA default=0 src=F:6.1,Y,P unverified=range,access  # 0: RAM only (the default, SCO)
 global 0 85 "Do not restore user variables" 0..1 RWA default=0 src=F:6.1,Y,P unverified=range,access
-global 0 87 "Serial secondary address" 0..255 RWA default=0 src=Y,P unverified=range,access,default  # 0: off
-global 0 90 "Reverse shaft direction" 0..255 RWA default=0 src=Y,P unverified=range,access,default  # a bit per motor
+global 0 87 "Serial secondary address" 0..255 RWA default=0 src=Y,P unverified=range,access,default not-simulated="the virtual module answers only its address"  # 0: off
+global 0 90 "Reverse shaft direction" 0..255 RWA default=0 src=Y,P unverified=range,access,default not-simulated="no motor direction is reversed"  # a bit per motor
 global 0 128 "TMCL application status" 0..3 R default=0 src=F:6.1,R:5.1,Y,P
 global 0 129 "Download mode" 0..1 R default=0 src=F:6.1,R:5.1,Y,P
 global 0 130 "TMCL program counter" 0..2047 R default=0 src=F:6.1,R:5.1,Y,P unverified=range  # the range: the 2048 instructions of program memory
-global 0 131 "Last TMCL error" 0..255 R default=0 src=Y,P unverified=range,access
+global 0 131 "Last TMCL error" 0..255 R default=0 src=Y,P unverified=range,access not-simulated="reads 0: the last error is not recorded"
 global 0 132 "TMCL tick timer" 0..2147483647 RW default=0 unit=ms src=F:6.1,R:5.1,Y,P unverified=range
 global 0 133 "Random number" 0..2147483647 R default=0 src=F:6.1,Y,P unverified=range,access
 

@@ -46,22 +46,22 @@ axis 10 "Right limit switch state" 0..1 R default=0 src=M:4
 axis 11 "Left limit switch state" 0..1 R default=0 src=M:4
 axis 12 "Right limit switch disable" 0..1 RW default=0 src=M:4 unverified=default
 axis 13 "Left limit switch disable" 0..1 RW default=0 src=M:4 unverified=default
-axis 14 "Swap limit switches" 0..1 RW default=0 src=M:4 unverified=default
+axis 14 "Swap limit switches" 0..1 RW default=0 src=M:4 unverified=default not-simulated="the two limit switches are not swapped"
 axis 15 "Acceleration A1" 0..7629278 RW default=51200 unit=pps² src=M:4 unverified=default  # as D1 (18): errata M17
 axis 16 "Velocity V1" 0..1000000 RW default=0 unit=pps src=M:4 unverified=default  # 0: no first acceleration phase
 axis 17 "Maximum deceleration" 0..7629278 RW default=51200 unit=pps² src=M:4 unverified=default
 axis 18 "Deceleration D1" 0..7629278 RW default=51200 unit=pps² src=M:4 unverified=default
 axis 19 "Velocity VSTART" 0..249999 RW default=0 unit=pps src=M:4 unverified=default
 axis 20 "Velocity VSTOP" 0..249999 RW default=10 unit=pps src=M:4 unverified=default  # not below VSTART
-axis 21 "Ramp wait time" 0..65535 RW default=0 unit="32 µs" src=M:4 unverified=default
+axis 21 "Ramp wait time" 0..65535 RW default=0 unit="32 µs" src=M:4 unverified=default not-simulated="the ramp does not wait between a stop and a reversal"
 axis 22 "Speed threshold for CoolStep / fullstep" 0..7999774 RW default=0 unit=pps src=M:4 unverified=default
 axis 23 "Minimum speed for DcStep" 0..7999774 RW default=0 unit=pps src=M:4 unverified=default
-axis 24 "Right limit switch polarity" 0..1 RW default=0 src=M:4 unverified=default
-axis 25 "Left limit switch polarity" 0..1 RW default=0 src=M:4 unverified=default
+axis 24 "Right limit switch polarity" 0..1 RW default=0 src=M:4 unverified=default not-simulated="the right switch's polarity is not inverted"
+axis 25 "Left limit switch polarity" 0..1 RW default=0 src=M:4 unverified=default not-simulated="the left switch's polarity is not inverted"
 axis 26 "Soft stop enable" 0..1 RW default=0 src=M:4 unverified=default
 axis 27 "High speed chopper mode" 0..1 RW default=0 src=M:4 unverified=default
 axis 28 "High speed fullstep mode" 0..1 RW default=0 src=M:4 unverified=default
-axis 29 "Measured speed" 0..7999774 R default=0 unit=pps src=M:4
+axis 29 "Measured speed" 0..7999774 R default=0 unit=pps src=M:4 not-simulated="reads 0 while the motor turns: the measured speed is not computed"
 axis 31 "Power down ramp" 0..15 RW default=0 unit="0.16384 s" src=M:4 unverified=default
 axis 32 "DcStep time" 0..1023 RW default=0 src=M:4 unverified=default
 axis 33 "DcStep stallGuard" 0..255 RW default=0 src=M:4 unverified=default
@@ -83,7 +83,7 @@ axis 172 "SmartEnergy hysteresis start" 0..15 RW default=0 src=M:4 unverified=de
 axis 173 "StallGuard2 filter enable" 0..1 RW default=0 src=M:4 unverified=default
 axis 174 "StallGuard2 threshold" -64..63 RW default=0 src=M:4  # 'zero is the starting value'
 axis 178 "Global current scaler" 0..255 RW default=0 src=Y,P unverified=range,access,default  # newer firmware
-axis 180 "SmartEnergy actual current" 0..31 R default=0 src=M:4
+axis 180 "SmartEnergy actual current" 0..31 R default=0 src=M:4 not-simulated="reads 0: coolStep (168-172, 182) is not simulated, so no current is adapted to the load"
 axis 181 "Stop on stall" 0..7999774 RW default=0 unit=pps src=M:4 unverified=default
 axis 182 "SmartEnergy threshold speed" 0..7999774 RW default=0 unit=pps src=M:4 unverified=default
 axis 184 "Random TOff mode" 0..1 RW default=0 src=M:4 unverified=default
@@ -91,8 +91,8 @@ axis 185 "Chopper synchronization" 0..15 RW default=0 src=M:4 unverified=default
 axis 186 "PWM threshold speed" 0..7999774 RW default=0 unit=pps src=M:4 unverified=default
 axis 187 "PWM gradient" 0..15 RW default=0 src=M:4 unverified=default  # 0: StealthChop off
 axis 188 "PWM amplitude" 0..255 RW default=128 src=M:4 unverified=default
-axis 189 "PWM scale" 0..255 R default=0 src=M:4
-axis 190 "PWM mode" 0..1 R default=0 src=M:4
+axis 189 "PWM scale" 0..255 R default=0 src=M:4 not-simulated="reads 0: not modelled"
+axis 190 "PWM mode" 0..1 R default=0 src=M:4 not-simulated="reads 0: not modelled"
 axis 191 "PWM frequency" 0..3 RW default=0 src=M:4 unverified=default
 axis 192 "PWM autoscale" 0..1 RW default=1 src=M:4 unverified=default
 axis 193 "Reference search mode" 1..136 RW default=1 values=1..8,+64,+128 src=M:4 unverified=default  # 1..8; +64: the right switch (1..4); +128: inverted home switch (5..8)
@@ -106,40 +106,40 @@ axis 206 "Actual load value" 0..1023 R default=0 src=M:4
 axis 207 "Extended error flags" 0..3 R default=0 src=M:4
 axis 208 "Motor driver error flags" 0..255 R default=0 src=M:4
 axis 209 "Encoder position" -2147483648..2147483647 RW default=0 unit=μsteps src=M:4  # the built-in SensOstep encoder
-axis 210 "Encoder clear on null" 0..1 RW default=0 src=M:4 unverified=default
+axis 210 "Encoder clear on null" 0..1 RW default=0 src=M:4 unverified=default not-simulated="the SensOstep encoder (209) is simulated, but no null channel is modelled, so the count is never cleared and the bit never clears itself (the manual: it clears at the null event)"
 axis 212 "Maximum internal encoder deviation" 0..2147483647 RW default=0 unit="encoder steps" src=M:4 unverified=default  # 0: off
 axis 214 "Power down delay" 0..417 RW default=0 unit="10 ms" src=M:4  # 'the standard value is 0'
-axis 215 "Absolute resolver value" 0..1023 R default=0 src=M:4
-axis 216 "External encoder position" -2147483648..2147483647 RW default=0 unit=μsteps src=M:4
+axis 215 "Absolute resolver value" 0..1023 R default=0 src=M:4 not-simulated="reads 0: not modelled"
+axis 216 "External encoder position" -2147483648..2147483647 RW default=0 unit=μsteps src=M:4 not-simulated="reads what was written: only the encoder of 209 is modelled, no external encoder follows the motor"
 axis 217 "External encoder resolution" 0..2147483647 RW default=0 src=M:4 unverified=default  # counts per revolution
-axis 218 "Maximum external encoder deviation" 0..2147483647 RW default=0 unit="encoder steps" src=M:4 unverified=default  # 0: off
-axis 251 "Reverse shaft" 0..1 RW default=0 src=M:4 unverified=default
-axis 254 "Step/direction mode" 0..1 RW default=0 src=M:4 unverified=default
-axis 255 "Unit mode" 0..1 RW default=1 src=M:4  # 'default value is 1 (pps units)'
+axis 218 "Maximum external encoder deviation" 0..2147483647 RW default=0 unit="encoder steps" src=M:4 unverified=default not-simulated="no external encoder is modelled, so no deviation check (212 checks the encoder of 209)"  # 0: off
+axis 251 "Reverse shaft" 0..1 RW default=0 src=M:4 unverified=default not-simulated="the motor's direction is not reversed (a placed switch would be met from the other side)"
+axis 254 "Step/direction mode" 0..1 RW default=0 src=M:4 unverified=default not-simulated="no step/direction input"
+axis 255 "Unit mode" 0..1 RW default=1 src=M:4 not-simulated="values are pps whatever it says"  # 'default value is 1 (pps units)'
 
 # Global parameters, bank 0. Numbers 64..127 are stored in the EEPROM at every SGP (M:6.1 or 5.1): access A.
 global 0 65 "RS485 baud rate" 0..8 RWA default=0 src=M:5.1  # 0 = 9600 baud
 global 0 66 "Serial address" 1..255 RWA default=1 src=M:5.1 unverified=default
-global 0 67 "ASCII mode" 0..255 RWA default=0 src=P unverified=range,access,default  # bit 0: start in ASCII mode; bits 4, 5: echo
-global 0 68 "Serial heartbeat" 0..65535 RWA default=0 unit=ms src=M:5.1  # 0: off
+global 0 67 "ASCII mode" 0..255 RWA default=0 src=P unverified=range,access,default not-simulated="there is no ASCII interface"  # bit 0: start in ASCII mode; bits 4, 5: echo
+global 0 68 "Serial heartbeat" 0..65535 RWA default=0 unit=ms src=M:5.1 not-simulated="no heartbeat supervision"  # 0: off
 global 0 69 "CAN bit rate" 2..8 RWA default=8 src=M:5.1
 global 0 70 "CAN reply ID" 0..2047 RWA default=2 src=M:5.1
 global 0 71 "CAN ID" 0..2047 RWA default=1 src=M:5.1
 global 0 75 "Telegram pause time" 0..255 RWA default=0 src=M:5.1 unverified=default
 global 0 76 "Serial host address" 0..255 RWA default=2 src=M:5.1 unverified=default
 global 0 77 "Auto start mode" 0..1 RWA default=0 src=M:5.1
-global 0 79 "End switch polarity" 0..3 RWA default=0 src=P unverified=range,access,default
-global 0 81 "TMCL code protection" 0..3 RWA default=0 src=M:5.1 unverified=default
+global 0 79 "End switch polarity" 0..3 RWA default=0 src=P unverified=range,access,default not-simulated="the end switches' polarity is not inverted"
+global 0 81 "TMCL code protection" 0..3 RWA default=0 src=M:5.1 unverified=default not-simulated="program memory is not protected"
 global 0 82 "CAN heartbeat" 0..65535 RWA default=0 unit=ms src=M:5.1  # 0: off
 global 0 83 "CAN secondary address" 0..2047 RWA default=0 src=M:5.1 unverified=default
 global 0 84 "Coordinate storage" 0..1 RWA default=0 src=M:5.1,M:3.6.22
 global 0 85 "Do not restore user variables" 0..1 RWA default=0 src=M:5.1
-global 0 87 "Serial secondary address" 0..255 RWA default=0 src=M:5.1 unverified=default  # 0: off
-global 0 90 "Reverse shaft direction" 0..255 RWA default=0 src=P unverified=range,access,default  # a bit per motor
+global 0 87 "Serial secondary address" 0..255 RWA default=0 src=M:5.1 unverified=default not-simulated="the virtual module answers only its address"  # 0: off
+global 0 90 "Reverse shaft direction" 0..255 RWA default=0 src=P unverified=range,access,default not-simulated="no motor direction is reversed"  # a bit per motor
 global 0 128 "TMCL application status" 0..3 R default=0 src=M:5.1
 global 0 129 "Download mode" 0..1 R default=0 src=M:5.1
 global 0 130 "TMCL program counter" 0..2047 R default=0 src=M:5.1  # no range in the table: that of the program memory
-global 0 131 "Last TMCL error" 0..255 R default=0 src=Y,P unverified=range,access
+global 0 131 "Last TMCL error" 0..255 R default=0 src=Y,P unverified=range,access not-simulated="reads 0: the last error is not recorded"
 global 0 132 "TMCL tick timer" 0..2147483647 RW default=0 unit=ms src=M:5.1
 global 0 133 "Random number" 0..2147483647 RW default=0 src=M:5.1
 global 0 255 "Suppress reply" 0..1 RW default=0 src=M:5.1  # "will be reset to 0 on startup"

@@ -49,7 +49,7 @@ axis 130 "Minimum speed" 0..2047 RWE default=1 src=M:5  # 'should always be set 
 axis 135 "Actual acceleration" 0..2047 R default=0 src=M:5
 axis 138 "Ramp mode" 0..2 RWE default=0 src=M:5 unverified=default
 axis 140 "Microstep resolution" 0..6 RWE default=4 src=M:5 unverified=default  # 4 = 16 microsteps
-axis 141 "Reference switch tolerance" 0..4095 RW default=0 unit=μsteps src=M:5 unverified=default
+axis 141 "Reference switch tolerance" 0..4095 RW default=0 unit=μsteps src=M:5 unverified=default not-simulated="the three-switch mode's range in which the reference switch does not stop the motor is not modelled"
 axis 149 "Soft stop flag" 0..1 RWE default=0 src=M:5 unverified=default
 axis 153 "Ramp divisor" 0..13 RWE default=7 src=M:5 unverified=default
 axis 154 "Pulse divisor" 0..13 RWE default=3 src=M:5 unverified=default
@@ -57,45 +57,45 @@ axis 193 "Reference search mode" 1..3 RWE default=1 src=M:5 unverified=default
 axis 194 "Reference search speed" 0..2047 RWE default=0 src=M:5 unverified=default  # 0: the maximum positioning speed 4 (reference search hints, section 5; errata M16)
 axis 195 "Reference switch speed" 0..2047 RWE default=0 src=M:5 unverified=default  # 0: a quarter of 4 (reference search hints, section 5; errata M16)
 axis 196 "Reference switch distance" 0..2147483647 R default=0 unit=μsteps src=M:5
-axis 197 "Last reference position" -2147483648..2147483647 R default=0 unit=μsteps src=Y unverified=range,access
+axis 197 "Last reference position" -2147483648..2147483647 R default=0 unit=μsteps src=Y unverified=range,access not-simulated="reads 0: the tmc429 core does not record the position where the search found its switch"
 axis 200 "Boost current" 0..255 RWE default=0 src=M:5 unverified=default  # 0: the current of parameter 6
 axis 203 "Mixed decay threshold" -1..2048 RWE default=2048 src=M:5 unverified=default  # -1: always
 axis 204 "Freewheeling" 0..65535 RWE default=0 unit=ms src=M:5 unverified=default  # 0: never
-axis 205 "Stall detection threshold" 0..7 RWE default=0 src=M:5 unverified=default  # 0: off
-axis 206 "Actual load value" 0..7 R default=0 src=M:5
+axis 205 "Stall detection threshold" 0..7 RWE default=0 src=M:5 unverified=default not-simulated="no stall is ever detected: the stall model applies where the profile lists stallGuard2's threshold 174; the TMCM-351 (stallGuard 1, threshold 205) has none, so no load is modelled"  # 0: off
+axis 206 "Actual load value" 0..7 R default=0 src=M:5 not-simulated="reads 0: the stall model applies where the profile lists stallGuard2's threshold 174; the TMCM-351 (stallGuard 1, threshold 205) has none, so no load is modelled"
 axis 207 "Extended error flags" 0..3 R default=0 src=M:5
-axis 208 "Driver error flags" 0..255 R default=0 src=M:5
+axis 208 "Driver error flags" 0..255 R default=0 src=M:5 not-simulated="reads 0: the stall model applies where the profile lists stallGuard2's threshold 174; the TMCM-351 (stallGuard 1, threshold 205) has none, so no load is modelled; no driver faults are modelled"
 axis 209 "Encoder position" -2147483648..2147483647 RW default=0 unit="encoder steps" src=M:5
 axis 210 "Encoder prescaler" 0..65535 RWE default=512 src=M:5,M:7.2 unverified=default  # prescaler = value / 512
 axis 211 "Fullstep threshold" 0..2048 RWE default=0 src=M:5 unverified=default  # 0 or 2048: off
 axis 212 "Maximum encoder deviation" 0..65535 RWE default=0 unit="encoder steps" src=M:5 unverified=default  # 0: off
-axis 213 "Group index" 0..255 RW default=0 src=M:5 unverified=default
+axis 213 "Group index" 0..255 RW default=0 src=M:5 unverified=default not-simulated="group moves are not modelled"
 axis 214 "Power down delay" 1..65535 RWE default=200 unit="10 ms" src=M:5 unverified=default  # 'the standard value is 200msec' in a column of 10 ms units; see errata
 
 # Global parameters, bank 0. Numbers 64..127 are stored in the EEPROM at every SGP (M:6.1 or 5.1): access A.
-global 0 64 "EEPROM magic" 0..255 RWA default=228 src=M:6.1
+global 0 64 "EEPROM magic" 0..255 RWA default=228 src=M:6.1 not-simulated="a value other than 228 does not restore the factory defaults at the next power-on"
 global 0 65 "RS232/RS485 baud rate" 0..11 RWA default=0 src=M:6.1  # 0 = 9600 baud
 global 0 66 "Serial address" 0..255 RWA default=1 src=M:6.1 unverified=default
-global 0 67 "ASCII mode" 0..255 RWA default=0 src=M:6.1 unverified=default  # no range in the table
-global 0 68 "Serial heartbeat" 0..65535 RWA default=0 unit=ms src=M:6.1 unverified=default  # no range in the table
+global 0 67 "ASCII mode" 0..255 RWA default=0 src=M:6.1 unverified=default not-simulated="there is no ASCII interface"  # no range in the table
+global 0 68 "Serial heartbeat" 0..65535 RWA default=0 unit=ms src=M:6.1 unverified=default not-simulated="no heartbeat supervision"  # no range in the table
 global 0 69 "CAN bit rate" 2..8 RWA default=8 src=M:6.1
 global 0 70 "CAN reply ID" 0..2047 RWA default=2 src=M:6.1
 global 0 71 "CAN ID" 0..2047 RWA default=1 src=M:6.1
-global 0 73 "Configuration EEPROM lock flag" 0..4321 RWA default=0 src=M:6.1 unverified=default  # reads 0/1; write 1234 to lock, 4321 to unlock
+global 0 73 "Configuration EEPROM lock flag" 0..4321 RWA default=0 src=M:6.1 unverified=default not-simulated="the lock is tmclrun --serve's option, not this flag"  # reads 0/1; write 1234 to lock, 4321 to unlock
 global 0 75 "Telegram pause time" 0..255 RWA default=0 src=M:6.1 unverified=default
 global 0 76 "Serial host address" 0..255 RWA default=2 src=M:6.1 unverified=default
 global 0 77 "Auto start mode" 0..1 RWA default=0 src=M:6.1
-global 0 80 "Shutdown pin functionality" 0..2 RWA default=0 src=M:6.1 unverified=default
-global 0 81 "TMCL code protection" 0..3 RWA default=0 src=M:6.1 unverified=default
+global 0 80 "Shutdown pin functionality" 0..2 RWA default=0 src=M:6.1 unverified=default not-simulated="no shutdown input"
+global 0 81 "TMCL code protection" 0..3 RWA default=0 src=M:6.1 unverified=default not-simulated="program memory is not protected"
 global 0 82 "CAN heartbeat" 0..65535 RWA default=0 unit=ms src=M:6.1 unverified=default  # no range in the table
 global 0 83 "CAN secondary address" 0..2047 RWA default=0 src=M:6.1 unverified=default
 global 0 84 "Coordinate storage" 0..1 RWA default=0 src=M:6.1,M:4.6.25
 global 0 85 "Do not restore user variables" 0..1 RWA default=0 src=M:6.1
-global 0 87 "Serial secondary address" 0..255 RWA default=0 src=M:6.1 unverified=default
+global 0 87 "Serial secondary address" 0..255 RWA default=0 src=M:6.1 unverified=default not-simulated="the virtual module answers only its address"
 global 0 128 "TMCL application status" 0..3 R default=0 src=M:6.1
 global 0 129 "Download mode" 0..1 R default=0 src=M:6.1
 global 0 130 "TMCL program counter" 0..2047 R default=0 src=M:6.1
-global 0 131 "Last TMCL error" 0..255 R default=0 src=Y unverified=range,access
+global 0 131 "Last TMCL error" 0..255 R default=0 src=Y unverified=range,access not-simulated="reads 0: the last error is not recorded"
 global 0 132 "TMCL tick timer" 0..2147483647 RW default=0 unit=ms src=M:6.1
 global 0 133 "Random number" 0..2147483647 R default=0 src=M:6.1
 

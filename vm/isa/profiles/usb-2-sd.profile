@@ -53,13 +53,13 @@ axis 127 "Relative positioning option" 0..2 RW default=0 src=M:table14 unverifie
 axis 131 "Measured speed" -2147483648..2147483647 R default=0 unit=pps src=M:table14
 axis 132 "Current measured speed" -2147483648..2147483647 R default=0 unit=pps src=M:table14
 axis 140 "Microstep resolution" 0..8 RW default=8 src=M:6.2  # not in table 14
-axis 201 "Encoder special functions" 0..65535 RW default=0 src=M:6.1 unverified=default  # not in table 14
+axis 201 "Encoder special functions" 0..65535 RW default=0 src=M:6.1 unverified=default not-simulated="the encoder's special functions (null channel, latches) are not modelled"  # not in table 14
 axis 202 "Motor full step resolution" 0..65535 RW default=200 unit=fullsteps/round src=M:table14
 axis 207 "Extended error flags" 0..2 R default=0 src=M:table14
 axis 209 "Encoder position" -2147483648..2147483647 RW default=0 unit=μsteps src=M:table14
 axis 210 "Encoder resolution" -65535..65535 RW default=51200 src=M:table14 unverified=default
 axis 212 "Maximum encoder deviation" 0..2147483647 RW default=0 unit="encoder steps" src=M:table14 unverified=default
-axis 213 "Maximum velocity deviation" 0..2147483647 RW default=0 unit=pps src=M:table14 unverified=default  # the table says encoder steps
+axis 213 "Maximum velocity deviation" 0..2147483647 RW default=0 unit=pps src=M:table14 unverified=default not-simulated="the velocity deviation check is not modelled"  # the table says encoder steps
 axis 251 "Reverse shaft" 0..1 RW default=0 src=M:table14 unverified=default
 axis 255 "Unit mode" 0..1 RW default=1 src=M:6.2  # not in table 14
 

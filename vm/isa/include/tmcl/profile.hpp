@@ -57,6 +57,10 @@ struct ParamInfo {
   // The values the manual lists, where a range says too little (193: 1..8, +64, +128); empty: every
   // value of the range. A value must be in the range and, when there is a set, in the set.
   std::span<const ValueItem> values = {};
+  // Why the virtual module does not do what the module does with this parameter (the profile's
+  // not-simulated="REASON"); empty where it does. A program that writes or reads it gets a note
+  // once per run (a warning under --strict); the conformance table's row says "not simulated".
+  std::string_view not_simulated = {};
 };
 
 // Whether a parameter takes `value`: within [min, max] read as signed, or (a value that fits 32
