@@ -44,6 +44,7 @@ class Checker {
     // Generic accepts every number and checks no access, but a value outside the range its
     // tables give is refused by the VM and the debugger too, so it is said here as well.
     if (p_.any_parameter) return generic_ranges(op);
+    if ((op == Op::MVP || op == Op::MVPA) && ins_.type == kw::Move::COORD && !move_coord(op)) return;
     const OpInfo& info = *s_.op;
     bool coord_op = has_role(info, Role::Coord);
     if (has_role(info, Role::Motor) && ins_.motor >= p_.motors && !(coord_op && ins_.motor == 255))
@@ -73,6 +74,21 @@ class Checker {
   }
 
  private:
+  // MVP COORD (errata M32): a module without coordinates has no COORD type and answers "wrong
+  // type", as for a command it lacks (an error; false); a coordinate it lacks is a warning.
+  bool move_coord(Op op) {
+    if (p_.coords == 0) {
+      d_.error(operand_loc(s_, Field::Type), std::string(s_.op->mnemonic) + " COORD is not available on " + std::string(p_.title) +
+                                                 " (it has no coordinates; its MVP takes ABS and REL)");
+      return false;
+    }
+    if (op == Op::MVP && (ins_.value < 0 || ins_.value >= p_.coords))
+      d_.warning(operand_loc(s_, Field::Value), "coordinate " + std::to_string(ins_.value) + " does not exist on " +
+                                                    std::string(p_.title) + " (0 to " + std::to_string(p_.coords - 1) + ")",
+                 "target");
+    return true;
+  }
+
   // GIO/SIO of a port the profile does not list (errata E53): the module answers "wrong type" and
   // the VM warns no-such-port; say it here with the ports of that bank there are. `ports any`
   // (generic, USB-2-SD) checks nothing; a bank outside 0 … 2 is not a port question.

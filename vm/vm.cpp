@@ -246,6 +246,7 @@ std::string_view warning_kind_name(RuntimeWarning::Kind k) {
     case RuntimeWarning::NoSuchMotor: return "no-such-motor";
     case RuntimeWarning::NotWritable: return "not-writable";
     case RuntimeWarning::NoSuchPort: return "no-such-port";
+    case RuntimeWarning::NoSuchCoordinate: return "no-such-coordinate";
     case RuntimeWarning::NotSimulated: return "not-simulated";
   }
   return "unknown";

@@ -15,6 +15,8 @@ std::uint8_t Vm::move(int type, int motor, std::int32_t value) {
     case kw::Move::ABS: motion->move_absolute(motor, value); break;
     case kw::Move::REL: motion->move_relative(motor, value); break;
     case kw::Move::COORD:
+      // A module without coordinates has no COORD type (the TMC2300-MOTOR-EVAL: errata M32).
+      if (profile->coords == 0) return kStatusWrongType;
       if (value < 0 || value >= profile->coords) return kStatusInvalidValue;
       motion->move_absolute(motor, coords[static_cast<std::size_t>(motor)][static_cast<std::size_t>(value)]);
       break;

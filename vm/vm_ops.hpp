@@ -279,6 +279,15 @@ template <bool D> R move(Vm& vm, const Instruction& i, std::int32_t value) {
   if (R r{}; motor_missing<D>(vm, i, r)) return r;
   const std::uint8_t st = vm.move(i.type, i.motor, value);
   if constexpr (!D) {
+    // M32: MVP COORD the module refuses (status 3 without coordinates, 4 for one it lacks): ignored.
+    if (i.type == kw::Move::COORD && st != kStatusOk) {
+      const int coords = vm.profile->coords;
+      if (Internal::warn(vm, RuntimeWarning::NoSuchCoordinate,
+                         "MVP COORD of coordinate " + std::to_string(value) + ": " + std::string(vm.profile->title) +
+                             (coords == 0 ? std::string(" has no coordinates (its MVP takes ABS and REL)")
+                                          : " has coordinates 0 to " + std::to_string(coords - 1))))
+        return ok();
+    }
     if (st == kStatusOk)
       if (std::string why = vm.motion->move_problem(i.motor); !why.empty())
         if (Internal::warn(vm, RuntimeWarning::RampSetting, "MVP on motor " + std::to_string(i.motor) + ": " + why)) return ok();

@@ -47,6 +47,24 @@ TEST(tmc429_search_with_only_4_and_5_set_runs_at_4_and_a_quarter_of_it) {
   }
 }
 
+// Axis parameter 197 on the TMC429 modules that list it: where the reference point was before
+// the search made it 0 (errata M31), as on the TMCM-1260 (tmc5160_rfs_modes_1_and_65_one_end_switch).
+TEST(tmc429_search_keeps_the_last_reference_position_in_197) {
+  for (const char* module : {"tmcm-1140", "tmcm-1160", "tmcm-1161", "tmcm-3110", "tmcm-6110", "tmcm-351"}) {
+    g_homing_module = module;
+    HomingModule probe;
+    const int pd = probe.get(154), rd = probe.get(153);
+    mt::Searching<HomingModule> b(800 * pps_per_unit(pd), 200 * pps_per_unit(pd), 600 * pps2_per_unit(pd, rd));
+    b.set(4, 800);
+    b.set(5, 600);
+    b.left_at(-20000);
+    b.start();
+    b.one_edge(20000);
+    if (b.get(197) != -20000) std::fprintf(stderr, "%s: 197 reads %d\n", module, b.get(197));
+    CHECK_EQ(b.get(197), -20000);
+  }
+}
+
 // Item 7: the home switch inverted (+128). A scenario's home range is where the home input reads
 // active (high, as parameter 9 reports it); +128 makes the search take the input's other level as
 // the switch, so from 0, outside [50000, 60000], every search starts on its (inverted) switch.

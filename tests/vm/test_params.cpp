@@ -94,6 +94,21 @@ TEST(coordinates) {
   CHECK_EQ(m.vm.axis_param(0, 1), 1001);
 }
 
+// M32: the TMC2300-MOTOR-EVAL has no coordinates and no COORD type: MVP COORD answers "wrong
+// type" (3) in direct mode; a module with coordinates answers "invalid value" (4) for one it lacks.
+TEST(mvp_coord_where_the_module_refuses_it) {
+  auto direct = [](const char* name, std::int32_t coord) {
+    const tmcl::Profile& p = *tmcl::find_profile(name);
+    auto core = tmcl::make_profile_motion_core(p);
+    tmcl::Vm vm(p, *core);
+    vm.power_on(nullptr);
+    return vm.execute_direct(I(Op::MVP, 2, 0, coord)).status;
+  };
+  CHECK_EQ(direct("tmc2300-eval", 0), tmcl::kStatusWrongType);
+  CHECK_EQ(direct("tmcm-1110", 30), tmcl::kStatusInvalidValue);
+  CHECK_EQ(direct("tmcm-1110", 20), tmcl::kStatusOk);
+}
+
 TEST(cco_does_not_load_accumulator) {  // E9
   Machine m({I(Op::MVP, 0, 0, 42), I(Op::CALC, 9, 0, 5), I(Op::CCO, 4, 0), I(Op::STOP)});
   m.run();

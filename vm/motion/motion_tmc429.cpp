@@ -7,11 +7,11 @@
 // ways and the minimum speed (130) as start and stop speed, velocity mode, re-targeting from the
 // current state (the closed-form planner of ramp.hpp), the soft positioning mode (138 = 1). The
 // limit switches with their stop functions (12, 13: disable; 149: soft stop) and the modules'
-// reference search (RFS, 193-196) are the shared part of switch_core.hpp; the TMC429 modules wire
+// reference search (RFS, 193-197) are the shared part of switch_core.hpp; the TMC429 modules wire
 // the home switch in series with the left one (mode 3 searches either). docs/motion.md explains
 // every decision.
 //
-// Parameters it owns: 0-6, 8-13, 130, 135, 138, 140, 149, 153, 154, 173, 174, 181, 193-196, 206, 208,
+// Parameters it owns: 0-6, 8-13, 130, 135, 138, 140, 149, 153, 154, 173, 174, 181, 193-197, 206, 208,
 // and 207, 209, 210, 212 (the encoder where the profile declares one, switch_core.hpp).
 #include <algorithm>
 #include <cmath>
@@ -39,13 +39,17 @@ enum Tmc429Param : int {
   kSoftStop = 149,         // 1: a stop switch stops with the ramp, 0: at once
   kRampDivisor = 153,
   kPulseDivisor = 154,
+  // "the last position value before the position counter is set to zero during reference search"
+  // (PD57/60-1260 manual, 197; TMCM-351 firmware 4.41's release note): the TMCM-1140, -1160,
+  // -1161, -3110, -6110 and -351 list it (the TMCM-1110's manual does not; errata M31).
+  kLastReferencePosition = 197,
 };
 
 constexpr int kTmc429Owned[] = {kApTargetPosition, kApActualPosition, kApTargetSpeed, kApActualSpeed,
                                 kApMaxPositioningSpeed, kApMaxAcceleration, kApPositionReached,
                                 sw::kHomeState, sw::kRightSwitchState, sw::kLeftSwitchState,
                                 sw::kRightStopDisable, sw::kLeftStopDisable, kMinSpeed, kActualAcceleration,
-                                kRampMode, kApMicrostepResolution, kSoftStop, kRampDivisor, kPulseDivisor,
+                                kRampMode, kApMicrostepResolution, kSoftStop, kRampDivisor, kPulseDivisor, kLastReferencePosition,
                                 sw::kRfsMode, sw::kRfsSpeed, sw::kRfsSwitchSpeed, sw::kRfsDistance,
                                 sw::kErrorFlags, sw::kEncoderPosition, sw::kEncoderPrescaler, sw::kMaxDeviation,
                                 // stallGuard2 (stall_core.cpp): run current, filter, threshold, stop on stall, load value, driver flags
@@ -59,7 +63,7 @@ class Tmc429Core final : public sw::SwitchCore {
   // Its parameters are in the chip's units: their rows and defaults come from the TMCM-1110's
   // profile wherever the active one (generic) has them in pps or not at all. The home switch is
   // in series with the left one (TMCM-1110 manual, 5.3).
-  Tmc429Core() : SwitchCore(kTmc429Owned, "tmcm-1110", true, {kSoftStop, true, false}) {}
+  Tmc429Core() : SwitchCore(kTmc429Owned, "tmcm-1110", true, {kSoftStop, true, false, kLastReferencePosition}) {}
 
   void reset(const Profile& profile, int motors) override {
     SwitchCore::reset(profile, motors);

@@ -131,6 +131,7 @@ struct RuntimeWarning {
     NoSuchMotor,         // an instruction naming a motor the module does not have (E51)
     NotWritable,         // SAP/SGP/AAP/AGP on a read-only or unknown parameter (E51)
     NoSuchPort,          // GIO/SIO on a port the profile does not list (E53)
+    NoSuchCoordinate,    // MVP COORD of a coordinate the module lacks, or on a module without coordinates (M32)
     NotSimulated,        // a note, not a warning (but under --strict): EI of an interrupt nothing raises (E52),
                          // a parameter the profile marks not-simulated written or read (E77)
     RampSetting,         // MVP whose ramp cannot start it, or that the manual forbids (E47)

@@ -86,7 +86,7 @@ axis 193 "Reference search mode" 1..136 RWE default=1 values=1..8,+128 src=F:5,R
 axis 194 "Reference search speed" 0..2047 RWE default=0 src=F:5,R:4.2,P unverified=range,default  # 0: the maximum positioning speed 4 (5.3; errata M16)
 axis 195 "Reference switch speed" 0..2047 RWE default=0 src=F:5,R:4.2,P unverified=range,default  # 0: a quarter of 4 (5.3; errata M16)
 axis 196 "Distance end switches" 0..2147483647 R default=0 unit=μsteps src=F:5,P unverified=range,access
-axis 197 "Last reference position" -2147483648..2147483647 R default=0 unit=μsteps src=P unverified=range,access not-simulated="reads 0: the tmc429 core does not record the position where the search found its switch"
+axis 197 "Last reference position" -2147483648..2147483647 R default=0 unit=μsteps src=P unverified=range,access
 axis 200 "Boost current" 0..255 RWE default=0 src=P unverified=range,access,default  # 0: the current of parameter 6
 axis 204 "Freewheeling" 0..65535 RWE default=0 unit=ms src=F:5,P unverified=range,access,default  # 0: never
 axis 206 "Actual load value" 0..1023 R default=0 src=F:5,P unverified=range,access

@@ -57,7 +57,7 @@ axis 193 "Reference search mode" 1..3 RWE default=1 src=M:5 unverified=default
 axis 194 "Reference search speed" 0..2047 RWE default=0 src=M:5 unverified=default  # 0: the maximum positioning speed 4 (reference search hints, section 5; errata M16)
 axis 195 "Reference switch speed" 0..2047 RWE default=0 src=M:5 unverified=default  # 0: a quarter of 4 (reference search hints, section 5; errata M16)
 axis 196 "Reference switch distance" 0..2147483647 R default=0 unit=μsteps src=M:5
-axis 197 "Last reference position" -2147483648..2147483647 R default=0 unit=μsteps src=Y unverified=range,access not-simulated="reads 0: the tmc429 core does not record the position where the search found its switch"
+axis 197 "Last reference position" -2147483648..2147483647 R default=0 unit=μsteps src=Y unverified=range,access
 axis 200 "Boost current" 0..255 RWE default=0 src=M:5 unverified=default  # 0: the current of parameter 6
 axis 203 "Mixed decay threshold" -1..2048 RWE default=2048 src=M:5 unverified=default  # -1: always
 axis 204 "Freewheeling" 0..65535 RWE default=0 unit=ms src=M:5 unverified=default  # 0: never
