@@ -23,6 +23,7 @@ std::string_view mark_name(Mark m) {
     case Mark::Interrupt: return "interrupt";
     case Mark::StopSwitch: return "stop switch";
     case Mark::HomeSwitch: return "home switch";
+    case Mark::Rebased: return "position re-based";
     case Mark::Other: return "event";
   }
   return "event";
@@ -143,6 +144,7 @@ MarkStyle mark_style(Mark m) {
     case Mark::Interrupt: return {"#e07b00", "M-4,-5 L4,-5 L4,3 L-4,3 Z"};      // square
     case Mark::StopSwitch: return {"#b00020", "M-5,3 L5,3 L0,-6 Z"};             // triangle up
     case Mark::HomeSwitch: return {"#2e7d32", "M0,-6 L5,-1 L5,4 L-5,4 L-5,-1 Z"};  // a house, green
+    case Mark::Rebased: return {"#1565c0", "M-5,-6 L5,-6 L-5,4 L5,4 Z"};            // an hourglass: the count jumps
     case Mark::Other: return {"#0a8a8a", "M-4.5,-1 a4.5,4.5 0 1,0 9,0 a4.5,4.5 0 1,0 -9,0"};  // circle
   }
   return {"#000000", ""};
@@ -394,8 +396,11 @@ void write_svg(std::ostream& out, const Plot& whole, const PlotOptions& opt) {
     }
     placed.emplace_back(x, level);
     out << "<path transform=\"translate(" << x << ',' << marks_base - 8 - 13 * level << ")\" d=\"" << st.glyph << "\" fill=\"" << st.colour
-        << "\"><title>" << seconds(m.at) << " s: " << xml_text(mark_name(m.kind))
-        << (m.label.empty() ? "" : ": " + xml_text(m.label)) << (m.motor >= 0 ? " (motor " + std::to_string(m.motor) + ")" : "")
+        << "\"><title>" << seconds(m.at) << " s: "
+        // a label that begins with the kind's name ("position re-based: ...") is not prefixed twice
+        << (m.label.rfind(std::string(mark_name(m.kind)) + ":", 0) == 0 ? xml_text(m.label)
+            : xml_text(mark_name(m.kind)) + (m.label.empty() ? "" : ": " + xml_text(m.label)))
+        << (m.motor >= 0 ? " (motor " + std::to_string(m.motor) + ")" : "")
         << "</title></path>\n";
   }
 

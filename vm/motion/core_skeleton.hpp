@@ -92,8 +92,8 @@ class CoreSkeleton : public MotionCore {
   }
 
   // An event a command caused now, reported by the next advance.
-  void report_now(int motor, MotionEventKind kind, std::int32_t position) {
-    pending_.push_back({now_, static_cast<std::uint8_t>(motor), kind, position});
+  MotionEvent& report_now(int motor, MotionEventKind kind, std::int32_t position) {
+    return pending_.emplace_back(MotionEvent{now_, static_cast<std::uint8_t>(motor), kind, position});
   }
   SimTime next_pending() const { return pending_.empty() ? kNever : pending_.front().at; }
   // Moves the commands' events to `out` (all of them lie at or before now_).

@@ -466,6 +466,9 @@ void SwitchCore::reference_at(Motor& m, std::int64_t a, std::int64_t b) {
   }
   if (cfg_.last_reference != 0) m.p[static_cast<std::size_t>(cfg_.last_reference)] = ramp::wrap32(ref);
   m.rm.shift(-ref);
+  // The register jumps here: the trace and the plot say so (issue 33, 3).
+  report_now(static_cast<int>(&m - motors_.data()), MotionEventKind::Rebased, ramp::wrap32(m.rm.xactual(now_))).former =
+      ramp::wrap32(ref);
   m.enc.off -= ref;  // the encoder moves with the counter: the deviation stays (docs/errata.md E68)
   m.p[kApTargetPosition] = 0;
   s.step = SearchStep::ToRef;
