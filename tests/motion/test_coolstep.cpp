@@ -208,3 +208,39 @@ TEST(coolstep_on_the_tmc429_core) {
   CHECK_EQ(b.get(180), 15);  // half of 32/32
   CHECK_EQ(b.count(MotionEventKind::CurrentChanged), 16);
 }
+
+// With the filter (173 = 1) a reading comes every fourth fullstep: the steps are 20 ms apart.
+TEST(coolstep_steps_at_the_filtered_readings) {
+  Cool1260 b;
+  b.set(173, 1);
+  b.set(170, 2);
+  b.set(169, 3);
+  b.set(172, 1);
+  b.run(300000);
+  CHECK_EQ(b.steps(), (std::vector<int>{15, 14, 13, 12, 11, 10, 9, 8, 7}));
+  const auto at = b.instants();
+  for (std::size_t i = 1; i < at.size(); ++i) CHECK(at[i] - at[i - 1] >= 19999 && at[i] - at[i - 1] <= 20001);
+}
+
+// The load value is read with the current driven (errata E72): a sudden load of 97 % with 174 = -1
+// reads 2 at the run current but 0 at a quarter of it, so stop on stall stops the motor only
+// when coolStep has lowered the current.
+TEST(coolstep_lowered_current_stalls_sooner) {
+  for (bool cool : {false, true}) {
+    Cool1260 b;
+    b.set(174, -1);
+    b.set(181, 40000);
+    if (cool) {
+      b.set(168, 1);
+      b.set(170, 2);
+      b.set(169, 3);
+      b.set(172, 1);
+    }
+    b.run(300000);
+    CHECK_EQ(b.get(180), cool ? 3 : 16);
+    CHECK(b.core->set_load(0, 97));
+    b.run(100000);
+    CHECK_EQ(b.count(MotionEventKind::Stall), cool ? 1 : 0);
+    CHECK_EQ(b.get(206), cool ? 0 : tmcl::stall::reading(200, 16, 97, -1));
+  }
+}
