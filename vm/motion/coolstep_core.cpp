@@ -80,26 +80,33 @@ std::int32_t SwitchCore::actual_current(const Motor& m) const {
   return m.cool.cs;
 }
 
+// The settings coolStep reads besides the run current (a write first brings it up to now).
+bool SwitchCore::cool_input(int param) {
+  switch (param) {
+    case kCsStandby: case kCsSeimin: case kCsSedn: case kCsSemax: case kCsSeup: case kCsSemin: case kCsThresholdSpeed:
+      return true;
+    default: return false;
+  }
+}
+
 // Writes of the parameters coolStep reads. They are stored without a re-plan (they do not change
 // the ramp); the regulation up to now has run with the old values (stall_input). A new run current
 // starts the regulation again from it (E71). False: not one of them, or no coolStep here.
 bool SwitchCore::cool_param(Motor& m, int param, std::int32_t value, ParamWrite& result) {
   if (!cool_on_) return false;
-  switch (param) {
-    case kCsActual: result = ParamWrite::ReadOnly; return true;
-    case kCsStandby: case kCsSeimin: case kCsSedn: case kCsSemax: case kCsSeup: case kCsSemin: case kCsThresholdSpeed:
-      if (!in_range(param, value)) {
-        result = ParamWrite::OutOfRange;
-        return true;
-      }
-      m.p[static_cast<std::size_t>(param)] = value;
-      m.sg.next_valid = false;
-      result = ParamWrite::Ok;
-      return true;
-    case kCsRun:  // the caller stores it and re-plans; the regulation restarts from it
-      return false;
-    default: return false;
+  if (param == kCsActual) {
+    result = ParamWrite::ReadOnly;
+    return true;
   }
+  if (!cool_input(param)) return false;  // 6: the caller stores it and re-plans, then restarts the regulation
+  if (!in_range(param, value)) {
+    result = ParamWrite::OutOfRange;
+    return true;
+  }
+  m.p[static_cast<std::size_t>(param)] = value;
+  m.sg.next_valid = false;
+  result = ParamWrite::Ok;
+  return true;
 }
 
 // Walks the measurements in (s_lo, s_hi] of the plan (plan seconds; s_hi may be infinite), applying

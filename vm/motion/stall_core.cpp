@@ -119,10 +119,11 @@ Builder SwitchCore::restart(Motor& m, double vscale) {
 void SwitchCore::stall_input(Motor& m, int param) {
   switch (param) {
     case kRunCurrent: case kMicrostepResolution: case kSgFilter: case kSgThreshold: case kStopOnStall:
-    case 7: case 168: case 169: case 170: case 171: case 172: case 182:  // coolStep's (coolstep_core.cpp)
       commit(m);
       break;
-    default: break;
+    default:
+      if (cool_input(param)) commit(m);  // coolStep's settings (coolstep_core.cpp)
+      break;
   }
 }
 

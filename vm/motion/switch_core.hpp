@@ -236,6 +236,7 @@ class SwitchCore : public ramp::RampCore<Motor> {
     double stop = -1;       // search: the plan instant it stopped at (a change of the scale, or the cap)
   };
   void reset_cool(const Profile& profile);
+  static bool cool_input(int param);
   bool cool_param(Motor& m, int param, std::int32_t value, ParamWrite& result);
   std::int32_t actual_current(const Motor& m) const;
   coolstep::Settings cool_settings(const Motor& m) const;
