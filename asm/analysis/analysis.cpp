@@ -292,19 +292,17 @@ void Walker::premark_noreturn() {
   auto runs_on = [](OpClass c) {
     return c != OpClass::Ja && c != OpClass::Rst && c != OpClass::Stop && c != OpClass::NotOp && c != OpClass::Rsub;
   };
-  std::vector<char> may(static_cast<std::size_t>(n), 0);  // an RSUB is reachable from here
-  std::vector<int> stack;
-  bool any_call = false;
+  std::vector<int> stack, callees;  // the RSUBs, then the walk back; the call targets
   for (int i = 0; i < n; ++i) {
     const OpClass c = op_class[program[i].op];
-    if (c == OpClass::Rsub) {
-      may[static_cast<std::size_t>(i)] = 1;
-      stack.push_back(i);
-    }
-    any_call = any_call || c == OpClass::Call;
+    if (c == OpClass::Rsub) stack.push_back(i);
+    else if (c == OpClass::Call && target_ok(program[i])) callees.push_back(program[i].value);
   }
-  if (!any_call) return;
+  if (callees.empty()) return;
+  std::vector<char> may;  // per address: an RSUB is reachable from there (none when no RSUB is)
   if (!stack.empty()) {
+    may.assign(static_cast<std::size_t>(n), 0);
+    for (int i : stack) may[static_cast<std::size_t>(i)] = 1;
     // Backwards from the RSUBs: to the instruction before (when it runs on) and to every jump
     // there, the jumps grouped by target in one array.
     std::vector<int> first(static_cast<std::size_t>(n) + 1, 0);
@@ -333,12 +331,10 @@ void Walker::premark_noreturn() {
         mark(from[static_cast<std::size_t>(k)]);
     }
   }
-  for (int i = 0; i < n; ++i) {
-    if (op_class[program[i].op] != OpClass::Call || !target_ok(program[i])) continue;
-    const auto t = static_cast<std::size_t>(program[i].value);
-    if (may[t]) continue;
+  for (int t : callees) {
+    if (!may.empty() && may[static_cast<std::size_t>(t)]) continue;
     if (noreturn_at.empty()) noreturn_at.assign(static_cast<std::size_t>(n), 0);
-    noreturn_at[t] = 1;
+    noreturn_at[static_cast<std::size_t>(t)] = 1;
   }
 }
 
