@@ -80,7 +80,7 @@ axis 176 "Slope control low side" 0..3 RW default=3 src=M:5 unverified=default
 axis 177 "Short protection disable" 0..1 RW default=0 src=M:5 unverified=default
 axis 178 "Short detection timer" 0..3 RW default=0 src=M:5 unverified=default
 axis 179 "Vsense" 0..1 RW default=0 src=M:5 unverified=default
-axis 180 "SmartEnergy actual current" 0..31 R default=0 src=M:5 not-simulated="reads 0: coolStep (168-172, 182) is not simulated, so no current is adapted to the load"  # a status the table calls RW (errata)
+axis 180 "SmartEnergy actual current" 0..31 R default=0 src=M:5  # a status the table calls RW (errata)
 axis 181 "Stop on stall" 0..2047 RW default=0 src=M:5 unverified=default  # 0: off
 axis 182 "SmartEnergy threshold speed" 0..2047 RW default=0 src=M:5 unverified=default
 axis 183 "SmartEnergy slow run current" 0..255 RW default=0 src=M:5 unverified=default

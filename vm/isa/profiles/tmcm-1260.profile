@@ -83,7 +83,7 @@ axis 172 "SmartEnergy hysteresis start" 0..15 RW default=0 src=M:4 unverified=de
 axis 173 "StallGuard2 filter enable" 0..1 RW default=0 src=M:4 unverified=default
 axis 174 "StallGuard2 threshold" -64..63 RW default=0 src=M:4  # 'zero is the starting value'
 axis 178 "Global current scaler" 0..255 RW default=0 src=Y,P unverified=range,access,default  # newer firmware
-axis 180 "SmartEnergy actual current" 0..31 R default=0 src=M:4 not-simulated="reads 0: coolStep (168-172, 182) is not simulated, so no current is adapted to the load"
+axis 180 "SmartEnergy actual current" 0..31 R default=0 src=M:4
 axis 181 "Stop on stall" 0..7999774 RW default=0 unit=pps src=M:4 unverified=default
 axis 182 "SmartEnergy threshold speed" 0..7999774 RW default=0 unit=pps src=M:4 unverified=default
 axis 184 "Random TOff mode" 0..1 RW default=0 src=M:4 unverified=default

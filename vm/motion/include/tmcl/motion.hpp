@@ -41,6 +41,7 @@ enum class MotionEventKind : std::uint8_t {
   Stall,            // stop on stall (axis parameter 181): the load value reached 0, motor stopped (interrupt 15+motor)
   StepsLost,        // the shaft stands (a hard stop, a load of 100 % or more) while the counter runs on
   Rebased,          // a reference search made its reference point position 0: the register jumps
+  CurrentChanged,   // coolStep changed the actual current (axis parameter 180) of a moving motor: `value`
 };
 std::string_view motion_event_name(MotionEventKind kind);
 
@@ -55,9 +56,9 @@ struct MotionEvent {
   // SwitchChanged only: which input, and whether it is now closed (active).
   SwitchInput input = SwitchInput::StopLeft;
   bool active = false;
-  // Rebased only: where the reference point was before it became 0 (`position` is the motor's
-  // position in the new count, at the same instant).
-  std::int32_t former = 0;
+  // CurrentChanged: the actual current (axis parameter 180) from then on; Rebased: where the
+  // reference point was before it became 0 (`position` is the motor's position in the new count).
+  std::int32_t value = 0;
 };
 // The event as the trace and the recording show it: "left switch closed", else the kind's name.
 std::string motion_event_text(const MotionEvent& ev);
