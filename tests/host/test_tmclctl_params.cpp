@@ -93,7 +93,7 @@ TEST(what_the_module_lacks_is_refused_before_sending) {
 
 TEST(console_knows_the_interrupt_names) {
   const auto predefined = [](const char* name) { return tmcl::host::ConsoleSession(*tmcl::find_profile(name), {}).predefined(); };
-  CHECK_EQ(predefined("tmcm-1110"), (std::vector<std::string>{"TMCLParam.tmc", "Interrupts.inc"}));
+  CHECK_EQ(predefined("tmcm-1110"), (std::vector<std::string>{"TMCLParam.tmc", "Interrupts.inc", "TMCM-1110.inc"}));
   CHECK_EQ(predefined("tmc2300-eval"), (std::vector<std::string>{"TMCLParam.tmc", "TMC2300-MOTOR-EVAL.inc"}));  // no vectors
   Server server(kRun, {"--serve", "tcp:127.0.0.1:0", "-t", "tmcm-1110"});
   const std::string in = write_temp("ei.txt", "EI TI_TIMER0\nDI TI_INPUT0\nhelp\n");
@@ -102,7 +102,7 @@ TEST(console_knows_the_interrupt_names) {
   CHECK_EQ(o.status, 0);
   CHECK(has(o.out, "tmcl> EI TI_TIMER0\n100 success, value 0\n"));
   CHECK(has(o.out, "tmcl> DI TI_INPUT0\n100 success, value 0\n"));
-  CHECK(has(o.out, "TMCLParam.tmc and Interrupts.inc are included"));
+  CHECK(has(o.out, "TMCLParam.tmc, Interrupts.inc and TMCM-1110.inc are included"));
   CHECK(o.err.empty());
 }
 
