@@ -69,8 +69,10 @@ std::string not_simulated_reason(const Profile& profile, std::string_view core, 
       break;
     default:
       if (k.index >= profile.motors) return "the module has no motor " + std::to_string(k.index);
-      // The stall model runs where the profile has stallGuard2's threshold (stall_core.cpp).
-      if (k.source == VectorSource::Stall && !profile.any_parameter && profile.axis_param(174) == nullptr)
+      // The stall model runs where the profile has stallGuard2's threshold or names its load
+      // measurement (`motion-constant stallguard`, stall_core.cpp).
+      if (k.source == VectorSource::Stall && !profile.any_parameter && profile.axis_param(174) == nullptr &&
+          profile.motion_constant("stallguard", 0) == 0)
         return "the profile has no stallGuard2 threshold (axis parameter 174), so no stall is modelled";
       break;
   }

@@ -50,7 +50,7 @@ std::string_view switch_input_name(SwitchInput input) {
 }
 
 std::string motion_event_text(const MotionEvent& ev) {
-  if (ev.kind == MotionEventKind::Stall) return "stall: load value 0, stopped";
+  if (ev.kind == MotionEventKind::Stall) return "stall: load value " + std::to_string(ev.load) + ", stopped";
   if (ev.kind == MotionEventKind::StepsLost) return "steps lost: the shaft stands, the position counter runs on";
   if (ev.kind != MotionEventKind::SwitchChanged) return std::string(motion_event_name(ev.kind));
   return std::string(switch_input_name(ev.input)) + " switch " + (ev.active ? "closed" : "opened");

@@ -11,8 +11,8 @@
 // the home switch in series with the left one (mode 3 searches either). docs/motion.md explains
 // every decision.
 //
-// Parameters it owns: 0-6, 8-13, 130, 135, 138, 140, 149, 153, 154, 173, 174, 181, 193-196, 206, 208,
-// and 207, 209, 210, 212 (the encoder where the profile declares one, switch_core.hpp).
+// Parameters it owns: 0-6, 8-13, 130, 135, 138, 140, 149, 153, 154, 173, 174, 181, 193-196, 205, 206,
+// 208, and 207, 209, 210, 212 (the encoder where the profile declares one, switch_core.hpp).
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -49,7 +49,8 @@ constexpr int kTmc429Owned[] = {kApTargetPosition, kApActualPosition, kApTargetS
                                 sw::kRfsMode, sw::kRfsSpeed, sw::kRfsSwitchSpeed, sw::kRfsDistance,
                                 sw::kErrorFlags, sw::kEncoderPosition, sw::kEncoderPrescaler, sw::kMaxDeviation,
                                 // stallGuard2 (stall_core.cpp): run current, filter, threshold, stop on stall, load value, driver flags
-                                6, 173, 174, 181, 206, 208};
+                                6, 173, 174, 181, 206, 208,
+                                205};  // the TMCM-351's stallGuard 1 threshold (stall_core.cpp)
 
 class Tmc429Core final : public sw::SwitchCore {
  public:

@@ -224,6 +224,18 @@ class SwitchCore : public ramp::RampCore<Motor> {
   double contact(const Motor& m, const ramp::Segment& seg, double t1, double t2, int& why) const;
   double first_stall(const Motor& m, const ramp::Segment& seg, double t1, double t2) const;
   bool stops_on_stall(const Motor& m) const;
+  // ---- the other drivers' measurements (stallGuard 1, StallGuard4; stall_core.cpp, errata E74, E75)
+  stall::Guard guard_ = stall::Guard::None;  // which measurement the module makes
+  std::int32_t stall_flag207_ = 0;           // what a stop on stall sets in 207 (`stall-flag`)
+  bool measuring(const Motor& m) const;
+  int measure(const Motor& m, double f, int load) const;
+  double stall_below(const Motor& m, int load) const;
+  int stall_reading(const Motor& m, int value) const;
+  // stallGuard 1 measures at a constant speed only ("no stall detection while the motor is being
+  // accelerated or decelerated", TMCM-351 manual 7.3); the others on every moving segment.
+  bool steady_enough(const ramp::Segment& seg) const {
+    return guard_ != stall::Guard::SG1 || (seg.a0 == 0 && seg.j == 0);
+  }
 };
 
 }  // namespace tmcl::sw

@@ -24,6 +24,10 @@ motion-constant encoder 1 src=M:7.2  # the optional encoder interface
 motion-constant encoder-prescaler 512 src=M:7.2  # prescaler = 210 / 512
 motion-constant encoder-prescaler-flags 31 src=M:7.2  # adding 1, 2, 4, 8, 16 to 210 selects special functions
 motion-constant deviation-flag 1 src=M:5  # 207 bit 0: 'stopped due to encoder deviation error'
+# The stall detection the core simulates (docs/motion.md, errata E75): the TMC249's stallGuard
+# (load value 206 0..7, threshold 205, no detection while accelerating); a stall stop sets 207 bit 1.
+motion-constant stallguard 1 src=M:7.3  # 'three TMC249 motor driver chips ... load measurement'
+motion-constant stall-flag 2 src=M:5  # 207 bit 1: 'motor has been stopped due to motor stall'
 # Commands: table 4.4.1, CLE 36 (4.6.32), UF0..UF7 (4.6.37), 138 (4.6.38) and the control commands
 # (4.4.2.9), SAC 29 (4.6.24). 139 (enter ASCII mode) is a control command tmcl does not have.
 commands 1-15 19-39 64-71 src=M:4.4.1,M:4.6.24,M:4.6.32,M:4.6.37

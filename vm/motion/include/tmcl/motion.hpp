@@ -54,6 +54,8 @@ struct MotionEvent {
   // SwitchChanged only: which input, and whether it is now closed (active).
   SwitchInput input = SwitchInput::StopLeft;
   bool active = false;
+  // Stall only: the load value (206) the stall was measured at (0 for stallGuard2).
+  std::int32_t load = 0;
 };
 // The event as the trace and the recording show it: "left switch closed", else the kind's name.
 std::string motion_event_text(const MotionEvent& ev);
