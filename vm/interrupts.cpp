@@ -15,10 +15,9 @@ struct NotSimulated {
   std::string_view unless_constant = {};  // the row does not apply where the profile sets this motion constant
 };
 constexpr NotSimulated kNotSimulated[] = {
-    // stallGuard2 is modelled by the TMCM cores only (vm/motion/stall_core.cpp, docs/motion.md)
+    // the load measurements are modelled by the TMCM cores and the linear core (vm/motion/stall_core.cpp, docs/motion.md)
     {VectorSource::Stall, "ideal", "the ideal core models no load and no stallGuard2"},
     {VectorSource::Stall, "tmc4361", "the tmc4361 core models no load and no stallGuard2"},
-    {VectorSource::Stall, "linear", "the linear core models no load and no StallGuard4"},
     {VectorSource::Deviation, "linear", "the linear core has no encoder model"},
     // the TMCM cores model the encoder where the profile declares one (switch_core.cpp)
     {VectorSource::Deviation, "tmc429", "the profile declares no encoder (motion-constant encoder)", "encoder"},

@@ -128,3 +128,114 @@ TEST(tmcm1260_stall_sets_207_bit_0) {
   b.core->rotate(0, -51200);
   CHECK_EQ(b.get(207), 0);  // ... "or when a motion command has been executed"
 }
+
+namespace {
+
+// A TMC2300-MOTOR-EVAL (linear core) at 16 microsteps rotating at 16000 pps = 1000 fullsteps/s,
+// run current 16.
+struct Axis2300 : mt::SwitchBench {
+  explicit Axis2300(bool run = true) : SwitchBench("linear", "tmc2300-eval", 1) {
+    set(140, 4);
+    set(6, 16);
+    set(5, 200000);
+    if (run) cruise(16000);
+  }
+  void cruise(std::int32_t v) {
+    core->rotate(0, v);
+    CHECK(until(MotionEventKind::VelocityReached));
+  }
+  void load(int percent) { CHECK(core->set_load(0, percent)); }
+  void wait(tmcl::SimTime d) { to(now + d); }
+};
+
+}  // namespace
+
+// StallGuard4: the reading falls linearly with the load from the no-load value; the threshold 174
+// does not shift it (it is only the level a stall is compared with).
+TEST(sg4_load_value_falls_with_the_load_not_shifted_by_174) {
+  Axis2300 b;
+  b.wait(20000);
+  CHECK_EQ(b.get(206), tmcl::stall::reading4(1000, 16, 0));
+  CHECK_EQ(b.get(206), 427);  // 250 + 500 · 17/32 · 1000/1500, rounded
+  int last = 1024;
+  for (int p : {10, 40, 70, 99}) {
+    b.load(p);
+    b.wait(20000);
+    const int v = b.get(206);
+    CHECK(v < last);
+    CHECK_EQ(v, tmcl::stall::reading4(1000, 16, p));
+    last = v;
+  }
+  b.load(50);
+  b.wait(20000);
+  const int at50 = b.get(206);
+  b.set(174, 60);
+  b.wait(20000);
+  CHECK_EQ(b.get(206), at50);  // unlike stallGuard2's 174
+  CHECK_EQ(b.get(180), 16);    // the run current while moving (no coolStep)
+}
+
+// Stop on stall: the first measurement at or below 2 · 174 at a speed >= 181 stops the motor at
+// once; the stall event carries that reading. A higher 174 stops under a smaller load.
+TEST(sg4_stops_at_twice_174_above_181) {
+  {
+    Axis2300 b;
+    b.set(181, 10000);
+    b.set(174, 100);  // stall at a reading <= 200
+    b.load(40);       // reads 256
+    b.wait(100000);
+    CHECK_EQ(b.count(MotionEventKind::Stall), 0);
+    b.load(60);  // reads 171
+    CHECK(b.until(MotionEventKind::Stall));
+    CHECK_EQ(b.get(3), 0);
+    CHECK_EQ(b.get(206), tmcl::stall::reading4(1000, 16, 60));
+    CHECK_EQ(b.last().load, b.get(206));
+    CHECK(b.next() == tmcl::kNever);
+  }
+  {
+    Axis2300 b;
+    b.set(181, 10000);
+    b.set(174, 150);  // more sensitive: <= 300 stops
+    b.load(40);
+    CHECK(b.until(MotionEventKind::Stall));
+  }
+  {
+    Axis2300 b;
+    b.set(181, 20000);  // above the speed: no stop, the blocked rotor loses steps
+    b.load(100);
+    CHECK(b.until(MotionEventKind::StepsLost));
+    b.wait(500000);
+    CHECK_EQ(b.count(MotionEventKind::Stall), 0);
+    CHECK_EQ(b.get(3), 16000);
+    CHECK_EQ(b.get(206), 0);
+  }
+}
+
+// "StallGuard4 in StealthChop mode": with 187 = 0 (StealthChop off) nothing is measured, 206
+// holds and no stall stops the motor.
+TEST(sg4_needs_stealthchop) {
+  Axis2300 b;
+  b.wait(20000);
+  const int free = b.get(206);
+  b.set(187, 0);
+  b.set(181, 1000);
+  b.load(100);
+  b.wait(500000);
+  CHECK_EQ(b.get(206), free);
+  CHECK_EQ(b.count(MotionEventKind::Stall), 0);
+  b.set(187, 1);  // on again: the next measurement stalls
+  CHECK(b.until(MotionEventKind::Stall));
+}
+
+// Homing into a hard stop on the TMC2300 with stop on stall: within a fullstep past the stop.
+TEST(sg4_hard_stop_homing) {
+  Axis2300 b(false);
+  b.set(181, 1000);
+  CHECK(b.core->place_hard_stop(0, SwitchInput::StopLeft, -8000));
+  b.core->rotate(0, -16000);
+  CHECK(b.until(MotionEventKind::Stall, 40));
+  const std::int32_t p = b.core->position(0);
+  CHECK(p <= -8000 && p >= -8000 - 16 - 1);
+  CHECK_EQ(b.get(206), 0);
+  CHECK_EQ(b.get(180), 8);  // at rest: the standby current
+}

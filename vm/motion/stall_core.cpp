@@ -373,8 +373,12 @@ void SwitchCore::on_mech(Motor& m, std::vector<MotionEvent>& out) {
   commit(m);
   switch (kind) {
     case kStall: {  // stop on stall: at once, the target kept; the VM raises 15 + motor
+      // This measurement, taken now (it may share its microsecond with a contact, or with the
+      // load change that caused it).
+      const double f = std::fabs(m.rm.state(now_).v) / fullstep(m);
+      const int load = m.shaft.held ? 100 : load_at(m, static_cast<double>(shaft_at(m)));
       Builder b = restart(m);
-      m.sg.value = stall_reading(m, m.sg.value), m.sg.measured = true;  // this measurement (it may share its microsecond with a contact)
+      m.sg.value = stall_reading(m, measure(m, f, load)), m.sg.measured = true;
       m.errors |= stall_flag207_;  // 207: "stopped due to motor stall" where the manual has it
       b.stop_hard();
       b.finish_rest();

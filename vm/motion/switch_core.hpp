@@ -99,6 +99,7 @@ struct SwitchConfig {
   bool home_in_series;    // mode 3 searches the reference input (TMC429 modules: home in series with left)
   bool other_switch;      // 193 takes +64 (modes 1-4) and +128 only with modes 5-8 (TMCM-1260)
   int last_reference = 0; // parameter that keeps the reference point's former position (0: none)
+  bool stop_switches = true;  // false: the module has no stop switches (TMC2300: placed ones only report)
 };
 
 class SwitchCore : public ramp::RampCore<Motor> {
@@ -119,6 +120,9 @@ class SwitchCore : public ramp::RampCore<Motor> {
   // The shaft slips `counts` microsteps against the counter (scenario `slip`); the encoder sees it.
   void encoder_slip(int motor, std::int32_t counts) override;
   bool models_encoder(const Profile& profile) const override;
+  // 205, stallGuard 1's threshold, is the core's only where the profile names that measurement
+  // (`motion-constant stallguard 1`, stall_core.cpp); elsewhere the VM keeps it, if the module has it.
+  bool owns(int param) const override { return (param != 205 || guard_ == stall::Guard::SG1) && RampCore::owns(param); }
   // ---- loads, stalls and lost steps (stall_core.cpp; docs/motion.md)
   SimTime next_event() const override;
   bool place_hard_stop(int motor, SwitchInput side, std::int64_t position) override;

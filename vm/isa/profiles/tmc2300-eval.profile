@@ -16,6 +16,9 @@ user-variables 256 eeprom=8 src=M:5.2,M:table14  # table 14 marks only 0..7 E
 coordinates 0 src=M:table5  # no SCO/GCO/CCO/ACO, so MVP COORD has nothing to move to
 parameters listed
 motion linear src=M:1
+# The stall detection the core simulates (docs/motion.md, errata E74): StallGuard4 in StealthChop
+# (187 > 0), 174 the level 206 is compared with, stop on stall 181.
+motion-constant stallguard 4 src=M:1  # 'Stall detection StallGuard4 in StealthChop mode'
 # Table 5, UF0..UF7 (section 3.6.25), SIO 14 and GIO 15 (the first example program uses SIO,
 # the AAP example GIO) and the control commands of table 10 (no 138).
 commands 1-12 14-15 19-24 27-28 33-36 64-71 src=M:table5,M:3.6.25
