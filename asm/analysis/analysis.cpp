@@ -212,7 +212,9 @@ void Walker::walk(int r, int from, int start) {
               last = r;
               if (keep_call_sites) call_sites.push_back(i);
               // After a subroutine that never returns (it stops, restarts or loops) nothing follows.
-              if (!noreturn_at.empty() && noreturn_at[static_cast<std::size_t>(t)]) next = false;
+              if (!noreturn_at.empty() && noreturn_at[static_cast<std::size_t>(t)] &&
+                  a.regions[static_cast<std::size_t>(q)].kind == RegionKind::Subroutine)
+                next = false;
             } else {
               bad_jumps.push_back(i);
             }
@@ -277,7 +279,71 @@ void Walker::walk(int r, int from, int start) {
   }
 }
 
+// Before the first walk: the subroutines that cannot return whatever the walk finds, because no
+// RSUB can be reached from their entry by running on and jumping even when every call is taken to
+// return (more paths than any walk follows, so the verdict is safe). The walk then stops after
+// their calls at once, and when it finds no other subroutine that never returns, build() needs no
+// second pass: on call-dense code that never returns (issue 35's "calls" shape) that is half the
+// analysis. Linear: a pass over the program, and over the jumps by target when it has an RSUB.
+void Walker::premark_noreturn() {
+  const int n = static_cast<int>(in.program.size());
+  const Instruction* const program = in.program.data();
+  auto target_ok = [n](const Instruction& x) { return x.value >= 0 && x.value < n; };
+  auto runs_on = [](OpClass c) {
+    return c != OpClass::Ja && c != OpClass::Rst && c != OpClass::Stop && c != OpClass::NotOp && c != OpClass::Rsub;
+  };
+  std::vector<char> may(static_cast<std::size_t>(n), 0);  // an RSUB is reachable from here
+  std::vector<int> stack;
+  bool any_call = false;
+  for (int i = 0; i < n; ++i) {
+    const OpClass c = op_class[program[i].op];
+    if (c == OpClass::Rsub) {
+      may[static_cast<std::size_t>(i)] = 1;
+      stack.push_back(i);
+    }
+    any_call = any_call || c == OpClass::Call;
+  }
+  if (!any_call) return;
+  if (!stack.empty()) {
+    // Backwards from the RSUBs: to the instruction before (when it runs on) and to every jump
+    // there, the jumps grouped by target in one array.
+    std::vector<int> first(static_cast<std::size_t>(n) + 1, 0);
+    for (int i = 0; i < n; ++i)
+      if (const OpClass c = op_class[program[i].op]; (c == OpClass::Ja || c == OpClass::Branch) && target_ok(program[i]))
+        ++first[static_cast<std::size_t>(program[i].value) + 1];
+    for (std::size_t t = 0; t < static_cast<std::size_t>(n); ++t) first[t + 1] += first[t];
+    std::vector<int> from(static_cast<std::size_t>(first.back()));
+    {
+      std::vector<int> fill(first.begin(), first.end() - 1);
+      for (int i = 0; i < n; ++i)
+        if (const OpClass c = op_class[program[i].op]; (c == OpClass::Ja || c == OpClass::Branch) && target_ok(program[i]))
+          from[static_cast<std::size_t>(fill[static_cast<std::size_t>(program[i].value)]++)] = i;
+    }
+    auto mark = [&](int i) {
+      if (!may[static_cast<std::size_t>(i)]) {
+        may[static_cast<std::size_t>(i)] = 1;
+        stack.push_back(i);
+      }
+    };
+    while (!stack.empty()) {
+      const int j = stack.back();
+      stack.pop_back();
+      if (j > 0 && runs_on(op_class[program[j - 1].op])) mark(j - 1);
+      for (int k = first[static_cast<std::size_t>(j)]; k < first[static_cast<std::size_t>(j) + 1]; ++k)
+        mark(from[static_cast<std::size_t>(k)]);
+    }
+  }
+  for (int i = 0; i < n; ++i) {
+    if (op_class[program[i].op] != OpClass::Call || !target_ok(program[i])) continue;
+    const auto t = static_cast<std::size_t>(program[i].value);
+    if (may[t]) continue;
+    if (noreturn_at.empty()) noreturn_at.assign(static_cast<std::size_t>(n), 0);
+    noreturn_at[t] = 1;
+  }
+}
+
 void Walker::build() {
+  premark_noreturn();
   pass();
   // A second pass when some call can never return: the code after it is then not reached from
   // it (the manual's RST example calls a subroutine that restarts the program). Regions that
@@ -315,12 +381,15 @@ void Walker::build() {
         stack.push_back(u);
       }
   }
+  // Again only when a subroutine the first pass let return does not: the ones premark_noreturn()
+  // found were already walked as they are.
   bool again = false;
-  std::vector<char> noreturn(static_cast<std::size_t>(n), 0);
+  std::vector<char> noreturn = noreturn_at.empty() ? std::vector<char>(static_cast<std::size_t>(n), 0) : noreturn_at;
   for (const auto& c : calls)
     if (!returns[static_cast<std::size_t>(c.callee)] && region(c.callee).kind == RegionKind::Subroutine) {
-      noreturn[static_cast<std::size_t>(region(c.callee).entry)] = 1;
-      again = true;
+      char& no = noreturn[static_cast<std::size_t>(region(c.callee).entry)];
+      again = again || !no;
+      no = 1;
     }
   if (!again) return;
   a = Analysis{};
