@@ -8,6 +8,10 @@
 //   - the machine: a hard stop holds the shaft (shaft.hpp) while the counter pushes on into it, a
 //     load of 100 % or more holds it where it stands; the counter runs on (steps lost, said once
 //     per hold) until the motor stops or turns away from the hard stop.
+//   - the other drivers' measurements the profile names (`motion-constant stallguard`): the
+//     TMCM-351's stallGuard 1 (206 0..7 rising with the load, stop at 205, at a constant speed
+//     only) and the TMC2300's StallGuard4 (206 not shifted by 174, stop at 2·174, in StealthChop
+//     only); a stop on stall sets the profile's `stall-flag` in 207 (errata E74-E76).
 // Like the rest of the ramp cores it works in closed form: the next stall, contact or release is
 // found on the current plan by root solving (at most a few per segment), never by stepping.
 #include <algorithm>

@@ -2,7 +2,9 @@
 // with their stop functions and switch states, and the modules' reference search (RFS, 193-196)
 // as a state machine driven by the switches. The TMC429 modules (motion_tmc429.cpp) and the
 // TMCM-1260 (motion_tmc5160.cpp) describe both alike in their manuals; a core adds its units, its
-// ramps and the parameter numbers where they differ. docs/motion.md explains every decision.
+// ramps and the parameter numbers where they differ. The TMC2300's `linear` core (motion_linear.cpp)
+// uses it for the machine and the load model only (SwitchConfig::stop_switches false, no search).
+// docs/motion.md explains every decision.
 //
 // Parameters this part gives a meaning: 0-3, 8-13, 193-196 (and the core's soft-stop flag and
 // last-reference parameter, SwitchConfig), and where the profile declares an encoder (EncoderSpec)
