@@ -93,6 +93,9 @@ TEST(sg1_no_detection_while_accelerating) {
   CHECK(reached >= 0 && reached < stall);
   CHECK(b.events[static_cast<std::size_t>(stall)].at >= b.events[static_cast<std::size_t>(reached)].at);
   CHECK_EQ(b.get(207), 2);
+  // The steps the counter made while the held shaft waited for the ramp's end were lost: said once.
+  CHECK_EQ(b.count(MotionEventKind::StepsLost), 1);
+  CHECK(index_of(b.events, MotionEventKind::StepsLost) < reached);
 }
 
 // A TMCM-351 homing into a hard stop with stall detection: it stops within a fullstep past it.

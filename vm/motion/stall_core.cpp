@@ -16,6 +16,7 @@
 // found on the current plan by root solving (at most a few per segment), never by stepping.
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 
 #include "switch_core.hpp"
 #include "tmcl/params.hpp"
@@ -400,8 +401,11 @@ void SwitchCore::on_mech(Motor& m, std::vector<MotionEvent>& out) {
       hold_shaft(m);
       m.sg.block = why == 0 ? seg.dir : why;
       m.sg.next_valid = false;
-      // Steps are lost from here; said once, unless stop on stall stops the motor (a few microsteps on).
-      if (!(next_mech(m) != kNever && m.sg.next_kind == kStall))
+      // Steps are lost from here; said once, unless stop on stall stops the motor at the next
+      // measurement (within a measurement period: stallGuard 1 waits for a constant speed).
+      const bool stops_soon = next_mech(m) != kNever && m.sg.next_kind == kStall &&
+                              static_cast<double>(std::abs(m.rm.xactual(m.sg.next_at) - m.rm.xactual(now_))) <= period(m) + 1;
+      if (!stops_soon)
         out.push_back({now_, motor, MotionEventKind::StepsLost, ramp::wrap32(m.rm.xactual(now_))});
       break;
     }
