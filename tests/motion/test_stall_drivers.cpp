@@ -192,7 +192,7 @@ TEST(sg4_stops_at_twice_174_above_181) {
     CHECK(b.until(MotionEventKind::Stall));
     CHECK_EQ(b.get(3), 0);
     CHECK_EQ(b.get(206), tmcl::stall::reading4(1000, 16, 60));
-    CHECK_EQ(b.last().load, b.get(206));
+    CHECK_EQ(b.last().value, b.get(206));
     CHECK(b.next() == tmcl::kNever);
   }
   {
