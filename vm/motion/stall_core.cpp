@@ -39,7 +39,6 @@ enum StallParam : int {
   kStopOnStall = 181,
   kLoadValue = 206,
   kDriverFlags = 208,
-  kErrorFlags207 = 207,
 };
 enum MechKind : int { kNone = 0, kStall = 1, kContact = 2, kRelease = 3, kCurrent = 4 };
 
@@ -255,7 +254,8 @@ double SwitchCore::contact(const Motor& m, const Segment& seg, double t1, double
   return best;
 }
 
-// The first measurement in [t1, t2] of a moving segment that reads 0 at a speed >= 181; -1 none.
+// The first measurement in [t1, t2] of a moving segment that means a stall (stallGuard2: it reads 0)
+// at a speed >= 181 (stallGuard 1: at any speed it measures at); -1 none.
 double SwitchCore::first_stall(const Motor& m, const Segment& seg, double t1, double t2) const {
   const double F = fullstep(m), cbase = static_cast<double>(m.rm.base + m.rm.phys);
   if (!steady_enough(seg)) return -1;
