@@ -52,7 +52,7 @@ constexpr int kTmc429Owned[] = {kApTargetPosition, kApActualPosition, kApTargetS
                                 6, 173, 174, 181, 206, 208,
                                 // coolStep (coolstep_core.cpp): standby current, 168-172, actual current, threshold speed
                                 7, 168, 169, 170, 171, 172, 180, 182,
-                                205};  // the TMCM-351's stallGuard 1 threshold (stall_core.cpp)
+                                sw::kSg1Threshold};  // the TMCM-351's stallGuard 1 (stall_core.cpp)
 
 class Tmc429Core final : public sw::SwitchCore {
  public:

@@ -32,7 +32,6 @@ namespace {
 enum StallParam : int {
   kRunCurrent = 6,
   kPwmGradient = 187,     // TMC2300: 0 turns StealthChop off, and with it StallGuard4 (E74)
-  kSg1Threshold = 205,    // stallGuard 1 (TMCM-351): the stall detection threshold 1..7, 0 off
   kMicrostepResolution = 140,
   kSgFilter = 173,
   kSgThreshold = 174,

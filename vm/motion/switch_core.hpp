@@ -34,6 +34,7 @@ enum Param : int {
   kRfsSpeed = 194,
   kRfsSwitchSpeed = 195,
   kRfsDistance = 196,      // between the end switches, after modes 2 and 3
+  kSg1Threshold = 205,     // stallGuard 1 (TMCM-351): the stall detection threshold 1..7, 0 off
   kErrorFlags = 207,       // extended error flags: the deviation (and stall) stops
   kEncoderPosition = 209,
   kEncoderPrescaler = 210, // TMC429 modules: prescaler = value / 512; TMCM-1260: clear on null
@@ -126,7 +127,9 @@ class SwitchCore : public ramp::RampCore<Motor> {
   bool models_encoder(const Profile& profile) const override;
   // 205, stallGuard 1's threshold, is the core's only where the profile names that measurement
   // (`motion-constant stallguard 1`, stall_core.cpp); elsewhere the VM keeps it, if the module has it.
-  bool owns(int param) const override { return (param != 205 || guard_ == stall::Guard::SG1) && RampCore::owns(param); }
+  bool owns(int param) const override {
+    return (param != kSg1Threshold || guard_ == stall::Guard::SG1) && RampCore::owns(param);
+  }
   // ---- loads, stalls and lost steps (stall_core.cpp; docs/motion.md)
   SimTime next_event() const override;
   bool place_hard_stop(int motor, SwitchInput side, std::int64_t position) override;
