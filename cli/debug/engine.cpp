@@ -83,6 +83,28 @@ bool Engine::set_input(InputEvent ev, std::string& error) {
   return true;
 }
 
+bool Engine::set_machine(InputEvent ev, std::string& error) {
+  Vm& vm = *vm_;
+  const bool hard = ev.kind == InputEvent::HardStop;
+  // Asked of a copy of the core: the real one would turn a refusal into a fault of every run.
+  if (std::unique_ptr<MotionCore> probe = vm.motion->clone()) {
+    const bool ok = hard                                 ? probe->place_hard_stop(ev.index, ev.input, ev.from)
+                    : ev.kind == InputEvent::LoadZone    ? probe->place_load(ev.index, ev.from, ev.to, ev.value)
+                                                         : probe->set_load(ev.index, ev.value);
+    if (!ok) {
+      error = "the motion core '" + std::string(vm.motion->name()) + "' cannot model " + (hard ? "hard stops" : "loads") +
+              " on " + std::string(vm.profile->name);
+      return false;
+    }
+  }
+  if (!ev.placed_kind()) return set_input(ev, error);
+  ev.at = 0;
+  ev.line = 0;
+  vm.add_inputs({ev});  // placed at once, and again at every power-on (`run`)
+  state_changed();
+  return true;
+}
+
 bool Engine::assign(const Expr& lhs, std::int64_t value, std::string& error) {
   if (lhs.root >= 0) {
     const Expr::Node& n = lhs.nodes[static_cast<std::size_t>(lhs.root)];
