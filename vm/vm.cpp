@@ -214,6 +214,11 @@ void Vm::add_inputs(std::vector<InputEvent> events) {
   next_check_ = 0;
 }
 
+void Vm::apply_due_inputs() {
+  sync_motion();
+  while (input_next < inputs_queue.size() && inputs_queue[input_next].at <= now) apply_input(inputs_queue[input_next++]);
+}
+
 std::string Vm::where(std::int32_t address) const {
   std::string s = "address " + std::to_string(address);
   if (address >= 0 && static_cast<std::size_t>(address) < source_of.size() &&
