@@ -212,7 +212,9 @@ void Walker::walk(int r, int from, int start) {
               last = r;
               if (keep_call_sites) call_sites.push_back(i);
               // After a subroutine that never returns (it stops, restarts or loops) nothing follows.
-              if (!noreturn_at.empty() && noreturn_at[static_cast<std::size_t>(t)]) next = false;
+              if (!noreturn_at.empty() && noreturn_at[static_cast<std::size_t>(t)] &&
+                  a.regions[static_cast<std::size_t>(q)].kind == RegionKind::Subroutine)
+                next = false;
             } else {
               bad_jumps.push_back(i);
             }
@@ -277,6 +279,62 @@ void Walker::walk(int r, int from, int start) {
   }
 }
 
+// Before the first walk, in the one look at every instruction the walk needs anyway (scan(), made
+// backwards here): besides the entries, the subroutines that cannot return whatever the walk
+// finds, because no RSUB can be reached from their entry by running on and jumping even when every
+// call is taken to return and every jump backwards to reach one (more paths than any walk follows,
+// so the verdict is safe; without an RSUB in the program it is exact). The walk then stops after
+// their calls at once, and when it finds no other subroutine that never returns, build() needs no
+// second pass: on call-dense code that never returns (issue 35's "calls" shape) that is half the
+// analysis. Backwards, an address's answer is that of the next one or of a jump target ahead, so
+// one pass gives all (a jump back counts as reaching an RSUB: no fixed point is needed).
+void Walker::scan_and_premark() {
+  const int n = static_cast<int>(in.program.size());
+  const Instruction* const program = in.program.data();
+  std::vector<char> may(static_cast<std::size_t>(n) + 1, 0);  // an RSUB may be reachable from here
+  std::vector<int> callees;
+  bool any_rsub = false;  // without one no subroutine returns, whatever the jumps back say
+  for (int i = n - 1; i >= 0; --i) {
+    const Instruction& x = program[i];
+    const OpClass c = op_class[x.op];
+    char m = may[static_cast<std::size_t>(i) + 1];  // running on (a call too: taken to return)
+    if (c >= OpClass::Rsub) {
+      const bool t_ok = x.value >= 0 && x.value < n;
+      switch (c) {
+        case OpClass::Rsub:
+          m = 1;
+          any_rsub = true;
+          break;
+        case OpClass::Stop:
+        case OpClass::NotOp:
+        case OpClass::Rst: m = 0; break;  // an RST's target is no region's entry
+        case OpClass::Ja: m = t_ok && (x.value <= i || may[static_cast<std::size_t>(x.value)]); break;
+        case OpClass::Branch: m = m || (t_ok && (x.value <= i || may[static_cast<std::size_t>(x.value)])); break;
+        case OpClass::Store: keep_call_sites = keep_call_sites || writes_eeprom(x); break;
+        case OpClass::Call:
+          if (t_ok) {
+            entry.set(x.value);
+            callees.push_back(x.value);
+          }
+          break;
+        case OpClass::Vect:
+          if (t_ok) {
+            entry.set(x.value);
+            vect_target.set(x.value);
+          }
+          break;
+        default: break;  // RETI and WAIT run on
+      }
+    }
+    may[static_cast<std::size_t>(i)] = m;
+  }
+  for (int t : callees) {
+    if (any_rsub && may[static_cast<std::size_t>(t)]) continue;
+    if (noreturn_at.empty()) noreturn_at.assign(static_cast<std::size_t>(n), 0);
+    noreturn_at[static_cast<std::size_t>(t)] = 1;
+  }
+}
+
 void Walker::build() {
   pass();
   // A second pass when some call can never return: the code after it is then not reached from
@@ -315,12 +373,15 @@ void Walker::build() {
         stack.push_back(u);
       }
   }
+  // Again only when a subroutine the first pass let return does not: the ones scan_and_premark()
+  // found were already walked as they are.
   bool again = false;
-  std::vector<char> noreturn(static_cast<std::size_t>(n), 0);
+  std::vector<char> noreturn = noreturn_at.empty() ? std::vector<char>(static_cast<std::size_t>(n), 0) : noreturn_at;
   for (const auto& c : calls)
     if (!returns[static_cast<std::size_t>(c.callee)] && region(c.callee).kind == RegionKind::Subroutine) {
-      noreturn[static_cast<std::size_t>(region(c.callee).entry)] = 1;
-      again = true;
+      char& no = noreturn[static_cast<std::size_t>(region(c.callee).entry)];
+      again = again || !no;
+      no = 1;
     }
   if (!again) return;
   a = Analysis{};
@@ -350,13 +411,18 @@ void Walker::pass() {
   // Every call and VECT target is an entry, whether or not its caller is reachable, so that a
   // walk stops at a subroutine's label even before the CSUB naming it has been seen.
   const Instruction* const program = in.program.data();
-  scan(
-      [&](int i, OpClass c) {
-        if (c < OpClass::Call) return;  // a jump's target is no region's entry
-        entry.set(program[i].value);
-        if (c == OpClass::Vect) vect_target.set(program[i].value);
-      },
-      [&](int i) { keep_call_sites = keep_call_sites || writes_eeprom(program[i]); });
+  if (!scanned) {
+    scanned = true;
+    scan_and_premark();
+  } else {
+    scan(
+        [&](int i, OpClass c) {
+          if (c < OpClass::Call) return;  // a jump's target is no region's entry
+          entry.set(program[i].value);
+          if (c == OpClass::Vect) vect_target.set(program[i].value);
+        },
+        [&](int i) { keep_call_sites = keep_call_sites || writes_eeprom(program[i]); });
+  }
   // One region per entry at most (exported labels nothing calls add a few later).
   std::size_t entries = 1;
   for (std::uint64_t w : entry.words) entries += static_cast<std::size_t>(std::popcount(w));

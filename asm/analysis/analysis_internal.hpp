@@ -140,7 +140,8 @@ struct Walker {
   std::vector<int> bad_jumps, bad_vects, eis, writes;
   std::array<bool, 256> vect_set{};
   const std::array<OpClass, 256>& op_class = op_classes();  // NotOp: not in the table (E20)
-  std::vector<char> noreturn_at;  // per address: a subroutine there never returns (second pass)
+  // Per address: a subroutine there never returns (scan_and_premark(), and the second pass).
+  std::vector<char> noreturn_at;
   // Per region: the best edge of its deepest chain (-1: none) and its graph edges.
   RegionGraph out;
   std::vector<int> comp;        // region -> component
@@ -171,6 +172,8 @@ struct Walker {
   void walk(int r, int from, int start);
   void met(int r, Fact kind, int address) { events.push_back({r, address, kind}); }
   void index_facts();
+  void scan_and_premark();
+  bool scanned = false;  // the first pass's scan_and_premark() is done
   void build();
   void pass();
   void depths();

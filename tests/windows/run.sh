@@ -76,8 +76,13 @@ fi
 
 # ---- Wine: a prefix of our own, started once, no desktop integration ----
 export WINEPREFIX="$win/wine-prefix" WINEDEBUG=-all WINEDLLOVERRIDES="winemenubuilder.exe=d"
-wineserver -p 120 >/dev/null 2>&1  # one server, up between the many short runs (and not
-wineboot -i >/dev/null 2>&1        # going away under one of them, as a server started by it may)
+# One server, up between the many short runs: a server a run starts itself goes away when that
+# run ends, and the next run, started meanwhile, fails with "wine client error: recvmsg:
+# Connection reset by peer" (a dozen golden cases per run did). The prefix comes first: on a
+# prefix folder that does not exist yet `wineserver -p` fails and no persistent server runs.
+wineboot -i >/dev/null 2>&1
+wineserver -w
+wineserver -p >/dev/null 2>&1 || { echo "== windows: could not start a persistent wineserver"; exit 1; }
 trap 'wineserver -k >/dev/null 2>&1; [[ -n "${servers:-}" ]] && kill $servers 2>/dev/null' EXIT
 
 # ---- 2. the unit tests, then the golden cases ----

@@ -36,6 +36,7 @@ std::string_view motion_event_name(MotionEventKind kind) {
     case MotionEventKind::SwitchChanged: return "switch changed";
     case MotionEventKind::Stall: return "stall";
     case MotionEventKind::StepsLost: return "steps lost";
+    case MotionEventKind::CurrentChanged: return "coolStep current";
   }
   return "?";
 }
@@ -52,6 +53,7 @@ std::string_view switch_input_name(SwitchInput input) {
 std::string motion_event_text(const MotionEvent& ev) {
   if (ev.kind == MotionEventKind::Stall) return "stall: load value 0, stopped";
   if (ev.kind == MotionEventKind::StepsLost) return "steps lost: the shaft stands, the position counter runs on";
+  if (ev.kind == MotionEventKind::CurrentChanged) return "coolStep: actual current " + std::to_string(ev.value);
   if (ev.kind != MotionEventKind::SwitchChanged) return std::string(motion_event_name(ev.kind));
   return std::string(switch_input_name(ev.input)) + " switch " + (ev.active ? "closed" : "opened");
 }

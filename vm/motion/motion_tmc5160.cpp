@@ -8,7 +8,7 @@
 // part of switch_core.hpp; the home switch has its own input. docs/motion.md explains every
 // decision, docs/errata.md where the manual is silent.
 //
-// Parameters it owns: 0-6, 8-13, 15-20, 26, 127, 140, 173, 174, 181, 193-197, 206, 208, and 207, 209,
+// Parameters it owns: 0-13, 15-20, 26, 127, 140, 168-174, 180-182, 193-197, 206, 208, and 207, 209,
 // 210, 212 (the SensOstep encoder, switch_core.hpp).
 #include <algorithm>
 #include <cstdint>
@@ -42,7 +42,9 @@ constexpr int kTmc5160Owned[] = {kApTargetPosition, kApActualPosition, kApTarget
                                  sw::kRfsSwitchSpeed, sw::kRfsDistance, kLastReference,
                                  sw::kErrorFlags, sw::kEncoderPosition, sw::kEncoderPrescaler, sw::kMaxDeviation,
                                  // stallGuard2 (stall_core.cpp): run current, microsteps, filter, threshold, stop on stall, load value, driver flags
-                                 6, 140, 173, 174, 181, 206, 208};
+                                 6, 140, 173, 174, 181, 206, 208,
+                                // coolStep (coolstep_core.cpp): standby current, 168-172, actual current, threshold speed
+                                7, 168, 169, 170, 171, 172, 180, 182};
 
 class Tmc5160Core final : public sw::SwitchCore {
  public:

@@ -13,6 +13,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "measure.hpp"
 #include "switch_core.hpp"
 #include "tmcl/params.hpp"
 
@@ -32,70 +33,9 @@ enum StallParam : int {
   kLoadValue = 206,
   kDriverFlags = 208,
 };
-enum MechKind : int { kNone = 0, kStall = 1, kContact = 2, kRelease = 3 };
+enum MechKind : int { kNone = 0, kStall = 1, kContact = 2, kRelease = 3, kCurrent = 4 };
 
-constexpr double kTol = 1e-9;
-
-// |v| on [t1, t2] of a segment (plan seconds) is monotone (constant jerk, one direction); the
-// instant in it where |v| = c, by the closed form or bisection. c lies between the ends.
-double speed_at(const Segment& seg, double t) { return std::fabs(seg.v(t - seg.t0)); }
-double when_speed(const Segment& seg, double t1, double t2, double c) {
-  if (seg.j == 0 && seg.a0 != 0) {
-    const double t = seg.t0 + (seg.dir * c - seg.v0) / seg.a0;
-    return std::clamp(t, t1, t2);
-  }
-  const bool rising = speed_at(seg, t2) >= speed_at(seg, t1);
-  double lo = t1, hi = t2;
-  for (int i = 0; i < 80 && hi - lo > 1e-12; ++i) {
-    const double mid = (lo + hi) / 2;
-    ((speed_at(seg, mid) < c) == rising ? lo : hi) = mid;
-  }
-  return (lo + hi) / 2;
-}
-
-// The part of [t1, t2] where vlo <= |v| < vhi: false when empty.
-bool speed_window(const Segment& seg, double& t1, double& t2, double vlo, double vhi) {
-  if (!(vlo < vhi)) return false;
-  const double e2 = std::isinf(t2) ? t1 : t2;  // the last, infinite segment keeps its speed
-  const double s1 = speed_at(seg, t1), s2 = speed_at(seg, e2);
-  const double lo_s = std::min(s1, s2), hi_s = std::max(s1, s2);
-  if (hi_s < vlo || lo_s >= vhi) return false;
-  if (s2 >= s1) {  // rising (or constant)
-    if (s1 < vlo) t1 = when_speed(seg, t1, e2, vlo);
-    if (s2 >= vhi) t2 = when_speed(seg, t1, e2, vhi);
-  } else {
-    if (s1 >= vhi) t1 = when_speed(seg, t1, e2, vhi);
-    if (s2 < vlo) t2 = when_speed(seg, t1, e2, vlo);
-  }
-  return t1 <= t2;
-}
-
-// The segment from instant t on (its own t0 = t).
-Segment from(const Segment& seg, double t) {
-  const double dt = t - seg.t0;
-  return {t, seg.dur - dt, seg.x(dt), seg.v(dt), seg.a(dt), seg.j, seg.dir};
-}
-
-// The first instant in [t1, t2] at which the counter (plan x + cbase) passes a multiple of P
-// moving seg.dir; -1 when none.
-double first_point(const Segment& seg, double t1, double t2, double cbase, double P) {
-  const Segment s = from(seg, t1);
-  const double c = cbase + s.x0;
-  const double k = seg.dir > 0 ? std::ceil((c - kTol) / P) * P : std::floor((c + kTol) / P) * P;
-  const double dt = ramp::crossing(s, k - cbase);
-  if (dt < 0 || t1 + dt > t2 + kTol) return -1;
-  return t1 + dt;
-}
-
-// The last such instant in [t1, t2]; -1 when none.
-double last_point(const Segment& seg, double t1, double t2, double cbase, double P) {
-  const double c = cbase + seg.x(t2 - seg.t0);
-  const double k = seg.dir > 0 ? std::floor((c + kTol) / P) * P : std::ceil((c - kTol) / P) * P;
-  const Segment s = from(seg, t1);
-  const double dt = ramp::crossing(s, k - cbase);
-  if (dt < 0 || t1 + dt > t2 + kTol) return -1;
-  return t1 + dt;
-}
+using namespace meas;  // measure.hpp
 
 }  // namespace
 
@@ -106,6 +46,7 @@ void SwitchCore::reset_stall(const Profile& profile) {
   flags208_ = profile.any_parameter || profile.axis_param(kDriverFlags) != nullptr;
   const ParamInfo* run = range_row(kRunCurrent);
   current_steps_ = run && run->max > 0 ? run->max + 1 : 256;
+  reset_cool(profile);
 }
 
 // ---------------------------------------------------------------- the model's inputs
@@ -151,14 +92,21 @@ bool SwitchCore::last_reading(const Motor& m, int& value) const {
     const double t = last_point(seg, t1, t2, cbase, period(m));
     if (t < 0 || t <= s_lo) continue;
     const int load = m.shaft.held ? 100 : load_at(m, shaft_pos(m, seg, t));
-    value = stall::reading(speed_at(seg, t) / F, current_scale(m), load, m.p[kSgThreshold]);
+    value = stall::reading(speed_at(seg, t) / F, reading_scale(m), load, m.p[kSgThreshold]);
     return true;
   }
   return false;
 }
 
 void SwitchCore::commit(Motor& m) {
-  if (int v = 0; last_reading(m, v)) m.sg.value = v, m.sg.measured = true;
+  if (cool_active(m)) {  // coolStep: the measurements one by one, each with the current it met
+    CoolWalk w{m.cool};
+    cool_walk(m, m.rm.secs(m.sg.commit_us) + kTol, m.rm.secs(now_) + kTol, false, w);
+    m.cool = w.st;
+    if (w.measured) m.sg.value = w.value, m.sg.measured = true;
+  } else if (int v = 0; last_reading(m, v)) {
+    m.sg.value = v, m.sg.measured = true;
+  }
   m.sg.commit_us = now_;
   m.sg.next_valid = false;
 }
@@ -173,7 +121,9 @@ void SwitchCore::stall_input(Motor& m, int param) {
     case kRunCurrent: case kMicrostepResolution: case kSgFilter: case kSgThreshold: case kStopOnStall:
       commit(m);
       break;
-    default: break;
+    default:
+      if (cool_input(param)) commit(m);  // coolStep's settings (coolstep_core.cpp)
+      break;
   }
 }
 
@@ -273,7 +223,7 @@ double SwitchCore::first_stall(const Motor& m, const Segment& seg, double t1, do
     double a = cuts[i], b = cuts[i + 1];
     const double mid = std::isinf(b) ? a : (a + b) / 2;
     const int load = m.shaft.held ? 100 : load_at(m, shaft_pos(m, seg, mid));
-    const double vhi = stall::zero_below(current_scale(m), load, m.p[kSgThreshold]) * F;
+    const double vhi = stall::zero_below(reading_scale(m), load, m.p[kSgThreshold]) * F;
     if (!speed_window(seg, a, b, vlo, vhi)) continue;
     const double t = first_point(seg, a, b, cbase, period(m));
     if (t >= 0) return t;
@@ -288,13 +238,17 @@ SimTime SwitchCore::next_mech(const Motor& m) const {
   if (g.next_valid && g.next_gen == m.rm.gen) return g.next_at;
   g.next_valid = true, g.next_gen = m.rm.gen, g.next_at = kNever, g.next_kind = kNone;
   const bool stops = stops_on_stall(m);
-  if (!stops && !g.has_machine() && g.block == 0) return kNever;
-  const auto& segs = m.rm.plan.segs;
-  const double s_now = m.rm.secs(now_);
+  // coolStep's next change comes first at the same instant: the stall search after it uses its scale.
+  const double cool_t = next_cool(m);
   auto found = [&](double t, int kind) {
+    if (cool_t >= 0 && cool_t <= t) t = cool_t, kind = kCurrent;
     g.next_at = m.rm.origin + ramp::ceil_us(t), g.next_kind = kind;
     return g.next_at;
   };
+  const SimTime none = cool_t >= 0 ? found(cool_t, kCurrent) : kNever;
+  if (!stops && !g.has_machine() && g.block == 0) return none;
+  const auto& segs = m.rm.plan.segs;
+  const double s_now = m.rm.secs(now_);
   for (std::size_t i = m.rm.plan.find(s_now); i < segs.size(); ++i) {
     const Segment& seg = segs[i];
     if (seg.dir == 0) continue;
@@ -314,14 +268,22 @@ SimTime SwitchCore::next_mech(const Motor& m) const {
       return found(tc, kContact);
     }
   }
-  return kNever;
+  return none;
 }
 
 void SwitchCore::on_mech(Motor& m, std::vector<MotionEvent>& out) {
   const int kind = m.sg.next_kind;
   const auto motor = static_cast<std::uint8_t>(&m - motors_.data());
+  const int cs_before = m.cool.cs;
   commit(m);
   switch (kind) {
+    case kCurrent:  // coolStep stepped the current (or its search paused): shown while moving
+      if (m.cool.cs != cs_before && !m.rm.at_rest(now_)) {
+        MotionEvent ev{now_, motor, MotionEventKind::CurrentChanged, ramp::wrap32(m.rm.xactual(now_))};
+        ev.value = actual_current(m);
+        out.push_back(ev);
+      }
+      break;
     case kStall: {  // stop on stall: at once, the target kept; the VM raises 15 + motor
       Builder b = restart(m);
       m.sg.value = 0, m.sg.measured = true;  // this measurement (it may share its microsecond with a contact)

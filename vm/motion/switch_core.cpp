@@ -61,6 +61,7 @@ void SwitchCore::advance(SimTime to, std::vector<MotionEvent>& out) {
 ParamWrite SwitchCore::set_param(int motor, int param, std::int32_t value) {
   Motor& m = at(motor);
   stall_input(m, param);
+  if (ParamWrite r{}; cool_param(m, param, value, r)) return r;
   switch (param) {
     case kApTargetPosition: move_absolute(motor, value); return ParamWrite::Ok;
     case kApActualPosition:  // shifts the register; a move in progress still goes to its target
@@ -102,7 +103,12 @@ ParamWrite SwitchCore::set_param(int motor, int param, std::int32_t value) {
       if (cfg_.last_reference != 0 && param == cfg_.last_reference) return ParamWrite::ReadOnly;
       break;
   }
-  return set_other(m, param, value);
+  const ParamWrite r = set_other(m, param, value);
+  if (param == kApRunCurrent && r == ParamWrite::Ok && cool_on_) {  // coolStep starts again from it (E71)
+    m.cool = coolstep::start(cool_settings(m));
+    m.sg.next_valid = false;
+  }
+  return r;
 }
 
 ParamWrite SwitchCore::set_other(Motor& m, int param, std::int32_t value) {
@@ -117,6 +123,7 @@ std::int32_t SwitchCore::get_param(int motor, int param) {
   Motor& m = at(motor);
   const ramp::State s = m.rm.state(now_);
   if (std::int32_t v = 0; stall_param(m, param, v)) return v;
+  if (param == 180 && cool_on_) return actual_current(m);  // coolstep_core.cpp
   switch (param) {
     case kApActualPosition: return ramp::wrap32(m.rm.xactual(now_));
     case kApTargetSpeed: return target_speed(m, s);

@@ -15,6 +15,7 @@
 #include <string_view>
 #include <vector>
 
+#include "coolstep.hpp"
 #include "ramp_motor.hpp"
 #include "shaft.hpp"
 #include "stall.hpp"
@@ -91,6 +92,7 @@ struct Motor {
   shaft::Encoder enc;                 // axis parameter 209, counting the shaft
   std::int32_t errors = 0;            // axis parameter 207: cleared by a motion command
   stall::Axis sg;                     // hard stops, loads and the load value (stall_core.cpp)
+  coolstep::State cool;               // coolStep's regulation (coolstep_core.cpp)
 };
 
 // Where the modules differ in what this part does.
@@ -224,6 +226,27 @@ class SwitchCore : public ramp::RampCore<Motor> {
   double contact(const Motor& m, const ramp::Segment& seg, double t1, double t2, int& why) const;
   double first_stall(const Motor& m, const ramp::Segment& seg, double t1, double t2) const;
   bool stops_on_stall(const Motor& m) const;
+
+  // ---- coolstep_core.cpp: the actual current 180 (docs/motion.md, "coolStep")
+  // What a walk over the measurements of a plan found (cool_walk).
+  struct CoolWalk {
+    coolstep::State st;     // the regulation after the walk
+    int value = 0;          // the last measurement's reading (206), when `measured`
+    bool measured = false;
+    double stop = -1;       // search: the plan instant it stopped at (a change of the scale, or the cap)
+  };
+  void reset_cool(const Profile& profile);
+  static bool cool_input(int param);
+  bool cool_param(Motor& m, int param, std::int32_t value, ParamWrite& result);
+  std::int32_t actual_current(const Motor& m) const;
+  coolstep::Settings cool_settings(const Motor& m) const;
+  bool cool_active(const Motor& m) const;
+  bool regulates(const Motor& m, double pps) const;
+  int scale_of(std::int32_t current) const;
+  int reading_scale(const Motor& m) const;
+  void cool_walk(const Motor& m, double s_lo, double s_hi, bool search, CoolWalk& w) const;
+  double next_cool(const Motor& m) const;
+  bool cool_on_ = false;  // the module has coolStep: its profile lists 172 (and the load value)
 };
 
 }  // namespace tmcl::sw

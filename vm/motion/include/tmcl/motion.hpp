@@ -40,6 +40,7 @@ enum class MotionEventKind : std::uint8_t {
   SwitchChanged,    // a switch placed at a position (place_switch) closed or opened
   Stall,            // stop on stall (axis parameter 181): the load value reached 0, motor stopped (interrupt 15+motor)
   StepsLost,        // the shaft stands (a hard stop, a load of 100 % or more) while the counter runs on
+  CurrentChanged,   // coolStep changed the actual current (axis parameter 180) of a moving motor: `value`
 };
 std::string_view motion_event_name(MotionEventKind kind);
 
@@ -54,6 +55,8 @@ struct MotionEvent {
   // SwitchChanged only: which input, and whether it is now closed (active).
   SwitchInput input = SwitchInput::StopLeft;
   bool active = false;
+  // CurrentChanged only: the actual current (axis parameter 180) from then on.
+  std::int32_t value = 0;
 };
 // The event as the trace and the recording show it: "left switch closed", else the kind's name.
 std::string motion_event_text(const MotionEvent& ev);
