@@ -15,7 +15,6 @@
 #include "tmcl/duration.hpp"
 #include "tmcl/fileio.hpp"
 #include "tmcl/program_image.hpp"
-#include "tmcl/scenario.hpp"
 #include "source.hpp"
 #include "terminal.hpp"
 
@@ -134,7 +133,6 @@ class Cli {
   std::int32_t selected_pc();
   bool expand_history(std::string& line);
   bool set_switch(const std::string& arg);
-  bool set_machine(const std::string& line);
   void cmd_list(const std::string& arg);
   void cmd_disassemble(const std::string& arg);
   void cmd_x(const std::string& fmt, const std::string& arg);
@@ -661,39 +659,15 @@ bool Cli::set_switch(const std::string& arg) {
   return true;
 }
 
-// set var hardstop left|right MOTOR at POS, set var load MOTOR = P%, set var load MOTOR from A to
-// B = P%: the machine's mechanics in the words of its scenario lines (docs/tmclrun.md). The
-// scenario reader reads them, so the prompt takes exactly what a scenario file does and says
-// the same about a mistake; the timed load is the line `at TIME load MOTOR = P%` at this instant.
-bool Cli::set_machine(const std::string& line) {
-  static const char* kUsage =
-      "usage: set var hardstop left|right MOTOR at POSITION, set var load MOTOR = P%, set var load MOTOR from POSITION to "
-      "POSITION = P%";
-  std::istringstream in(line);
-  std::vector<std::string> w;
-  for (std::string x; in >> x;) w.push_back(x);
-  const bool timed = w[0] == "load" && std::find(w.begin(), w.end(), "from") == w.end();
-  if (timed && (w.size() != 4 || w[2] != "=")) return error(kUsage), false;
-  const Profile& profile = *e_.vm().profile;
-  ScenarioOptions options;
-  options.motors = profile.motors;
-  options.module = std::string(profile.name);
-  options.profile = &profile;
-  std::vector<InputEvent> events;
-  std::vector<FileDiag> diags;
-  if (!parse_scenario(timed ? "at 0s " + line : line, "", events, diags, options))
-    return error(diags.empty() ? kUsage : diags.front().message), false;
-  std::string err;
-  if (events.size() != 1 || !e_.set_machine(events.front(), err)) return error(err.empty() ? kUsage : err), false;
-  return true;
-}
-
 void Cli::cmd_set(const std::string& arg) {
   std::string a = trim(arg);
   if (a.rfind("var ", 0) == 0 || a.rfind("variable ", 0) == 0) a = trim(a.substr(a.find(' ')));
   if (a.rfind("switch ", 0) == 0) return static_cast<void>(set_switch(trim(a.substr(7))));
-  if (a == "hardstop" || a == "load" || a.rfind("hardstop ", 0) == 0 || a.rfind("load ", 0) == 0)
-    return static_cast<void>(set_machine(a));
+  if (Engine::is_machine_line(a)) {  // set var hardstop ..., set var load ...: the scenario's lines
+    std::string err;
+    if (!e_.set_machine(a, err)) error(err);
+    return;
+  }
   auto eq = a.find('=');
   if (eq == std::string::npos) return error("usage: set var LVALUE = EXPRESSION");
   Expr lhs, rhs;
