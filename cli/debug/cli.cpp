@@ -4,7 +4,6 @@
 // Ctrl-C pauses a running program). All behaviour is the engine's; this file parses and prints.
 #include <unistd.h>
 
-#include <algorithm>
 #include <chrono>
 #include <csignal>
 #include <cstring>
@@ -892,10 +891,10 @@ bool Cli::command(const std::string& raw) {
 }
 
 // Tab completion: a command's name as the first word; after `info` what it shows, after `set`
-// `var`, after `set var` the inputs of the machine (switch, hardstop, load), after `set var switch`
-// the switches, after `set var hardstop` the sides, and the keywords of those lines; anywhere else labels, constants (the parameter names
-// the program defines, e.g. AP_ActualPosition of USB-2-SD.inc), source files, registers ($pc
-// too) and the expression functions.
+// `var`, after `set var` the machine's inputs (switch, hardstop, load), after `set var switch`
+// the switches, after `set var hardstop` the sides, and the keywords of those lines; anywhere
+// else labels, constants (the parameter names the program defines, e.g. AP_ActualPosition of
+// USB-2-SD.inc), source files, registers ($pc too) and the expression functions.
 std::vector<std::string> Cli::completions(const std::string& line, std::size_t start) const {
   static const char* kCommands[] = {
       "advance", "backtrace", "break", "condition", "continue", "delete", "disable", "disassemble", "display", "down",
