@@ -405,3 +405,39 @@ TEST(set_var_hardstop_and_load_at_the_prompt) {
   CHECK_EQ(error, "the motion core '" + std::string(f.vm().motion->name()) + "' cannot model loads on usb-2-sd");
   CHECK(!f.vm().faulted());
 }
+
+// A change by hand in the middle of a run (set var hardstop) keeps the scenario's timed lines
+// that came before it: `run` again replays them (here a load at 200 ms, under which 206 reads
+// less than running free), as it did before the change.
+TEST(a_change_by_hand_keeps_the_scenarios_earlier_lines_for_the_next_run) {
+  const Profile* profile = find_profile("tmcm-1110");
+  Setup s;
+  s.profile = profile;
+  s.core_name = std::string(profile->default_motion);
+  InputEvent load;
+  load.kind = InputEvent::Load;
+  load.at = 200 * kUsPerMs;
+  load.value = 40;
+  s.inputs = {load};
+  Engine e(s, assemble_info("SAP 140, 0, 4\nROL 0, 400\nloop: WAIT TICKS, 0, 10\nJA loop\n", *profile),
+           make_motion_core(s.core_name));
+  std::FILE* out = std::tmpfile();
+  CommandLine cli(e, out, false, false);
+  auto load_value = [&] {
+    std::int32_t v = 0;
+    CHECK_EQ(e.vm().get_axis(0, 206, v), kStatusOk);
+    return v;
+  };
+  cli.line("start");
+  cli.line("advance 100ms");
+  const std::int32_t free = load_value();
+  cli.line("advance 200ms");
+  const std::int32_t loaded = load_value();
+  CHECK(loaded < free);
+  cli.line("set var hardstop right 0 at 100000");
+  cli.line("kill");
+  cli.line("start");
+  cli.line("advance 300ms");
+  CHECK_EQ(load_value(), loaded);
+  std::fclose(out);
+}
