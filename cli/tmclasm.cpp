@@ -114,6 +114,12 @@ enum class Extra { None, Dot, StackUsage };
 // Runs the analysis on a linked program, adding its warnings to result.diags; returns the text
 // of the extra output.
 std::string analyze_program(tmcl::AsmResult& result, Extra extra, bool targets_checked) {
+  // The analysis builds its tables (regions, flows, the graph of regions: about 24 bytes per
+  // instruction) partly in memory no earlier phase touched, and a page touched for the first time
+  // costs more than the work done in it (docs/performance.md: 3 to 8 ms per MiB in 4 KiB pages, a
+  // tenth of that in huge pages). So the heap's next memory is advised as huge pages first (main
+  // keeps the heap from being trimmed or bypassed). Only on programs big enough to fill a few.
+  if (const std::size_t bytes = result.program.size() * 32; bytes >= (8u << 20)) tmcl::prefer_huge_pages_for_next(bytes);
   tmcl::AnalysisInput in = tmcl::analysis_input(result, targets_checked);
   tmcl::AnalysisOptions o;
   o.graph = extra == Extra::Dot;

@@ -88,4 +88,11 @@ void prefer_huge_pages(const void* data, std::size_t bytes) {
 #endif
 }
 
+void prefer_huge_pages_for_next(std::size_t bytes) {
+  if (void* block = std::malloc(bytes)) {
+    prefer_huge_pages(block, bytes);
+    std::free(block);
+  }
+}
+
 }  // namespace tmcl

@@ -103,5 +103,6 @@ std::vector<std::string> config_dirs(const std::string& leaf) {
 }  // namespace os
 
 void prefer_huge_pages(const void*, std::size_t) {}  // large pages need a privilege users lack
+void prefer_huge_pages_for_next(std::size_t) {}
 
 }  // namespace tmcl

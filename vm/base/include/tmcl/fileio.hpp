@@ -38,4 +38,10 @@ bool flush_stdout(std::string& error);
 // in 4 KiB at a time costs more than assembling them on a virtual machine.
 void prefer_huge_pages(const void* data, std::size_t bytes);
 
+// The same for the next `bytes` the heap will hand out: a block is taken from the heap, advised
+// and given back untouched, so that what is allocated next comes from advised memory. Only where
+// the heap is neither trimmed nor bypassed for big blocks (tmclasm's main sets glibc so); elsewhere
+// nothing.
+void prefer_huge_pages_for_next(std::size_t bytes);
+
 }  // namespace tmcl
