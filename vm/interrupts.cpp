@@ -15,10 +15,9 @@ struct NotSimulated {
   std::string_view unless_constant = {};  // the row does not apply where the profile sets this motion constant
 };
 constexpr NotSimulated kNotSimulated[] = {
-    // stallGuard2 is modelled by the TMCM cores only (vm/motion/stall_core.cpp, docs/motion.md)
+    // the load measurements are modelled by the TMCM cores and the linear core (vm/motion/stall_core.cpp, docs/motion.md)
     {VectorSource::Stall, "ideal", "the ideal core models no load and no stallGuard2"},
     {VectorSource::Stall, "tmc4361", "the tmc4361 core models no load and no stallGuard2"},
-    {VectorSource::Stall, "linear", "the linear core models no load and no StallGuard4"},
     {VectorSource::Deviation, "linear", "the linear core has no encoder model"},
     // the TMCM cores model the encoder where the profile declares one (switch_core.cpp)
     {VectorSource::Deviation, "tmc429", "the profile declares no encoder (motion-constant encoder)", "encoder"},
@@ -69,8 +68,10 @@ std::string not_simulated_reason(const Profile& profile, std::string_view core, 
       break;
     default:
       if (k.index >= profile.motors) return "the module has no motor " + std::to_string(k.index);
-      // The stall model runs where the profile has stallGuard2's threshold (stall_core.cpp).
-      if (k.source == VectorSource::Stall && !profile.any_parameter && profile.axis_param(174) == nullptr)
+      // The stall model runs where the profile has stallGuard2's threshold or names its load
+      // measurement (`motion-constant stallguard`, stall_core.cpp).
+      if (k.source == VectorSource::Stall && !profile.any_parameter && profile.axis_param(174) == nullptr &&
+          profile.motion_constant("stallguard", 0) == 0)
         return "the profile has no stallGuard2 threshold (axis parameter 174), so no stall is modelled";
       break;
   }

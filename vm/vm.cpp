@@ -203,8 +203,8 @@ void Vm::reset_interpreter() {
 }
 
 void Vm::add_inputs(std::vector<InputEvent> events) {
-  inputs_queue.erase(inputs_queue.begin(), inputs_queue.begin() + static_cast<std::ptrdiff_t>(input_next));
-  input_next = 0;
+  // The lines already applied stay in front, in their order: a power-on replays the queue from
+  // its start (a debugger's `run` again after a change by hand). Only those to come are sorted.
   for (auto& e : events) {
     if (!e.placed_kind()) {
       inputs_queue.push_back(e);
@@ -213,9 +213,14 @@ void Vm::add_inputs(std::vector<InputEvent> events) {
     placed.push_back(e);
     apply_input(e);
   }
-  std::stable_sort(inputs_queue.begin(), inputs_queue.end(),
+  std::stable_sort(inputs_queue.begin() + static_cast<std::ptrdiff_t>(input_next), inputs_queue.end(),
                    [](const InputEvent& a, const InputEvent& b) { return a.at < b.at; });
   next_check_ = 0;
+}
+
+void Vm::apply_due_inputs() {
+  sync_motion();
+  while (input_next < inputs_queue.size() && inputs_queue[input_next].at <= now) apply_input(inputs_queue[input_next++]);
 }
 
 std::string Vm::where(std::int32_t address) const {

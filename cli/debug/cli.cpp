@@ -143,6 +143,7 @@ class Cli {
   void info_timers();
   void info_motors();
   std::string encoder_text(int motor);
+  std::string stall_text(int motor);
 
   Engine& e_;
   std::FILE* out_;
@@ -418,6 +419,21 @@ std::string Cli::encoder_text(int m) {
   return ", encoder " + std::to_string(enc) + " (deviation " + std::to_string(static_cast<std::int64_t>(pos) - enc) + ")";
 }
 
+// ", load value L, actual current C, stall flag F": what stallGuard2 and coolStep give of the
+// motor (docs/motion.md, "Loads, stalls and lost steps"), as GAP reads them, each where the
+// profile lists it: 206 (0..1023, 0 at the stall), 180 (the current scale 0..31 of the run
+// current 6) and 208 bit 0 (stallGuard2 status) where the module has stallGuard2 (174).
+std::string Cli::stall_text(int m) {
+  Vm& vm = e_.vm();
+  const Profile& p = *vm.profile;
+  std::string s;
+  std::int32_t v = 0;
+  if (p.axis_param(206) && vm.get_axis(m, 206, v) == kStatusOk) s += ", load value " + std::to_string(v);
+  if (p.axis_param(180) && vm.get_axis(m, 180, v) == kStatusOk) s += ", actual current " + std::to_string(v);
+  if (p.axis_param(174) && p.axis_param(208) && vm.get_axis(m, 208, v) == kStatusOk) s += ", stall flag " + std::to_string(v & 1);
+  return s;
+}
+
 void Cli::info_motors() {
   Vm& vm = e_.vm();
   for (int m = 0; m < vm.profile->motors; ++m) {
@@ -439,7 +455,7 @@ void Cli::info_motors() {
       std::string on = std::string(sw.left ? " left" : "") + (sw.right ? " right" : "") + (sw.home ? " home" : "");
       if (!on.empty()) line += ", switches on:" + on;
     }
-    line += encoder_text(m);
+    line += stall_text(m) + encoder_text(m);
     println(line);
   }
   // The lines above are physical; an expression reads the parameters as the module gives them,
@@ -646,6 +662,11 @@ void Cli::cmd_set(const std::string& arg) {
   std::string a = trim(arg);
   if (a.rfind("var ", 0) == 0 || a.rfind("variable ", 0) == 0) a = trim(a.substr(a.find(' ')));
   if (a.rfind("switch ", 0) == 0) return static_cast<void>(set_switch(trim(a.substr(7))));
+  if (Engine::is_machine_line(a)) {  // set var hardstop ..., set var load ...: the scenario's lines
+    std::string err;
+    if (!e_.set_machine(a, err)) error(err);
+    return;
+  }
   auto eq = a.find('=');
   if (eq == std::string::npos) return error("usage: set var LVALUE = EXPRESSION");
   Expr lhs, rhs;
@@ -858,7 +879,8 @@ bool Cli::command(const std::string& raw) {
     println("Reverse: reverse-step/rs [N], reverse-next/rn, reverse-finish, reverse-continue/rc");
     println("Looking: info registers|frame|interrupts|timers|motors|display|checkpoints, backtrace/bt, up, down,");
     println("         frame N, list/l, disassemble, x/N[i] ADDRESS, print/p[/x] EXPR, display EXPR, undisplay");
-    println("Changing: set var LV = EXPR (in(n) and ain(n) too), set var switch left|right|home MOTOR = VALUE");
+    println("Changing: set var LV = EXPR (in(n) and ain(n) too), set var switch left|right|home MOTOR = VALUE,");
+    println("         set var hardstop left|right MOTOR at POS, set var load MOTOR = P%, set var load MOTOR from A to B = P%");
     println("Locations: LABEL, LINE, FILE:LINE, *ADDRESS.  Expressions: A X flags errors pc sp time steps v[n]");
     println("         ap(param, motor) gp(bank, n) in(n) ain(n) out(n) labels constants, C operators, 2s = 2000000,");
     println("         $pc $sp $acc $x, the value history $ $$ $N $$N, hexadecimal 0x1F.");
@@ -869,9 +891,10 @@ bool Cli::command(const std::string& raw) {
 }
 
 // Tab completion: a command's name as the first word; after `info` what it shows, after `set`
-// `var`, after `set var switch` the switches; anywhere else labels, constants (the parameter names
-// the program defines, e.g. AP_ActualPosition of USB-2-SD.inc), source files, registers ($pc
-// too) and the expression functions.
+// `var`, after `set var` the machine's inputs (switch, hardstop, load), after `set var switch`
+// the switches, after `set var hardstop` the sides, and the keywords of those lines; anywhere
+// else labels, constants (the parameter names the program defines, e.g. AP_ActualPosition of
+// USB-2-SD.inc), source files, registers ($pc too) and the expression functions.
 std::vector<std::string> Cli::completions(const std::string& line, std::size_t start) const {
   static const char* kCommands[] = {
       "advance", "backtrace", "break", "condition", "continue", "delete", "disable", "disassemble", "display", "down",
@@ -906,11 +929,20 @@ std::vector<std::string> Cli::completions(const std::string& line, std::size_t s
     offer("variable");
     return out;
   }
-  if (words.size() == 2 && words[0] == "set" && words[1].rfind("var", 0) == 0) offer("switch");
+  if (words.size() == 2 && words[0] == "set" && words[1].rfind("var", 0) == 0)
+    for (const char* c : {"switch", "hardstop", "load"}) offer(c);
   if (words.size() == 3 && words[0] == "set" && words[2] == "switch") {
     for (const char* c : {"left", "right", "home"}) offer(c);
     return out;
   }
+  if (words.size() == 3 && words[0] == "set" && words[2] == "hardstop") {
+    for (const char* c : {"left", "right"}) offer(c);
+    return out;
+  }
+  // set var hardstop SIDE MOTOR |at, set var load MOTOR |from (or '='), ... |to
+  if (words.size() == 5 && words[0] == "set" && words[2] == "hardstop") return offer("at"), out;
+  if (words.size() == 4 && words[0] == "set" && words[2] == "load") return offer("from"), out;
+  if (words.size() == 6 && words[0] == "set" && words[2] == "load" && words[4] == "from") return offer("to"), out;
   if (!word.empty() && word[0] == '$') {
     for (const char* r : kRegisters) offer(r);
     return out;

@@ -306,9 +306,13 @@ Value Dap::variables(std::int64_t ref) {
       add(e, vm.vars[static_cast<std::size_t>(n)], e.c_str());
     }
   } else if (ref == 3) {
-    for (int m = 0; m < vm.profile->motors; ++m) {
-      for (int p : {0, 1, 2, 3, 4, 5}) {
+    // The ramp's parameters, then what `info motors` adds where the profile lists it: the load
+    // value, the actual current, the driver flags (bit 0: stallGuard2 status) and the encoder.
+    const Profile& profile = *vm.profile;
+    for (int m = 0; m < profile.motors; ++m) {
+      for (int p : {0, 1, 2, 3, 4, 5, 206, 180, 208, 209}) {
         std::int32_t v = 0;
+        if (p > 5 && !profile.axis_param(p)) continue;
         if (vm.get_axis(m, p, v) != kStatusOk) continue;
         std::string e = "ap(" + std::to_string(p) + ", " + std::to_string(m) + ")";
         add(e, v, e.c_str());
@@ -470,6 +474,11 @@ bool Dap::handle(const Value& req) {
     return respond(req, true, obj({{"scopes", scopes}})), true;
   }
   if (cmd == "variables") return respond(req, true, obj({{"variables", variables(a["variablesReference"].as_int())}})), true;
+  if (cmd == "evaluate" && a["context"].as_string() == "repl" && Engine::is_machine_line(a["expression"].as_string())) {
+    // In the debug console, a hard stop or a load as the CLI's `set var` takes it.
+    if (!e.set_machine(a["expression"].as_string(), err)) return fail(req, err), true;
+    return respond(req, true, obj({{"result", "ok"}, {"variablesReference", 0}})), true;
+  }
   if (cmd == "setVariable" || cmd == "evaluate") {
     bool set = cmd == "setVariable";
     std::string lhs = set ? a["name"].as_string() : a["expression"].as_string();

@@ -4,8 +4,10 @@
 // a pause request is noticed. Reverse execution is in reverse.cpp.
 #include <algorithm>
 #include <cctype>
+#include <sstream>
 
 #include "tmcl/debugger.hpp"
+#include "tmcl/scenario.hpp"
 
 namespace tmcl::debug {
 
@@ -81,6 +83,57 @@ bool Engine::set_input(InputEvent ev, std::string& error) {
   if (vm.status == AppStatus::Running) vm.run(Limits{vm.steps, vm.now, false});
   state_changed();
   return true;
+}
+
+bool Engine::set_machine(InputEvent ev, std::string& error) {
+  Vm& vm = *vm_;
+  const bool hard = ev.kind == InputEvent::HardStop;
+  // Asked of a copy of the core: the real one would turn a refusal into a fault of every run.
+  if (std::unique_ptr<MotionCore> probe = vm.motion->clone()) {
+    const bool ok = hard                                 ? probe->place_hard_stop(ev.index, ev.input, ev.from)
+                    : ev.kind == InputEvent::LoadZone    ? probe->place_load(ev.index, ev.from, ev.to, ev.value)
+                                                         : probe->set_load(ev.index, ev.value);
+    if (!ok) {
+      error = "the motion core '" + std::string(vm.motion->name()) + "' cannot model " + (hard ? "hard stops" : "loads") +
+              " on " + std::string(vm.profile->name);
+      return false;
+    }
+  }
+  if (!ev.placed_kind()) return set_input(ev, error);
+  ev.at = 0;
+  ev.line = 0;
+  vm.add_inputs({ev});  // placed at once, and again at every power-on (`run`)
+  state_changed();
+  return true;
+}
+
+bool Engine::is_machine_line(const std::string& line) {
+  return line == "hardstop" || line == "load" || line.rfind("hardstop ", 0) == 0 || line.rfind("load ", 0) == 0;
+}
+
+// The scenario reader reads the line, so the prompt takes exactly what a scenario file does and
+// says the same about a mistake; the timed load is the line `at TIME load MOTOR = P%` at this
+// instant.
+bool Engine::set_machine(const std::string& line, std::string& error) {
+  static const char* kUsage =
+      "usage: set var hardstop left|right MOTOR at POSITION, set var load MOTOR = P%, set var load MOTOR from POSITION to "
+      "POSITION = P%";
+  std::istringstream in(line);
+  std::vector<std::string> w;
+  for (std::string x; in >> x;) w.push_back(x);
+  const bool timed = !w.empty() && w[0] == "load" && std::find(w.begin(), w.end(), "from") == w.end();
+  if (w.empty() || (timed && (w.size() != 4 || w[2] != "="))) return error = kUsage, false;
+  const Profile& profile = *vm_->profile;
+  ScenarioOptions options;
+  options.motors = profile.motors;
+  options.module = std::string(profile.name);
+  options.profile = &profile;
+  std::vector<InputEvent> events;
+  std::vector<FileDiag> diags;
+  if (!parse_scenario(timed ? "at 0s " + line : line, "", events, diags, options))
+    return error = diags.empty() ? kUsage : diags.front().message, false;
+  if (events.size() != 1) return error = kUsage, false;
+  return set_machine(events.front(), error);
 }
 
 bool Engine::assign(const Expr& lhs, std::int64_t value, std::string& error) {

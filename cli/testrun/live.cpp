@@ -4,8 +4,8 @@
 // so an instant is met within a few milliseconds at best, and the failure says when the values
 // were read); then the run waits for the program to stop, or for max-time, and checks the rest.
 // A module cannot be given inputs, and reports no faults or run-time warnings: a test with
-// input changes is skipped (one with only switch lines, which describe the machine, runs with a
-// note that the machine must match), and `expect never fault` / `expect no warnings` are noted as not
+// input changes is skipped (one with only machine lines -- switches, hard stops, loads at positions
+// -- runs with a note that the machine must match), and `expect never fault` / `expect no warnings` are noted as not
 // checked.
 #include <algorithm>
 #include <chrono>
@@ -63,11 +63,11 @@ TestResult run_test_live(const std::string& path, const RunOptions& options, Pro
   const std::string text(bytes.begin(), bytes.end());
   TestFile t;
   std::vector<FileDiag> diags;
-  // Switches at positions (`switch left 0 at -20000`) describe the machine, which the hardware
-  // has: such a test runs, with a note that the machine must match. Input changes in time are
+  // Switches, hard stops and loads at positions (`switch left 0 at -20000`, `hardstop left 0 at
+  // -20000`) describe the machine, which the hardware has: such a test runs, with a note that the machine must match. Input changes in time are
   // what a host cannot make: such a test is skipped.
   const bool parsed = parse_test_file(text, path, options.target, t, diags, options.target_given);
-  const auto changes = std::find_if(t.inputs.begin(), t.inputs.end(), [](const InputEvent& e) { return e.kind != InputEvent::Placed; });
+  const auto changes = std::find_if(t.inputs.begin(), t.inputs.end(), [](const InputEvent& e) { return !e.placed_kind(); });
   if (parsed && (t.skipped || changes != t.inputs.end() || (!t.target.empty() && test_profile(t) != resolve_target(options.target).profile))) {
     r.skip_reason = t.skipped ? t.skip
                     : changes != t.inputs.end()
@@ -77,8 +77,8 @@ TestResult run_test_live(const std::string& path, const RunOptions& options, Pro
   }
   if (parsed && !t.inputs.empty())
     r.notes.push_back(path + ":" + std::to_string(t.inputs.front().line) +
-                      ": note: the switch lines describe the machine; on a module they are not simulated: the machine's "
-                      "switches must be where they say");
+                      ": note: the switch, hardstop and load lines describe the machine; on a module they are not "
+                      "simulated: the machine's switches, ends and loads must be where they say");
   diags.clear();
   std::shared_ptr<const Program> program = check_test_source(path, text, options, cache, t, diags, err);
   if (!diags.empty() || !program) {
@@ -163,6 +163,9 @@ TestResult run_test_live(const std::string& path, const RunOptions& options, Pro
     } else if (e.kind == Expectation::NeverFault || e.kind == Expectation::NoWarnings) {
       r.notes.push_back(path + ":" + std::to_string(e.line) + ": note: '" + e.text +
                         "' is not checked on a module (a module reports no faults or warnings)");
+    } else if (e.kind == Expectation::Stall || e.kind == Expectation::NeverStall) {
+      r.notes.push_back(path + ":" + std::to_string(e.line) + ": note: '" + e.text +
+                        "' is not checked on a module (its host sees no stall event, only 208 when it asks)");
     }
   }
   std::stable_sort(r.failures.begin(), r.failures.end(), [](const Failure& a, const Failure& b) { return a.line < b.line; });

@@ -103,6 +103,36 @@ class Checker {
     f.update_len = static_cast<int>(e.right.size());
   }
 
+  // `expect stall M at T ± W`: one of motor M's stalls (`stalls`: instant, motor; in time order)
+  // lies in [T - W, T + W]; --update writes the instant of the one nearest T.
+  void stall(const Expectation& e, const std::vector<std::pair<SimTime, int>>& stalls, const std::string& end) {
+    const std::string what = "motor " + std::to_string(e.motor) + " to stall at " + e.when +
+                             (e.tolerance.empty() ? std::string() : " \xC2\xB1 " + e.tolerance);
+    const std::pair<SimTime, int>* nearest = nullptr;
+    auto distance = [&](SimTime t) { return t > e.at ? t - e.at : e.at - t; };
+    for (const auto& st : stalls)
+      if (st.second == e.motor && (!nearest || distance(st.first) < distance(nearest->first))) nearest = &st;
+    if (nearest && distance(nearest->first) <= e.within) return;
+    if (!nearest) {
+      fail(e, "expected " + what + ", but it never stalled (" + end + ")", "").no_update =
+          "motor " + std::to_string(e.motor) + " never stalled, so there is no instant to write";
+      return;
+    }
+    Failure& f = fail(e, "expected " + what + ", it stalled at " + format_time(nearest->first), "");
+    f.update = format_time(nearest->first);
+    f.update_col = e.right_col;
+    f.update_len = static_cast<int>(e.right.size());
+  }
+
+  void never_stall(const Expectation& e, const std::vector<std::pair<SimTime, int>>& stalls) {
+    for (const auto& st : stalls)
+      if (st.second == e.motor) {
+        fail(e, "expected motor " + std::to_string(e.motor) + " never to stall, it stalled at " + format_time(st.first), "")
+            .no_update = "a stall is not a value to rewrite";
+        return;
+      }
+  }
+
   void never_fault(const Expectation& e, const RunResult& res) {
     if (res.halt != Halt::Fault) return;
     fail(e, "expected no fault, got one at " + format_time(vm_.now) + ": " + res.message, program_place(p_, vm_)).no_update =
@@ -196,6 +226,15 @@ TestResult run_test(const TestFile& t, std::shared_ptr<const Program> program, c
   vm.source_of = p.places;
   vm.power_on(nullptr);
   vm.add_inputs(t.inputs);
+  // The stall events (stop on stall), for `expect stall` and `expect never stall`.
+  std::vector<std::pair<SimTime, int>> stalls;
+  for (const Expectation& e : t.expects)
+    if (e.kind == Expectation::Stall || e.kind == Expectation::NeverStall) {
+      vm.on_motion_event = [&stalls](const Vm&, const MotionEvent& ev) {
+        if (ev.kind == MotionEventKind::Stall) stalls.emplace_back(ev.at, ev.motor);
+      };
+      break;
+    }
   if (o.coverage) vm.count_coverage();
   vm.start(0);
   const SimTime max_time = o.max_time_given ? o.max_time : t.max_time;
@@ -242,6 +281,8 @@ TestResult run_test(const TestFile& t, std::shared_ptr<const Program> program, c
       case Expectation::Halted: check.halted(e, end, end_text(p, vm, res, end, max_time)); break;
       case Expectation::NeverFault: check.never_fault(e, res); break;
       case Expectation::NoWarnings: check.no_warnings(e); break;
+      case Expectation::Stall: check.stall(e, stalls, end_text(p, vm, res, end, max_time)); break;
+      case Expectation::NeverStall: check.never_stall(e, stalls); break;
     }
   }
   std::stable_sort(r.failures.begin(), r.failures.end(), [](const Failure& a, const Failure& b) { return a.line < b.line; });

@@ -10,6 +10,7 @@
 #include "tmcl/duration.hpp"
 #include "tmcl/fileio.hpp"
 #include "tmcl/motion.hpp"
+#include "tmcl/numbers.hpp"
 #include "tmcl/profile.hpp"
 #include "tmcl/scenario.hpp"
 #include "tmcl/targets.hpp"
@@ -32,7 +33,7 @@ namespace {
 
 constexpr std::string_view kDirectives[] = {"program", "target", "motion",   "instr-time", "max-time", "define",
                                             "skip",    "at",     "switch", "hardstop",   "load",     "expect"};
-constexpr std::string_view kExpectForms[] = {"at", "never", "no"};
+constexpr std::string_view kExpectForms[] = {"at", "never", "no", "stall"};
 constexpr std::string_view kTolerance = "\xC2\xB1";  // ±
 
 std::string hint_of(std::string_view word, const std::vector<std::string_view>& names) {
@@ -136,6 +137,14 @@ class LineReader {
     }
   }
 
+  // The motor of each stall expectation, where it was written: checked against the module.
+  struct StallMotor {
+    LineWord word;
+    int line;
+    std::string source;
+  };
+  const std::vector<StallMotor>& stall_motors() const { return stall_motors_; }
+
   // After the last line: the program and the module (TestFile::module), which are the file's
   // `program` and `target` lines, or, without a `target` line, the module a plain tmclrun would
   // take for the program. Returns the module's profile, or null.
@@ -189,6 +198,7 @@ class LineReader {
     int start = 0;
     e.text = rest_of(line, w[1].col, start);
     const std::string& form = w[1].text;
+    if (form == "stall" || (form == "never" && w.size() > 2 && w[2].text == "stall")) return stall(line, w, std::move(e));
     if (form == "never" || form == "no") {
       const char* want = form == "never" ? "fault" : "warnings";
       if (w.size() < 3 || w[2].text != want) {
@@ -202,7 +212,7 @@ class LineReader {
     }
     if (form != "at") {
       std::vector<std::string_view> names(std::begin(kExpectForms), std::end(kExpectForms));
-      return error_at(w[1], "unknown expectation '" + form + "' (at TIME, at end, never fault, no warnings)" + hint_of(form, names));
+      return error_at(w[1], "unknown expectation '" + form + "' (at TIME, at end, never fault, no warnings, stall MOTOR at TIME, never stall MOTOR)" + hint_of(form, names));
     }
     if (w.size() < 3) return error(end_col(line), 1, "'expect at' needs an instant (1.5s) or 'end'");
     int cond_col = 0;
@@ -237,6 +247,50 @@ class LineReader {
       return error_at(w[4], "unknown end '" + w[4].text + "' (stop, fault, max-time, blocked)" + hint_of(w[4].text, names));
     }
     if (condition(cond, cond_col, e)) t_.expects.push_back(std::move(e));
+  }
+
+  // `expect stall MOTOR at TIME [± TOLERANCE]` and `expect never stall MOTOR`: the stall event
+  // of a motor (stop on stall), at an instant or never. The motor is checked against the module.
+  void stall(const std::string& line, const std::vector<LineWord>& w, Expectation e) {
+    const bool never = w[1].text == "never";
+    const std::size_t m = never ? 3 : 2;  // the motor's word
+    static const char* kShape = "expected 'stall MOTOR at TIME' (± TOLERANCE) or 'never stall MOTOR'";
+    if (w.size() <= m) return error(end_col(line), 1, std::string(kShape) + ": the motor is missing");
+    std::int64_t motor = 0;
+    if (!parse_int(w[m].text, 0, 255, motor)) return error_at(w[m], "bad motor number '" + w[m].text + "' (0..255)");
+    e.motor = static_cast<int>(motor);
+    const StallMotor named{w[m], line_no_, source_};
+    if (never) {
+      if (w.size() > 4) return error_at(w[4], "unexpected '" + w[4].text + "' after the motor");
+      e.kind = Expectation::NeverStall;
+      stall_motors_.push_back(named);
+      t_.expects.push_back(std::move(e));
+      return;
+    }
+    if (w.size() < 5 || w[3].text != "at") {
+      if (w.size() < 4) return error(end_col(line), 1, std::string(kShape) + ": 'at TIME' is missing");
+      return error_at(w[3], std::string(kShape) + ": 'at' expected here");
+    }
+    std::string why;
+    auto t = parse_duration(w[4].text, why);
+    if (!t) return error_at(w[4], "bad instant '" + w[4].text + "': " + why);
+    e.kind = Expectation::Stall;
+    e.at = *t;
+    e.when = e.right = w[4].text;
+    e.right_col = w[4].col;
+    if (w.size() > 5) {
+      if (w[5].text != kTolerance && w[5].text != "+/-")
+        return error_at(w[5], "unexpected '" + w[5].text + "' after the instant (a tolerance is '± DURATION')");
+      if (w.size() < 7) return error(end_col(line), 1, "a tolerance is missing after '" + w[5].text + "'");
+      if (w.size() > 7) return error_at(w[7], "unexpected '" + w[7].text + "' after the tolerance");
+      auto tol = parse_duration(w[6].text, why);
+      if (!tol) return error_at(w[6], "bad tolerance '" + w[6].text + "': " + why);
+      e.within = *tol;
+      e.tolerance = w[6].text;
+      e.tolerance_col = w[6].col;
+    }
+    stall_motors_.push_back(named);
+    t_.expects.push_back(std::move(e));
   }
 
   struct Op {
@@ -338,6 +392,7 @@ class LineReader {
   int program_col_ = 0, program_len_ = 0;
   std::string program_source_;
   std::vector<std::pair<std::string, int>> seen_;
+  std::vector<StallMotor> stall_motors_;
 };
 
 }  // namespace
@@ -365,6 +420,16 @@ bool parse_test_file(const std::string& text, const std::string& path, const std
     reader.read(static_cast<int>(i) + 1, out.lines[i], line);
   }
   const Profile* profile = reader.finish(default_target, target_given);
+  if (profile)  // a stall expectation's motor must be one the module has, as a scenario line's
+    for (const auto& named : reader.stall_motors()) {
+      std::int64_t m = 0;
+      (void)parse_int(named.word.text, 0, 255, m);
+      if (m >= profile->motors)
+        mine.push_back({path, named.line, named.word.col, static_cast<int>(named.word.text.size()),
+                        std::string(profile->name) + " has no motor " + named.word.text + " (0.." +
+                            std::to_string(profile->motors - 1) + ")",
+                        named.source});
+    }
   ScenarioOptions sopts;
   sopts.motors = profile ? profile->motors : 256;
   sopts.profile = profile;

@@ -7,6 +7,7 @@
 #include <map>
 
 #include "tmcl/asm/assembler.hpp"
+#include "tmcl/debug_cli.hpp"
 #include "tmcl/debugger.hpp"
 
 using namespace tmcl;
@@ -353,4 +354,90 @@ TEST(each_step_stops_before_the_next_instruction_the_trace_lists) {
     }
   }
   CHECK_EQ(stepped.vm().steps, std::uint64_t{0});
+}
+
+// set var hardstop|load (issue 34): Tab offers the machine's inputs and the words of their lines;
+// a hard stop placed before `start` belongs to the machine and holds the motor in every run (here
+// stop on stall stops it there: 206 reads 0, 208 bit 0 is set), and a core without mechanics
+// refuses at the prompt without faulting the program.
+TEST(set_var_hardstop_and_load_at_the_prompt) {
+  const Profile* profile = find_profile("tmcm-1110");
+  Setup s;
+  s.profile = profile;
+  s.core_name = std::string(profile->default_motion);
+  Engine e(s, assemble_info("SAP 140, 0, 4\nSAP 181, 0, 200\nROL 0, 400\nloop: WAIT TICKS, 0, 10\nJA loop\n", *profile),
+           make_motion_core(s.core_name));
+  std::FILE* out = std::tmpfile();
+  CommandLine cli(e, out, false, false);
+  auto offers = [&](const std::string& line) {
+    std::string all;
+    for (const auto& c : cli.completions(line, line.find_last_of(' ') + 1)) all += c + " ";
+    return all;
+  };
+  CHECK_EQ(offers("set var ").substr(0, 21), std::string("switch hardstop load "));  // then the lvalues
+  CHECK_EQ(offers("set var h"), std::string("hardstop "));
+  CHECK_EQ(offers("set var hardstop "), std::string("left right "));
+  CHECK_EQ(offers("set var hardstop left 0 "), std::string("at "));
+  CHECK_EQ(offers("set var load 0 "), std::string("from "));
+  CHECK_EQ(offers("set var load 0 from -10 "), std::string("to "));
+  cli.line("set var hardstop left 0 at -3000");
+  for (int run = 0; run < 2; ++run) {
+    cli.line("start");
+    cli.line("advance 1s");
+    // Held at the hard stop; the counter runs on to the next fullstep's measurement, which reads 0.
+    CHECK(e.vm().motion->position(0) <= -3000 && e.vm().motion->position(0) > -3016);
+    std::int32_t v = 0;
+    CHECK_EQ(e.vm().get_axis(0, 206, v), kStatusOk);
+    CHECK_EQ(v, 0);
+    CHECK_EQ(e.vm().get_axis(0, 208, v), kStatusOk);
+    CHECK_EQ(v & 1, 1);
+    cli.line("kill");
+  }
+  std::fclose(out);
+
+  Fixture f;  // the USB-2-SD's core models no loads
+  std::string error;
+  InputEvent load;
+  load.kind = InputEvent::Load;
+  load.value = 50;
+  CHECK(f.engine->start(true).kind == StopKind::Entry);
+  CHECK(!f.engine->set_machine(load, error));
+  CHECK_EQ(error, "the motion core '" + std::string(f.vm().motion->name()) + "' cannot model loads on usb-2-sd");
+  CHECK(!f.vm().faulted());
+}
+
+// A change by hand in the middle of a run (set var hardstop) keeps the scenario's timed lines
+// that came before it: `run` again replays them (here a load at 200 ms, under which 206 reads
+// less than running free), as it did before the change.
+TEST(a_change_by_hand_keeps_the_scenarios_earlier_lines_for_the_next_run) {
+  const Profile* profile = find_profile("tmcm-1110");
+  Setup s;
+  s.profile = profile;
+  s.core_name = std::string(profile->default_motion);
+  InputEvent load;
+  load.kind = InputEvent::Load;
+  load.at = 200 * kUsPerMs;
+  load.value = 40;
+  s.inputs = {load};
+  Engine e(s, assemble_info("SAP 140, 0, 4\nROL 0, 400\nloop: WAIT TICKS, 0, 10\nJA loop\n", *profile),
+           make_motion_core(s.core_name));
+  std::FILE* out = std::tmpfile();
+  CommandLine cli(e, out, false, false);
+  auto load_value = [&] {
+    std::int32_t v = 0;
+    CHECK_EQ(e.vm().get_axis(0, 206, v), kStatusOk);
+    return v;
+  };
+  cli.line("start");
+  cli.line("advance 100ms");
+  const std::int32_t free = load_value();
+  cli.line("advance 200ms");
+  const std::int32_t loaded = load_value();
+  CHECK(loaded < free);
+  cli.line("set var hardstop right 0 at 100000");
+  cli.line("kill");
+  cli.line("start");
+  cli.line("advance 300ms");
+  CHECK_EQ(load_value(), loaded);
+  std::fclose(out);
 }

@@ -106,21 +106,27 @@ TEST(console_knows_the_interrupt_names) {
   CHECK(o.err.empty());
 }
 
-TEST(a_test_with_switch_lines_runs_on_a_module) {
+TEST(a_test_with_machine_lines_runs_on_a_module) {
   Server server(kRun, {"--serve", "tcp:127.0.0.1:0", "-t", "tmcm-1110"});
   const std::string dir = temp_dir() + "/machine";
   ::mkdir(dir.c_str(), 0700);
   write_temp("machine/p.tmc", "SGP 1, 2, 5\nSTOP\n");
   write_temp("machine/sw.tmctest", "program p.tmc\nswitch left 0 at -20000\nswitch right 0 at 20000\nexpect at end v[1] = 5\n");
+  write_temp("machine/hs.tmctest",
+             "program p.tmc\nhardstop left 0 at -20000\nload 0 from 100 to 200 = 50%\nexpect never stall 0\nexpect at end v[1] = 5\n");
   write_temp("machine/in.tmctest", "program p.tmc\nswitch left 0 at -20000\nat 1s input 0 = 1\nexpect at end v[1] = 5\n");
   Output o = ctl({"-t", "tmcm-1110", server.port(), "test", dir});
   show(o);
   CHECK_EQ(o.status, 0);
-  CHECK(has(o.out, "PASS " + dir + "/sw.tmctest\n  " + dir +
-                       "/sw.tmctest:2: note: the switch lines describe the machine; on a module they are not simulated: the "
-                       "machine's switches must be where they say\n"));
+  const std::string machine = ": note: the switch, hardstop and load lines describe the machine; on a module they are not "
+                              "simulated: the machine's switches, ends and loads must be where they say\n";
+  CHECK(has(o.out, "PASS " + dir + "/sw.tmctest\n  " + dir + "/sw.tmctest:2" + machine));
+  // Hard stops and loads at positions are the machine too (issue 34); a stall expectation is a note.
+  CHECK(has(o.out, "PASS " + dir + "/hs.tmctest\n  " + dir + "/hs.tmctest:2" + machine + "  " + dir +
+                       "/hs.tmctest:4: note: 'never stall 0' is not checked on a module (its host sees no stall event, "
+                       "only 208 when it asks)\n"));
   CHECK(has(o.out, "SKIP " + dir + "/in.tmctest (its scenario lines change the program's inputs, which a module's host cannot)\n"));
-  CHECK(has(o.out, "1 passed, 0 failed, 1 skipped\n"));
+  CHECK(has(o.out, "2 passed, 0 failed, 1 skipped\n"));
 }
 
 TEST(a_downloaded_program_survives_a_restart) {

@@ -1,11 +1,10 @@
 // TCP-only rules and the server as a separate process: one client at a time (a second one is
 // told it is refused, the next one after a disconnect is served), IPv6 loopback, and
 // SIGTERM/SIGINT shutting tmclrun --serve down cleanly with the EEPROM file saved.
-#include <sys/wait.h>
-
 #include <fstream>
 
 #include "check.hpp"
+#include "child.hpp"
 #include "client.hpp"
 
 using namespace srvtest;
@@ -79,56 +78,9 @@ TEST(tcp_ipv6_loopback) {
 
 namespace {
 
-struct Child {
-  pid_t pid = -1;
-  int out = -1;  // its stdout
-  std::string line;
-};
-
 Child spawn(const std::string& spec, const std::string& eeprom) {
-  Child c;
-  int p[2];
-  if (::pipe(p) != 0) return c;
-  c.pid = ::fork();
-  if (c.pid == 0) {
-    ::dup2(p[1], 1);
-    ::close(p[0]);
-    ::close(p[1]);
-    ::execl(TMCL_TMCLRUN, TMCL_TMCLRUN, "-t", "usb-2-sd", "--serve", spec.c_str(), "--eeprom", eeprom.c_str(),
-            "--max-wall-time", "30s", static_cast<char*>(nullptr));
-    ::_exit(127);
-  }
-  ::close(p[1]);
-  c.out = p[0];
-  // The first line is the announcement: "listening on 127.0.0.1:PORT".
-  const auto end = Clock::now() + std::chrono::seconds(5);
-  char ch;
-  while (Clock::now() < end) {
-    pollfd pf{c.out, POLLIN, 0};
-    if (::poll(&pf, 1, 100) <= 0) continue;
-    if (::read(c.out, &ch, 1) != 1 || ch == '\n') break;
-    c.line += ch;
-  }
-  return c;
+  return spawn_tmclrun({"-t", "usb-2-sd", "--serve", spec, "--eeprom", eeprom, "--max-wall-time", "30s"});
 }
-
-// Waits (bounded) for the child; returns its exit status or -1.
-int reap(Child& c) {
-  for (int i = 0; i < 500; ++i) {
-    int st = 0;
-    if (::waitpid(c.pid, &st, WNOHANG) == c.pid) {
-      ::close(c.out);
-      return WIFEXITED(st) ? WEXITSTATUS(st) : -1;
-    }
-    std::this_thread::sleep_for(std::chrono::milliseconds(10));
-  }
-  ::kill(c.pid, SIGKILL);
-  ::waitpid(c.pid, nullptr, 0);
-  ::close(c.out);
-  return -1;
-}
-
-Link connect_to(const std::string& announce) { return connect_loopback(std::stoi(announce.substr(announce.rfind(':') + 1))); }
 
 }  // namespace
 

@@ -161,7 +161,7 @@ TEST(file_every_mistake_at_once) {
            "t.tmctest:9:14: error: expected 'never fault', found 'faults'; did you mean 'fault'?\n"
            " expect never faults\n              ^~~~~~\n"
            "t.tmctest:10:10: error: expected 'no warnings'\n expect no\n          ^\n"
-           "t.tmctest:11:8: error: unknown expectation 'sometimes' (at TIME, at end, never fault, no warnings)\n"
+           "t.tmctest:11:8: error: unknown expectation 'sometimes' (at TIME, at end, never fault, no warnings, stall MOTOR at TIME, never stall MOTOR)\n"
            " expect sometimes v[1] = 2\n        ^~~~~~~~~\n"
            "t.tmctest:12:11: error: bad instant '2x': unknown unit 'x' in '2x'; use us, ms, s, min or h (or 'end')\n"
            " expect at 2x acc = 3\n           ^~\n"

@@ -3,6 +3,7 @@
 // program, a missing one, an unknown name with its "did you mean").
 #include "check.hpp"
 #include "helpers.hpp"
+#include "tmcl/duration.hpp"
 #include "tmcl/image.hpp"
 
 using namespace runtest;
@@ -286,4 +287,41 @@ TEST(run_define_errors_are_the_test_files) {
   const TestResult cli = run("cli", "program speed.tmc\ndefine X=\n", o);
   CHECK(has(cli.error, "cli.tmctest:2:10: error: expected a value, found end of line\n"));
   CHECK(has(cli.error, "<command line -D Z>:1:4: error:"));
+}
+
+// `expect stall M at T ± W` (issue 34) holds when a stall of motor M lies in [T - W, T + W], ends
+// included, whichever of its stalls it is; `expect never stall M` fails at the first.
+TEST(run_stall_expectations_at_their_edges) {
+  // Stop on stall into a hard stop at -3000, then again into the right one at 3000.
+  put("stall.tmc",
+      "        SAP 140, 0, 4\n"
+      "        SAP 181, 0, 200\n"
+      "        ROL 0, 400\n"
+      "        WAIT TICKS, 0, 100\n"
+      "        ROR 0, 400\n"
+      "        WAIT TICKS, 0, 100\n"
+      "        STOP\n");
+  const std::string head = "program stall.tmc\ntarget tmcm-1110\nhardstop left 0 at -3000\nhardstop right 0 at 3000\n";
+  // Find both instants from the failures of a test that expects them at 0.
+  const TestResult probe = run("stall-probe", head + "expect stall 0 at 0s\n");
+  CHECK_EQ(probe.failures.size(), 1u);
+  CHECK(!probe.failures.empty() && probe.failures[0].update != "");
+  const std::string first = probe.failures.empty() ? "" : probe.failures[0].update;  // the stall nearest 0
+  const auto t1 = tmcl::parse_duration(first);
+  CHECK(t1.has_value() && *t1 > 0);
+  const std::string at = std::to_string(*t1) + "us";
+  CHECK(run("stall-exact", head + "expect stall 0 at " + at + "\n").status == TestResult::Pass);
+  CHECK(run("stall-edge", head + "expect stall 0 at " + std::to_string(*t1 + 5) + "us ± 5us\n").status == TestResult::Pass);
+  const TestResult out = run("stall-out", head + "expect stall 0 at " + std::to_string(*t1 + 6) + "us ± 5us\n");
+  CHECK(out.status == TestResult::Fail);
+  CHECK_EQ(out.failures.size(), 1u);
+  // The second stall, at the right end after 1 s, is met too: any of the motor's stalls counts.
+  CHECK(run("stall-second", head + "expect stall 0 at 2s ± 1s\nexpect never stall 1\nexpect never stall 2\n").status ==
+        TestResult::Pass);
+  CHECK_EQ(messages(run("stall-never", head + "expect never stall 0\n")),
+           "5: expected motor 0 never to stall, it stalled at " + first + "\n");
+  // 181 = 0: the motor pushes on at the hard stop and never stalls.
+  put("nostop.tmc", "        SAP 140, 0, 4\n        ROL 0, 400\n        WAIT TICKS, 0, 100\n        STOP\n");
+  CHECK(run("stall-none", "program nostop.tmc\ntarget tmcm-1110\nhardstop left 0 at -3000\nexpect never stall 0\n").status ==
+        TestResult::Pass);
 }

@@ -63,3 +63,22 @@ TEST(scenario_hardstop_and_load_errors) {
   opts.module = "tmcm-1110";
   expect_scenario_errors(cases, opts);
 }
+
+// The TMCM-351's stallGuard (errata E75) as a program meets it: motor 2 runs into its hard stop
+// with stall detection on (205), stops, and raises its own stall vector 17 (15 + motor) once;
+// 207 bit 1 is set on that motor only.
+TEST(sg1_stall_raises_the_vector_of_its_motor) {
+  World w("tmc429", *tmcl::find_profile("tmcm-351"),
+          {I(Op::VECT, 17, 0, 7), I(Op::EI, 17), I(Op::EI, 255), I(Op::SAP, 205, 2, 5), I(Op::ROL, 0, 2, 500),
+           I(Op::WAIT, 0, 0, 100), I(Op::STOP), I(Op::GGP, 17, 2), I(Op::CALC, 0, 0, 1), I(Op::AGP, 17, 2),
+           I(Op::RETI)},
+          "hardstop left 2 at -3000\n");
+  auto r = w.vm.run({100000, tmcl::kNever});
+  CHECK(r.halt == Halt::Stop);
+  CHECK_EQ(w.vm.vars[17], 1);
+  CHECK_EQ(w.core->get_param(2, 3), 0);
+  CHECK_EQ(w.core->get_param(2, 207), 2);
+  CHECK_EQ(w.core->get_param(0, 207), 0);
+  CHECK_EQ(w.core->get_param(2, 206), 7);
+  CHECK(w.core->position(2) <= -3000 && w.core->position(2) >= -3000 - 16 - 1);
+}

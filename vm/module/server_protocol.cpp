@@ -276,6 +276,17 @@ void TmclModule::advance(SimTime until) {
     check_events();
     return;
   }
+  // Without a program running, the scenario's timed lines (a load, a switch) still come at their
+  // instants of the serving clock, not with the next request: the world is run to each in turn.
+  while (vm_.status != AppStatus::Running && vm_.next_input_at() <= until) {
+    run_to(std::max(vm_.now, vm_.next_input_at()));
+    vm_.apply_due_inputs();
+  }
+  run_to(until);
+  check_events();
+}
+
+void TmclModule::run_to(SimTime until) {
   if (vm_.status == AppStatus::Running || vm_.motion_pending()) {
     const RunResult r = vm_.run(Limits{UINT64_MAX, until});
     if (r.halt == Halt::Fault) {
@@ -287,7 +298,6 @@ void TmclModule::advance(SimTime until) {
   }
   // Nothing left to simulate: time simply passes (timers only matter while a program runs).
   if (vm_.status != AppStatus::Running && !vm_.motion_pending() && vm_.now < until) vm_.now = until;
-  check_events();
 }
 
 SimTime TmclModule::next_wakeup() const {
@@ -295,7 +305,7 @@ SimTime TmclModule::next_wakeup() const {
     if (!vm_.wait.active) return vm_.now;  // executing instructions: run in slices
     return vm_.next_wakeup();
   }
-  return vm_.motion->next_event();
+  return run_program ? vm_.motion->next_event() : std::min(vm_.motion->next_event(), vm_.next_input_at());
 }
 
 // 138 events: the announced motor has arrived (target reached and at rest). Polled after every

@@ -44,7 +44,10 @@ constexpr int kSearchCap = 4096;
 // The model applies where the module has coolStep besides stallGuard2: its profile lists the lower
 // threshold 172 (generic: the TMCM-1110's rows stand in). Elsewhere 180 is what the profile stores.
 void SwitchCore::reset_cool(const Profile& profile) {
-  cool_on_ = sg_on_ && (profile.any_parameter || profile.axis_param(kCsSemin) != nullptr);
+  // Only on stallGuard2's readings, and in a core that holds coolStep's settings (the linear core
+  // does not: the VM stores the TMC2300's).
+  cool_on_ = guard_ == stall::Guard::SG2 && owns(kCsSemin) &&
+             (profile.any_parameter || profile.axis_param(kCsSemin) != nullptr);
   for (auto& m : motors_) m.cool = coolstep::start(cool_settings(m));
 }
 

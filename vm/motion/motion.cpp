@@ -52,7 +52,7 @@ std::string_view switch_input_name(SwitchInput input) {
 }
 
 std::string motion_event_text(const MotionEvent& ev) {
-  if (ev.kind == MotionEventKind::Stall) return "stall: load value 0, stopped";
+  if (ev.kind == MotionEventKind::Stall) return "stall: load value " + std::to_string(ev.value) + ", stopped";
   if (ev.kind == MotionEventKind::StepsLost) return "steps lost: the shaft stands, the position counter runs on";
   if (ev.kind == MotionEventKind::Rebased)
     return "position re-based: the reference point, " + std::to_string(ev.value) + " before, is 0 now";

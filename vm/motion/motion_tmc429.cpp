@@ -11,8 +11,8 @@
 // the home switch in series with the left one (mode 3 searches either). docs/motion.md explains
 // every decision.
 //
-// Parameters it owns: 0-13, 130, 135, 138, 140, 149, 153, 154, 168-174, 180-182, 193-197, 206, 208,
-// and 207, 209, 210, 212 (the encoder where the profile declares one, switch_core.hpp).
+// Parameters it owns: 0-13, 130, 135, 138, 140, 149, 153, 154, 168-174, 180-182, 193-197, 205, 206,
+// 208, and 207, 209, 210, 212 (the encoder where the profile declares one, switch_core.hpp).
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -55,7 +55,8 @@ constexpr int kTmc429Owned[] = {kApTargetPosition, kApActualPosition, kApTargetS
                                 // stallGuard2 (stall_core.cpp): run current, filter, threshold, stop on stall, load value, driver flags
                                 6, 173, 174, 181, 206, 208,
                                 // coolStep (coolstep_core.cpp): standby current, 168-172, actual current, threshold speed
-                                7, 168, 169, 170, 171, 172, 180, 182};
+                                7, 168, 169, 170, 171, 172, 180, 182,
+                                sw::kSg1Threshold};  // the TMCM-351's stallGuard 1 (stall_core.cpp)
 
 class Tmc429Core final : public sw::SwitchCore {
  public:

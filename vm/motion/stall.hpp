@@ -36,17 +36,37 @@ inline int reading(double f, int cs, int percent, int sgt) {
   return static_cast<int>(std::clamp(r, 0.0, static_cast<double>(kMaxReading)));
 }
 
-// The fullstep rate below which the reading is 0 under that load (it rises with f): 0 when it
-// never is, infinity when it always is.
-inline double zero_below(int cs, int percent, int sgt) {
+// The fullstep rate below which no_load(f, cs) · (1 - percent/100) < need under that load (it
+// rises with f): 0 when it never is, infinity when it always is.
+inline double below(int cs, int percent, double need) {
   const double free = std::max(0.0, 1.0 - percent / 100.0);
-  const double need = 0.5 - kThresholdGain * sgt;  // reading 0 <=> no_load · free < need
   if (free <= 0) return need > 0 ? INFINITY : 0;
   const double k = need / free;  // no_load(f) < k
   const double a = 500 * (cs + 1) / 32.0, r = (k - 250) / a;  // f / (f + 500) < r
   if (r <= 0) return 0;
   if (r >= 1) return INFINITY;
   return 500 * r / (1 - r);
+}
+// The fullstep rate below which the stallGuard2 reading is 0.
+inline double zero_below(int cs, int percent, int sgt) { return below(cs, percent, 0.5 - kThresholdGain * sgt); }
+
+// ---- the other drivers' load measurements (docs/errata.md E74, E75)
+// Which measurement the module's driver makes: the profile's `motion-constant stallguard N`
+// (1, 2 or 4), 2 where the profile lists only stallGuard2's threshold 174 (the TMCM modules).
+enum class Guard : std::uint8_t { None = 0, SG1 = 1, SG2 = 2, SG4 = 4 };
+
+// StallGuard4 (TMC2300): the same no-load curve, no shift by the threshold: SGTHRS (174) is the
+// level the reading is compared with, a stall when reading <= 2 · SGTHRS (E74).
+inline int reading4(double f, int cs, int percent) { return reading(f, cs, percent, 0); }
+inline int stall_level4(int sgthrs) { return 2 * std::max(0, sgthrs); }
+// The fullstep rate below which the StallGuard4 reading is at or under 2 · sgthrs.
+inline double stall_below4(int cs, int percent, int sgthrs) { return below(cs, percent, stall_level4(sgthrs) + 0.5); }
+
+// stallGuard 1 (TMC249, TMCM-351): a load indicator 0..7 rising with the load, 7 at 100 % and
+// above; the motor stops when it reaches the threshold 205 (1..7; E75).
+inline constexpr int kMaxReading1 = 7;
+inline int reading1(int percent) {
+  return static_cast<int>(std::lround(kMaxReading1 * std::clamp(percent, 0, 100) / 100.0));
 }
 
 // A load while the shaft is in [lo, hi] (scenario `load M from A to B = P%`).

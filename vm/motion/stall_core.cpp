@@ -8,10 +8,15 @@
 //   - the machine: a hard stop holds the shaft (shaft.hpp) while the counter pushes on into it, a
 //     load of 100 % or more holds it where it stands; the counter runs on (steps lost, said once
 //     per hold) until the motor stops or turns away from the hard stop.
+//   - the other drivers' measurements the profile names (`motion-constant stallguard`): the
+//     TMCM-351's stallGuard 1 (206 0..7 rising with the load, stop at 205, at a constant speed
+//     only) and the TMC2300's StallGuard4 (206 not shifted by 174, stop at 2·174, in StealthChop
+//     only); a stop on stall sets the profile's `stall-flag` in 207 (errata E74-E76).
 // Like the rest of the ramp cores it works in closed form: the next stall, contact or release is
 // found on the current plan by root solving (at most a few per segment), never by stepping.
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 
 #include "measure.hpp"
 #include "switch_core.hpp"
@@ -26,6 +31,7 @@ namespace {
 
 enum StallParam : int {
   kRunCurrent = 6,
+  kPwmGradient = 187,     // TMC2300: 0 turns StealthChop off, and with it StallGuard4 (E74)
   kMicrostepResolution = 140,
   kSgFilter = 173,
   kSgThreshold = 174,
@@ -40,10 +46,17 @@ using namespace meas;  // measure.hpp
 }  // namespace
 
 void SwitchCore::reset_stall(const Profile& profile) {
-  // The model applies where the module has stallGuard2: its profile lists the threshold 174
-  // (generic: the TMCM-1110's rows stand in, as for every parameter of the core).
-  sg_on_ = profile.any_parameter || profile.axis_param(kSgThreshold) != nullptr;
-  flags208_ = profile.any_parameter || profile.axis_param(kDriverFlags) != nullptr;
+  // The model applies where the module measures the load: its profile says which measurement
+  // (`motion-constant stallguard 1|2|4`), or lists stallGuard2's threshold 174 (generic: the
+  // module the core models stands in, as for every parameter of the core).
+  const Profile* spec = profile.any_parameter ? find_profile(home_) : &profile;
+  const bool has174 = profile.any_parameter || profile.axis_param(kSgThreshold) != nullptr;
+  guard_ = static_cast<stall::Guard>(spec ? spec->motion_constant("stallguard", has174 ? 2 : 0) : (has174 ? 2 : 0));
+  if (guard_ != stall::Guard::SG1 && guard_ != stall::Guard::SG2 && guard_ != stall::Guard::SG4) guard_ = stall::Guard::None;
+  sg_on_ = guard_ != stall::Guard::None;
+  // 208 bit 0 is stallGuard2's status; a stop on stall sets `stall-flag` in 207 where the manual says.
+  flags208_ = guard_ == stall::Guard::SG2 && (profile.any_parameter || profile.axis_param(kDriverFlags) != nullptr);
+  stall_flag207_ = spec ? static_cast<std::int32_t>(spec->motion_constant("stall-flag", 0)) : 0;
   const ParamInfo* run = range_row(kRunCurrent);
   current_steps_ = run && run->max > 0 ? run->max + 1 : 256;
   reset_cool(profile);
@@ -72,12 +85,49 @@ double SwitchCore::shaft_pos(const Motor& m, const Segment& seg, double t) const
   return static_cast<double>(m.rm.base + m.rm.phys + m.shaft.offset) + seg.x(t - seg.t0);
 }
 
-bool SwitchCore::stops_on_stall(const Motor& m) const { return sg_on_ && m.p[kStopOnStall] > 0; }
+bool SwitchCore::stops_on_stall(const Motor& m) const {
+  if (!measuring(m)) return false;
+  return guard_ == stall::Guard::SG1 ? m.p[kSg1Threshold] > 0 : m.p[kStopOnStall] > 0;
+}
+
+// The driver measures: it has a load measurement, and StallGuard4 only in StealthChop (187 > 0).
+bool SwitchCore::measuring(const Motor& m) const {
+  return sg_on_ && (guard_ != stall::Guard::SG4 || m.p[kPwmGradient] > 0);
+}
+
+// The reading at `f` fullsteps/s under `load` %, by the module's measurement (stall.hpp).
+int SwitchCore::measure(const Motor& m, double f, int load) const {
+  switch (guard_) {
+    case stall::Guard::SG1: return stall::reading1(load);
+    case stall::Guard::SG4: return stall::reading4(f, reading_scale(m), load);
+    default: return stall::reading(f, reading_scale(m), load, m.p[kSgThreshold]);
+  }
+}
+
+// The fullstep rate below which a measurement under `load` % means a stall (stallGuard 1: any
+// speed or none, the reading does not depend on it).
+double SwitchCore::stall_below(const Motor& m, int load) const {
+  switch (guard_) {
+    case stall::Guard::SG1: return stall::reading1(load) >= m.p[kSg1Threshold] ? INFINITY : 0;
+    case stall::Guard::SG4: return stall::stall_below4(reading_scale(m), load, m.p[kSgThreshold]);
+    default: return stall::zero_below(reading_scale(m), load, m.p[kSgThreshold]);
+  }
+}
+
+// The reading a stop on stall leaves in 206: a stall's, even where the measurement shares its
+// microsecond with the contact that caused it.
+int SwitchCore::stall_reading(const Motor& m, int value) const {
+  switch (guard_) {
+    case stall::Guard::SG1: return std::max(value, m.p[kSg1Threshold]);
+    case stall::Guard::SG4: return std::min(value, stall::stall_level4(m.p[kSgThreshold]));
+    default: return 0;
+  }
+}
 
 // ---------------------------------------------------------------- reading the load value
 
 bool SwitchCore::last_reading(const Motor& m, int& value) const {
-  if (!sg_on_) return false;
+  if (!measuring(m)) return false;
   const auto& segs = m.rm.plan.segs;
   const double s_now = m.rm.secs(now_) + kTol, s_lo = m.rm.secs(m.sg.commit_us) + kTol;
   const double cbase = static_cast<double>(m.rm.base + m.rm.phys), F = fullstep(m);
@@ -86,13 +136,13 @@ bool SwitchCore::last_reading(const Motor& m, int& value) const {
     const Segment& seg = segs[i];
     const double end = std::isinf(seg.dur) ? s_now : std::min(seg.t0 + seg.dur, s_now);
     if (end <= s_lo) break;  // and every segment before it
-    if (seg.dir == 0) continue;
+    if (seg.dir == 0 || !steady_enough(seg)) continue;
     double t1 = std::max(seg.t0, s_lo), t2 = end;
     if (!(t1 < t2) || !speed_window(seg, t1, t2, vmin, INFINITY)) continue;
     const double t = last_point(seg, t1, t2, cbase, period(m));
     if (t < 0 || t <= s_lo) continue;
     const int load = m.shaft.held ? 100 : load_at(m, shaft_pos(m, seg, t));
-    value = stall::reading(speed_at(seg, t) / F, reading_scale(m), load, m.p[kSgThreshold]);
+    value = measure(m, speed_at(seg, t) / F, load);
     return true;
   }
   return false;
@@ -119,6 +169,7 @@ Builder SwitchCore::restart(Motor& m, double vscale) {
 void SwitchCore::stall_input(Motor& m, int param) {
   switch (param) {
     case kRunCurrent: case kMicrostepResolution: case kSgFilter: case kSgThreshold: case kStopOnStall:
+    case kPwmGradient: case kSg1Threshold:
       commit(m);
       break;
     default:
@@ -202,10 +253,13 @@ double SwitchCore::contact(const Motor& m, const Segment& seg, double t1, double
   return best;
 }
 
-// The first measurement in [t1, t2] of a moving segment that reads 0 at a speed >= 181; -1 none.
+// The first measurement in [t1, t2] of a moving segment that means a stall (stallGuard2: it reads 0)
+// at a speed >= 181 (stallGuard 1: at any speed it measures at); -1 none.
 double SwitchCore::first_stall(const Motor& m, const Segment& seg, double t1, double t2) const {
   const double F = fullstep(m), cbase = static_cast<double>(m.rm.base + m.rm.phys);
-  const double vlo = std::max(m.p[kStopOnStall] * vunit(m), stall::kMinFullstepRate * F);
+  if (!steady_enough(seg)) return -1;
+  const double v181 = guard_ == stall::Guard::SG1 ? 0 : m.p[kStopOnStall] * vunit(m);  // stallGuard 1 has no 181
+  const double vlo = std::max(v181, stall::kMinFullstepRate * F);
   // Pieces of constant load: split at the zones' edges on the way (none held: the blocked rotor).
   std::vector<double> cuts{t1};
   if (!m.shaft.held) {
@@ -223,7 +277,7 @@ double SwitchCore::first_stall(const Motor& m, const Segment& seg, double t1, do
     double a = cuts[i], b = cuts[i + 1];
     const double mid = std::isinf(b) ? a : (a + b) / 2;
     const int load = m.shaft.held ? 100 : load_at(m, shaft_pos(m, seg, mid));
-    const double vhi = stall::zero_below(reading_scale(m), load, m.p[kSgThreshold]) * F;
+    const double vhi = stall_below(m, load) * F;
     if (!speed_window(seg, a, b, vlo, vhi)) continue;
     const double t = first_point(seg, a, b, cbase, period(m));
     if (t >= 0) return t;
@@ -285,13 +339,20 @@ void SwitchCore::on_mech(Motor& m, std::vector<MotionEvent>& out) {
       }
       break;
     case kStall: {  // stop on stall: at once, the target kept; the VM raises 15 + motor
+      // This measurement, taken now (it may share its microsecond with a contact, or with the
+      // load change that caused it).
+      const double f = std::fabs(m.rm.state(now_).v) / fullstep(m);
+      const int load = m.shaft.held ? 100 : load_at(m, static_cast<double>(shaft_at(m)));
       Builder b = restart(m);
-      m.sg.value = 0, m.sg.measured = true;  // this measurement (it may share its microsecond with a contact)
+      m.sg.value = stall_reading(m, measure(m, f, load)), m.sg.measured = true;
+      m.errors |= stall_flag207_;  // 207: "stopped due to motor stall" where the manual has it
       b.stop_hard();
       b.finish_rest();
       m.rm.plan.events.clear();
       set_goal(m, Goal::Idle);
-      out.push_back({now_, motor, MotionEventKind::Stall, ramp::wrap32(m.rm.xactual(now_))});
+      MotionEvent ev{now_, motor, MotionEventKind::Stall, ramp::wrap32(m.rm.xactual(now_))};
+      ev.value = m.sg.value;
+      out.push_back(ev);
       break;
     }
     case kContact: {
@@ -301,8 +362,11 @@ void SwitchCore::on_mech(Motor& m, std::vector<MotionEvent>& out) {
       hold_shaft(m);
       m.sg.block = why == 0 ? seg.dir : why;
       m.sg.next_valid = false;
-      // Steps are lost from here; said once, unless stop on stall stops the motor (a few microsteps on).
-      if (!(next_mech(m) != kNever && m.sg.next_kind == kStall))
+      // Steps are lost from here; said once, unless stop on stall stops the motor at the next
+      // measurement (within a measurement period: stallGuard 1 waits for a constant speed).
+      const bool stops_soon = next_mech(m) != kNever && m.sg.next_kind == kStall &&
+                              static_cast<double>(std::abs(m.rm.xactual(m.sg.next_at) - m.rm.xactual(now_))) <= period(m) + 1;
+      if (!stops_soon)
         out.push_back({now_, motor, MotionEventKind::StepsLost, ramp::wrap32(m.rm.xactual(now_))});
       break;
     }

@@ -268,6 +268,7 @@ void SwitchCore::switch_stop(Motor& m, Builder& b, const Limits& lim) {
 // The first instant the plan moves toward a closed limit switch or reaches a placed one whose
 // stop function is on (12, 13 = 0): there the plan is cut and the stop appended.
 void SwitchCore::scan_trips(Motor& m, const Limits& lim) {
+  if (!cfg_.stop_switches) return;
   const bool left_on = m.p[kLeftStopDisable] == 0, right_on = m.p[kRightStopDisable] == 0;
   if (!left_on && !right_on) return;
   for (const auto& seg : m.rm.plan.segs) {

@@ -2,7 +2,9 @@
 // with their stop functions and switch states, and the modules' reference search (RFS, 193-196)
 // as a state machine driven by the switches. The TMC429 modules (motion_tmc429.cpp) and the
 // TMCM-1260 (motion_tmc5160.cpp) describe both alike in their manuals; a core adds its units, its
-// ramps and the parameter numbers where they differ. docs/motion.md explains every decision.
+// ramps and the parameter numbers where they differ. The TMC2300's `linear` core (motion_linear.cpp)
+// uses it for the machine and the load model only (SwitchConfig::stop_switches false, no search).
+// docs/motion.md explains every decision.
 //
 // Parameters this part gives a meaning: 0-3, 8-13, 193-196 (and the core's soft-stop flag and
 // last-reference parameter, SwitchConfig), and where the profile declares an encoder (EncoderSpec)
@@ -32,6 +34,7 @@ enum Param : int {
   kRfsSpeed = 194,
   kRfsSwitchSpeed = 195,
   kRfsDistance = 196,      // between the end switches, after modes 2 and 3
+  kSg1Threshold = 205,     // stallGuard 1 (TMCM-351): the stall detection threshold 1..7, 0 off
   kErrorFlags = 207,       // extended error flags: the deviation (and stall) stops
   kEncoderPosition = 209,
   kEncoderPrescaler = 210, // TMC429 modules: prescaler = value / 512; TMCM-1260: clear on null
@@ -101,6 +104,7 @@ struct SwitchConfig {
   bool home_in_series;    // mode 3 searches the reference input (TMC429 modules: home in series with left)
   bool other_switch;      // 193 takes +64 (modes 1-4) and +128 only with modes 5-8 (TMCM-1260)
   int last_reference = 0; // parameter that keeps the reference point's former position (0: none)
+  bool stop_switches = true;  // false: the module has no stop switches (TMC2300: placed ones only report)
 };
 
 class SwitchCore : public ramp::RampCore<Motor> {
@@ -121,6 +125,11 @@ class SwitchCore : public ramp::RampCore<Motor> {
   // The shaft slips `counts` microsteps against the counter (scenario `slip`); the encoder sees it.
   void encoder_slip(int motor, std::int32_t counts) override;
   bool models_encoder(const Profile& profile) const override;
+  // 205, stallGuard 1's threshold, is the core's only where the profile names that measurement
+  // (`motion-constant stallguard 1`, stall_core.cpp); elsewhere the VM keeps it, if the module has it.
+  bool owns(int param) const override {
+    return (param != kSg1Threshold || guard_ == stall::Guard::SG1) && RampCore::owns(param);
+  }
   // ---- loads, stalls and lost steps (stall_core.cpp; docs/motion.md)
   SimTime next_event() const override;
   bool place_hard_stop(int motor, SwitchInput side, std::int64_t position) override;
@@ -226,6 +235,18 @@ class SwitchCore : public ramp::RampCore<Motor> {
   double contact(const Motor& m, const ramp::Segment& seg, double t1, double t2, int& why) const;
   double first_stall(const Motor& m, const ramp::Segment& seg, double t1, double t2) const;
   bool stops_on_stall(const Motor& m) const;
+  // ---- the other drivers' measurements (stallGuard 1, StallGuard4; stall_core.cpp, errata E74, E75)
+  stall::Guard guard_ = stall::Guard::None;  // which measurement the module makes
+  std::int32_t stall_flag207_ = 0;           // what a stop on stall sets in 207 (`stall-flag`)
+  bool measuring(const Motor& m) const;
+  int measure(const Motor& m, double f, int load) const;
+  double stall_below(const Motor& m, int load) const;
+  int stall_reading(const Motor& m, int value) const;
+  // stallGuard 1 measures at a constant speed only ("no stall detection while the motor is being
+  // accelerated or decelerated", TMCM-351 manual 7.3); the others on every moving segment.
+  bool steady_enough(const ramp::Segment& seg) const {
+    return guard_ != stall::Guard::SG1 || (seg.a0 == 0 && seg.j == 0);
+  }
 
   // ---- coolstep_core.cpp: the actual current 180 (docs/motion.md, "coolStep")
   // What a walk over the measurements of a plan found (cool_walk).

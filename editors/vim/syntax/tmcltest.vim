@@ -4,9 +4,9 @@ scriptencoding utf-8
 if exists('b:current_syntax')
   finish
 endif
-syntax match tmcltestDirective /^\s*\(program\|target\|motion\|instr-time\|max-time\|define\|skip\|at\|switch\|expect\)\>/
-syntax keyword tmcltestWord at end never fault no warnings halted stop max-time blocked
-syntax keyword tmcltestWord input analog left right home slip from to
+syntax match tmcltestDirective /^\s*\(program\|target\|motion\|instr-time\|max-time\|define\|skip\|at\|switch\|hardstop\|load\|expect\)\>/
+syntax keyword tmcltestWord at end never fault no warnings halted stop max-time blocked stall
+syntax keyword tmcltestWord input analog left right home slip load from to
 syntax keyword tmcltestValue acc a x pc sp flags errors time steps v ap gp in ain out position velocity
 syntax match tmcltestNumber /\<\d\+\(\.\d\+\)\=\(us\|ms\|s\|min\|h\)\=\>/
 syntax match tmcltestNumber /\<0x\x\+\>\|\<0b[01]\+\>/

@@ -302,6 +302,11 @@ struct Vm {
   void reset_interpreter();
   // Queues external input changes (sorted by time, stable); places the switches at positions.
   void add_inputs(std::vector<InputEvent> events);
+  // The instant of the next timed input not yet applied (kNever: none), and applying those due
+  // at `now`: the run loop does both itself while a program runs; a module driven by its host
+  // alone (TmclModule::advance) brings the world to each such instant and applies it.
+  SimTime next_input_at() const { return input_next < inputs_queue.size() ? inputs_queue[input_next].at : kNever; }
+  void apply_due_inputs();
 
   // Runs the program until STOP, a fault, a limit, or blocked forever.
   RunResult run(const Limits& limits);

@@ -16,6 +16,9 @@ user-variables 256 eeprom=8 src=M:5.2,M:table14  # table 14 marks only 0..7 E
 coordinates 0 src=M:table5  # no SCO/GCO/CCO/ACO, so MVP COORD has nothing to move to
 parameters listed
 motion linear src=M:1
+# The stall detection the core simulates (docs/motion.md, errata E74): StallGuard4 in StealthChop
+# (187 > 0), 174 the level 206 is compared with, stop on stall 181.
+motion-constant stallguard 4 src=M:1  # 'Stall detection StallGuard4 in StealthChop mode'
 # Table 5, UF0..UF7 (section 3.6.25), SIO 14 and GIO 15 (the first example program uses SIO,
 # the AAP example GIO) and the control commands of table 10 (no 138).
 commands 1-12 14-15 19-24 27-28 33-36 64-71 src=M:table5,M:3.6.25
@@ -41,15 +44,15 @@ axis 169 "SmartEnergy current down step" 0..3 RWE default=0 src=M:table11 unveri
 axis 170 "SmartEnergy hysteresis" 0..15 RWE default=0 src=M:table11 unverified=default
 axis 171 "SmartEnergy current up step" 0..3 RWE default=0 src=M:table11 unverified=default
 axis 172 "SmartEnergy hysteresis start" 0..15 RWE default=0 src=M:table11 unverified=default
-axis 174 "StallGuard2 threshold" 0..255 RWE default=0 src=M:table11 not-simulated="the linear core models no load and no StallGuard4 (the load model is the TMCM cores'): a stall never happens"
+axis 174 "StallGuard2 threshold" 0..255 RWE default=0 src=M:table11
 axis 180 "SmartEnergy actual current" 0..31 R default=0 src=M:table11
-axis 181 "Stop on stall" 0..2147483647 RWE default=0 unit=pps src=M:table11 unverified=default not-simulated="the linear core models no load and no StallGuard4: a stall never happens, so the motor never stops on one"
+axis 181 "Stop on stall" 0..2147483647 RWE default=0 unit=pps src=M:table11 unverified=default
 axis 182 "SmartEnergy threshold speed" 0..1048574 RWE default=0 unit=pps src=M:table11 unverified=default
 axis 187 "PWM gradient" 0..15 RWE default=1 src=M:table11 unverified=default
 axis 191 "PWM frequency" 0..3 RWE default=1 src=M:table11 unverified=default
 axis 192 "PWM autoscale" 0..1 RWE default=1 src=M:table11 unverified=default
 axis 204 "Freewheeling mode" 0..3 RWE default=0 src=M:table11 unverified=default
-axis 206 "Actual load value" 0..1023 R default=0 src=M:table11 not-simulated="reads 0: the linear core models no load"
+axis 206 "Actual load value" 0..1023 R default=0 src=M:table11
 axis 220 "Supply voltage" 0..51 R default=37 unit="0.1 V" src=M:table11 unverified=default  # the table says RW (a measurement) and 1/10V
 
 # Table 13, plus 66 (the SGP/GGP examples) and 85 (section 6.4). Banks: 0 and 2 only.

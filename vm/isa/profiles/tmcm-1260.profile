@@ -26,6 +26,7 @@ motion-constant encoder 1 src=M:6.2
 motion-constant encoder-prescaler 0 src=M:6.2
 motion-constant deviation-flag 2 src=M:4  # 207: '2 deviation error'
 motion-constant error-flags-read-clears 1 src=M:4  # 207: 'cleared automatically when this parameter has been read out'
+motion-constant stall-flag 1 src=M:4  # 207: '1 StallGuard error', set by a stop on stall (errata E76)
 # Commands: table 5 (no STAP/RSAP), UF0..UF7 (3.6.34), 138 (3.6.35) and the control commands of
 # table 13.
 commands 1-6 9-15 19-28 30-39 64-71 src=M:table5,M:3.6.34

@@ -24,6 +24,10 @@ motion-constant encoder 1 src=M:7.2  # the optional encoder interface
 motion-constant encoder-prescaler 512 src=M:7.2  # prescaler = 210 / 512
 motion-constant encoder-prescaler-flags 31 src=M:7.2  # adding 1, 2, 4, 8, 16 to 210 selects special functions
 motion-constant deviation-flag 1 src=M:5  # 207 bit 0: 'stopped due to encoder deviation error'
+# The stall detection the core simulates (docs/motion.md, errata E75): the TMC249's stallGuard
+# (load value 206 0..7, threshold 205, no detection while accelerating); a stall stop sets 207 bit 1.
+motion-constant stallguard 1 src=M:7.3  # 'three TMC249 motor driver chips ... load measurement'
+motion-constant stall-flag 2 src=M:5  # 207 bit 1: 'motor has been stopped due to motor stall'
 # Commands: table 4.4.1, CLE 36 (4.6.32), UF0..UF7 (4.6.37), 138 (4.6.38) and the control commands
 # (4.4.2.9), SAC 29 (4.6.24). 139 (enter ASCII mode) is a control command tmcl does not have.
 commands 1-15 19-39 64-71 src=M:4.4.1,M:4.6.24,M:4.6.32,M:4.6.37
@@ -61,10 +65,10 @@ axis 197 "Last reference position" -2147483648..2147483647 R default=0 unit=μst
 axis 200 "Boost current" 0..255 RWE default=0 src=M:5 unverified=default  # 0: the current of parameter 6
 axis 203 "Mixed decay threshold" -1..2048 RWE default=2048 src=M:5 unverified=default  # -1: always
 axis 204 "Freewheeling" 0..65535 RWE default=0 unit=ms src=M:5 unverified=default  # 0: never
-axis 205 "Stall detection threshold" 0..7 RWE default=0 src=M:5 unverified=default not-simulated="no stall is ever detected: the stall model applies where the profile lists stallGuard2's threshold 174; the TMCM-351 (stallGuard 1, threshold 205) has none, so no load is modelled"  # 0: off
-axis 206 "Actual load value" 0..7 R default=0 src=M:5 not-simulated="reads 0: the stall model applies where the profile lists stallGuard2's threshold 174; the TMCM-351 (stallGuard 1, threshold 205) has none, so no load is modelled"
+axis 205 "Stall detection threshold" 0..7 RWE default=0 src=M:5 unverified=default  # 0: off
+axis 206 "Actual load value" 0..7 R default=0 src=M:5
 axis 207 "Extended error flags" 0..3 R default=0 src=M:5
-axis 208 "Driver error flags" 0..255 R default=0 src=M:5 not-simulated="reads 0: the stall model applies where the profile lists stallGuard2's threshold 174; the TMCM-351 (stallGuard 1, threshold 205) has none, so no load is modelled; no driver faults are modelled"
+axis 208 "Driver error flags" 0..255 R default=0 src=M:5 not-simulated="reads 0: no driver faults (overcurrent, open load, undervoltage, temperature) are modelled; a stall is not one of its bits on this module (207 bit 1 is)"
 axis 209 "Encoder position" -2147483648..2147483647 RW default=0 unit="encoder steps" src=M:5
 axis 210 "Encoder prescaler" 0..65535 RWE default=512 src=M:5,M:7.2 unverified=default  # prescaler = value / 512
 axis 211 "Fullstep threshold" 0..2048 RWE default=0 src=M:5 unverified=default  # 0 or 2048: off

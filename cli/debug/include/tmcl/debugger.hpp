@@ -192,6 +192,16 @@ class Engine {
   // timed inputs and is applied at once (an edge may latch an interrupt, entered before the next
   // instruction). History starts again here. false with `error` when the program is not running.
   bool set_input(InputEvent ev, std::string& error);
+  // The machine's mechanics from the prompt (set var hardstop|load, as the scenario lines): a
+  // hard stop or a load zone (InputEvent::placed_kind) belongs to the machine and is placed at
+  // once, before `run` too; a timed load goes through set_input at this instant. A core that
+  // cannot model it refuses here with `error` naming the core, instead of faulting the program.
+  bool set_machine(InputEvent ev, std::string& error);
+  // The same from the words of a scenario line, without its `at TIME` for a timed load:
+  // `hardstop left 0 at -20000`, `load 0 = 40%`, `load 0 from 5000 to 6000 = 80%` (the CLI's
+  // `set var`, DAP's evaluate in the debug console); `error` says what is wrong with the line.
+  bool set_machine(const std::string& line, std::string& error);
+  static bool is_machine_line(const std::string& line);  // it starts with `hardstop` or `load`
   // set var LV = value: a register, variable or parameter through assign_expr, an input
   // (in(n), ain(n)) through set_input.
   bool assign(const Expr& lhs, std::int64_t value, std::string& error);

@@ -15,6 +15,8 @@
 //   expect at end halted stop     stop | fault | max-time | blocked
 //   expect never fault
 //   expect no warnings
+//   expect stall 0 at 1.769712s   motor 0 stops on stall at that instant (± TOLERANCE: within it)
+//   expect never stall 1          motor 1 never stops on stall
 #pragma once
 
 #include <cstdint>
@@ -43,10 +45,15 @@ enum class End : std::uint8_t { Stop, Fault, MaxTime, Blocked };
 std::string_view end_name(End e);  // "stop", "fault", "max-time", "blocked"
 
 struct Expectation {
-  enum Kind : std::uint8_t { At, AtEnd, Halted, NeverFault, NoWarnings } kind = At;
+  enum Kind : std::uint8_t { At, AtEnd, Halted, NeverFault, NoWarnings, Stall, NeverStall } kind = At;
   int line = 0;          // in the test file
   int col = 0;           // of the word after `expect`
-  SimTime at = 0;        // At: the instant
+  SimTime at = 0;        // At, Stall: the instant
+  // Stall, NeverStall: the motor whose stall event (stop on stall, docs/motion.md) is meant; a
+  // Stall holds when one of its stalls lies within `within` of `at` (`right` is the instant as
+  // written, at `right_col`, for --update; `tolerance` the tolerance as written).
+  int motor = 0;
+  SimTime within = 0;
   std::string when;      // the instant as written ("1.5s"), or "end"
   // At, AtEnd: LEFT OP RIGHT [± TOLERANCE], each an expression (tmcl/expr.hpp)
   std::string left, right, tolerance;

@@ -109,6 +109,7 @@ class TmclModule {
  private:
   void parse();
   void handle_frame(const std::uint8_t* frame);
+  void run_to(SimTime until);  // advance()'s program and motors, without the scenario's lines
   void execute(const Instruction& ins);
   void control(const Instruction& ins);
   void store(const Instruction& ins);

@@ -56,8 +56,9 @@ struct MotionEvent {
   // SwitchChanged only: which input, and whether it is now closed (active).
   SwitchInput input = SwitchInput::StopLeft;
   bool active = false;
-  // CurrentChanged: the actual current (axis parameter 180) from then on; Rebased: where the
-  // reference point was before it became 0 (`position` is the motor's position in the new count).
+  // CurrentChanged: the actual current (axis parameter 180) from then on; Stall: the load value
+  // (206) the stall was measured at (0 for stallGuard2); Rebased: where the reference point was
+  // before it became 0 (`position` is the motor's position in the new count).
   std::int32_t value = 0;
 };
 // The event as the trace and the recording show it: "left switch closed", else the kind's name.
