@@ -354,20 +354,42 @@ template <bool D> R op_GIO(Vm& vm, const Instruction& i) {
 }
 
 // ---------------------------------------------------------------- coordinates
-template <bool D> R op_SCO(Vm& vm, const Instruction& i) { return done<D>(vm, vm.set_coord(i.motor, i.type, i.value)); }
+// M32: SCO, ACO, GCO, CCO of a coordinate the module lacks (status 3): ignored, with the
+// no-such-coordinate warning of MVP COORD (--strict: a fault); true when the caller is done.
+template <bool D> bool coord_missing(Vm& vm, const Instruction& i, std::uint8_t st, R& r) {
+  if constexpr (!D) {
+    if (st == kStatusWrongType &&
+        Internal::warn(vm, RuntimeWarning::NoSuchCoordinate,
+                       std::string(op_info(i.op)->mnemonic) + " of coordinate " + std::to_string(i.type) + ": " +
+                           std::string(vm.profile->title) + " has coordinates 0 to " + std::to_string(vm.profile->coords - 1))) {
+      r = ok();
+      return true;
+    }
+  }
+  return false;
+}
+template <bool D> R op_SCO(Vm& vm, const Instruction& i) {
+  const std::uint8_t st = vm.set_coord(i.motor, i.type, i.value);
+  if (R r{}; coord_missing<D>(vm, i, st, r)) return r;
+  return done<D>(vm, st);
+}
 template <bool D> R op_ACO(Vm& vm, const Instruction& i) {
   if (i.motor == 255) return done<D>(vm, kStatusInvalidValue);  // the EEPROM forms are SCO/GCO only
-  return done<D>(vm, vm.set_coord(i.motor, i.type, vm.acc));
+  const std::uint8_t st = vm.set_coord(i.motor, i.type, vm.acc);
+  if (R r{}; coord_missing<D>(vm, i, st, r)) return r;
+  return done<D>(vm, st);
 }
 template <bool D> R op_GCO(Vm& vm, const Instruction& i) {
   std::int32_t v = 0;
   std::uint8_t st = vm.get_coord(i.motor, i.type, v);
+  if (R r{}; coord_missing<D>(vm, i, st, r)) return r;
   if (i.motor == 255) return done<D>(vm, st);  // EEPROM -> RAM copy: not a read
   return load<D>(vm, st, v);
 }
 template <bool D> R op_CCO(Vm& vm, const Instruction& i) {
   std::int32_t v = 0;
   std::uint8_t st = vm.capture_coord(i.motor, i.type, v);
+  if (R r{}; coord_missing<D>(vm, i, st, r)) return r;
   return done<D>(vm, st, st == kStatusOk ? v : 0);  // E9: a capture, not a read: acc untouched
 }
 
