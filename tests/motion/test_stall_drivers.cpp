@@ -132,6 +132,37 @@ TEST(tmcm1260_stall_sets_207_bit_0) {
   CHECK_EQ(b.get(207), 0);  // ... "or when a motion command has been executed"
 }
 
+// Every bundled stallGuard2 module on the TMC429 core whose profile says what a stop on stall sets
+// in 207 (TMCM-1110, -1140, -1160, -1161, -3110, -6110: "1: stallGuard error", errata E76): the stall sets
+// it beside 208 bit 0, and the next motion command clears it (reading does not: only the
+// PD57/60-1260's manual says so).
+TEST(tmc429_modules_stall_sets_their_207_flag) {
+  int modules = 0;
+  for (const tmcl::Profile* p : tmcl::all_profiles()) {
+    const std::int64_t flag = p->motion_constant("stall-flag", 0);
+    if (p->default_motion != "tmc429" || flag == 0 || !p->axis_param(174)) continue;  // stallGuard2
+    ++modules;
+    const std::string name(p->name);
+    mt::SwitchBench b("tmc429", name.c_str(), 1);
+    b.set(140, 4);  // 16 microsteps
+    b.set(154, 3);
+    b.set(153, 7);
+    b.set(5, 1000);
+    b.set(181, 100);
+    CHECK(b.core->place_hard_stop(0, tmcl::SwitchInput::StopLeft, -5000));
+    b.core->rotate(0, -400);  // 763 fullsteps/s into the hard stop
+    CHECK(b.until(MotionEventKind::VelocityReached));
+    CHECK_EQ(b.get(207), 0);
+    CHECK(b.until(MotionEventKind::Stall, 20));
+    CHECK_EQ(b.get(208) & 1, 1);
+    CHECK_EQ(b.get(207), flag);
+    CHECK_EQ(b.get(207), flag);  // still set after reading
+    b.core->rotate(0, 400);
+    CHECK_EQ(b.get(207), 0);  // cleared by the next motion command
+  }
+  CHECK_EQ(modules, 6);
+}
+
 namespace {
 
 // A TMC2300-MOTOR-EVAL (linear core) at 16 microsteps rotating at 16000 pps = 1000 fullsteps/s,

@@ -28,6 +28,7 @@ motion-constant encoder 1 src=M:5.4
 motion-constant encoder-prescaler 512 src=M:5.4.1  # prescaler = 210 / 512
 motion-constant encoder-prescaler-flags 28 src=M:5.4.1  # bits 2..4 of 210 select special functions
 motion-constant deviation-flag 2 src=P  # 207: '2: deviation error'
+motion-constant stall-flag 1 src=P  # 207: '1: stallGuard error', set by a stop on stall (errata E76)
 # Commands: table 4.4.1, CLE 36 (4.5.31), UF0..UF7 (4.5.36), 138 (4.5.37) and the control commands
 # (4.5.38; 128..135 as in every TMCL module, the TMCL reference 3.35). 255 (software reset) is not
 # in the manual but in newer firmware.

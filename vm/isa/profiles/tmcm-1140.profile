@@ -30,6 +30,7 @@ motion-constant encoder 1 src=Y,P  # they list 209, 210 and 212
 motion-constant encoder-prescaler 512 src=F:5.4.1 unverified  # prescaler = 210 / 512
 motion-constant encoder-prescaler-flags 28 src=F:5.4.1 unverified  # bits 2..4 of 210 select special functions
 motion-constant deviation-flag 2 src=Y,P  # 207: '2: deviation error'
+motion-constant stall-flag 1 src=Y,P  # 207: '1: stallGuard error', set by a stop on stall (errata E76)
 # Commands: those of the TMCM-1110, the same firmware family.
 commands 1-15 19-28 30-39 64-71 128-138 src=F:4.4.1 unverified
 commands 255 unverified

@@ -24,6 +24,7 @@ motion tmc429 fallback=linear src=Y,P # the TMC429's units (pulse and ramp divis
 motion-constant clock 16000000 src=F:5.5 unverified  # fCLK, Hz
 motion-constant velocity-divisor 65536 src=F:5.5 unverified  # µsteps/s = clock * v / (2^pulse_div * 2048 * 32)
 motion-constant acceleration-shift 29 src=F:5.5 unverified  # µsteps/s² = clock² * a / 2^(pulse_div + ramp_div + 29)
+motion-constant stall-flag 1 src=Y,P  # 207: '1: stallGuard error', set by a stop on stall (errata E76)
 # Commands: those of the TMCM-1110, the same firmware family.
 commands 1-15 19-28 30-39 64-71 128-138 src=F:4.4.1 unverified
 commands 255 unverified
