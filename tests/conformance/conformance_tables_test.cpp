@@ -170,7 +170,8 @@ void check_params(Errors& errs, const fs::path& file, std::string_view what, std
                      " has no not-simulated=\"REASON\" (the run's note comes from it)");
     if (!why.empty() && r.status != "not simulated")
       errs.push_back(where(file, r) + ": the profile marks " + std::string(what) + " " + r.key + " not-simulated, the row says '" +
-                     r.status + "'");
+                     r.status + "' (drop not-simulated= from its line in vm/isa/profiles/" + file.stem().string() +
+                     ".profile, or the row is wrong)");
     if (!why.empty() && r.text.find(why) == std::string::npos)
       errs.push_back(where(file, r) + ": the row does not say the profile's reason '" + why + "'");
   }

@@ -86,7 +86,7 @@ axis 197 "Last reference position" -2147483648..2147483647 R default=0 unit=μst
 axis 200 "Boost current" 0..255 RWE default=0 src=Y,P unverified=range,access,default  # 0: the current of parameter 6
 axis 204 "Freewheeling" 0..65535 RWE default=0 unit=ms src=F:5,Y,P unverified=range,access,default  # 0: never
 axis 206 "Actual load value" 0..1023 R default=0 src=F:5,Y,P unverified=range,access
-axis 207 "Extended error flags" 0..3 R default=0 src=Y,P unverified=range,access not-simulated="reads 0: a stall stop (181) shows in 208 bit 0, not in 207's bit 0, and the profile declares no encoder, so no deviation sets bit 1"  # 1: stallGuard error, 2: deviation error
+axis 207 "Extended error flags" 0..3 R default=0 src=Y,P unverified=range,access  # 1: stallGuard error, 2: deviation error
 axis 208 "TMC262 driver error flags" 0..255 R default=0 src=F:5,Y,P unverified=range,access
 axis 213 "Group index" 0..255 RW default=0 src=R:4.2,Y,P unverified=range,access,default not-simulated="group moves are not modelled"  # the reference gives 0..255 RW for the TMCM-610, -611, -612 and -34x only (errata M15)
 axis 214 "Power down delay" 1..65535 RWE default=200 unit="10 ms" src=F:5,Y,P unverified=range,access  # 'the standard value is 200'
