@@ -32,6 +32,7 @@ void MotionRecorder::mark(SimTime at, int motor, Mark kind, std::string label, s
 void MotionRecorder::motion_event(const MotionEvent& ev) {
   Mark k = ev.kind == MotionEventKind::TargetReached ? Mark::TargetReached
            : ev.kind == MotionEventKind::Rebased      ? Mark::Rebased
+           : ev.kind == MotionEventKind::Stall        ? Mark::Stall
            : ev.kind != MotionEventKind::SwitchChanged ? Mark::Other
            : ev.input == SwitchInput::Home           ? Mark::HomeSwitch
                                                      : Mark::StopSwitch;
@@ -55,7 +56,8 @@ std::string csv_field(const std::string& s) {
 std::string event_text(const RecordedMark& m) {
   std::string kind(mark_name(m.kind));
   if (m.label.empty() || m.label == kind) return kind;
-  if (m.kind == Mark::Other || m.kind == Mark::StopSwitch || m.kind == Mark::HomeSwitch || m.kind == Mark::Rebased)
+  if (m.kind == Mark::Other || m.kind == Mark::StopSwitch || m.kind == Mark::HomeSwitch || m.kind == Mark::Rebased ||
+      m.kind == Mark::Stall)
     return m.label;  // "left switch closed", "position re-based: ..."
   return kind + ": " + m.label;
 }

@@ -189,3 +189,27 @@ TEST(recording_in_chip_units) {
   CHECK(s.find("\n# TMC429 units: pulse divisor 3, ramp divisor 7: velocity 1 = 30.5176 pps, acceleration 1 = 465.661 pps²\n") !=
         std::string::npos);
 }
+
+// Issue 34: a stop on stall is a mark of its own (a stop sign, "stall" in the legend), not a
+// generic event: a TMCM-1110 driving into its hard stop with stop on stall (181) on.
+TEST(stall_is_a_mark_of_its_own) {
+  auto core = tmcl::make_motion_core("tmc429");
+  core->reset(*tmcl::find_profile("tmcm-1110"), 1);
+  tmcl::MotionRecorder rec(1, 100000);
+  tmcl::RecordingCore rc(*core, rec);
+  CHECK(rc.set_param(0, 140, 4) == tmcl::ParamWrite::Ok);  // 16 microsteps
+  CHECK(rc.set_param(0, 5, 1000) == tmcl::ParamWrite::Ok);
+  CHECK(rc.set_param(0, 181, 100) == tmcl::ParamWrite::Ok);
+  CHECK(rc.place_hard_stop(0, tmcl::SwitchInput::StopLeft, -5000));
+  rc.rotate(0, -400);
+  std::vector<tmcl::MotionEvent> ev;
+  for (int i = 0; i < 20 && rc.next_event() != tmcl::kNever; ++i) rc.advance(rc.next_event(), ev);
+  std::ostringstream csv, svg;
+  tmcl::write_csv(csv, rec, rc.units_note());
+  tmcl::write_svg(svg, rec, {"stall", 1100, 780});
+  const std::string c = csv.str(), s = svg.str();
+  CHECK(c.find(",0,-5008,,,\"stall: load value 0, stopped\"\n") != std::string::npos);
+  CHECK(s.find("M-2,-6 L2,-6 L5,-3 L5,1 L2,4 L-2,4 L-5,1 L-5,-3 Z\" fill=\"#c2185b\"><title>") != std::string::npos);
+  CHECK(s.find(">stall</text>") != std::string::npos);  // its legend entry
+  CHECK(s.find("<title>0.423363 s: stall: load value 0, stopped (motor 0)</title>") != std::string::npos);
+}
