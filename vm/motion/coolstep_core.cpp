@@ -30,7 +30,6 @@ enum CoolParam : int {
   kCsSemax = 170,
   kCsSeup = 171,
   kCsSemin = 172,
-  kCsSgThreshold = 174,
   kCsActual = 180,
   kCsThresholdSpeed = 182,
 };
@@ -41,12 +40,14 @@ constexpr int kSearchCap = 4096;
 
 }  // namespace
 
-// The model applies where the module has coolStep besides stallGuard2: its profile lists the lower
-// threshold 172 (generic: the TMCM-1110's rows stand in). Elsewhere 180 is what the profile stores.
+// The model applies where the module has coolStep besides its load measurement: its profile lists
+// the lower threshold 172 (generic: the module the core models stands in). Elsewhere 180 is what
+// the profile stores.
 void SwitchCore::reset_cool(const Profile& profile) {
-  // Only on stallGuard2's readings, and in a core that holds coolStep's settings (the linear core
-  // does not: the VM stores the TMC2300's).
-  cool_on_ = guard_ == stall::Guard::SG2 && owns(kCsSemin) &&
+  // On stallGuard2's readings (TMCM modules) and on StallGuard4's (TMC2300: its datasheet's
+  // CoolStep compares SG_RESULT with the same thresholds; errata E73), in a core that holds
+  // coolStep's settings. stallGuard 1 has no coolStep.
+  cool_on_ = (guard_ == stall::Guard::SG2 || guard_ == stall::Guard::SG4) && owns(kCsSemin) &&
              (profile.any_parameter || profile.axis_param(kCsSemin) != nullptr);
   for (auto& m : motors_) m.cool = coolstep::start(cool_settings(m));
 }
@@ -68,10 +69,11 @@ bool SwitchCore::cool_active(const Motor& m) const {
   return coolstep::enabled(s) || m.cool != coolstep::start(s);
 }
 
-// coolStep regulates at `pps` (a measurement's speed): 172 > 0 and the speed at or above 182 (the
-// stepRocker's open firmware switches it off below 182, "abs(Velocity) < ThresholdSpeed"; E72).
+// coolStep regulates at `pps` (a measurement's speed): the driver measures (StallGuard4: in
+// StealthChop only, E73), 172 > 0 and the speed at or above 182 (the stepRocker's open firmware
+// switches it off below 182, "abs(Velocity) < ThresholdSpeed"; E72).
 bool SwitchCore::regulates(const Motor& m, double pps) const {
-  return coolstep::enabled(cool_settings(m)) && pps + 1e-9 >= m.p[kCsThresholdSpeed] * vunit(m);
+  return measuring(m) && coolstep::enabled(cool_settings(m)) && pps + 1e-9 >= m.p[kCsThresholdSpeed] * vunit(m);
 }
 
 // The current scale the load value is measured with: the regulated one (equal to the run
@@ -124,6 +126,7 @@ void SwitchCore::cool_walk(const Motor& m, double s_lo, double s_hi, bool search
   const double F = fullstep(m), P = period(m), cbase = static_cast<double>(m.rm.base + m.rm.phys);
   const double vmin = stall::kMinFullstepRate * F;
   const bool const_load = m.shaft.held || m.sg.zones.empty();
+  const bool meas = measuring(m);
   int walked = 0;
   // Applies the state `next` at plan instant t; true when the search stops there.
   auto apply = [&](const coolstep::State& next, double t) {
@@ -153,8 +156,10 @@ void SwitchCore::cool_walk(const Motor& m, double s_lo, double s_hi, bool search
         const bool on = regulates(m, v);
         coolstep::State next = on ? w.st : rest;
         const int load = m.shaft.held ? 100 : load_at(m, shaft_pos(m, seg, t));
-        w.value = stall::reading(v / F, on ? w.st.cs : rest.cs, load, m.p[kCsSgThreshold]);
-        w.measured = true;
+        if (meas) {  // without a measurement (StallGuard4 outside StealthChop) 206 holds
+          w.value = reading_at(m, v / F, on ? w.st.cs : rest.cs, load);
+          w.measured = true;
+        }
         if (on) next = coolstep::measure(w.st, set, w.value);
         const bool fixed = next == w.st;
         if (apply(next, t)) return;

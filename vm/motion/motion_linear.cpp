@@ -9,8 +9,9 @@
 // `motion-constant stallguard 4`, stall_core.cpp; errata E74) gives 206 and stop on stall (181).
 //
 // Parameters it owns: 0-8 (6 and 7 the run and standby current, stored and reported), 140, 141,
-// 174, 181, 187 (StallGuard4 works in StealthChop only), 206, and 180 (the actual current: run
-// current while moving, standby current at rest).
+// 174, 181, 187 (StallGuard4 works in StealthChop only), 206, and coolStep's 168-172, 182 and 180
+// (the actual current: the standby current at rest, the run current while moving, and the scale
+// coolStep regulates on StallGuard4's readings, coolstep_core.cpp; errata E73).
 #include <algorithm>
 #include <cstdint>
 
@@ -22,13 +23,16 @@ namespace tmcl {
 namespace {
 
 constexpr int kSgThreshold = 174, kStopOnStall = 181, kPwmGradient = 187, kLoadValue = 206;
+constexpr int kCsSeimin = 168, kCsSedn = 169, kCsSemax = 170, kCsSeup = 171, kCsSemin = 172, kCsThresholdSpeed = 182;
 
 constexpr int kLinearOwned[] = {kApTargetPosition,      kApActualPosition,         kApTargetSpeed,
                                 kApActualSpeed,         kApMaxPositioningSpeed,    kApMaxAcceleration,
                                 kApRunCurrent,          kApStandbyCurrent,         kApPositionReached,
                                 kApMicrostepResolution, kApMicrostepInterpolation, kApSmartEnergyActualCurrent,
                                 // StallGuard4 (stall_core.cpp)
-                                kSgThreshold, kStopOnStall, kPwmGradient, kLoadValue};
+                                kSgThreshold, kStopOnStall, kPwmGradient, kLoadValue,
+                                // coolStep on StallGuard4 (coolstep_core.cpp)
+                                kCsSeimin, kCsSedn, kCsSemax, kCsSeup, kCsSemin, kCsThresholdSpeed};
 
 class LinearCore final : public sw::SwitchCore {
  public:
@@ -51,8 +55,9 @@ class LinearCore final : public sw::SwitchCore {
     return SwitchCore::set_param(motor, param, value);
   }
 
+  // 180 without coolStep (a profile of this core that lists no 172): the run or standby current.
   std::int32_t get_param(int motor, int param) override {
-    if (param == kApSmartEnergyActualCurrent) {
+    if (param == kApSmartEnergyActualCurrent && !has_coolstep()) {
       const sw::Motor& m = at(motor);
       return m.rm.at_rest(now_) ? m.p[kApStandbyCurrent] : m.p[kApRunCurrent];
     }

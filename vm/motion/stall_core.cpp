@@ -95,12 +95,14 @@ bool SwitchCore::measuring(const Motor& m) const {
   return sg_on_ && (guard_ != stall::Guard::SG4 || m.p[kPwmGradient] > 0);
 }
 
-// The reading at `f` fullsteps/s under `load` %, by the module's measurement (stall.hpp).
-int SwitchCore::measure(const Motor& m, double f, int load) const {
+// The reading at `f` fullsteps/s under `load` %, by the module's measurement (stall.hpp), with
+// the current scale the driver drives (reading_at: with the scale `cs`).
+int SwitchCore::measure(const Motor& m, double f, int load) const { return reading_at(m, f, reading_scale(m), load); }
+int SwitchCore::reading_at(const Motor& m, double f, int cs, int load) const {
   switch (guard_) {
     case stall::Guard::SG1: return stall::reading1(load);
-    case stall::Guard::SG4: return stall::reading4(f, reading_scale(m), load);
-    default: return stall::reading(f, reading_scale(m), load, m.p[kSgThreshold]);
+    case stall::Guard::SG4: return stall::reading4(f, cs, load);
+    default: return stall::reading(f, cs, load, m.p[kSgThreshold]);
   }
 }
 

@@ -137,6 +137,8 @@ class SwitchCore : public ramp::RampCore<Motor> {
   bool place_load(int motor, std::int64_t lo, std::int64_t hi, int percent) override;
 
  protected:
+  // The module has coolStep (coolstep_core.cpp): 180 is its regulated current scale.
+  bool has_coolstep() const { return cool_on_; }
   // ---- what a core says
   // pps per velocity unit of `m` now (1 for a core in pps).
   virtual double vunit(const Motor& m) const = 0;
@@ -240,6 +242,7 @@ class SwitchCore : public ramp::RampCore<Motor> {
   std::int32_t stall_flag207_ = 0;           // what a stop on stall sets in 207 (`stall-flag`)
   bool measuring(const Motor& m) const;
   int measure(const Motor& m, double f, int load) const;
+  int reading_at(const Motor& m, double f, int cs, int load) const;
   double stall_below(const Motor& m, int load) const;
   int stall_reading(const Motor& m, int value) const;
   // stallGuard 1 measures at a constant speed only ("no stall detection while the motor is being
