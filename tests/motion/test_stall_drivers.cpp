@@ -3,6 +3,8 @@
 // with the load, stop at the threshold 205 at a constant speed only, 207 bit 1), the TMCM-1260's
 // 207 bit 0 on a stop on stall, and the TMC2300-MOTOR-EVAL's StallGuard4 (reading not shifted by
 // 174, stop when it falls to 2 · 174 at a speed >= 181, only in StealthChop).
+#include <vector>
+
 #include "check.hpp"
 #include "helpers.hpp"
 #include "stall.hpp"
@@ -272,4 +274,77 @@ TEST(sg4_hard_stop_homing) {
   CHECK(p <= -8000 && p >= -8000 - 16 - 1);
   CHECK_EQ(b.get(206), 0);
   CHECK_EQ(b.get(180), 8);  // at rest: the standby current
+}
+
+// coolStep on the TMC2300 (errata E73): the same rules as on the TMCM modules (coolstep.hpp), on
+// StallGuard4's readings, and only while StealthChop measures (187 > 0). Lower threshold 172 = 2
+// (64), upper (2 + 3 + 1) · 32 = 192, a down-step per reading above it (169 = 3), up-steps of 2
+// (171 = 1), least scale half the run current 16: 7. A reading every millisecond at 16000 pps.
+namespace {
+struct Cool2300 : Axis2300 {
+  Cool2300() : Axis2300(false) {
+    set(172, 2);
+    set(170, 3);
+    set(169, 3);
+    set(171, 1);
+  }
+};
+}  // namespace
+
+TEST(coolstep_on_the_tmc2300_follows_the_rules_on_stallguard4) {
+  Cool2300 b;
+  CHECK_EQ(b.get(180), 8);  // at rest: the standby current
+  b.cruise(16000);
+  b.wait(50000);
+  // Free: 427 at scale 16 is above 192, down to 7, where StallGuard4 reads 250 + 500 · 8/32 · 2/3.
+  CHECK_EQ(b.get(180), 7);
+  CHECK_EQ(b.get(206), tmcl::stall::reading4(1000, 7, 0));
+  CHECK_EQ(b.get(206), 333);
+  // 85 %: 333 · 0.15 = 50 is below 64, up by 2 per reading until the reading is in the band (at
+  // the run current 16, 427 · 0.15 = 64).
+  b.load(85);
+  b.wait(50000);
+  CHECK_EQ(b.get(180), 16);
+  CHECK_EQ(b.get(206), tmcl::stall::reading4(1000, 16, 85));
+  // The steps were events: 16 down to 7 one by one, then up 7, 9, ..., 15, 16.
+  std::vector<int> steps;
+  for (const auto& e : b.events)
+    if (e.kind == MotionEventKind::CurrentChanged) steps.push_back(e.value);
+  CHECK((steps == std::vector<int>{15, 14, 13, 12, 11, 10, 9, 8, 7, 9, 11, 13, 15, 16}));
+  b.load(0);
+  b.wait(50000);
+  CHECK_EQ(b.get(180), 7);
+  b.core->stop(0);
+  b.wait(200000);
+  CHECK_EQ(b.get(180), 8);  // at rest: the standby current
+}
+
+// No coolStep without StallGuard4's readings (187 = 0: StealthChop off) nor below 182: 180 stays
+// the run current and no step is an event. 187 = 0 while regulating brings it back to 6.
+TEST(coolstep_on_the_tmc2300_needs_stealthchop_and_182) {
+  {
+    Cool2300 b;
+    b.set(187, 0);
+    b.cruise(16000);
+    b.wait(50000);
+    CHECK_EQ(b.get(180), 16);
+    CHECK_EQ(b.count(MotionEventKind::CurrentChanged), 0);
+    b.set(187, 1);  // StealthChop again: regulation starts
+    b.wait(50000);
+    CHECK_EQ(b.get(180), 7);
+    b.set(187, 0);  // off while at 7: back to the run current at the next fullstep
+    b.wait(5000);
+    CHECK_EQ(b.get(180), 16);
+  }
+  {
+    Cool2300 b;
+    b.set(182, 16001);  // pps: just above the speed
+    b.cruise(16000);
+    b.wait(50000);
+    CHECK_EQ(b.get(180), 16);
+    CHECK_EQ(b.count(MotionEventKind::CurrentChanged), 0);
+    b.set(182, 16000);  // at the speed: it regulates
+    b.wait(50000);
+    CHECK_EQ(b.get(180), 7);
+  }
 }
