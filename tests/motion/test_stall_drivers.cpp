@@ -332,9 +332,12 @@ TEST(coolstep_on_the_tmc2300_needs_stealthchop_and_182) {
     b.set(187, 1);  // StealthChop again: regulation starts
     b.wait(50000);
     CHECK_EQ(b.get(180), 7);
-    b.set(187, 0);  // off while at 7: back to the run current at the next fullstep
+    const int before = b.count(MotionEventKind::CurrentChanged);
+    b.set(187, 0);  // off while at 7: back to the run current at the next fullstep, in one step
     b.wait(5000);
     CHECK_EQ(b.get(180), 16);
+    CHECK_EQ(b.count(MotionEventKind::CurrentChanged), before + 1);
+    CHECK_EQ(b.last().value, 16);
   }
   {
     Cool2300 b;
