@@ -83,6 +83,10 @@ export WINEPREFIX="$win/wine-prefix" WINEDEBUG=-all WINEDLLOVERRIDES="winemenubu
 wineboot -i >/dev/null 2>&1
 wineserver -w
 wineserver -p >/dev/null 2>&1 || { echo "== windows: could not start a persistent wineserver"; exit 1; }
+# The first program run under that server starts Wine's services (winedevice.exe), which stay up
+# with it and keep that run's output open: started by a test, they held its pipe until ctest's
+# timeout (asm_limits_test, first by cost, took 300 s). Started here, they hold /dev/null.
+wine cmd /c exit </dev/null >/dev/null 2>&1
 trap 'wineserver -k >/dev/null 2>&1; [[ -n "${servers:-}" ]] && kill $servers 2>/dev/null' EXIT
 
 # ---- 2. the unit tests, then the golden cases ----
