@@ -59,7 +59,8 @@ std::int32_t raise_it(const tmcl::Profile& p, int n, tmcl::VectorKind k) {
   auto core = tmcl::make_profile_motion_core(p);
   tmcl::Vm powered(p, *core);
   powered.power_on(nullptr);
-  const std::int32_t speed = core->physical(m, 2, 400) ? 400 : 12800;
+  // (Asked of motor 0: the units are every motor's, and m is an input's number for an input change.)
+  const std::int32_t speed = core->physical(0, 2, 400) ? 400 : 12800;
   switch (k.source) {
     case VectorSource::Timer: return handler_calls(p, n, {I(Op::SGP, n, 3, 100)}, {});
     case VectorSource::TargetReached: return handler_calls(p, n, {I(Op::MVP, 0, m, 100)}, {});
