@@ -555,7 +555,7 @@ TEST(generated_module_include_files_name_every_parameter_once_and_clash_with_no_
       if (tmclparam.count(upper(d.name))) ::tmcl_test::fail(__FILE__, __LINE__, file + " redefines " + d.name);
     add(file, defs);
   }
-  CHECK_EQ(generated, 8);  // the TMCM modules
+  CHECK(generated >= 8);  // the TMCM modules (more as profiles are added)
 }
 
 TEST(parameter_constants_follow_the_naming_scheme) {

@@ -4,7 +4,8 @@
 // stops, stop switches, and the encoder with its deviation check. Every command computes a
 // closed-form plan (ramp.hpp); time only evaluates it. docs/motion.md explains every decision.
 //
-// Parameters it owns: 0-5, 8, 14-29, 35, 127, 131, 132, 140, 202, 207, 209, 210, 212, 251, 255.
+// Parameters it owns: 0-5, 8-11, 14-29, 35, 127, 131, 132, 140, 202, 207, 209, 210, 212, 251, 255
+// (9-11, the switch states, are the TMCM-3351's and -3312's: the USB-2-SD has no such rows).
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -23,9 +24,14 @@ using ramp::EventKind;
 using ramp::Limits;
 using ramp::RampMotor;
 
+// The switch states of the TMCM modules with this controller (TMCM-3351, -3312), as the TMCM
+// cores number them (switch_core.hpp): the home, right and left switch.
+enum SwitchState : int { kHomeState = 9, kRightState = 10, kLeftState = 11 };
+
 constexpr int kTmc4361Owned[] = {kApTargetPosition,    kApActualPosition,      kApTargetSpeed,
                           kApActualSpeed,       kApMaxPositioningSpeed, kApMaxAcceleration,
-                          kApPositionReached,   kApRampType,            kApStartVelocity,
+                          kApPositionReached,   kHomeState,             kRightState,
+                          kLeftState,           kApRampType,            kApStartVelocity,
                           kApStartAcceleration, kApMaxDeceleration,     kApBreakVelocity,
                           kApFinalDeceleration, kApStopVelocity,        kApStopDeceleration,
                           kApBow1,              kApBow2,                kApBow3,
@@ -76,7 +82,7 @@ class Tmc4361Core final : public ramp::RampCore<Tmc4361Motor> {
         return ParamWrite::Ok;
       }
       case kApTargetSpeed: rotate(motor, value); return ParamWrite::Ok;
-      case kApActualSpeed: case kApPositionReached: case kApMeasuredSpeed: case kApCurrentMeasuredSpeed: case kApExtendedErrorFlags: return ParamWrite::ReadOnly;
+      case kApActualSpeed: case kApPositionReached: case kHomeState: case kRightState: case kLeftState: case kApMeasuredSpeed: case kApCurrentMeasuredSpeed: case kApExtendedErrorFlags: return ParamWrite::ReadOnly;
       case kApEncoderPosition: m.enc_off = static_cast<std::int64_t>(value) - enc_sign(m) * m.rm.xactual(now_); break;
       case kApEncoderResolution: case kApReverseShaft: {  // keep the encoder reading, change how it follows the motor
         if (!in_range(param, value)) return ParamWrite::OutOfRange;
@@ -107,6 +113,9 @@ class Tmc4361Core final : public ramp::RampCore<Tmc4361Motor> {
       case kApTargetSpeed: return m.vt;
       case kApActualSpeed: return speed_raw(m, m.rm.state(now_).v);
       case kApPositionReached: return target_reached(motor) ? 1 : 0;
+      case kHomeState: return closed(m, SwitchInput::Home);
+      case kRightState: return closed(m, SwitchInput::StopRight);
+      case kLeftState: return closed(m, SwitchInput::StopLeft);
       case kApMeasuredSpeed: case kApCurrentMeasuredSpeed: return speed_raw(m, static_cast<double>(enc_sign(m)) * m.rm.state(now_).v);
       case kApExtendedErrorFlags: {
         std::int32_t e = m.errors;
@@ -184,6 +193,11 @@ class Tmc4361Core final : public ramp::RampCore<Tmc4361Motor> {
   // (velocities 24.8, accelerations 22.2, bows unscaled).
   static double vunit(const Tmc4361Motor& m) { return m.p[kApUnitMode] ? 1.0 : 1.0 / 256; }
   static double aunit(const Tmc4361Motor& m) { return m.p[kApUnitMode] ? 1.0 : 1.0 / 4; }
+  // A switch is closed while its timed input (set_switch) or its placed range (place_switch) says so.
+  static std::int32_t closed(const Tmc4361Motor& m, SwitchInput input) {
+    const bool timed = input == SwitchInput::StopLeft ? m.left : input == SwitchInput::StopRight ? m.right : m.home;
+    return timed || m.rm.zones[static_cast<std::size_t>(input)].in ? 1 : 0;
+  }
   static std::int32_t speed_raw(const Tmc4361Motor& m, double v) { return static_cast<std::int32_t>(std::trunc(v / vunit(m) + (v > 0 ? 1e-9 : -1e-9))); }
 
   // The effective ramp: 16, 17 = 0 mean "as 5", 19 = 0 means "as the effective 17" (profiles.md).
