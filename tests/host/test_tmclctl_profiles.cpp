@@ -34,6 +34,24 @@ TEST(the_reply_to_136_picks_the_profile) {
   CHECK(ctl({"-t", "generic", p, "get", "ap", "4"}).err.empty());
 }
 
+TEST(the_reply_to_136_tells_the_tmcm3351_from_the_tmcm3312) {
+  // Two modules of one parameter set (tmcm-3351 is based on tmcm-3312): the module number of the
+  // reply picks each one's own profile, with a name only these modules have (129, closed loop).
+  for (const char* module : {"tmcm-3351", "tmcm-3312"}) {
+    Server server(kRun, {"--serve", "tcp:127.0.0.1:0", "-t", module});
+    const std::string& p = server.port();
+    Output g = ctl({p, "get", "closed loop"});
+    show(g);
+    CHECK_EQ(g.status, 0);
+    CHECK_EQ(g.out, "0\n");
+    CHECK(g.err.empty());
+    const std::string number = std::string(module).substr(5);
+    Output s = ctl({p, "status"});
+    CHECK(has(s.out, "firmware:         " + number + "V100"));
+    CHECK(has(s.out, "TMCM-" + number + " (3 axes)"));
+  }
+}
+
 TEST(download_checks_like_tmclasm_werror) {
   Server server(kRun, {"--serve", "tcp:127.0.0.1:0", "-t", "tmcm-1110"});
   const std::string& p = server.port();

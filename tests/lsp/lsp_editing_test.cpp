@@ -447,6 +447,21 @@ TEST(first_line_target_wins_over_the_settings) {
   CHECK_EQ(d.at(0)["range"]["start"]["character"].as_int(), 16);
 }
 
+// A module based on another (tmcm-3351 on tmcm-3312): hover, completion and diagnostics are its own.
+TEST(hover_and_completion_of_the_tmcm3351) {
+  Client c;
+  start(c, R"({"target":"generic"})");
+  c.open(kEditUri, "// tmcl-target: tmcm-3351\n  SAP 22, 2, 512000\n  SGP 46, 3, 1\n  SAP 255, 0, 1\n  SAP \n");
+  CHECK_EQ(hover_text(c, kEditUri, 1, 6), "22: Bow 1, 0…2147483647 pps³, RW, default 512000 pps³ (tmcm-3351)");
+  Value d = c.last_diagnostics(kEditUri);
+  CHECK_EQ(d.size(), 2u);  // 255 is the USB-2-SD's, not this module's; the unfinished SAP. Input 7 (46) is the TMCM-3351's.
+  CHECK(d.at(0)["message"].as_string().find("axis parameter 255 does not exist on TMCM-3351") != std::string::npos);
+  Value items = c.request("textDocument/completion", pos(kEditUri, 4, 6))["result"];
+  bool closed_loop = false;
+  for (const Value& i : items.items()) closed_loop = closed_loop || (i["label"].as_string() == "129" && i["detail"].as_string().find("Closed loop") != std::string::npos);
+  CHECK(closed_loop);
+}
+
 TEST(the_target_setting_may_be_a_profile_file) {
   TempDir dir;
   dir.write("profiles/mine.profile",
