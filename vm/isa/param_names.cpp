@@ -121,13 +121,15 @@ std::string parameter_constant(const ParamInfo& p) {
 
 namespace {
 
-// The include files are ASCII, as TMCL-IDE's are: "μsteps" as "usteps", "pps²" as "pps^2".
+// The include files are ASCII, as TMCL-IDE's are: "μsteps" as "usteps", "pps²" as "pps^2", "pps³"
+// (bows) as "pps^3".
 std::string ascii_unit(std::string_view unit) {
   std::string out;
   for (std::size_t i = 0; i < unit.size(); ++i) {
     const std::string_view rest = unit.substr(i);
     if (rest.starts_with("\u03bc") || rest.starts_with("\u00b5")) out += 'u', ++i;  // two bytes each
     else if (rest.starts_with("\u00b2")) out += "^2", ++i;
+    else if (rest.starts_with("\u00b3")) out += "^3", ++i;
     else if (static_cast<unsigned char>(unit[i]) < 0x80) out += unit[i];
   }
   return out;
