@@ -30,8 +30,7 @@ enum SwitchState : int { kHomeState = 9, kRightState = 10, kLeftState = 11 };
 
 constexpr int kTmc4361Owned[] = {kApTargetPosition,    kApActualPosition,      kApTargetSpeed,
                           kApActualSpeed,       kApMaxPositioningSpeed, kApMaxAcceleration,
-                          kApPositionReached,   kHomeState,             kRightState,
-                          kLeftState,           kApRampType,            kApStartVelocity,
+                          kApPositionReached,   kApRampType,            kApStartVelocity,
                           kApStartAcceleration, kApMaxDeceleration,     kApBreakVelocity,
                           kApFinalDeceleration, kApStopVelocity,        kApStopDeceleration,
                           kApBow1,              kApBow2,                kApBow3,
@@ -40,7 +39,9 @@ constexpr int kTmc4361Owned[] = {kApTargetPosition,    kApActualPosition,      k
                           kApRelativePositioningOption, kApMeasuredSpeed, kApCurrentMeasuredSpeed,
                           kApMicrostepResolution, kApFullStepResolution, kApExtendedErrorFlags,
                           kApEncoderPosition,   kApEncoderResolution,   kApMaxEncoderDeviation,
-                          kApReverseShaft,      kApUnitMode};
+                          kApReverseShaft,      kApUnitMode,
+                          // last: owns() searches this list, and only the TMCM-3351 and -3312 have them
+                          kHomeState,           kRightState,            kLeftState};
 
 enum class Tmc4361Goal : std::uint8_t { Idle, Position, Velocity, Halt };
 enum class Halt : std::uint8_t { Switch, VirtualStop, Deviation };
