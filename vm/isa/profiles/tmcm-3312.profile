@@ -2,11 +2,11 @@
 # (SixPoint and S-shaped ramps with bows, virtual stops, an encoder, closed loop). Its parameters
 # are those the vendor's host libraries list for the module (both list the same axis and bank-0
 # parameters as for the TMCM-3351, tmcm-3351.profile, which is based on this file). No manual of
-# the module is at hand: the ramp rows 0..35, 127..132 and 201..213 (the USB-2-SD's numbers, names
-# and units: its TMC4361 firmware) take their ranges and defaults from the USB-2-SD manual (U), the
+# the module is at hand: the ramp rows 0..35, 127..132 and 201..213 (the USB-2-SD's numbers and
+# units: its TMC4361 firmware) take their ranges and defaults from the USB-2-SD manual (U), the
 # driver rows from the PD57/60-1260 manual (D), and every such fact is unverified. Where the TMCL
 # reference (R: every TMCL stepper module) confirms an access or range, the row names it. Every
-# unverified fact is listed in docs/profiles.md.
+# unverified fact is listed in docs/profiles.md; docs/errata.md M33..M35 explain the choices.
 tmcl-profile 1
 name tmcm-3312
 title "TMCM-3312 (3 axes)"
