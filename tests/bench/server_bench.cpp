@@ -3,7 +3,7 @@
 // a thread of this process, as PyTrinamic talks to it. Also the pipelined rate (16 requests in
 // flight), which shows what the protocol engine itself costs. A real module on a 115200-baud
 // line manages about 600 round trips per second. Loopback only; bounded by count and time.
-// Prints "figure<TAB>goal<TAB>measured" rows for bench/run_all.sh.
+// Prints "figure<TAB>goal<TAB>measured" rows for tests/bench/run_all.sh.
 #include <netinet/in.h>
 #include <netinet/tcp.h>
 #include <poll.h>

@@ -2,7 +2,7 @@
 // interrupt enabled (so the interrupt and timer checks are in place), and two waiting programs:
 // an hour of 10 ms WAITs with a 1 ms timer interrupt, and pure waiting. The programs are
 // instruction lists (the assembler is not on the measured path). Wall time is measured here,
-// never inside the VM. Prints "figure<TAB>goal<TAB>measured" rows for bench/run_all.sh.
+// never inside the VM. Prints "figure<TAB>goal<TAB>measured" rows for tests/bench/run_all.sh.
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>

@@ -6,7 +6,7 @@
 // tmclrun --dap (a poll between two) and how long one slice takes. (4) The same loop as whole
 // processes: `tmclrun prog.tmc` against `tmclrun --debug-commands` with the 10 breakpoints and the
 // watchpoint, then `run`, by CPU time, best of five (issue 26: at most 1.10x). The rest measures wall time.
-// Prints "figure<TAB>goal<TAB>measured" rows for bench/run_all.sh.
+// Prints "figure<TAB>goal<TAB>measured" rows for tests/bench/run_all.sh.
 #include <poll.h>
 #include <unistd.h>
 

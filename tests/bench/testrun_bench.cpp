@@ -3,7 +3,7 @@
 // plain `tmclrun` runs of the same program one after another (a process each, as a script or a
 // Makefile would run them); and the cost of --coverage against the same test run without it.
 // Whole processes, wall time, the best of several rounds taken in turn (the machine is shared).
-// Prints "figure<TAB>goal<TAB>measured" rows for bench/run_all.sh.
+// Prints "figure<TAB>goal<TAB>measured" rows for tests/bench/run_all.sh.
 #include <algorithm>
 #include <cstdio>
 #include <cstdlib>

@@ -2,7 +2,7 @@
 // (1) a one-character didChange until its publishDiagnostics is produced, (2) hover on a
 // parameter number, (3) completion of an operand, (4) the semantic tokens of the whole file
 // (the JSON reply written). Best of several runs, in milliseconds.
-// Prints "figure<TAB>goal<TAB>measured" rows for bench/run_all.sh.
+// Prints "figure<TAB>goal<TAB>measured" rows for tests/bench/run_all.sh.
 #include <chrono>
 #include <cstdio>
 #include <string>

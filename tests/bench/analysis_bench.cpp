@@ -8,14 +8,14 @@
 // processes (`tmclasm -o big.bin big.tmc` against `tmclasm --no-analysis -o big.bin big.tmc`),
 // each the best of nine runs, the two interleaved; and for information the processes' CPU time,
 // steadier than wall time on a loaded machine. On "calls", in the same run, assembly alone
-// against GNU as on an x86 file of the same line count (goal: at least 5 times as fast). For
+// against GNU as on its x86 peer, the same program line for line (goal: at least 5 times as fast). For
 // information, a fourth shape, "chain": one chain of 100,000 nested calls (the deepest call
 // chain; it once took 167 s and 20 GB), as whole processes. (Peak memory is not measured here: a
 // child started by posix_spawn reports the benchmark's own as its peak; docs/performance.md
 // gives the command.)
-// Prints "figure<TAB>goal<TAB>measured" rows for bench/run_all.sh. `analysis_bench --program SHAPE
+// Prints "figure<TAB>goal<TAB>measured" rows for tests/bench/run_all.sh. `analysis_bench --program SHAPE
 // [N]` prints a shape's program instead (N: lines, or calls for "chain"), to time or profile a
-// tool on it by hand (docs/performance.md).
+// tool on it by hand (docs/performance.md); `--x86-peer SHAPE [N]` prints its x86 peer, GNU as's file.
 #include <sys/resource.h>
 #include <unistd.h>
 
@@ -196,8 +196,8 @@ bool measure(const char* shape, const std::string& text, int warnings) {
   return true;
 }
 
-// Assembly alone (tmclasm --no-analysis) of `text` against GNU as on an x86 file of the same line
-// count, whole processes, interleaved, the median of kRuns each: the reference run that says
+// Assembly alone (tmclasm --no-analysis) of `text` against GNU as on its x86 peer (the same
+// program line for line, programs.hpp), whole processes, interleaved, the median of kRuns each: the reference run that says
 // whether assembling stays fast on this shape (goal: at least 5 times as fast as GNU as).
 bool versus_gnu_as(const char* shape, const std::string& text) {
   const int lines = static_cast<int>(std::count(text.begin(), text.end(), '\n'));
@@ -205,7 +205,7 @@ bool versus_gnu_as(const char* shape, const std::string& text) {
   std::string mkdir = "mkdir -p " + dir;
   if (std::system(mkdir.c_str()) != 0) return false;
   std::ofstream(dir + "/big.tmc") << text;
-  std::ofstream(dir + "/big.s") << tmcl::bench::x86_program(lines);
+  std::ofstream(dir + "/big.s") << tmcl::bench::x86_peer(text);
   std::vector<double> as, tmclasm;
   for (int k = 0; k < kRuns; ++k) {
     as.push_back(tmcl::bench::run_process({"as", "-o", dir + "/big.o", dir + "/big.s"}));
@@ -221,10 +221,10 @@ bool versus_gnu_as(const char* shape, const std::string& text) {
   }
   const double a = as[kRuns / 2], t = tmclasm[kRuns / 2];
   if (as.front() < 0)
-    std::printf("tmclasm --no-analysis vs GNU as, %d-line program (%s), whole process\t>= 5x faster\tGNU as not available\n", lines, shape);
+    std::printf("tmclasm --no-analysis vs GNU as on its x86 peer, %d-line program (%s), whole process\t>= 5x faster\tGNU as not available\n", lines, shape);
   else
-    std::printf("tmclasm --no-analysis vs GNU as, %d-line program (%s), whole process, medians\t>= 5x faster\t%.1fx (tmclasm %.0f ms, as %.0f ms)\n",
-                lines, shape, a / t, t * 1e3, a * 1e3);
+    std::printf("tmclasm --no-analysis vs GNU as on its x86 peer, %d-line program (%s), whole process, medians\t>= 5x faster\t%.1fx (tmclasm %.0f ms, %.2fe6 lines/s; as %.0f ms, %.2fe6 lines/s)\n",
+                lines, shape, a / t, t * 1e3, lines / t / 1e6, a * 1e3, lines / a / 1e6);
   return true;
 }
 
@@ -241,19 +241,18 @@ bool measure_chain(int calls) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  if (argc >= 3 && std::string(argv[1]) == "--program") {
+  if (argc >= 3 && (std::string(argv[1]) == "--program" || std::string(argv[1]) == "--x86-peer")) {
     const std::string shape = argv[2];
     const int n = argc > 3 ? std::atoi(argv[3]) : shape == "chain" ? 100000 : 1000000;
     if (n <= 0 || (shape != "blocks" && shape != "subroutines" && shape != "calls" && shape != "chain")) {
-      std::fprintf(stderr, "usage: analysis_bench [--program blocks|subroutines|calls|chain [N]]\n");
+      std::fprintf(stderr, "usage: analysis_bench [--program|--x86-peer blocks|subroutines|calls|chain [N]]\n");
       return 2;
     }
-    std::fputs((shape == "blocks"        ? blocks(n)
-                : shape == "subroutines" ? subroutines(n)
-                : shape == "calls"       ? calls(n)
-                                         : chain(n))
-                   .c_str(),
-               stdout);
+    const std::string program = shape == "blocks"        ? blocks(n)
+                                : shape == "subroutines" ? subroutines(n)
+                                : shape == "calls"       ? calls(n)
+                                                         : chain(n);
+    std::fputs((std::string(argv[1]) == "--program" ? program : tmcl::bench::x86_peer(program)).c_str(), stdout);
     return 0;
   }
   bool ok = measure("blocks", blocks(1000000), 0);

@@ -4,7 +4,7 @@
 // TMCL_BASELINE_TMCLASM set, also against that binary (an older tmclasm, e.g. one built from the
 // commit before profiles became files). (2) Loading a user's profile file: reading the file and
 // parsing it (the largest bundled profile, written out as a user's file), median of 2000 loads.
-// Prints "figure<TAB>goal<TAB>measured" rows for bench/run_all.sh.
+// Prints "figure<TAB>goal<TAB>measured" rows for tests/bench/run_all.sh.
 #include <unistd.h>
 
 #include <algorithm>
