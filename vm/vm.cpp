@@ -253,6 +253,7 @@ std::string_view warning_kind_name(RuntimeWarning::Kind k) {
     case RuntimeWarning::NoSuchPort: return "no-such-port";
     case RuntimeWarning::NoSuchCoordinate: return "no-such-coordinate";
     case RuntimeWarning::NotSimulated: return "not-simulated";
+    case RuntimeWarning::NoSuchType: return "no-such-type";
   }
   return "unknown";
 }

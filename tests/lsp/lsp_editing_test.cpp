@@ -418,6 +418,17 @@ TEST(hover_completion_and_diagnostics_follow_the_module) {
   CHECK(divisor);
 }
 
+// A parameter whose row the profile calls not simulated says so, and why (the profile's
+// not-simulated= reason, which tmclrun's note gives at run time); a simulated one says nothing.
+TEST(hover_of_a_parameter_tmclrun_does_not_simulate_says_why) {
+  Client c;
+  start(c, R"({"target":"tmcm-1110"})");
+  c.open(kEditUri, "  SAP 213, 0, 1\n  SAP 4, 0, 100\n");
+  CHECK_EQ(hover_text(c, kEditUri, 0, 6), "213: Group index, 0…255, RW, default 0 (tmcm-1110)\n\n"
+                                          "not simulated by tmclrun: group moves are not modelled");
+  CHECK(hover_text(c, kEditUri, 1, 6).find("not simulated") == std::string::npos);
+}
+
 // The assembler's check of what the module's EEPROM keeps (STAP/RSAP/STGP/RSGP) is the server's too.
 TEST(a_store_of_what_the_eeprom_does_not_keep_is_a_diagnostic) {
   Client c;

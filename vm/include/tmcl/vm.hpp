@@ -135,6 +135,7 @@ struct RuntimeWarning {
     NotSimulated,        // a note, not a warning (but under --strict): EI of an interrupt nothing raises (E52),
                          // a parameter the profile marks not-simulated written or read (E77)
     RampSetting,         // MVP whose ramp cannot start it, or that the manual forbids (E47)
+    NoSuchType,          // MVP/MVPA/MVPXA of a type other than ABS, REL, COORD (from a .bin; E80)
   };
   SimTime at = 0;        // the instruction's start
   std::int32_t pc = 0;   // its address
