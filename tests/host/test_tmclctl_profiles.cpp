@@ -9,6 +9,8 @@
 
 #include "check.hpp"
 #include "tmclctl_test.hpp"
+#include "tmcl/host/probe.hpp"
+#include "tmcl/profile.hpp"
 #include "tmcl/profile_file.hpp"
 
 using namespace hosttest;
@@ -156,4 +158,25 @@ TEST(probe_drafts_a_profile_that_agrees_on_which_parameters_exist) {
   CHECK_EQ(none.status, 69);
   CHECK(!exists(out + ".none"));
   CHECK_EQ(ctl({server.port(), "probe"}).status, 64);  // -o is needed
+}
+
+// tmclctl knows a module by its reply to 136, found among the profiles (none is listed by hand):
+// every bundled module's own string picks its profile, and so does another version of its module
+// number (a newer firmware); no two bundled modules share a module number, so the pick is never a
+// guess between two.
+TEST(every_bundled_modules_firmware_reply_picks_its_profile) {
+  std::set<std::string> numbers;
+  int modules = 0;
+  for (const tmcl::Profile* p : tmcl::all_profiles()) {
+    const std::string fw(p->firmware);
+    const auto v = fw.find('V');
+    if (p->any_parameter || v == std::string::npos) continue;
+    ++modules;
+    CHECK(numbers.insert(fw.substr(0, v)).second);
+    CHECK(tmcl::host::profile_for_firmware(fw) == p);
+    const std::string other = fw.substr(0, v) + (fw.substr(v) == "V999" ? "V998" : "V999");
+    const tmcl::Profile* q = tmcl::host::profile_for_firmware(other);
+    if (q != p) tmcl_test::fail(__FILE__, __LINE__, other + " picks " + (q ? std::string(q->name) : "nothing") + ", not " + std::string(p->name));
+  }
+  CHECK(modules >= 17);
 }
