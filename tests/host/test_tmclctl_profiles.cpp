@@ -180,3 +180,47 @@ TEST(every_bundled_modules_firmware_reply_picks_its_profile) {
   }
   CHECK(modules >= 17);
 }
+
+// What the vendor's Python library sends in its rotate demo of these modules (PyTrinamic
+// examples/modules/TMCM1240/TMCL/rotate_demo.py, the same for the -1241, -1260, -1270, -1276 and
+// -1278: currents 6 and 7, 256 microsteps, speed 4 and acceleration 5, relative moves from the
+// actual position (127 = 1), the position cleared, ROR, MST, MVP REL, position reached 8 polled,
+// MVP ABS back to 0), sent to `tmclrun --serve -t NAME` of every module on the TMC5160 core with
+// no -t on tmclctl's side: the reply to 136 names the module, and every command succeeds. The
+// library itself is not installable here, so its requests are replayed, not its script run.
+TEST(the_vendors_rotate_demo_runs_on_every_tmc5160_module) {
+  int modules = 0;
+  for (const tmcl::Profile* p : tmcl::all_profiles()) {
+    if (p->default_motion != "tmc5160") continue;
+    ++modules;
+    const std::string name(p->name);
+    Server server(kRun, {"--serve", "tcp:127.0.0.1:0", "-t", name, "--time-scale", "20"});
+    const std::string& port = server.port();
+    auto send = [&](const std::string& ins) {
+      Output o = ctl({port, "send", ins});
+      if (o.status != 0 || o.out.rfind("100 success", 0) != 0)
+        tmcl_test::fail(__FILE__, __LINE__, name + ": " + ins + ": " + o.out + o.err);
+      const auto at = o.out.find("value ");
+      return at == std::string::npos ? 0 : std::stoi(o.out.substr(at + 6));
+    };
+    for (const char* ins : {"SAP 6, 0, 50", "SAP 7, 0, 0", "SAP 140, 0, 8", "SAP 4, 0, 20000", "SAP 5, 0, 40000",
+                            "SAP 127, 0, 1", "SAP 1, 0, 0", "ROR 0, 20000"})
+      send(ins);
+    CHECK(send("GAP 2, 0") == 20000);
+    send("MST 0");
+    for (int i = 0; i < 200 && send("GAP 3, 0") != 0; ++i) {
+    }  // the motor ramps down (the demo sleeps 2 s)
+    const int stopped = send("GAP 1, 0");
+    send("MVP REL, 0, " + std::to_string(stopped));
+    int reached = 0;
+    for (int i = 0; i < 200 && !reached; ++i) reached = send("GAP 8, 0");
+    CHECK(reached == 1);
+    CHECK_EQ(send("GAP 1, 0"), 2 * stopped);
+    send("MVP ABS, 0, 0");
+    reached = 0;
+    for (int i = 0; i < 200 && !reached; ++i) reached = send("GAP 8, 0");
+    CHECK_EQ(send("GAP 1, 0"), 0);
+    CHECK(has(ctl({port, "status"}).out, std::string(p->title)));
+  }
+  CHECK(modules >= 8);  // the TMCM-1260 and the seven of its family
+}
