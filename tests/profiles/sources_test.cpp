@@ -274,7 +274,10 @@ TEST(the_tmcl_reference_confirms_or_leaves_unverified) {
       if (any && !cites(*info, "R", r.section)) ::tmcl_test::fail(__FILE__, __LINE__, what + ": the reference confirms it, but src= does not name R:" + r.section);
       confirmed += any;
     }
-    CHECK(confirmed >= 25);  // the basic and advanced parameters and the interface settings
+    // The basic and advanced parameters and the interface settings; fewer on a module in pps (the
+    // TMC5160 family: its speeds and accelerations are not the reference's TMC429 units) and fewer
+    // again on one without RS485 (the TMCM-1276 family: 20).
+    if (confirmed < 20) ::tmcl_test::fail(__FILE__, __LINE__, name + ": only " + std::to_string(confirmed) + " facts confirmed by the reference");
   }
   CHECK(without_manual >= 5);  // tmcm-3110, -6110, -1140, -1160, -1161
   // Every TMCM profile: a fact sourced from the reference, and not marked unverified, is its row's.
