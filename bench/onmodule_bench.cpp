@@ -12,7 +12,6 @@
 //   hit:         129 (continue), 135/1 polls until the pc is the breakpoint's (the JA to itself
 //                spins there), 128, 132 + the instruction + 133 (put back), stop report;
 //                continuing: 130 (over the instruction), 132 + JA + 133 (the patch again)
-#include <fcntl.h>
 #include <signal.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -26,6 +25,7 @@
 #include "tmcl/host/client.hpp"
 #include "tmcl/host/port.hpp"
 #include "tmcl/host/transfer.hpp"
+#include "spawn.hpp"
 
 namespace {
 
@@ -36,32 +36,6 @@ namespace host = tmcl::host;
 
 Instruction make(Op op, int type = 0, int motor = 0, std::int32_t value = 0) {
   return Instruction{static_cast<std::uint8_t>(op), static_cast<std::uint8_t>(type), static_cast<std::uint8_t>(motor), value};
-}
-
-// A served USB-2-SD on loopback TCP (any free port): the address it announced, "tcp:127.0.0.1:N".
-// Simulated time runs 1000 times the wall clock, so that the program is at its breakpoint before
-// the first poll: the round trips counted are the debugger's, not the wall clock's.
-pid_t start_server(std::string& spec) {
-  int out[2];
-  if (::pipe(out) != 0) return -1;
-  const pid_t pid = ::fork();
-  if (pid == 0) {
-    ::dup2(out[1], 1);
-    const int null = ::open("/dev/null", O_RDWR);
-    ::dup2(null, 2);
-    ::execl(TMCL_TMCLRUN, "tmclrun", "--serve", "tcp:127.0.0.1:0", "-t", "usb-2-sd", "--max-wall-time", "300s", "--time-scale", "1000",
-            static_cast<char*>(nullptr));
-    ::_exit(127);
-  }
-  ::close(out[1]);
-  std::string line;
-  char c;
-  while (::read(out[0], &c, 1) == 1 && c != '\n') line += c;
-  ::close(out[0]);
-  const std::string prefix = "listening on ";
-  if (line.rfind(prefix, 0) != 0) return -1;
-  spec = "tcp:" + line.substr(prefix.size());
-  return pid;
 }
 
 struct Bench {
@@ -95,9 +69,16 @@ const std::vector<Instruction> kProgram{make(Op::CALC, 0, 0, 1),  // 0: CALC ADD
 }  // namespace
 
 int main() {
-  std::string spec;
-  const pid_t server = start_server(spec);
-  if (server < 0) {
+  // A served USB-2-SD on loopback TCP (any free port). Simulated time runs 1000 times the wall
+  // clock, so that the program is at its breakpoint before the first poll: the round trips
+  // counted are the debugger's, not the wall clock's.
+  std::string line;
+  const pid_t server = tmcl::bench::start_server({TMCL_TMCLRUN, "--serve", "tcp:127.0.0.1:0", "-t", "usb-2-sd",
+                                                  "--max-wall-time", "300s", "--time-scale", "1000"},
+                                                 line);
+  const std::string prefix = "listening on ";
+  const std::string spec = "tcp:" + (line.rfind(prefix, 0) == 0 ? line.substr(prefix.size()) : line);
+  if (server < 0 || line.rfind(prefix, 0) != 0) {
     std::fprintf(stderr, "onmodule_bench: cannot start tmclrun --serve tcp\n");
     return 1;
   }
