@@ -28,11 +28,11 @@ TEST(debug_probe_ctrl_c_puts_the_program_back) {
     return true;
   });
   CHECK_EQ(d.status, 130);
-  CHECK(has(d.err, "the module's program (3 instructions) is back, verified with 134"));
+  CHECK(has(d.err, "the module's program (4 instructions) is back, verified with 134"));
   CHECK(has(d.out, "tmcl debug probe"));
   CHECK_EQ(ctl({server.port(), "upload", "-o", after}).status, 0);
   CHECK(slurp(before) == slurp(after));
-  CHECK_EQ(slurp(after).size(), 24u);
+  CHECK_EQ(slurp(after).size(), 32u);  // the three and the STOP the assembler appends
 }
 
 TEST(debug_probe_on_a_module_without_a_program) {
