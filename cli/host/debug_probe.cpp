@@ -213,7 +213,7 @@ bool Prober::probe() {
     step_wait = StepWait::AtOnce;
     found("130 during a WAIT", "answers at once, the wait flag still set");
   } else if (s2.pc() == kCsubAt && !s2.waiting() &&
-             took >= std::chrono::milliseconds(opt_.wait_ticks * 10 / 10)) {
+             took >= std::chrono::milliseconds(opt_.wait_ticks)) {  // a tenth of the wait (ticks of 10 ms)
     step_wait = StepWait::WhenOver;
     found("130 during a WAIT", "answers when the wait is over (as tmclrun --variant step-waits)");
   } else {
