@@ -275,10 +275,12 @@ bool Prober::probe() {
   } else {
     for (int at : {opt_.memory - 1, opt_.memory}) {
       if (!ask(make(Op::ReadProgramMemory, 0, 0, at), r)) return false;
-      const std::string what = r.status == kStatusOk && r.op == static_cast<std::uint8_t>(Op::ReadProgramMemory)
-                                   ? "reads " + (r.stored.op == 0 ? std::string("opcode 0 (the end marker)") : format_instruction(r.stored))
-                                   : "status " + std::to_string(r.status) + " (" + status_text(r.status) + ")";
-      raw("134 at " + std::to_string(at) + (at == opt_.memory ? " (past the end)" : ""), what + "  [" + hex(r.bytes.data(), 9) + "]");
+      const bool stored = r.status == kStatusOk && r.op == static_cast<std::uint8_t>(Op::ReadProgramMemory);
+      const std::string word = r.stored.op == 0 ? std::string("opcode 0 (the end marker)") : format_instruction(r.stored);
+      const std::string what =
+          stored ? "reads " + word : "status " + std::to_string(r.status) + " (" + status_text(r.status) + ")";
+      raw("134 at " + std::to_string(at) + (at == opt_.memory ? " (past the end)" : ""),
+          what + "  [" + hex(r.bytes.data(), 9) + "]");
       if (at != opt_.memory) continue;
       if (r.status == 4) {
         past_end = PastEnd::Refused;
