@@ -22,34 +22,18 @@
 #include "tmcl/host/port.hpp"
 #include "tmcl/host/transfer.hpp"
 #include "tmcl/codec.hpp"
+#include "spawn.hpp"
 
 namespace {
 
 using Clock = std::chrono::steady_clock;
 
-pid_t start_server(std::string& pty) {
-  int out[2];
-  if (::pipe(out) != 0) return -1;
-  const pid_t pid = ::fork();
-  if (pid == 0) {
-    ::dup2(out[1], 1);
-    const int null = ::open("/dev/null", O_RDWR);
-    ::dup2(null, 2);
-    ::execl(TMCL_TMCLRUN, "tmclrun", "--serve", "pty", "-t", "usb-2-sd", "--max-wall-time", "120s", static_cast<char*>(nullptr));
-    ::_exit(127);
-  }
-  ::close(out[1]);
-  char c;
-  while (::read(out[0], &c, 1) == 1 && c != '\n') pty += c;
-  ::close(out[0]);
-  return pid;
-}
-
 }  // namespace
 
 int main() {
   std::string pty;
-  const pid_t server = start_server(pty);
+  const pid_t server = tmcl::bench::start_server(
+      {TMCL_TMCLRUN, "--serve", "pty", "-t", "usb-2-sd", "--max-wall-time", "120s"}, pty);
   if (server < 0 || pty.empty()) {
     std::fprintf(stderr, "host_bench: cannot start tmclrun --serve pty\n");
     return 1;

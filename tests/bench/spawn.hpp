@@ -43,4 +43,32 @@ inline double run_process(const std::vector<std::string>& argv, double* cpu_seco
   return std::chrono::duration<double>(Clock::now() - t).count();
 }
 
+// Starts a server (`tmclrun --serve ...`) in the background with standard error discarded and
+// reads the line it announces on standard output (a pty's path, "listening on HOST:PORT") into
+// `first_line`. The process id, or -1 when it could not start.
+inline pid_t start_server(const std::vector<std::string>& argv, std::string& first_line) {
+  int out[2];
+  if (::pipe(out) != 0) return -1;
+  posix_spawn_file_actions_t actions;
+  posix_spawn_file_actions_init(&actions);
+  posix_spawn_file_actions_adddup2(&actions, out[1], 1);
+  posix_spawn_file_actions_addclose(&actions, out[0]);
+  posix_spawn_file_actions_addopen(&actions, 2, "/dev/null", O_WRONLY, 0);
+  std::vector<char*> args;
+  for (const auto& a : argv) args.push_back(const_cast<char*>(a.c_str()));
+  args.push_back(nullptr);
+  pid_t pid = 0;
+  const int rc = posix_spawnp(&pid, args[0], &actions, nullptr, args.data(), environ);
+  posix_spawn_file_actions_destroy(&actions);
+  ::close(out[1]);
+  if (rc != 0) {
+    ::close(out[0]);
+    return -1;
+  }
+  char c;
+  while (::read(out[0], &c, 1) == 1 && c != '\n') first_line += c;
+  ::close(out[0]);
+  return pid;
+}
+
 }  // namespace tmcl::bench

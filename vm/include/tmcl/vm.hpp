@@ -289,7 +289,8 @@ struct Vm {
   // Starts (or continues) the program at `address` (control command 129); clears a fault.
   void start(std::int32_t address);
   // Control command 130: exactly one instruction from `pc` at the current instant (a WAIT is
-  // entered or checked, never jumped over), then the program waits in AppStatus::Step. Motion
+  // entered, or checked and left when over, never jumped over), then the program waits in
+  // AppStatus::Step. Motion
   // and inputs are brought up to the new instant.
   RunResult step();
   // Control command 128: a running or stepping program stops where it is; the motors finish
