@@ -1,4 +1,4 @@
-# Debugging on a module (bench/onmodule_bench.cpp, issue 39): round trips per step, breakpoint hit
+# Debugging on a module (tests/bench/onmodule_bench.cpp, issue 39): round trips per step, breakpoint hit
 # and print, steps per second and hit-to-report time against tmclrun --serve tcp.
 tmcl_add_bench(onmodule_bench ${CMAKE_CURRENT_SOURCE_DIR}/onmodule_bench.cpp)
 target_link_libraries(onmodule_bench PRIVATE tmcl_host)
