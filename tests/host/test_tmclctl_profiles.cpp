@@ -6,6 +6,7 @@
 // agrees with the bundled one on which parameters exist.
 #include <set>
 #include <sstream>
+#include <utility>
 
 #include "check.hpp"
 #include "tmclctl_test.hpp"
@@ -32,6 +33,23 @@ TEST(the_reply_to_136_picks_the_profile) {
   // -t naming the same module, or generic: no word.
   CHECK(ctl({"-t", "tmcm-1110", p, "get", "ap", "4"}).err.empty());
   CHECK(ctl({"-t", "generic", p, "get", "ap", "4"}).err.empty());
+}
+
+// The TMCM-1290 and TMCM-3216 by their replies to 136 (module numbers 1290, 3216): their names
+// without -t ("Velocity V2" is theirs, axis parameter 35).
+TEST(the_reply_to_136_picks_the_tmcm_1290_and_3216) {
+  for (const auto& [name, title] : {std::pair{"tmcm-1290", "TMCM-1290 (firmware 1.01)"},
+                                    std::pair{"tmcm-3216", "TMCM-3216 (3 axes, TMCM-1290 firmware family)"}}) {
+    Server server(kRun, {"--serve", "tcp:127.0.0.1:0", "-t", name});
+    const std::string& p = server.port();
+    Output g = ctl({p, "get", "velocity v2"});
+    show(g);
+    CHECK_EQ(g.status, 0);
+    CHECK_EQ(g.out, "0\n");
+    CHECK(g.err.empty());
+    Output s = ctl({p, "status"});
+    CHECK(has(s.out, title));
+  }
 }
 
 TEST(download_checks_like_tmclasm_werror) {
