@@ -109,7 +109,7 @@ axis 189 "PWM scale" 0..255 R default=0 src=M:4 not-simulated="reads 0: not mode
 axis 190 "PWM mode" 0..1 R default=0 src=M:4 not-simulated="reads 0: not modelled"
 axis 191 "PWM frequency" 0..3 RW default=0 src=M:4 unverified=default
 axis 192 "PWM autoscale" 0..1 RW default=1 src=M:4 unverified=default
-axis 193 "Reference search mode" 1..138 RW default=1 values=1..10,+64,+128 src=M:4,M:7.1 unverified=default  # 1..10 (table 22); +64: the right switch (1..4); +128: inverted home switch (5..8); 9, 10 the encoder's null channel
+axis 193 "Reference search mode" 1..136 RW default=1 values=1..10,65..68,133..136 src=M:4,M:7.1 unverified=default  # 1..10 (table 22); +64: the right switch (1..4); +128: inverted home switch (5..8); 9, 10 the encoder's null channel
 axis 194 "Reference search speed" 0..7999774 RW default=51200 unit=pps src=M:4 unverified=default
 axis 195 "Reference switch speed" 0..7999774 RW default=5120 unit=pps src=M:4 unverified=default
 axis 196 "End switch distance" -2147483648..2147483647 R default=0 unit=μsteps src=M:4

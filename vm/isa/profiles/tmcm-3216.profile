@@ -21,7 +21,7 @@ motors 3 src=P:GP3  # stop-switch interrupts of axes 0..2 (its motor list of six
 
 # Reference search modes 1..10 as the Zephyr driver names them (TMCL_RFS_MODE_1..10: 7 the home
 # switch moving -, 8 moving +, 9 and 10 the encoder's null channel + and -).
-axis 193 "Reference search mode" 1..138 RW default=1 values=1..10,+64,+128 src=Z,M:4,M:7.1 unverified=default
+axis 193 "Reference search mode" 1..136 RW default=1 values=1..10,65..68,133..136 src=Z,M:4,M:7.1 unverified=default
 
 # Global parameters, bank 0: the TMCM-1290's, and the CAN interface's (PyTrinamic). PyTrinamic
 # gives the secondary address as 86, its slip for 87 (TMCM-1290 manual 7.9; docs/errata.md).
