@@ -270,3 +270,24 @@ TEST(tmc5240_rfs_modes_7_to_10) {
     CHECK(b.until(MotionEventKind::Stopped));
   }
 }
+
+// The TMCM-3216's three axes are three such ramps, apart: each its own parameters and plan, the
+// events in time order.
+TEST(tmc5240_three_axes_of_the_tmcm3216_move_apart) {
+  mt::Bench b("tmc5240", "tmcm-3216", 3);
+  for (int m = 0; m < 3; ++m)
+    for (auto [param, value] : {std::pair{4, 51200}, {5, 51200}, {16, 0}, {17, 51200}, {19, 0}, {20, 0}, {21, 0}})
+      b.set(param, value, m);
+  b.set(4, 25600, 2);
+  b.core->move_absolute(2, 40000);
+  b.core->move_absolute(0, 10000);
+  b.to(10000000);
+  CHECK_EQ(b.events.size(), std::size_t{2});
+  CHECK_EQ(b.events[0].motor, 0);
+  CHECK_EQ(b.events[0].at, us(mt::move_time(10000, 51200, 51200)));
+  CHECK_EQ(b.events[1].motor, 2);
+  CHECK_EQ(b.events[1].at, us(mt::move_time(40000, 25600, 51200)));
+  CHECK_EQ(b.core->position(0), 10000);
+  CHECK_EQ(b.core->position(1), 0);
+  CHECK_EQ(b.core->position(2), 40000);
+}
