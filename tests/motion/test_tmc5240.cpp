@@ -4,6 +4,7 @@
 // the plain trapezoid, V2 at or below V1 no A2/D2 phase), velocity mode on AMAX alone, the ramp
 // wait time (21), the virtual stops (38-41) and the reference search's modes 7 to 10 (table 22).
 #include <cmath>
+#include <cstdlib>
 #include <utility>
 
 #include "check.hpp"
@@ -100,29 +101,22 @@ TEST(tmc5240_eightpoint_move_times_match_the_closed_form) {
 }
 
 // Short moves: the peak speed lies in the A2 band or in the AMAX band, from the closed form
-// s_up(vp) + s_down(vp) = distance, quadratic in vp² inside one band.
+// s_up(vp) + s_down(vp) = distance, quadratic in vp² inside one band: vp² = lo² + (distance -
+// s_up(lo) - s_down(lo)) / (1/2a + 1/2d), lo the band's lower edge, a and d its rates.
 TEST(tmc5240_short_moves_peak_in_the_band_the_closed_form_says) {
-  {  // in the A2/D2 band: vp² = V1² + (dist - s1) / (1/2A2 + 1/2D2)
+  struct Band {
+    double lo, hi, a, d;
+    std::int32_t target;
+  };
+  for (const Band& band : {Band{v1, v2, a2, d2, 15000}, Band{v2, vmax, amax, dmax, -60000}}) {
     Drive b;
     standard(b);
-    const double dist = 15000;
-    const double s1 = s_up(v1) + s_down(v1);
-    const double vp = std::sqrt(v1 * v1 + (dist - s1) / (1 / (2 * a2) + 1 / (2 * d2)));
-    CHECK(vp > v1 && vp < v2);
-    b.core->move_absolute(0, 15000);
+    const double dist = std::abs(band.target);
+    const double vp = std::sqrt(band.lo * band.lo + (dist - s_up(band.lo) - s_down(band.lo)) / (1 / (2 * band.a) + 1 / (2 * band.d)));
+    CHECK(vp > band.lo && vp < band.hi);
+    b.core->move_absolute(0, band.target);
     CHECK_EQ(b.next(), us(t_up(vp) + t_down(vp)));
-    CHECK_EQ(b.core->position(0), 15000);
-  }
-  {  // in the AMAX/DMAX band
-    Drive b;
-    standard(b);
-    const double dist = 60000;
-    const double s2 = s_up(v2) + s_down(v2);
-    const double vp = std::sqrt(v2 * v2 + (dist - s2) / (1 / (2 * amax) + 1 / (2 * dmax)));
-    CHECK(vp > v2 && vp < vmax);
-    b.core->move_absolute(0, -60000);
-    CHECK_EQ(b.next(), us(t_up(vp) + t_down(vp)));
-    CHECK_EQ(b.core->position(0), -60000);
+    CHECK_EQ(b.core->position(0), band.target);
   }
 }
 
