@@ -3,7 +3,8 @@
 // move, ask for the next event, advance to it, check the WAIT POS condition. Goal: at least one
 // million moves per second of wall time, with a cost per move independent of the move's length
 // and duration (short, long and very long moves are timed separately). The same for the tmc429
-// core's trapezoids and the tmc5160 core's SixPoint ramps (TMCM-1260), and a whole program on the
+// core's trapezoids, the tmc5160 core's SixPoint ramps (TMCM-1260) and the tmc5240 core's
+// EightPoint ramps (TMCM-1290), and a whole program on the
 // tmc429 core in the VM: a reference search on switches placed at positions, then moves for one
 // simulated hour (goal: under 50 ms); and the same hour after homing by stall instead (issue 34:
 // a TMCM-1110 driving into a hard stop until stop on stall, its interrupt, back off, SAP 1).
@@ -32,6 +33,10 @@ const Setup kTmc429{"tmc429", "generic", {}};
 // The TMCM-1260's SixPoint ramp: VSTART, A1 to V1, A2 to VMAX, D2 to V1, D1 to VSTOP.
 const Setup kSixPoint{"tmc5160", "tmcm-1260", {{19, 1000}, {15, 100000}, {16, 20000}, {5, 50000}, {4, 60000},
                                                {17, 40000}, {18, 80000}, {20, 2000}}};
+// The TMCM-1290's EightPoint ramp: VSTART, A1 to V1, A2 to V2, AMAX to VMAX, DMAX to V2, D2 to V1,
+// D1 to VSTOP.
+const Setup kEightPoint{"tmc5240", "tmcm-1290", {{19, 1000}, {15, 100000}, {16, 10000}, {34, 40000}, {35, 30000},
+                                                 {5, 20000}, {4, 60000}, {17, 25000}, {36, 50000}, {18, 80000}, {20, 2000}}};
 
 // Moves per second of wall time for `n` moves with targets uniform in +-range around 0.
 double moves_per_second(const Setup& setup, int n, std::int32_t range, bool check) {
@@ -149,6 +154,9 @@ int main() {
   std::printf("tmc5160 SixPoint moves per second (100k MVP + WAIT POS, targets +-1e6)\t>= 1000000\t%.0f\n",
               moves_per_second(kSixPoint, n, 1000000, true));
   std::printf("  short tmc5160 moves per second (targets +-1000)\tsame order\t%.0f\n", moves_per_second(kSixPoint, n, 1000, true));
+  std::printf("tmc5240 EightPoint moves per second (100k MVP + WAIT POS, targets +-1e6)\t>= 1000000\t%.0f\n",
+              moves_per_second(kEightPoint, n, 1000000, true));
+  std::printf("  short tmc5240 moves per second (targets +-1000)\tsame order\t%.0f\n", moves_per_second(kEightPoint, n, 1000, true));
   long moves = 0;
   tmcl::SimTime simulated = 0;
   homing_hour_ms(moves, simulated);  // warm up

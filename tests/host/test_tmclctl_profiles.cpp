@@ -6,6 +6,7 @@
 // agrees with the bundled one on which parameters exist.
 #include <set>
 #include <sstream>
+#include <utility>
 
 #include "check.hpp"
 #include "tmclctl_test.hpp"
@@ -15,18 +16,25 @@
 
 using namespace hosttest;
 
+namespace {
+// Without -t, tmclctl names the module's parameters by its reply to 136: `name` reads `value`,
+// and the status shows the module's title.
+void named_by_136(const std::string& port, const char* name, const char* value, const char* title) {
+  Output g = ctl({port, "get", name});
+  show(g);
+  CHECK_EQ(g.status, 0);
+  CHECK_EQ(g.out, value);
+  CHECK(g.err.empty());
+  CHECK(has(ctl({port, "status"}).out, title));
+}
+}  // namespace
+
 TEST(the_reply_to_136_picks_the_profile) {
   Server server(kRun, {"--serve", "tcp:127.0.0.1:0", "-t", "tmcm-1110"});
   const std::string& p = server.port();
   // "Pulse divisor" is a TMCM-1110 parameter (154); generic would not know the name.
-  Output g = ctl({p, "get", "pulse divisor"});
-  show(g);
-  CHECK_EQ(g.status, 0);
-  CHECK_EQ(g.out, "3\n");
-  CHECK(g.err.empty());
-  Output s = ctl({p, "status"});
-  CHECK(has(s.out, "firmware:         1110V103"));
-  CHECK(has(s.out, "TMCM-1110 stepRocker (firmware 1.03)"));
+  named_by_136(p, "pulse divisor", "3\n", "TMCM-1110 stepRocker (firmware 1.03)");
+  CHECK(has(ctl({p, "status"}).out, "firmware:         1110V103"));
   // -t naming another module: it is used, with a warning.
   Output w = ctl({"-t", "usb-2-sd", p, "get", "ap", "4"});
   CHECK_EQ(w.status, 0);
@@ -34,6 +42,16 @@ TEST(the_reply_to_136_picks_the_profile) {
   // -t naming the same module, or generic: no word.
   CHECK(ctl({"-t", "tmcm-1110", p, "get", "ap", "4"}).err.empty());
   CHECK(ctl({"-t", "generic", p, "get", "ap", "4"}).err.empty());
+}
+
+// The TMCM-1290 and TMCM-3216 by their replies to 136 (module numbers 1290, 3216): their names
+// without -t ("Velocity V2" is theirs, axis parameter 35).
+TEST(the_reply_to_136_picks_the_tmcm_1290_and_3216) {
+  for (const auto& [name, title] : {std::pair{"tmcm-1290", "TMCM-1290 (firmware 1.01)"},
+                                    std::pair{"tmcm-3216", "TMCM-3216 (3 axes, TMCM-1290 firmware family)"}}) {
+    Server server(kRun, {"--serve", "tcp:127.0.0.1:0", "-t", name});
+    named_by_136(server.port(), "velocity v2", "0\n", title);
+  }
 }
 
 TEST(download_checks_like_tmclasm_werror) {

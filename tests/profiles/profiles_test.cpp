@@ -429,7 +429,7 @@ TEST(tmclparam_matches_tmcl_ide_names) {
 TEST(interrupts_inc_matches_vectors) {
   const auto defs = read_include("Interrupts.inc");
   const auto have = as_map("Interrupts.inc", defs);
-  CHECK_EQ(have.size(), std::size_t{3 + 6 * 5 + 8 + 1});  // timers, 5 per axis, inputs, global
+  CHECK_EQ(have.size(), std::size_t{3 + 6 * 5 + 3 + 8 + 1});  // timers, 5 per axis, position compare of 3 axes, inputs, global
   for (const Profile* p : tmcl::all_profiles())
     for (const auto& v : p->vectors) {
       const auto it = have.find(upper(v.name));
