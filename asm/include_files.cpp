@@ -8,8 +8,6 @@
 
 namespace tmcl {
 
-const std::map<std::string, std::string_view>& include_file_texts();  // embedded (asm/CMakeLists.txt)
-
 const std::map<std::string, std::string_view>& bundled_includes() {
   static const auto* files = [] {
     static std::vector<std::string> generated;  // owns the texts the map points into

@@ -540,12 +540,13 @@ int run(int argc, char** argv) {
       for (char& c : t) c = static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
       return t;
     };
-    std::string names;
-    for (const auto& [name, text] : tmcl::bundled_includes()) {
+    for (const auto& [name, text] : tmcl::bundled_includes())
       if (upper(name) == upper(s.show_include)) return write_output("-", bytes_of(std::string(text))) ? 0 : kExitOutput;
-      names += (names.empty() ? "" : ", ") + name;
-    }
-    return usage_error("--show-include: no bundled include file '" + s.show_include + "' (" + names + ")");
+    // include_files/ by name, the generated ones by the rule: their list grows with every profile.
+    std::string names;
+    for (const auto& [name, text] : tmcl::include_file_texts()) names += name + ", ";
+    return usage_error("--show-include: no bundled include file '" + s.show_include + "' (" + names +
+                       "and NAME.inc of each other bundled module of --list-targets)");
   }
   for (const std::string* v : {&s.show_target, &s.target}) {
     if (v->empty()) continue;

@@ -41,6 +41,7 @@
 #include "tmcl/program_image.hpp"
 #include "tmcl/targets.hpp"
 #include "tmcl/os_files.hpp"
+#include "tmclctl_debug_probe.hpp"
 #include "tmclctl_testrun.hpp"
 
 namespace {
@@ -72,6 +73,8 @@ commands:
   scan                        find the modules on a bus: address, firmware, module type
   probe -o FILE.profile       read what a module has (firmware, parameters, memory) into a draft
                               profile for -t (profiles.md, "Your own module")
+  debug --probe               what the module's firmware does where a debugger on it depends on
+                              it: a report to paste into an issue (the program is put back)
   test FILE|DIR...            run test files (*.tmctest) on the module by the wall clock: a smoke
                               test on hardware (testing.md)
 
@@ -99,7 +102,7 @@ documentation: the .md files named above are in share/doc/tmcl/ of the installat
 )";
 
 const char* const kCommands[] = {"send", "get", "set", "store", "download", "upload", "run", "stop", "step",
-                                 "reset", "status", "monitor", "console", "scan", "probe", "test"};
+                                 "reset", "status", "monitor", "console", "scan", "probe", "test", "debug"};
 
 volatile std::sig_atomic_t g_stop = 0;
 extern "C" void on_sigint(int) { g_stop = 1; }
@@ -122,6 +125,7 @@ struct Options {
   int range_lo = 1, range_hi = 255;
   std::vector<long> bauds;
   bool timeout_given = false;
+  bool debug_probe = false;  // debug --probe
   const tmcl::Profile* profile = nullptr;
 };
 
@@ -260,6 +264,8 @@ tmcl::cli::Tool command_line(Options& o) {
        false, "monitor:"},
       {"--plot", "FILE", "also draw the polled values against time as an SVG (one panel each)", set(o.plot),
        Values::files({"svg"}), {}, false, "monitor:"},
+      {"--probe", "", "report what the module does where the debugger depends on it", flag(o.debug_probe), {}, {},
+       false, "debug:"},
       {"--junit", "FILE", "write a JUnit XML report to FILE", set(o.junit), Values::files({"xml"}), {}, false, "test:"},
       {"--range", "A-B", "addresses to try (default 1-255)",
        [&o](const std::string& v) {
@@ -961,6 +967,9 @@ int run(int argc, char** argv) {
   if (!known) return usage_error("unknown command '" + o.command + "'");
   if ((!o.csv.empty() || !o.plot.empty()) && o.command != "monitor") return usage_error("--csv and --plot go with monitor");
   if (!o.junit.empty() && o.command != "test") return usage_error("--junit goes with test");
+  if (o.debug_probe && o.command != "debug") return usage_error("--probe goes with debug");
+  if (o.command == "debug")
+    if (int rc = tmclctl_debug_usage(o.port, o.debug_probe, o.args); rc >= 0) return rc;
   if (o.command == "test" && o.args.empty()) return usage_error("test needs test files or folders (FILE.tmctest or DIR)");
 
   std::string err;
@@ -990,6 +999,7 @@ int run(int argc, char** argv) {
   if (c == "reset") return s.cmd_control(Op::ResetApplication);
   if (c == "status") return s.cmd_status();
   if (c == "monitor") return s.cmd_monitor();
+  if (c == "debug") return tmclctl_debug_probe(s.client, *o.profile, o.client.module, &g_stop);
   if (c == "test") {
     host::Fail failed = host::Fail::None;
     const int status = tmclctl_test(s.client, *o.profile, o.target_given ? o.target : std::string(o.profile->name), o.args,

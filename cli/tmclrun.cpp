@@ -182,6 +182,24 @@ std::string address_value(const char* opt, const std::string& v, std::optional<s
 
 // The options, each declared once: --help, the errors, the man-page check and bash completion
 // follow from this table (tmcl/options.hpp).
+// --variant: the names and meanings of the virtual module's firmware variants, from their table.
+std::vector<std::string> variant_names() {
+  std::vector<std::string> names;
+  for (const tmcl::VariantInfo& v : tmcl::firmware_variant_table()) names.emplace_back(v.name);
+  return names;
+}
+std::string variant_names_text() {
+  std::string text;
+  for (const std::string& n : variant_names()) text += (text.empty() ? "" : ", ") + n;
+  return text;
+}
+std::string variant_help() {
+  std::string text;
+  for (const tmcl::VariantInfo& v : tmcl::firmware_variant_table())
+    text += (text.empty() ? "" : "\n") + std::string("  ") + std::string(v.name) + ": " + std::string(v.meaning);
+  return text;
+}
+
 tmcl::cli::Tool command_line(Options& o) {
   using tmcl::cli::flag, tmcl::cli::set, tmcl::cli::Values;
   auto duration = [](const char* opt, tmcl::SimTime& field) {
@@ -290,6 +308,16 @@ tmcl::cli::Tool command_line(Options& o) {
        {}, "a number from 0 to 255"},
       {"--eeprom-locked", "", "with --serve: refuse commands that write the EEPROM (status 5)",
        flag(o.serve_opts.protocol.eeprom_locked)},
+      {"--variant", "NAME[,NAME]",
+       "with --serve, repeatable: behave as firmware that differs where the\n"
+       "manuals are silent (virtual-module.md, \"Firmware variants\"):\n" +
+           variant_help(),
+       [&o](const std::string& v) {
+         std::string error;
+         tmcl::parse_firmware_variants(v, o.serve_opts.protocol.variants, error);
+         return error;
+       },
+       Values::words(variant_names()), "a variant name (" + variant_names_text() + ")"},
       {"--max-wall-time", "DURATION", "with --serve: stop by itself after this much real time",
        [&o](const std::string& v) {
          tmcl::SimTime wall = 0;

@@ -76,6 +76,7 @@ int build_bus(Options& o, std::vector<std::unique_ptr<tmcl::MotionCore>>& cores,
     member.protocol.module_address = b.address;
     member.protocol.host_address = o.serve_opts.protocol.host_address;
     member.protocol.eeprom_locked = o.serve_opts.protocol.eeprom_locked;
+    member.protocol.variants = o.serve_opts.protocol.variants;
     o.serve_opts.bus.push_back(member);
     cores.push_back(std::move(core));
     vms.push_back(std::move(vm));
@@ -97,7 +98,7 @@ int tmclrun::check_mode_options(Options& o, bool have_program) {
   if (o.testing && !have_program) return usage_error("--test needs test files or folders (FILE.tmctest or DIR)");
   if (!o.serving) {
     for (const char* opt : {"--autostart", "--time-scale", "--module-address", "--host-address", "--eeprom-locked",
-                            "--max-wall-time", "--faults", "--module"})
+                            "--variant", "--max-wall-time", "--faults", "--module"})
       if (std::find(o.given.begin(), o.given.end(), opt) != o.given.end())
         return usage_error(std::string(opt) + " goes with --serve");
   } else if (o.json || !o.csv.empty() || !o.plot.empty() || o.limits.until != tmcl::kNever ||

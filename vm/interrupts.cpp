@@ -16,6 +16,8 @@ struct NotSimulated {
 };
 constexpr NotSimulated kNotSimulated[] = {
     // the load measurements are modelled by the TMCM cores and the linear core (vm/motion/stall_core.cpp, docs/motion.md)
+    // no core models the position compare unit (errata: the TMCM-1290's 43-46)
+    {VectorSource::PositionCompare, "*", "no position compare (axis parameters 43, 44) is modelled"},
     {VectorSource::Stall, "ideal", "the ideal core models no load and no stallGuard2"},
     {VectorSource::Stall, "tmc4361", "the tmc4361 core models no load and no stallGuard2"},
     {VectorSource::Deviation, "linear", "the linear core has no encoder model"},
@@ -31,6 +33,7 @@ constexpr int kMaxMotors = 6, kMaxInputs = 8;
 VectorKind vector_kind(int n) {
   if (n >= kVectorTimer0 && n < kVectorTimer0 + kTimerVectors) return {VectorSource::Timer, n - kVectorTimer0};
   if (n >= kVectorTarget0 && n < kVectorTarget0 + kMaxMotors) return {VectorSource::TargetReached, n - kVectorTarget0};
+  if (n >= kVectorCompare0 && n < kVectorCompare0 + kMaxMotors) return {VectorSource::PositionCompare, n - kVectorCompare0};
   if (n >= kVectorStall0 && n < kVectorStall0 + kMaxMotors) return {VectorSource::Stall, n - kVectorStall0};
   if (n >= kVectorDeviation0 && n < kVectorDeviation0 + kMaxMotors) return {VectorSource::Deviation, n - kVectorDeviation0};
   if (n >= kVectorStopLeft0 && n < kVectorStopLeft0 + 2 * kMaxMotors)
@@ -45,6 +48,7 @@ std::string vector_source_text(VectorKind k) {
   switch (k.source) {
     case VectorSource::Timer: return "timer " + i;
     case VectorSource::TargetReached: return "target position reached of motor " + i;
+    case VectorSource::PositionCompare: return "position compare of motor " + i;
     case VectorSource::Stall: return "stallGuard2 stall of motor " + i;
     case VectorSource::Deviation: return "encoder deviation of motor " + i;
     case VectorSource::StopLeft: return "left stop switch of motor " + i;

@@ -173,9 +173,14 @@ void Vm::start(std::int32_t address) {
 }
 
 RunResult Vm::step() {
+  const bool waiting = wait.active;
   start(pc);
-  // A one-microsecond window: a WAIT is entered (or checked) but never jumps time ahead.
-  RunResult r = run(Limits{steps + 1, now + 1});
+  // A one-microsecond window: a WAIT is entered (or checked) but never jumps time ahead. A WAIT
+  // in progress is the instruction this step runs: it is checked once and, when over, left, but
+  // the instruction after it is the next step's (errata S11).
+  Limits lim{waiting ? steps : steps + 1, now + 1};
+  lim.to_instruction = waiting;
+  RunResult r = run(lim);
   if (status == AppStatus::Running) status = AppStatus::Step;
   return r;
 }
@@ -253,6 +258,7 @@ std::string_view warning_kind_name(RuntimeWarning::Kind k) {
     case RuntimeWarning::NoSuchPort: return "no-such-port";
     case RuntimeWarning::NoSuchCoordinate: return "no-such-coordinate";
     case RuntimeWarning::NotSimulated: return "not-simulated";
+    case RuntimeWarning::NoSuchType: return "no-such-type";
   }
   return "unknown";
 }

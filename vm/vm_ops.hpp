@@ -288,6 +288,14 @@ template <bool D> R move(Vm& vm, const Instruction& i, std::int32_t value) {
                                           : " has coordinates 0 to " + std::to_string(coords - 1))))
         return ok();
     }
+    // An MVP type the module does not have (from a .bin; tmclasm warns of it, -Wkeyword-value):
+    // status 3 and ignored, as by the module, with a warning naming the types there are (E80).
+    if (st == kStatusWrongType && i.type != kw::Move::COORD &&
+        Internal::warn(vm, RuntimeWarning::NoSuchType,
+                       std::to_string(i.type) + " is not a valid move type of " + std::string(op_info(i.op)->mnemonic) + ": " +
+                           std::string(vm.profile->title) +
+                           (vm.profile->coords == 0 ? " moves by ABS (0) and REL (1)" : " moves by ABS (0), REL (1) and COORD (2)")))
+      return ok();
     if (st == kStatusOk)
       if (std::string why = vm.motion->move_problem(i.motor); !why.empty())
         if (Internal::warn(vm, RuntimeWarning::RampSetting, "MVP on motor " + std::to_string(i.motor) + ": " + why)) return ok();

@@ -24,10 +24,7 @@ Instruction ins(Op op, int type, int motor, std::int32_t value = 0) {
 
 const Profile* profile_for_firmware(const std::string& version) {
   if (version.empty()) return nullptr;
-  std::vector<const Profile*> candidates;
-  for (const TargetEntry& e : list_targets())
-    if (e.error.empty() && e.shadowed_by.empty() && !e.alias)
-      if (const Profile* p = resolve_target(e.origin == "bundled" ? e.name : e.origin).profile) candidates.push_back(p);
+  const std::vector<const Profile*> candidates = found_profiles();
   for (const Profile* p : candidates)
     if (p->firmware == version) return p;
   const std::string number = module_number(version);

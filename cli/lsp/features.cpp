@@ -164,6 +164,8 @@ Server::Reply Server::hover(const Value& params) {
       if (!p) unknown("global parameter " + std::to_string(*value) + " of bank " + std::to_string(bank));
     }
     if (p) text += (text.empty() ? "" : "\n\n") + param_text(*p) + " (" + std::string(prof.name) + ")";
+    // The profile's not-simulated= reason, the same words tmclrun's note gives at run time.
+    if (p && !p->not_simulated.empty()) text += "\n\nnot simulated by tmclrun: " + std::string(p->not_simulated);
   }
   if (text.empty()) return r;
   r.result = markdown(text);

@@ -41,7 +41,9 @@ std::int32_t other_value(const tmcl::ParamInfo& p) {
   return static_cast<std::int32_t>(p.default_value == hi ? lo : hi);
 }
 
-std::string where(const tmcl::Profile& p, const Row& r) { return std::string(p.name) + ".md:" + std::to_string(r.line); }
+std::string where(const tmcl::Profile& p, const Row& r) {
+  return (r.from.empty() ? std::string(p.name) + ".md" : r.from) + ":" + std::to_string(r.line);
+}
 
 void check_stored(const tmcl::Profile& p, const Row& r, const tmcl::ParamInfo* info, int set_op, int get_op, int bank) {
   if (!info) return;  // conformance_tables says so
@@ -64,7 +66,7 @@ void check_stored(const tmcl::Profile& p, const Row& r, const tmcl::ParamInfo* i
 
 TEST(every_stored_row_reads_back_what_was_written) {
   for (const tmcl::Profile* p : conformance::modules()) {
-    const conformance::Table t = conformance::read_table(conformance::table_file(*p));
+    const conformance::Table t = conformance::table_of(*p);
     for (const auto& [sec, rows] : t.rows)
       for (const Row& r : rows) {
         if (r.status != "stored") continue;
@@ -82,7 +84,7 @@ TEST(every_stored_row_reads_back_what_was_written) {
 TEST(every_refused_command_is_refused_in_direct_mode_and_faults_a_program) {
   int checked = 0;
   for (const tmcl::Profile* p : conformance::modules()) {
-    const conformance::Table t = conformance::read_table(conformance::table_file(*p));
+    const conformance::Table t = conformance::table_of(*p);
     auto it = t.rows.find(Section::Commands);
     if (it == t.rows.end()) continue;
     for (const Row& r : it->second) {

@@ -3,6 +3,7 @@
 // (conformance_tables_test.cpp) and the test of their rows against the VM (conformance_rows_test.cpp).
 #pragma once
 
+#include <cctype>
 #include <filesystem>
 #include <map>
 #include <regex>
@@ -23,6 +24,7 @@ struct Row {
   int line;
   std::string key, name, status, text;
   std::vector<std::string> tests;  // the backticked names of the last cell
+  std::string from;                // the base table's file name for a row it inherits, else ""
 };
 
 enum class Section { None, Commands, Axis, Bank0, Bank3, Vectors, Other };
@@ -72,13 +74,43 @@ inline std::vector<std::string> test_names(const std::string& cell) {
   return out;
 }
 
-inline Table read_table(const fs::path& file) {
+// A table may start from another's rows: a line `Based on [NAME.md](NAME.md)` (a module whose
+// profile is `based-on` that one) takes every row of NAME.md, and a row of its own replaces the
+// base's row of the same section and key. An inherited row whose command, parameter or vector
+// the module lacks is dropped (is_inherited_and_absent); one it has is checked as its own.
+inline Table read_table(const fs::path& file, int depth = 0) {
   Table t;
   Section sec = Section::None;
+  static const std::regex based(R"(^Based on \[[^\]]+\]\(([A-Za-z0-9_.+-]+\.md)\))");
+  auto own = [&](Section s, Row r) {
+    auto& rows = t.rows[s];
+    for (Row& old : rows)
+      if (!old.from.empty() && old.key == r.key) {
+        old = std::move(r);
+        return;
+      }
+    rows.push_back(std::move(r));
+  };
   std::istringstream in(tmcl_test::read_text(file.string()));
   std::string line;
   for (int n = 1; std::getline(in, line); ++n) {
     if (!line.empty() && line.back() == '\r') line.pop_back();  // a checkout with CRLF line ends
+    std::smatch m;
+    if (sec == Section::None && std::regex_search(line, m, based)) {
+      const fs::path base = file.parent_path() / m[1].str();
+      if (depth > 4 || !fs::exists(base)) {
+        t.errors.push_back(file.filename().string() + ":" + std::to_string(n) + ": no table " + m[1].str() + " to be based on");
+        continue;
+      }
+      Table b = read_table(base, depth + 1);
+      for (auto& [s, rows] : b.rows)
+        for (Row& r : rows) {
+          if (r.from.empty()) r.from = base.filename().string();
+          t.rows[s].push_back(std::move(r));
+        }
+      for (std::string& e : b.errors) t.errors.push_back(std::move(e));
+      continue;
+    }
     if (line.rfind("## ", 0) == 0) {
       sec = section_of(trim(line.substr(3)));
       continue;
@@ -91,7 +123,7 @@ inline Table read_table(const fs::path& file) {
                          std::to_string(c.size()));
       continue;
     }
-    t.rows[sec].push_back(Row{n, c[0], c[1], c[2], c[3], test_names(c[4])});
+    own(sec, Row{n, c[0], c[1], c[2], c[3], test_names(c[4]), ""});
   }
   return t;
 }
@@ -105,5 +137,26 @@ inline std::vector<const tmcl::Profile*> modules() {
 }
 
 inline fs::path table_file(const tmcl::Profile& p) { return kRoot / "docs" / "conformance" / (std::string(p.name) + ".md"); }
+
+// The table of a module as its checks read it: an inherited row (Row::from) of a command,
+// parameter or vector the module lacks is the base module's only, and dropped.
+inline Table table_of(const tmcl::Profile& p, const fs::path& file) {
+  Table t = read_table(file);
+  for (auto& [sec, rows] : t.rows)
+    std::erase_if(rows, [&, sec = sec](const Row& r) {
+      if (r.from.empty() || r.key.empty() || !std::isdigit(static_cast<unsigned char>(r.key[0]))) return false;
+      const int n = std::stoi(r.key);
+      switch (sec) {
+        case Section::Commands: return n > 255 || (!p.has_command(static_cast<std::uint8_t>(n)) && r.status != "refused");
+        case Section::Axis: return !p.axis_param(n);
+        case Section::Bank0: return !p.global_param(0, n);
+        case Section::Bank3: return !p.global_param(3, n);
+        case Section::Vectors: return n > 255 || !p.vector(n);
+        default: return false;
+      }
+    });
+  return t;
+}
+inline Table table_of(const tmcl::Profile& p) { return table_of(p, table_file(p)); }
 
 }  // namespace conformance

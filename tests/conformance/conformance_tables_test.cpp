@@ -106,7 +106,9 @@ void check_row(Errors& errs, const std::string& where, const Row& r, bool comman
     if (!known_tests().count(t)) errs.push_back(where + ": no test '" + t + "' in tests/");
 }
 
-std::string where(const fs::path& file, const Row& r) { return file.filename().string() + ":" + std::to_string(r.line); }
+std::string where(const fs::path& file, const Row& r) {
+  return (r.from.empty() ? file.filename().string() : r.from + " (by " + file.filename().string() + ")") + ":" + std::to_string(r.line);
+}
 
 void check_commands(Errors& errs, const fs::path& file, const tmcl::Profile& p, const std::vector<Row>& rows) {
   std::set<int> executed;
@@ -218,7 +220,7 @@ void report(const Errors& errs) {
 // The messages of one table against its profile.
 Errors check_table(const fs::path& file, const tmcl::Profile& p) {
   Errors errs;
-  const Table t = read_table(file);
+  const Table t = conformance::table_of(p, file);
   for (const std::string& e : t.errors) errs.push_back(e);
   auto rows = [&](Section s) {
     auto it = t.rows.find(s);
@@ -327,4 +329,35 @@ TEST(the_checker_holds_vector_rows_to_the_not_simulated_table) {
   };
   says("vector 0 is raised, the row says 'not simulated'");
   says("vector 43 is never raised (not_simulated_reason), the row says 'simulated'");
+}
+
+// `Based on [NAME.md](NAME.md)`: a table takes the base's rows, its own replace the base's of the
+// same key, and an inherited row of a parameter the module lacks is dropped (the base module's).
+TEST(a_table_based_on_another_takes_its_rows_and_replaces_its_own) {
+  const tmcl::Profile* p = tmcl::find_profile("tmc2300-eval");
+  CHECK(p != nullptr);
+  if (!p) return;
+  const fs::path dir = fs::temp_directory_path() / "tmcl_conformance_based_on";
+  fs::create_directories(dir);
+  std::string base = tmcl_test::read_text((kRoot / "docs" / "conformance" / "tmc2300-eval.md").string());
+  const auto axis = base.find("## Axis parameters");
+  CHECK(axis != std::string::npos);
+  const auto rule = base.find("|---", axis);
+  base.insert(base.find('\n', rule) + 1, "| 9999 | Not on this module | stored | x | |\n");
+  std::ofstream(dir / "base.md", std::ios::binary) << base;
+  std::ofstream(dir / "derived.md", std::ios::binary)
+      << "# Derived\n\nBased on [base.md](base.md), but for the rows below.\n\n## Axis parameters\n\n"
+      << "| # | Name | Status | At run time | Tests |\n|---|---|---|---|---|\n| 4 | Top speed | stored | x | |\n";
+  std::ofstream(dir / "orphan.md", std::ios::binary) << "Based on [none.md](none.md)\n";
+  const Errors errs = check_table(dir / "derived.md", *p);
+  const Errors orphan = check_table(dir / "orphan.md", *p);
+  const Table t = conformance::table_of(*p, dir / "derived.md");
+  fs::remove_all(dir);
+  CHECK(errs.size() == 1);
+  for (const std::string& e : errs) CHECK(e.find("derived.md:9: axis parameter 4 is") != std::string::npos);
+  std::size_t inherited = 0;
+  for (const auto& [sec, rows] : t.rows)
+    for (const Row& r : rows) inherited += r.from == "base.md";
+  CHECK(inherited > 20);
+  CHECK(!orphan.empty() && orphan.front().find("orphan.md:1: no table none.md to be based on") != std::string::npos);
 }

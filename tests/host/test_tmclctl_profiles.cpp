@@ -6,25 +6,35 @@
 // agrees with the bundled one on which parameters exist.
 #include <set>
 #include <sstream>
+#include <utility>
 
 #include "check.hpp"
 #include "tmclctl_test.hpp"
+#include "tmcl/host/probe.hpp"
+#include "tmcl/profile.hpp"
 #include "tmcl/profile_file.hpp"
 
 using namespace hosttest;
+
+namespace {
+// Without -t, tmclctl names the module's parameters by its reply to 136: `name` reads `value`,
+// and the status shows the module's title.
+void named_by_136(const std::string& port, const char* name, const char* value, const char* title) {
+  Output g = ctl({port, "get", name});
+  show(g);
+  CHECK_EQ(g.status, 0);
+  CHECK_EQ(g.out, value);
+  CHECK(g.err.empty());
+  CHECK(has(ctl({port, "status"}).out, title));
+}
+}  // namespace
 
 TEST(the_reply_to_136_picks_the_profile) {
   Server server(kRun, {"--serve", "tcp:127.0.0.1:0", "-t", "tmcm-1110"});
   const std::string& p = server.port();
   // "Pulse divisor" is a TMCM-1110 parameter (154); generic would not know the name.
-  Output g = ctl({p, "get", "pulse divisor"});
-  show(g);
-  CHECK_EQ(g.status, 0);
-  CHECK_EQ(g.out, "3\n");
-  CHECK(g.err.empty());
-  Output s = ctl({p, "status"});
-  CHECK(has(s.out, "firmware:         1110V103"));
-  CHECK(has(s.out, "TMCM-1110 stepRocker (firmware 1.03)"));
+  named_by_136(p, "pulse divisor", "3\n", "TMCM-1110 stepRocker (firmware 1.03)");
+  CHECK(has(ctl({p, "status"}).out, "firmware:         1110V103"));
   // -t naming another module: it is used, with a warning.
   Output w = ctl({"-t", "usb-2-sd", p, "get", "ap", "4"});
   CHECK_EQ(w.status, 0);
@@ -34,21 +44,23 @@ TEST(the_reply_to_136_picks_the_profile) {
   CHECK(ctl({"-t", "generic", p, "get", "ap", "4"}).err.empty());
 }
 
+// The TMCM-1290 and TMCM-3216 by their replies to 136 (module numbers 1290, 3216): their names
+// without -t ("Velocity V2" is theirs, axis parameter 35).
+TEST(the_reply_to_136_picks_the_tmcm_1290_and_3216) {
+  for (const auto& [name, title] : {std::pair{"tmcm-1290", "TMCM-1290 (firmware 1.01)"},
+                                    std::pair{"tmcm-3216", "TMCM-3216 (3 axes, TMCM-1290 firmware family)"}}) {
+    Server server(kRun, {"--serve", "tcp:127.0.0.1:0", "-t", name});
+    named_by_136(server.port(), "velocity v2", "0\n", title);
+  }
+}
+
+// Two modules of one parameter set (tmcm-3351 is based on tmcm-3312): the module number of the
+// reply picks each one's own profile, with a name only these modules have (129, closed loop).
 TEST(the_reply_to_136_tells_the_tmcm3351_from_the_tmcm3312) {
-  // Two modules of one parameter set (tmcm-3351 is based on tmcm-3312): the module number of the
-  // reply picks each one's own profile, with a name only these modules have (129, closed loop).
-  for (const char* module : {"tmcm-3351", "tmcm-3312"}) {
-    Server server(kRun, {"--serve", "tcp:127.0.0.1:0", "-t", module});
-    const std::string& p = server.port();
-    Output g = ctl({p, "get", "closed loop"});
-    show(g);
-    CHECK_EQ(g.status, 0);
-    CHECK_EQ(g.out, "0\n");
-    CHECK(g.err.empty());
-    const std::string number = std::string(module).substr(5);
-    Output s = ctl({p, "status"});
-    CHECK(has(s.out, "firmware:         " + number + "V100"));
-    CHECK(has(s.out, "TMCM-" + number + " (3 axes)"));
+  for (const auto& [name, number] : {std::pair{"tmcm-3351", "3351"}, std::pair{"tmcm-3312", "3312"}}) {
+    Server server(kRun, {"--serve", "tcp:127.0.0.1:0", "-t", name});
+    named_by_136(server.port(), "closed loop", "0\n", (std::string("TMCM-") + number + " (3 axes)").c_str());
+    CHECK(has(ctl({server.port(), "status"}).out, std::string("firmware:         ") + number + "V100"));
   }
 }
 
@@ -174,4 +186,69 @@ TEST(probe_drafts_a_profile_that_agrees_on_which_parameters_exist) {
   CHECK_EQ(none.status, 69);
   CHECK(!exists(out + ".none"));
   CHECK_EQ(ctl({server.port(), "probe"}).status, 64);  // -o is needed
+}
+
+// tmclctl knows a module by its reply to 136, found among the profiles (none is listed by hand):
+// every bundled module's own string picks its profile, and so does another version of its module
+// number (a newer firmware); no two bundled modules share a module number, so the pick is never a
+// guess between two.
+TEST(every_bundled_modules_firmware_reply_picks_its_profile) {
+  std::set<std::string> numbers;
+  int modules = 0;
+  for (const tmcl::Profile* p : tmcl::all_profiles()) {
+    const std::string fw(p->firmware);
+    const auto v = fw.find('V');
+    if (p->any_parameter || v == std::string::npos) continue;
+    ++modules;
+    CHECK(numbers.insert(fw.substr(0, v)).second);
+    CHECK(tmcl::host::profile_for_firmware(fw) == p);
+    const std::string other = fw.substr(0, v) + (fw.substr(v) == "V999" ? "V998" : "V999");
+    const tmcl::Profile* q = tmcl::host::profile_for_firmware(other);
+    if (q != p) tmcl_test::fail(__FILE__, __LINE__, other + " picks " + (q ? std::string(q->name) : "nothing") + ", not " + std::string(p->name));
+  }
+  CHECK(modules >= 17);
+}
+
+// What the vendor's Python library sends in its rotate demo of these modules (PyTrinamic
+// examples/modules/TMCM1240/TMCL/rotate_demo.py, the same for the -1241, -1260, -1270, -1276 and
+// -1278: currents 6 and 7, 256 microsteps, speed 4 and acceleration 5, relative moves from the
+// actual position (127 = 1), the position cleared, ROR, MST, MVP REL, position reached 8 polled,
+// MVP ABS back to 0), sent to `tmclrun --serve -t NAME` of every module on the TMC5160 core with
+// no -t on tmclctl's side: the reply to 136 names the module, and every command succeeds. The
+// library itself is not installable here, so its requests are replayed, not its script run.
+TEST(the_vendors_rotate_demo_runs_on_every_tmc5160_module) {
+  int modules = 0;
+  for (const tmcl::Profile* p : tmcl::all_profiles()) {
+    if (p->default_motion != "tmc5160") continue;
+    ++modules;
+    const std::string name(p->name);
+    Server server(kRun, {"--serve", "tcp:127.0.0.1:0", "-t", name, "--time-scale", "20"});
+    const std::string& port = server.port();
+    auto send = [&](const std::string& ins) {
+      Output o = ctl({port, "send", ins});
+      if (o.status != 0 || o.out.rfind("100 success", 0) != 0)
+        tmcl_test::fail(__FILE__, __LINE__, name + ": " + ins + ": " + o.out + o.err);
+      const auto at = o.out.find("value ");
+      return at == std::string::npos ? 0 : std::stoi(o.out.substr(at + 6));
+    };
+    for (const char* ins : {"SAP 6, 0, 50", "SAP 7, 0, 0", "SAP 140, 0, 8", "SAP 4, 0, 20000", "SAP 5, 0, 40000",
+                            "SAP 127, 0, 1", "SAP 1, 0, 0", "ROR 0, 20000"})
+      send(ins);
+    CHECK(send("GAP 2, 0") == 20000);
+    send("MST 0");
+    for (int i = 0; i < 200 && send("GAP 3, 0") != 0; ++i) {
+    }  // the motor ramps down (the demo sleeps 2 s)
+    const int stopped = send("GAP 1, 0");
+    send("MVP REL, 0, " + std::to_string(stopped));
+    int reached = 0;
+    for (int i = 0; i < 200 && !reached; ++i) reached = send("GAP 8, 0");
+    CHECK(reached == 1);
+    CHECK_EQ(send("GAP 1, 0"), 2 * stopped);
+    send("MVP ABS, 0, 0");
+    reached = 0;
+    for (int i = 0; i < 200 && !reached; ++i) reached = send("GAP 8, 0");
+    CHECK_EQ(send("GAP 1, 0"), 0);
+    CHECK(has(ctl({port, "status"}).out, std::string(p->title)));
+  }
+  CHECK(modules >= 8);  // the TMCM-1260 and the seven of its family
 }

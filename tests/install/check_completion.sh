@@ -65,7 +65,7 @@ expect "tmclasm -d " sub prog.bin prog.dgm
 expect "tmclasm -I " sub
 expect "tmclrun --plot " sub motion.svg
 expect "tmclrun --plot=mo" motion.svg
-expect "tmclrun --motion tmc" tmc429 tmc4361 tmc5160
+expect "tmclrun --motion tmc" tmc429 tmc4361 tmc5160 tmc5240
 expect "tmclrun --serve tcp:" 127.0.0.1:2001
 expect "tmclrun -Wno-reti" -Wno-reti
 expect "tmclrun --debug-c" --debug-commands

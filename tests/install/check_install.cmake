@@ -30,7 +30,7 @@ endif()
 set(expect
   include/tmcl/vm.hpp include/tmcl/version.hpp include/tmcl/asm/assembler.hpp
   share/tmcl/include/TMCLParam.tmc share/tmcl/include/Interrupts.inc
-  share/doc/tmcl/README.md share/doc/tmcl/tmclasm.md
+  share/doc/tmcl/README.md share/doc/tmcl/LICENSE share/doc/tmcl/tmclasm.md
   ${LIBDIR}/cmake/tmcl/tmclConfig.cmake ${LIBDIR}/cmake/tmcl/tmclConfigVersion.cmake
   ${LIBDIR}/cmake/tmcl/tmclTargets.cmake)
 foreach(lib IN LISTS libs)

@@ -1,6 +1,31 @@
-# Fails when a library includes a header of a library above it (docs/architecture.md).
-# Run as: cmake -DROOT=<source dir> -P check_layers.cmake
+# Fails when a library includes a header of a library above it (docs/architecture.md), or when
+# the top level holds a folder or file the project's design does not name.
+# Run as: cmake -DROOT=<source dir> -P check_layers.cmake  (-DTOP_ONLY=ON: the top level alone)
 #
+# The top level is the one the design fixes: these folders and files, README and LICENSE files
+# and dot-files beside them. A build folder inside the tree (it holds a CMakeCache.txt) is no part
+# of the project and is passed over; anything else is a folder to move where its job belongs.
+set(TOP_ALLOWED CMakeLists.txt asm vm include_files cli tests examples docs)
+set(failures 0)
+file(GLOB top_entries RELATIVE "${ROOT}" "${ROOT}/*")
+foreach(entry IN LISTS top_entries)
+  if(entry MATCHES "^\\." OR entry MATCHES "^(README|LICENSE)" OR EXISTS "${ROOT}/${entry}/CMakeCache.txt")
+    continue()
+  endif()
+  list(FIND TOP_ALLOWED "${entry}" at)
+  if(at EQUAL -1)
+    message(SEND_ERROR "top level: '${entry}' is not one of ${TOP_ALLOWED} (README, LICENSE and dot-files aside); move it into the folder whose job it serves (docs/architecture.md)")
+    math(EXPR failures "${failures} + 1")
+  endif()
+endforeach()
+if(TOP_ONLY)
+  if(failures GREATER 0)
+    message(FATAL_ERROR "${failures} entr(ies) at the top level the design does not name")
+  endif()
+  message(STATUS "top level: as the design fixes it")
+  return()
+endif()
+
 # Each library is a folder; the table says which libraries each may reach (itself included).
 # A header belongs to the library whose include/ folder holds it. A new library adds a row here.
 set(LAYERS
@@ -23,7 +48,6 @@ set(LAYERS
 # (docs/architecture.md). So `asm/` never uses the machine of `vm/` above `vm/isa` through a row,
 # and nothing in `vm/` uses the assembler.
 set(TOP_LEVELS vm asm cli)
-set(failures 0)
 foreach(row IN LISTS LAYERS)
   string(REPLACE "|" ";" parts "${row}")
   list(GET parts 0 lib)

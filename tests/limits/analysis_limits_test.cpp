@@ -1,7 +1,7 @@
 // The control-flow analysis at scale (docs/limits.md, docs/analysis.md): warnings of one kind
 // past --error-limit are counted, kept no longer and summed up in one line; a call chain as deep
 // as the program is long costs a list of its calls once, not once per subroutine. Speed itself is
-// measured by bench/analysis_bench.cpp, never here.
+// measured by tests/bench/analysis_bench.cpp, never here.
 #include <string>
 
 #include "check.hpp"

@@ -418,6 +418,36 @@ TEST(hover_completion_and_diagnostics_follow_the_module) {
   CHECK(divisor);
 }
 
+// A parameter whose row the profile calls not simulated says so, and why (the profile's
+// not-simulated= reason, which tmclrun's note gives at run time); a simulated one says nothing.
+TEST(hover_of_a_parameter_tmclrun_does_not_simulate_says_why) {
+  Client c;
+  start(c, R"({"target":"tmcm-1110"})");
+  c.open(kEditUri, "  SAP 213, 0, 1\n  SAP 4, 0, 100\n");
+  CHECK_EQ(hover_text(c, kEditUri, 0, 6), "213: Group index, 0…255, RW, default 0 (tmcm-1110)\n\n"
+                                          "not simulated by tmclrun: group moves are not modelled");
+  CHECK(hover_text(c, kEditUri, 1, 6).find("not simulated") == std::string::npos);
+}
+
+// A bundled module is known to the server by its profile file alone (docs/profiles.md, "A new
+// bundled profile"): the TMCM-6214's first line, hover, completion, its six motors and the names
+// of its generated include file.
+TEST(a_module_known_by_its_profile_file_alone) {
+  Client c;
+  start(c, R"({"target":"usb-2-sd"})");
+  c.open(kEditUri, "// tmcl-target: tmcm-6214\n#include TMCM-6214.inc\n  SAP 40, 5, 100\n  SAP AP_DeviationAction, 5, 1\n  SAP \n");
+  const std::string h = hover_text(c, kEditUri, 2, 6);
+  CHECK(h.find("40: Position compare start") == 0);
+  CHECK(h.find("(tmcm-6214)") != std::string::npos);
+  Value d = c.last_diagnostics(kEditUri);
+  CHECK_EQ(d.size(), 1u);  // the unfinished SAP only: 40 and 240 exist, and motor 5
+  Value items = c.request("textDocument/completion", pos(kEditUri, 4, 6))["result"];
+  bool compare = false;
+  for (const Value& i : items.items())
+    compare = compare || (i["label"].as_string() == "40" && i["detail"].as_string().find("Position compare start") != std::string::npos);
+  CHECK(compare);
+}
+
 // The assembler's check of what the module's EEPROM keeps (STAP/RSAP/STGP/RSGP) is the server's too.
 TEST(a_store_of_what_the_eeprom_does_not_keep_is_a_diagnostic) {
   Client c;

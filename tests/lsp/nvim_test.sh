@@ -9,9 +9,9 @@ fi
 dir=$(mktemp -d) || exit 1
 trap 'rm -rf "$dir"' EXIT
 printf 'Speed = 1000\nLoop:\nsap 4,0,Speed\n  MVP ABS, 0, 100\n  JA Lop\n' > "$dir/prog.tmc"
-# A test file (*.tmctest), found by editors/vim/ftdetect: its diagnostics come from the same server.
+# A test file (*.tmctest), found by cli/lsp/editors/vim/ftdetect: its diagnostics come from the same server.
 printf 'Top:\n  STOP\n' > "$dir/good.tmc"
 printf '# a test\nprogram good.tmc\nexpect at end pc = Tpo\n' > "$dir/check.tmctest"
 HOME="$dir" XDG_CACHE_HOME="$dir" XDG_STATE_HOME="$dir" TMCL_LSP="$1" TMC_FILE="$dir/prog.tmc" \
-  TMCTEST_FILE="$dir/check.tmctest" TMCL_FTDETECT="$2/../../editors/vim/ftdetect/tmcl.vim" \
+  TMCTEST_FILE="$dir/check.tmctest" TMCL_FTDETECT="$2/../../cli/lsp/editors/vim/ftdetect/tmcl.vim" \
   timeout 60 nvim --headless --clean -u NONE -c "luafile $2/nvim_test.lua"

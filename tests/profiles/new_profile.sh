@@ -4,6 +4,8 @@
 # module profile"; issue 35). Checked two ways:
 # - every file of vm/isa/profiles/ is a bundled target of --list-targets, of -t's completion in
 #   every tool, of `-t NAME` and of the table in docs/profiles.md, and has a source table;
+# - no golden file or document (but docs/profiles.md) lists the bundled modules, so that a new
+#   profile changes none (issue 42);
 # - a copy of a profile under a new name in a profile folder of its own (as a bundled one is
 #   compiled in from vm/isa/profiles/ by vm/isa/embed_files.cmake, which this runs on the copy) is
 #   at once a target everywhere, and no message of an unknown target changes.
@@ -52,6 +54,26 @@ for f in "$src"/vm/isa/profiles/*.profile; do
     problem "$name: no source table tests/data/modules/$upper-*.tsv"
 done
 ((count >= 11)) || problem "only $count profiles in $src/vm/isa/profiles"
+
+# 1b. No golden file or document lists the bundled modules by hand (a list that every new profile
+# would change): no golden line, and no paragraph of docs/ but profiles.md's table, names more
+# than half of them (case-insensitive, so TMCM-1260.inc counts as tmcm-1260).
+names=()
+for f in "$src"/vm/isa/profiles/*.profile; do names+=("$(basename "$f" .profile)"); done
+half=$(( ${#names[@]} / 2 ))
+pattern=$(IFS='|'; echo "${names[*]}")
+too_many() {  # FILE RS: the records (lines, or paragraphs with RS="") naming more than half
+  awk -v RS="$2" -v pat="$pattern" -v half="$half" -v file="$1" '
+    { n = 0; split(pat, all, "|"); low = tolower($0)
+      for (i in all) if (index(low, all[i])) n++
+      if (n > half) print file ": " n " bundled modules named in one " (RS == "" ? "paragraph" : "line") ": " substr($0, 1, 100) }' "$1"
+}
+while IFS= read -r f; do
+  out=$(too_many "$f" '\n'); [[ -z $out ]] || problem "$out"
+done < <(find "$src/tests/golden" -name '*.golden')
+while IFS= read -r f; do
+  out=$(too_many "$f" ''); [[ -z $out ]] || problem "$out (say 'every bundled module' and point to --list-targets or docs/profiles.md)"
+done < <(find "$src/docs" -name '*.md' ! -path '*/profiles.md' ! -path '*/conformance/*')
 
 # 2. A new profile: tmcm-1110's facts under the name tmcm-9110 (its aliases are tmcm-1110's).
 before=$(tmclasm -t usb2sd prog.tmc 2>&1)

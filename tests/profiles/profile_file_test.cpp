@@ -135,6 +135,34 @@ TEST(based_on_takes_everything_and_changes_some) {
   CHECK_EQ(p.vectors.size(), usb.vectors.size());
 }
 
+// `based-on NAME unverified`: the base's parameter facts, none confirmed for this module; `without`
+// takes away what the base has and this module lacks, and nothing else.
+TEST(based_on_unverified_and_without) {
+  Parsed r = parse(
+      "tmcl-profile 1\nname usb-kin\nbased-on usb-2-sd unverified\nwithout axis 4 5\nwithout global 0 77\nwithout vector 0\n"
+      "axis 8 \"Position reached flag\" 0..1 R\n");
+  CHECK_EQ(r.text, std::string());
+  if (!r.store) return;
+  const Profile& p = r.store->profile;
+  const Profile& usb = *tmcl::find_profile("usb-2-sd");
+  CHECK(!p.axis_param(4) && !p.axis_param(5) && usb.axis_param(4));
+  CHECK_EQ(p.axis_params.size(), usb.axis_params.size() - 2);
+  CHECK(!p.global_param(0, 77) && p.global_param(0, 66));
+  CHECK(!p.vector(0) && p.vector(1));
+  const auto all = tmcl::kFactRange | tmcl::kFactAccess | tmcl::kFactDefault | tmcl::kFactUnit;
+  CHECK(p.axis_param(0) && (p.axis_param(0)->unverified & all) == all);
+  CHECK(p.global_param(0, 66) && (p.global_param(0, 66)->unverified & all) == all);
+  CHECK(p.axis_param(8) && p.axis_param(8)->unverified == 0);  // a line of its own is its own
+  std::vector<std::string> facts(p.unverified.begin(), p.unverified.end());
+  CHECK(!facts.empty() && facts.front() == "based-on");
+  CHECK(says(parse("tmcl-profile 1\nname x\nbased-on usb-2-sd\nwithout axis 4 250\n"),
+             "4:16: error: the base has no axis parameter 250 to take away"));
+  CHECK(says(parse("tmcl-profile 1\nname x\nbased-on usb-2-sd\nwithout motor 4\n"),
+             "4:9: error: without takes 'axis', 'global BANK' or 'vector', not 'motor'"));
+  CHECK(says(parse("tmcl-profile 1\nname x\nfirmware 0001V100\nmotors 1\nprogram-memory 10\ncommands 1-6\nwithout axis 4\n"),
+             "7:1: error: 'without' takes parameters or vectors away from a profile's base: it needs a based-on line"));
+}
+
 TEST(not_a_profile) {
   CHECK(says(parse(""), "t.profile:1: error: not a tmcl profile: the file is empty"));
   CHECK(says(parse("SAP 4, 0, 100\nSTOP\n"), "t.profile:1:1: error: not a tmcl profile: the first line must be 'tmcl-profile 1'"));

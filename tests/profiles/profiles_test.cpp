@@ -429,7 +429,7 @@ TEST(tmclparam_matches_tmcl_ide_names) {
 TEST(interrupts_inc_matches_vectors) {
   const auto defs = read_include("Interrupts.inc");
   const auto have = as_map("Interrupts.inc", defs);
-  CHECK_EQ(have.size(), std::size_t{3 + 6 * 5 + 8 + 1});  // timers, 5 per axis, inputs, global
+  CHECK_EQ(have.size(), std::size_t{3 + 6 * 5 + 3 + 8 + 1});  // timers, 5 per axis, position compare of 3 axes, inputs, global
   for (const Profile* p : tmcl::all_profiles())
     for (const auto& v : p->vectors) {
       const auto it = have.find(upper(v.name));
@@ -507,17 +507,20 @@ std::string doc_paragraph(const std::string& doc, const std::string& marker) {
 
 }  // namespace
 
-TEST(docs_listing_the_bundled_modules_name_every_profile) {
-  // tmclrun.md's opening and debugger.md's DAP `target` argument name every bundled profile by
-  // its -t name: a profile added to vm/isa/profiles/ fails here until the docs say so.
+TEST(docs_about_the_bundled_modules_point_to_the_list_instead_of_keeping_one) {
+  // tmclrun.md's opening and debugger.md's DAP `target` argument say where the bundled modules
+  // are listed (--list-targets) and name a few as examples, not all: a list kept by hand there
+  // would be one more file each new profile has to edit (docs/profiles.md, "A new bundled
+  // profile"; tests/profiles/new_profile.sh checks every document so).
   const std::pair<const char*, const char*> lists[] = {{"tmclrun.md", "runs a TMCL program on a virtual module"},
                                                        {"debugger.md", "`launch` arguments"}};
   for (const auto& [doc, marker] : lists) {
     const std::string paragraph = doc_paragraph(doc, marker);
     CHECK(!paragraph.empty());
-    for (const Profile* p : tmcl::all_profiles())
-      if (paragraph.find("`" + std::string(p->name) + "`") == std::string::npos)
-        ::tmcl_test::fail(__FILE__, __LINE__, std::string(doc) + " does not name " + std::string(p->name) + " where it lists the modules");
+    CHECK(paragraph.find("--list-targets") != std::string::npos);
+    int named = 0;
+    for (const Profile* p : tmcl::all_profiles()) named += paragraph.find("`" + std::string(p->name) + "`") != std::string::npos;
+    if (named > 4) ::tmcl_test::fail(__FILE__, __LINE__, std::string(doc) + " names " + std::to_string(named) + " bundled modules: a list kept by hand");
   }
 }
 
@@ -555,7 +558,7 @@ TEST(generated_module_include_files_name_every_parameter_once_and_clash_with_no_
       if (tmclparam.count(upper(d.name))) ::tmcl_test::fail(__FILE__, __LINE__, file + " redefines " + d.name);
     add(file, defs);
   }
-  CHECK(generated >= 8);  // the TMCM modules (more as profiles are added)
+  CHECK(generated >= 8);  // the TMCM modules (not counted by hand: a new profile changes nothing here)
 }
 
 TEST(parameter_constants_follow_the_naming_scheme) {

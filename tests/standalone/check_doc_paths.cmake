@@ -7,7 +7,7 @@
 include(${CMAKE_CURRENT_LIST_DIR}/../unit/checks.cmake)
 file(GLOB docs "${ROOT}/docs/*.md")
 list(APPEND docs "${ROOT}/README.md")
-set(top "(asm|vm|cli|tests|include_files|examples|bench|fuzz|editors|docs|\\.ci)")
+set(top "(asm|vm|cli|tests|include_files|examples|docs|\\.ci)")
 set(checked 0)
 foreach(doc IN LISTS docs)
   file(READ "${doc}" text)

@@ -153,7 +153,7 @@ TEST(file_every_mistake_at_once) {
            "switch, hardstop, load, expect); did you mean 'max-time'?\n max-tme 10s\n ^~~~~~~\n"
            "t.tmctest:4:10: error: bad duration: '10' needs a unit: us, ms, s, min or h (only 0 may go without one)\n max-time 10\n          ^~\n"
            "t.tmctest:5:12: error: bad duration: '-5us' is negative; a duration is 0 or more\n instr-time -5us\n            ^~~~\n"
-           "t.tmctest:6:8: error: unknown motion core 'tmc4631' (ideal, linear, tmc429, tmc4361, tmc5160); did you mean 'tmc4361'?\n"
+           "t.tmctest:6:8: error: unknown motion core 'tmc4631' (ideal, linear, tmc429, tmc4361, tmc5160, tmc5240); did you mean 'tmc4361'?\n"
            " motion tmc4631\n        ^~~~~~~\n"
            "t.tmctest:7:8: error: expected 'define NAME=VALUE', as tmclasm's -D\n define SPEED\n        ^~~~~\n"
            "t.tmctest:8:1: error: unknown line 'expcet' (program, target, motion, instr-time, max-time, define, skip, at, "

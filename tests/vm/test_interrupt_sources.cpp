@@ -85,6 +85,7 @@ std::int32_t raise_it(const tmcl::Profile& p, int n, tmcl::VectorKind k) {
     }
     case VectorSource::InputChange:
       return handler_calls(p, n, {I(Op::SGP, n, 3, 3)}, {event(InputEvent::Digital, 1'000'000, m, 1)});
+    case VectorSource::PositionCompare:  // declared not simulated (vm/interrupts.cpp)
     case VectorSource::GlobalEnable:
     case VectorSource::Unknown: break;
   }

@@ -1,6 +1,7 @@
 // Parameter names across modules (tmcl/param_names.hpp): the renumbering hint and the generated
 // module include files. Both read the profiles only; no module is named here.
 #include "tmcl/param_names.hpp"
+#include "tmcl/targets.hpp"
 
 #include <algorithm>
 #include <cctype>
@@ -59,7 +60,7 @@ int nearness(std::string_view a, std::string_view b) {
 std::vector<Renumbered> renumbered(const Profile& profile, ParamTable table, int number) {
   std::vector<Renumbered> out;
   const auto here = table_of(profile, table);
-  for (const Profile* other : all_profiles()) {
+  for (const Profile* other : found_profiles()) {
     if (other->any_parameter || other->name == profile.name) continue;
     const auto there = table_of(*other, table);
     const ParamInfo* meant = find_in(there, number);

@@ -55,6 +55,7 @@ constexpr KeyInfo kKeys[] = {
     {"ports", 1, 1, 0, true, "ports listed|any"},
     {"port", 5, 6, kDefault | kUnit, false, "port BANK N \"NAME\" in|out digital|analog|bits [MIN..MAX] [default=V] [unit=U]"},
     {"vector", 3, 3, 0, false, "vector N NAME \"MEANING\""},
+    {"without", 2, -1, 0, false, "without axis N...|global BANK N...|vector N..."},
 };
 
 constexpr std::string_view kAttrNames[] = {"src", "unverified", "default", "unit", "eeprom", "fallback", "values", "not-simulated"};
@@ -409,6 +410,15 @@ struct Reader {
               std::string(p.name) + "' this file hides, and there is none)";
       if (!base) return error(w[1], why.empty() ? "unknown profile '" + std::string(w[1].text) + "' for based-on" : why);
       inherit(*base);
+      // `based-on NAME unverified`: the base module's facts, which no source confirms for this
+      // one (its manual is not at hand): every range, access, default and unit it inherits.
+      if (unverified_facts) {
+        for (auto* table : {&s.axis, &s.bank0, &s.bank3})
+          for (ParamInfo& q : *table) q.unverified |= kFactRange | kFactAccess | kFactDefault | kFactUnit;
+        for (IoPort& q : s.ports) q.unverified = true;
+      }
+    } else if (k == "without") {
+      without(w);
     } else if (k == "source") {
       if (!valid_name(w[1].text) || w[1].quoted) return error(w[1], "a source ID is a short name such as M or TMCM1110");
       auto [it, fresh] = sources.emplace(w[1].text, line_no);
@@ -665,6 +675,34 @@ struct Reader {
                             [&](const IoPort& x) { return x.bank == bank && x.number == n && x.output == output; });
     if (old != s.ports.end()) *old = port;
     else s.ports.push_back(port);
+  }
+
+  // without axis N... | global BANK N... | vector N...: the base has them, this module does not.
+  void without(const std::vector<Word>& w) {
+    if (!based) return error(w[0], "'without' takes parameters or vectors away from a profile's base: it needs a based-on line");
+    const std::string_view what = w[1].text;
+    std::size_t at = 2;
+    std::int64_t bank = -1, n = 0;
+    if (what == "global") {
+      if (w.size() < 4) return error(w[1], "without global BANK N...: a bank and at least one number");
+      if (!number(w[2], 0, 3, bank, "a bank")) return;
+      if (bank != 0 && bank != 3) return error(w[2], "global parameters are in banks 0 and 3");
+      at = 3;
+    } else if (what != "axis" && what != "vector") {
+      return error(w[1], "without takes 'axis', 'global BANK' or 'vector', not '" + std::string(what) + "'");
+    }
+    for (std::size_t i = at; i < w.size(); ++i) {
+      if (!number(w[i], 0, 255, n, what == "vector" ? "an interrupt number" : "a parameter number")) return;
+      bool gone = false;
+      if (what == "vector") {
+        gone = std::erase_if(s.vectors, [&](const InterruptVector& v) { return v.number == n; }) > 0;
+      } else {
+        auto& table = what == "axis" ? s.axis : bank == 0 ? s.bank0 : s.bank3;
+        gone = std::erase_if(table, [&](const ParamInfo& q) { return q.number == n; }) > 0;
+      }
+      if (!gone) return error(w[i], "the base has no " + std::string(what == "global" ? "global parameter" : what == "axis" ? "axis parameter" : "vector") +
+                                    " " + std::to_string(n) + " to take away");
+    }
   }
 
   // based-on: everything of the base, which this file's lines then change.

@@ -291,6 +291,19 @@ std::vector<TargetEntry> list_targets(const TargetSearch& search) {
   return out;
 }
 
+std::vector<const Profile*> found_profiles(const TargetSearch& search) {
+  std::vector<const Profile*> out;
+  for (const TargetEntry& e : list_targets(search)) {
+    if (!e.error.empty() || !e.shadowed_by.empty() || e.alias) continue;
+    if (e.origin == "bundled") {
+      if (const Profile* p = find_profile(e.name)) out.push_back(p);
+    } else if (const Loaded& l = load_file(e.origin, search); l.store) {
+      out.push_back(&l.store->profile);
+    }
+  }
+  return out;
+}
+
 std::vector<std::string> target_names(const TargetSearch& search) {
   std::vector<std::string> names;
   for (const TargetEntry& e : list_targets(search))

@@ -67,6 +67,14 @@ void TmclModule::control(const Instruction& ins) {
       const RunResult r = vm_.step();
       if (trapped) vm_.set_trap(at, true);
       if (r.halt == Halt::Fault) note("program fault: " + r.message);
+      if (options_.variants.step_waits && !run_program && vm_.wait.active && vm_.status == AppStatus::Step) {
+        // S24: this firmware answers when the wait is over; advance() runs it to its end.
+        step_held_ = true;
+        held_module_ = reply_module_;
+        held_host_ = reply_host_;
+        vm_.status = AppStatus::Running;
+        return;
+      }
       reply(kStatusOk, op, 0);
       check_events();
       return;
@@ -75,6 +83,7 @@ void TmclModule::control(const Instruction& ins) {
     case Op::ResetApplication:  // 131: stop, pc, stacks, registers and flags to zero
       commit_download();
       vm_.reset_application();
+      if (options_.variants.reset_reports_stopped) vm_.status = AppStatus::Stopped;  // S26
       reply(kStatusOk, op, 0);
       return;
 
@@ -112,7 +121,8 @@ void TmclModule::control(const Instruction& ins) {
         reply(kStatusWrongType, op, ins.value);
         return;
       }
-      if (ins.value < 0 || (memory > 0 && ins.value >= memory)) {
+      const bool beyond = memory > 0 && ins.value >= memory;
+      if (ins.value < 0 || (beyond && !options_.variants.read_past_memory_zero)) {  // S27
         reply(kStatusInvalidValue, op, ins.value);
         return;
       }

@@ -72,7 +72,7 @@ void TmclModule::drop_partial() {
   head_ = 0;
 }
 
-bool TmclModule::window_pending() const { return rx_.size() - head_ >= kFrame; }
+bool TmclModule::window_pending() const { return !step_held_ && rx_.size() - head_ >= kFrame; }
 
 void TmclModule::gap_elapsed() {
   if (!window_pending()) return;
@@ -88,6 +88,7 @@ void TmclModule::gap_elapsed() {
 }
 
 void TmclModule::parse() {
+  if (step_held_) return;  // S24: the bytes wait until the step is answered
   for (;;) {
     const std::size_t avail = rx_.size() - head_;
     if (avail < kFrame) break;
@@ -217,6 +218,11 @@ void TmclModule::execute(const Instruction& ins) {
     return;
   }
   const DirectReply r = vm_.execute_direct(ins);
+  // S25: a firmware whose direct reads load the accumulator while the program is not running.
+  if (options_.variants.direct_read_sets_a && r.status == kStatusOk && vm_.status != AppStatus::Running &&
+      (ins.op == static_cast<std::uint8_t>(Op::GAP) || ins.op == static_cast<std::uint8_t>(Op::GGP) ||
+       ins.op == static_cast<std::uint8_t>(Op::GIO)))
+    vm_.acc = r.value;
   if (r.status == kStatusOk && (ins.op == static_cast<std::uint8_t>(Op::MVP) || ins.op == static_cast<std::uint8_t>(Op::MVPA)) &&
       ins.motor < 32) {
     // 138: this move is announced when it arrives if its motor is in a mask (S8). A move that
@@ -271,6 +277,13 @@ void TmclModule::advance(SimTime until) {
     check_events();
     return;
   }
+  if (step_held_) {
+    finish_held_step(until);
+    if (step_held_) {
+      check_events();
+      return;
+    }
+  }
   if (run_program) {  // a debugger runs the program (and moves time while it holds it)
     run_program(until);
     check_events();
@@ -298,6 +311,25 @@ void TmclModule::run_to(SimTime until) {
   }
   // Nothing left to simulate: time simply passes (timers only matter while a program runs).
   if (vm_.status != AppStatus::Running && !vm_.motion_pending() && vm_.now < until) vm_.now = until;
+}
+
+// S24: the WAIT a held 130 met runs to its end (a due interrupt is entered first, as a step
+// would); no further instruction runs. Then the step is answered and the requests that came
+// meanwhile are read.
+void TmclModule::finish_held_step(SimTime until) {
+  Limits lim;
+  lim.max_steps = vm_.steps;
+  lim.until = until;
+  lim.to_instruction = true;
+  const RunResult r = vm_.run(lim);
+  if (r.halt == Halt::Fault) note("program fault: " + r.message);
+  if (vm_.status == AppStatus::Running && vm_.wait.active) return;
+  if (vm_.status == AppStatus::Running) vm_.status = AppStatus::Step;
+  step_held_ = false;
+  reply_module_ = held_module_;
+  reply_host_ = held_host_;
+  reply(kStatusOk, static_cast<std::uint8_t>(Op::StepApplication), 0);
+  parse();
 }
 
 SimTime TmclModule::next_wakeup() const {

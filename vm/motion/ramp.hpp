@@ -30,16 +30,24 @@ struct Segment {
 };
 
 // The limits of one ramp in physical units. Inverse jerks: 0 = that bow phase is instant (the
-// acceleration jumps); all four are 0 for trapezoid/SixPoint ramps, which use the break velocity
-// (vbreak > 0) to switch between astart/amax and dfinal/dmax.
+// acceleration jumps); all four are 0 for trapezoid/SixPoint/EightPoint ramps, whose acceleration
+// is constant between break velocities: astart/dfinal below vbreak (> 0), amid/dmid from vbreak
+// up to vbreak2 (EightPoint: A2/D2 between V1 and V2; a band whose speeds are empty is skipped),
+// amax/dmax above both.
 struct Limits {
   double vmax = 0;
   double vstart = 0, vstop = 0;
   double amax = 0, astart = 0, vbreak = 0;
   double dmax = 0, dfinal = 0;
+  double amid = 0, dmid = 0, vbreak2 = 0;
   double ij1 = 0, ij2 = 0, ij3 = 0, ij4 = 0;  // 1/BOW1 .. 1/BOW4
+  // Seconds at rest after the speed reached 0 before the motor may move again (TZEROWAIT).
+  double zero_wait = 0;
   bool s_curve() const { return ij1 > 0 || ij2 > 0 || ij3 > 0 || ij4 > 0; }
-  // Every rate a motion needs is > 0 (a zero acceleration would never get anywhere).
+  bool mid_band() const { return vbreak2 > vbreak; }
+  // The rates of the speed bands in use are > 0 (a zero acceleration would never get anywhere).
+  bool rates() const;
+  // ... and there is a speed to move at.
   bool can_move() const;
 };
 
@@ -57,11 +65,13 @@ struct Plan {
   std::vector<Segment> segs;      // contiguous in time; the last one has dur == kInf
   std::vector<PlanEvent> events;  // sorted by t
   double t_rest = kInf;           // from this instant on the motor rests for good
+  double rest_at = -kInf;         // ... and rests since this instant (its speed reached 0)
 
   void clear() {
     segs.clear();
     events.clear();
     t_rest = kInf;
+    rest_at = -kInf;
   }
   // Index of the segment containing t (the last one whose t0 <= t).
   std::size_t find(double t) const;
@@ -99,6 +109,9 @@ class Builder {
   void stop_hard();
   // A motor that cannot change speed (a needed rate is 0) keeps its speed for good.
   void coast();
+  // The motor has rested `s` seconds when the plan starts (the ramp wait, Limits::zero_wait,
+  // counts them: a move starts when the motor has rested that long).
+  void rested(double s) { rest_at_ = -s; }
 
   void event(EventKind kind) { plan_.events.push_back({s_.t, kind}); }
   // Cuts the plan at instant t (a trip: switch, virtual stop, deviation) and continues from the
@@ -132,10 +145,13 @@ class Builder {
   void emit_cruise(double tau, int dir);
   void snap();
   void start_motion(int dir, double v);
+  void wait_at_rest(const Limits& lim);
 
   Plan& plan_;
   State s_;
   int last_dir_ = 0;
+  double rest_at_ = -kInf;  // the plan instant the motor came to rest (before 0: it rested already)
+  bool moved_ = false;      // the plan moved the motor since it last came to rest
 };
 
 // Instant dt in [0, seg.dur] at which the segment's position reaches k (monotone segment), or a

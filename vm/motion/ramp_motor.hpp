@@ -84,6 +84,8 @@ struct RampMotor {
     double dt = std::min(std::max(0.0, s - seg.t0), seg.dur);
     State st{0, seg.x(dt), seg.v(dt) * vscale, seg.a(dt) * vscale};
     int dir = seg.dir;
+    // How long the motor has rested (the ramp wait counts it), when the old plan has ended.
+    const double rested = plan.t_rest != kInf && s >= plan.t_rest ? std::max(0.0, s - plan.rest_at) : -1;
     std::int64_t step = base + step_of(st.x, dir);
     std::int64_t nb = wrap32(step);
     st.x -= static_cast<double>(nb - base);
@@ -93,7 +95,9 @@ struct RampMotor {
     plan.clear();
     hit_valid_ = false;
     ++gen;
-    return Builder(plan, st, dir);
+    Builder b(plan, st, dir);
+    if (rested >= 0) b.rested(rested);
+    return b;
   }
 
   // A rest that begins within the tolerance of ceil_us after a whole microsecond begins on it, so

@@ -252,6 +252,7 @@ void SwitchCore::replan(Motor& m, double vscale, bool by_command) {
   // a few thousand pps the last nanosecond is more than the step tolerance).
   m.rm.rest_on_grid();
   scan_trips(m, lim);
+  scan_stops(m, lim);
   scan_deviation(m);
 }
 
@@ -277,13 +278,16 @@ void SwitchCore::scan_trips(Motor& m, const Limits& lim) {
     if (!(seg.dir < 0 ? left_on : right_on)) continue;
     double dt = (m.timed >> input) & 1 ? 0.0 : m.rm.entry(seg, input);
     if (dt < 0) continue;
-    m.trip_t = seg.t0 + dt;
-    Builder b(m.rm.plan, {}, 0);
-    b.truncate(m.trip_t);
-    switch_stop(m, b, lim);
-    m.rm.rest_on_grid();
-    return;
+    return stop_at(m, seg.t0 + dt, lim);
   }
+}
+
+void SwitchCore::stop_at(Motor& m, double t, const Limits& lim) {
+  m.trip_t = t;
+  Builder b(m.rm.plan, {}, 0);
+  b.truncate(t);
+  switch_stop(m, b, lim);
+  m.rm.rest_on_grid();
 }
 
 // The first step of the plan at which |XACTUAL - 209| exceeds 212: there the motor stops at once
@@ -313,6 +317,7 @@ bool SwitchCore::decode(std::int32_t value, SearchMode& out) const {
   out.mode = value & 63;
   out.other = (value & 64) != 0;
   out.invert = (value & 128) != 0;
+  if (cfg_.null_channel && (out.mode == 9 || out.mode == 10)) return value == out.mode;  // no +64, +128
   if (value < 0 || value > 255 || out.mode < 1 || out.mode > 8) return false;
   if (!cfg_.other_switch) return !out.other;  // TMC429 modules: +128 with any mode, no +64
   return !(out.other && out.mode > 4) && !(out.invert && out.mode < 5);
@@ -328,6 +333,7 @@ std::int32_t SwitchCore::switch_speed(const Motor& m) const {
 
 // Whether the searched switch is closed (mode + 128: the home switch reads inverted).
 bool SwitchCore::search_closed(const Motor& m, int input) const {
+  if (input == kNullInput) return false;  // no null channel is modelled: never met
   if (input == kRefInput) return closed(m, 0) || search_closed(m, 2);
   return closed(m, input) != (input == 2 && m.search.m.invert);
 }
@@ -343,11 +349,11 @@ void SwitchCore::start_search(Motor& m) {
   if (mode <= 4)
     s.input = mode == 3 && cfg_.home_in_series ? kRefInput : near;
   else
-    s.input = 2;
+    s.input = mode >= 9 ? kNullInput : 2;
   if (mode <= 4)
     s.dir = s.step == SearchStep::FindFar ? -toward : toward;
   else
-    s.dir = mode == 6 || mode == 7 ? 1 : -1;
+    s.dir = mode == 6 || mode == 9 || mode == (cfg_.mode7_negative ? 8 : 7) ? 1 : -1;
   s.reverse_at = mode == 5 ? 0 : mode == 6 ? 1 : -1;
   m.goal = Goal::Search;
   m.trip_t = ramp::kInf;

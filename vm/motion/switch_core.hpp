@@ -64,6 +64,7 @@ enum class Goal : std::uint8_t { Idle, Position, Velocity, Halt, Search };
 //   ToRef    to the reference point, which is then position 0
 enum class SearchStep : std::uint8_t { Off, FindFar, Find, Release, Reenter, Cross, ToRef };
 inline constexpr int kRefInput = 3;  // the reference input: the left or the home switch in series
+inline constexpr int kNullInput = 4;  // modes 9, 10 (TMCM-1290): the encoder's null channel, not modelled
 
 // A value of 193 taken apart.
 struct SearchMode {
@@ -105,6 +106,8 @@ struct SwitchConfig {
   bool other_switch;      // 193 takes +64 (modes 1-4) and +128 only with modes 5-8 (TMCM-1260)
   int last_reference = 0; // parameter that keeps the reference point's former position (0: none)
   bool stop_switches = true;  // false: the module has no stop switches (TMC2300: placed ones only report)
+  bool null_channel = false;  // 193 takes modes 9, 10: the encoder's null channel + / - (TMCM-1290)
+  bool mode7_negative = false;  // mode 7 searches the home switch moving -, 8 moving + (TMCM-1290)
 };
 
 class SwitchCore : public ramp::RampCore<Motor> {
@@ -157,6 +160,9 @@ class SwitchCore : public ramp::RampCore<Motor> {
   // Parameter 2 as read, and parameter 9 (see kHomeState).
   virtual std::int32_t target_speed(const Motor& m, const ramp::State& s) const;
   virtual bool home_state(const Motor& m) const { return closed(m, 2); }
+  // After a re-plan has been cut at its first limit-switch trip (m.trip_t): a core's own stops
+  // (the TMC5240's virtual stops) cut it earlier with stop_at(); the default has none.
+  virtual void scan_stops(Motor&, const ramp::Limits&) {}
 
   // ---- the shared machinery, for the cores
   // A reading in whole units, toward zero as the chip's registers hold it.
@@ -167,6 +173,9 @@ class SwitchCore : public ramp::RampCore<Motor> {
   // re-plan not `by_command` (a parameter, a switch) keeps a cruise's "velocity reached" quiet.
   void replan(Motor& m, double vscale = 1, bool by_command = false);
   void abort_search(Motor& m) { m.search.step = SearchStep::Off; }
+  // Cuts the plan at plan instant t and stops there as at a limit switch (its soft-stop flag);
+  // the next re-plan after t keeps that stop (m.trip_t).
+  void stop_at(Motor& m, double t, const ramp::Limits& lim);
   const EncoderSpec& encoder_spec() const { return enc_spec_; }
   // ---- the shaft (shaft.hpp), for the cores and for what blocks or slips a rotor
   // The counter in the machine's frame (XACTUAL + phys), and the shaft's place, now.

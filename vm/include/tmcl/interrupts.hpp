@@ -15,6 +15,7 @@ namespace tmcl {
 enum class VectorSource : unsigned char {
   Timer,          // bank-3 parameter 0..2 sets the period (ms)
   TargetReached,  // a move reached its target
+  PositionCompare,  // the position passed the compare position (TMCM-1290: axis parameters 43, 44)
   Stall,          // stallGuard2 detected a stall
   Deviation,      // the encoder deviates more than axis parameter 212 allows
   StopLeft,       // the left stop switch changed, as bank-3 parameter 27+2·motor selects
@@ -24,7 +25,7 @@ enum class VectorSource : unsigned char {
   Unknown,        // no TMCL source has this number
 };
 
-inline constexpr int kVectorTimer0 = 0, kTimerVectors = 3, kVectorTarget0 = 3, kVectorStall0 = 15, kVectorDeviation0 = 21,
+inline constexpr int kVectorTimer0 = 0, kTimerVectors = 3, kVectorTarget0 = 3, kVectorCompare0 = 9, kVectorStall0 = 15, kVectorDeviation0 = 21,
                      kVectorStopLeft0 = 27, kVectorInput0 = 39, kVectorGlobal = 255;
 
 struct VectorKind {

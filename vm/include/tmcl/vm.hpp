@@ -135,6 +135,7 @@ struct RuntimeWarning {
     NotSimulated,        // a note, not a warning (but under --strict): EI of an interrupt nothing raises (E52),
                          // a parameter the profile marks not-simulated written or read (E77)
     RampSetting,         // MVP whose ramp cannot start it, or that the manual forbids (E47)
+    NoSuchType,          // MVP/MVPA/MVPXA of a type other than ABS, REL, COORD (from a .bin; E80)
   };
   SimTime at = 0;        // the instruction's start
   std::int32_t pc = 0;   // its address
@@ -288,7 +289,8 @@ struct Vm {
   // Starts (or continues) the program at `address` (control command 129); clears a fault.
   void start(std::int32_t address);
   // Control command 130: exactly one instruction from `pc` at the current instant (a WAIT is
-  // entered or checked, never jumped over), then the program waits in AppStatus::Step. Motion
+  // entered, or checked and left when over, never jumped over), then the program waits in
+  // AppStatus::Step. Motion
   // and inputs are brought up to the new instant.
   RunResult step();
   // Control command 128: a running or stepping program stops where it is; the motors finish

@@ -6,7 +6,7 @@
 # units: its TMC4361 firmware) take their ranges and defaults from the USB-2-SD manual (U), the
 # driver rows from the PD57/60-1260 manual (D), and every such fact is unverified. Where the TMCL
 # reference (R: every TMCL stepper module) confirms an access or range, the row names it. Every
-# unverified fact is listed in docs/profiles.md; docs/errata.md M33..M35 explain the choices.
+# unverified fact is listed in docs/profiles.md; docs/errata.md M60..M62 explain the choices.
 tmcl-profile 1
 name tmcm-3312
 title "TMCM-3312 (3 axes)"
@@ -85,7 +85,7 @@ axis 125 "Closed loop maximum correction tolerance" 0..2147483647 RW default=0 s
 axis 126 "Closed loop start up" 0..2147483647 RW default=0 src=Y,P unverified=range,access,default not-simulated="closed-loop operation is not modelled: the motor follows its ramp exactly"
 axis 127 "Relative positioning option" 0..2 RW default=0 src=Y,P,U:table14 unverified=range,access,default  # 0: from the last target position
 axis 129 "Closed loop" 0..1 RW default=0 src=Y,P unverified=range,access,default not-simulated="closed-loop operation is not modelled: the motor follows its ramp exactly"  # 0 open, 1 closed loop
-axis 131 "Encoder measured speed" -2147483648..2147483647 R default=0 unit=pps src=Y,P,U:table14 unverified=range,access  # "Measured speed": the TMCM-1260's 29 has that name (errata M34)
+axis 131 "Encoder measured speed" -2147483648..2147483647 R default=0 unit=pps src=Y,P,U:table14 unverified=range,access  # "Measured speed": the TMCM-1260's 29 has that name (errata M61)
 axis 132 "Encoder measured speed raw" -2147483648..2147483647 R default=0 unit=pps src=Y,P,U:table14 unverified=range,access
 axis 133 "Closed loop init flag" 0..1 R default=0 src=Y,P unverified=range,access not-simulated="closed-loop operation is not modelled: reads 0"
 # 134: the ROS driver's "EncoderDeviation", PyTrinamic's "PositioningWindow": the ROS name is taken.
@@ -144,7 +144,7 @@ axis 210 "Encoder resolution" -65535..65535 RW default=51200 src=Y,P,U:table14 u
 axis 212 "Maximum encoder deviation" 0..2147483647 RW default=0 unit="encoder steps" src=Y,P,U:table14 unverified=range,access,default  # 0: off
 axis 213 "Maximum velocity deviation" 0..2147483647 RW default=0 unit=pps src=Y,P,U:table14 unverified=range,access,default not-simulated="the velocity deviation check is not modelled"
 axis 214 "Power down delay" 0..417 RW default=0 unit="10 ms" src=Y,P,D:4 unverified=range,access,default
-axis 249 "Axis group index" 0..255 RW default=0 src=Y,P unverified=range,access,default not-simulated="group moves are not modelled"  # "Group index" in both sources; the TMCM-3110's group index is 213 (errata M34)
+axis 249 "Axis group index" 0..255 RW default=0 src=Y,P unverified=range,access,default not-simulated="group moves are not modelled"  # "Group index" in both sources; the TMCM-3110's group index is 213 (errata M61)
 axis 251 "Reverse shaft" 0..1 RW default=0 src=Y,P,U:table14 unverified=range,access,default
 
 # Global parameters, bank 0: the TMCM-1260's rows (D, 5.1). Numbers 64..127 are stored in the

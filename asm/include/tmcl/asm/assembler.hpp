@@ -86,8 +86,11 @@ class MemoryReader final : public FileReader {
 // 255 bytes (the longest an object file stores).
 bool is_valid_name(std::string_view name);
 
-// The include files bundled with tmcl (include_files/), compiled into the library.
+// The include files bundled with tmcl (include_files/), compiled into the library, and NAME.inc
+// generated from each bundled module's profile that has none there.
 const std::map<std::string, std::string_view>& bundled_includes();
+// Those of include_files/ alone: a list of them does not grow with the bundled modules.
+const std::map<std::string, std::string_view>& include_file_texts();
 
 struct AsmOptions {
   const Profile* profile = nullptr;             // nullptr: generic

@@ -1,5 +1,5 @@
 // What the parameters' names say across modules, derived from the profiles alone: where another
-// bundled module numbers a parameter under a name this module has at another number (the
+// module found (bundled, or a user's profile on the search path) numbers a parameter under a name this module has at another number (the
 // assembler's hint for `SAP 149` on a module whose soft stop is 26), and the include file that
 // names one module's parameters (`#include TMCM-1260.inc`, docs/profiles.md).
 #pragma once
@@ -21,12 +21,12 @@ enum class ParamTable { Axis, Bank0, Bank3 };
 struct Renumbered {
   const ParamInfo* here;
   std::string_view name;                 // the name on the other modules
-  std::vector<const Profile*> elsewhere;  // bundled, in all_profiles() order
+  std::vector<const Profile*> elsewhere;  // in found_profiles() order (a user's, then the bundled)
   bool same_name;
 };
 
-// For a parameter `number` that `profile` lacks: the parameters of `profile` that other bundled
-// modules number `number`, matched by name. A match must be mutual: the other module has no
+// For a parameter `number` that `profile` lacks: the parameters of `profile` that other modules
+// found (found_profiles(): the search path's, then the bundled) number `number`, matched by name. A match must be mutual: the other module has no
 // parameter of its own that is as near to the name here (so "Right limit switch polarity" of
 // one module never points at "Right limit switch state", which that module also has).
 std::vector<Renumbered> renumbered(const Profile& profile, ParamTable table, int number);

@@ -49,6 +49,11 @@ struct TargetEntry {
   bool alias = false;               // another name of the profile listed before it
 };
 std::vector<TargetEntry> list_targets(const TargetSearch& search = TargetSearch::from_environment());
+// The profiles of the targets found, each once, in the list's order: those a name finds (no alias,
+// none hidden by an earlier file, none that does not parse). What compares modules (the
+// assembler's note on a renumbered parameter, tmclctl's module by its firmware reply) asks this,
+// so a user's own profiles count as the bundled ones do.
+std::vector<const Profile*> found_profiles(const TargetSearch& search = TargetSearch::from_environment());
 // The names of the targets found, each once, in the list's order (the shell's completion of -t).
 std::vector<std::string> target_names(const TargetSearch& search = TargetSearch::from_environment());
 // The list as a table for `tmclasm --list-targets`.

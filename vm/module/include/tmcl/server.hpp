@@ -34,6 +34,27 @@ namespace tmcl {
 
 // Status codes of the protocol: params.hpp (through vm.hpp).
 
+// Behaviours no manual settles and module firmware may differ in, which a debugger on the module
+// must cope with (issue 39; docs/virtual-module.md, "Firmware variants"; errata S24-S27). Each
+// is off by default: the documented or, where nothing is documented, the chosen behaviour.
+struct FirmwareVariants {
+  bool step_waits = false;             // 130 during a WAIT answers when the wait is over (S24)
+  bool direct_read_sets_a = false;     // a direct GAP/GGP/GIO while not running loads A (S25)
+  bool reset_reports_stopped = false;  // after 131 the application status is 0, not 3 (S26)
+  bool read_past_memory_zero = false;  // 134 beyond program memory reads opcode 0, not status 4 (S27)
+};
+
+// The variants by name, one row each: what tmclrun --variant takes, its --help and the docs.
+struct VariantInfo {
+  std::string_view name;
+  std::string_view meaning;  // with the variant on, in a few words (--help; the docs say more)
+  bool FirmwareVariants::*field;
+};
+const std::vector<VariantInfo>& firmware_variant_table();
+// "step-waits,reset-reports-stopped" (names of the table, comma-separated) into `out` (adding
+// to what is set); false with `error` naming an unknown name.
+bool parse_firmware_variants(std::string_view list, FirmwareVariants& out, std::string& error);
+
 struct ProtocolOptions {
   // Override the module's serial address (global 66) and host address (global 76). Written into
   // the RAM copy of the parameter at start and after every reset, never into the EEPROM; a
@@ -42,6 +63,7 @@ struct ProtocolOptions {
   std::optional<std::uint8_t> host_address;
   // Refuse every direct-mode command that would write the EEPROM with status 5 (S9).
   bool eeprom_locked = false;
+  FirmwareVariants variants;
 };
 
 // The protocol engine for one module. Not thread-safe; one instance per Vm.
@@ -144,6 +166,12 @@ class TmclModule {
   std::uint32_t every_mvp_mask_ = 0;  // type 1
   std::uint32_t next_mvp_mask_ = 0;   // type 0, consumed by the next MVP
   std::uint32_t waiting_mask_ = 0;    // an announced move is under way
+
+  // S24 (variants.step_waits): a 130 that met a WAIT is answered when the wait is over; until
+  // then requests stay unread in rx_, as a firmware busy in its step handler leaves them.
+  bool step_held_ = false;
+  std::uint8_t held_module_ = 1, held_host_ = 2;
+  void finish_held_step(SimTime until);
 
   bool power_cycled_ = false;
   bool fault_reported_ = false;
