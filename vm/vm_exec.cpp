@@ -149,7 +149,10 @@ void Vm::Loop::unknown_instruction(Vm& vm, std::int32_t at) {
 }
 
 // One instruction through the table dispatch (every row of opcodes.def), registers in `vm`.
-inline void Vm::Loop::execute(Vm& vm, std::int32_t at) {
+// Never inlined: the semantics of every instruction (with every run-time check) would otherwise
+// grow run_fast() until the compiler stops inlining the fast path's own primitives (issue 42:
+// the run-time checks of 69203f1 made the CALC/DJNZ loop 1.6x slower that way).
+[[gnu::noinline]] void Vm::Loop::execute(Vm& vm, std::int32_t at) {
   bool known = false;
   if (vm.code_[static_cast<std::size_t>(at)].op != 0) ops::dispatch<false>(vm, vm.program[static_cast<std::size_t>(at)], known);
   if (!known) [[unlikely]] {
@@ -251,11 +254,11 @@ RunResult Vm::Loop::run_fast(Vm& vm, const Limits& lim) {
       if constexpr (kCount) ++executed[pc];
       switch (ins.op) {
 // The ALU part of CALC t / CALCV t on `dst`, shared by the plain and the fused forms.
-#define TMCL_ALU(t, dst)          \
-  if constexpr (t == NOT)         \
-    dst = ~dst;                   \
-  else                            \
-    arith(t, dst, ins.value);     \
+#define TMCL_ALU(t, dst)             \
+  if constexpr (t == NOT)            \
+    dst = ~dst;                      \
+  else                               \
+    dst = arith_of<t>(dst, ins.value); \
   flags = flags_of(dst);
 // The DJNZ half of a fused form; when the budget ends between the two halves, the DJNZ runs on
 // its own after the check.

@@ -71,25 +71,40 @@ using namespace kw::CalcVV;
 
 inline std::int32_t wrap(std::uint32_t v) { return static_cast<std::int32_t>(v); }
 
-// a <op> b for ADD..XOR and LOAD; NOT/SWAP/COMP are handled by the callers.
+// a <op> b for ADD..XOR and LOAD, the operation known at compile time: the run loop's fast path
+// (vm_exec.cpp) instantiates it per CALC type, so each case is one machine instruction or two that
+// no inlining decision of the compiler can move out of the loop (issue 42: an out-of-line
+// arith() with the accumulator spilled to memory made the CALC/DJNZ loop 1.6x slower).
+// NOT/SWAP/COMP are handled by the callers.
+template <int kOp>
+inline std::int32_t arith_of(std::int32_t a, std::int32_t b) {
+  const auto ua = static_cast<std::uint32_t>(a), ub = static_cast<std::uint32_t>(b);
+  if constexpr (kOp == ADD) return wrap(ua + ub);
+  else if constexpr (kOp == SUB) return wrap(ua - ub);
+  else if constexpr (kOp == MUL) return wrap(ua * ub);
+  else if constexpr (kOp == DIV) return b == 0 ? a : (a == std::numeric_limits<std::int32_t>::min() && b == -1) ? a : a / b;
+  else if constexpr (kOp == MOD) return b == 0 ? a : (b == -1) ? 0 : a % b;
+  else if constexpr (kOp == AND) return wrap(ua & ub);
+  else if constexpr (kOp == OR) return wrap(ua | ub);
+  else if constexpr (kOp == XOR) return wrap(ua ^ ub);
+  else if constexpr (kOp == LOAD) return b;
+  else return a;
+}
+// The same with the operation known at run time (the table dispatch).
 inline void arith(std::uint8_t op, std::int32_t& a, std::int32_t b) {
-  auto ua = static_cast<std::uint32_t>(a), ub = static_cast<std::uint32_t>(b);
   switch (op) {
-    case ADD: a = wrap(ua + ub); break;
-    case SUB: a = wrap(ua - ub); break;
-    case MUL: a = wrap(ua * ub); break;
-    case DIV:
-      if (b == 0) break;
-      a = (a == std::numeric_limits<std::int32_t>::min() && b == -1) ? a : a / b;
-      break;
-    case MOD:
-      if (b == 0) break;
-      a = (b == -1) ? 0 : a % b;
-      break;
-    case AND: a = wrap(ua & ub); break;
-    case OR: a = wrap(ua | ub); break;
-    case XOR: a = wrap(ua ^ ub); break;
-    case LOAD: a = b; break;
+#define TMCL_ARITH_CASE(t) \
+  case t: a = arith_of<t>(a, b); break;
+    TMCL_ARITH_CASE(ADD)
+    TMCL_ARITH_CASE(SUB)
+    TMCL_ARITH_CASE(MUL)
+    TMCL_ARITH_CASE(DIV)
+    TMCL_ARITH_CASE(MOD)
+    TMCL_ARITH_CASE(AND)
+    TMCL_ARITH_CASE(OR)
+    TMCL_ARITH_CASE(XOR)
+    TMCL_ARITH_CASE(LOAD)
+#undef TMCL_ARITH_CASE
     default: break;
   }
 }
