@@ -1,6 +1,8 @@
 // Control flow: JA, JC (every condition), CSUB/RSUB and the 8-entry stack, CALL, DJNZ, RST,
 // STOP, and the faults: jump outside the program, unknown opcode, running off the end,
 // a command the module does not have (docs/errata.md E4-E6, E11, E19-E21).
+#include <limits>
+
 #include "check.hpp"
 #include "machine.hpp"
 
@@ -204,6 +206,24 @@ TEST(fast_path_and_fused_forms_are_unobservable) {
     for (std::uint64_t steps : {std::uint64_t{1}, std::uint64_t{6}, std::uint64_t{7}, std::uint64_t{1001}, std::uint64_t{12345}, UINT64_MAX})
       check_paths_agree(p, {steps, tmcl::kNever}, instr);
   check_paths_agree(p, {UINT64_MAX, 123'457}, 20);
+}
+
+// Every CALC and CALCV operation, plain (followed by STOP) and fused with a DJNZ, on the edge values
+// of E1 (division and modulo by zero and by -1, overflow), gives the table dispatch's result: the
+// fast path instantiates the ALU per operation (ops::arith_of), the table dispatch picks it at run
+// time (issue 42).
+TEST(every_calc_operation_agrees_on_fast_fused_and_traced_paths) {
+  const std::int32_t kMin = std::numeric_limits<std::int32_t>::min(), kMax = std::numeric_limits<std::int32_t>::max();
+  for (int t = 0; t <= 9; ++t)
+    for (std::int32_t a : {kMin, -7, 0, 7, kMax})
+      for (std::int32_t v : {kMin, -1, 0, 3, kMax}) {
+        // acc = a, v[1] = a; CALC t, v / DJNZ (fused, two rounds), CALCV t, v / DJNZ, CALC t, v / CALCV t, v alone.
+        std::vector<Instruction> p = {I(Op::CALC, 9, 0, a),  I(Op::SGP, 1, 2, a),   I(Op::SGP, 0, 2, 2),
+                                      I(Op::CALC, t, 0, v),  I(Op::DJNZ, 0, 0, 3),  I(Op::SGP, 0, 2, 2),
+                                      I(Op::CALCV, t, 1, v), I(Op::DJNZ, 0, 0, 6),  I(Op::CALC, t, 0, v),
+                                      I(Op::CALCV, t, 1, v), I(Op::STOP)};
+        check_paths_agree(p, {UINT64_MAX, tmcl::kNever}, 20);
+      }
 }
 
 // The life cycle belongs to the VM (control commands 128, 130, 131 and a debugger use these):
