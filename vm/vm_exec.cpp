@@ -261,11 +261,9 @@ RunResult Vm::Loop::run_fast(Vm& vm, const Limits& lim) {
     dst = arith_of<t>(dst, ins.value); \
   flags = flags_of(dst);
 // The DJNZ half of a fused form; when the budget ends between the two halves, the DJNZ runs on
-// its own after the check. [[unlikely]] keeps the fused path in one straight line (callgrind
-// counts the same instructions either way, but the loop ran 5 % slower with two more taken
-// branches per iteration: vm_bench's guard).
+// its own after the check.
 #define TMCL_FUSED_DJNZ()                                              \
-  if (left == 0) [[unlikely]] {                                        \
+  if (left == 0) {                                                     \
     ++pc;                                                              \
     continue;                                                          \
   }                                                                    \
