@@ -160,12 +160,24 @@ inline bool condition(const Vm& vm, std::uint8_t cond) { return condition(vm.fla
 //   kFastCalcV + t    CALCV t        (t = ADD..LOAD, COMP)
 //   kFusedCalc + t    CALC t, then the DJNZ at the next address (a superinstruction)
 //   kFusedCalcV + t   CALCV t, then the DJNZ at the next address
+//   kFastJA, kFastDJNZ   JA, DJNZ whose target lies inside the program (one outside it keeps its
+//                        own opcode and faults through the table dispatch)
+//   kFastJC           JC whose target lies inside the program, its condition pre-decoded: type
+//                     the mask of kConditions, motor its invert
 // A fused form still counts two instructions and two instruction times, and the run loop splits
 // it when a check falls between the two, so fusion never changes what a program observes.
 inline constexpr std::uint8_t kFastCalc = 0xC0;
 inline constexpr std::uint8_t kFastCalcV = 0xD0;
 inline constexpr std::uint8_t kFusedCalc = 0xA0;
 inline constexpr std::uint8_t kFusedCalcV = 0xB0;
+inline constexpr std::uint8_t kFastJA = 0x90;
+inline constexpr std::uint8_t kFastJC = 0x91;
+inline constexpr std::uint8_t kFastDJNZ = 0x92;
+// The pre-decoded JC's condition (kFastJC): as condition(), from the mask and invert in the form.
+inline bool fast_condition(std::uint8_t flags, std::uint8_t errors, const Instruction& jc) {
+  const unsigned bits = flags | (static_cast<unsigned>(errors) << 4);
+  return ((bits & jc.type) != 0) != (jc.motor != 0);
+}
 
 // What the run loop executes at an address holding `ins`, followed by `next`, in a program of
 // `size` instructions: 0 when the profile lacks the command (or it is not a program
@@ -183,7 +195,17 @@ inline Instruction decode_for_run(const Instruction& ins, const Instruction& nex
   }
   const bool djnz_next = next.op == static_cast<std::uint8_t>(Op::DJNZ) && available(next) && next.value >= 0 &&
                          next.value < size;
-  if (ins.op == static_cast<std::uint8_t>(Op::CALC) && ins.type <= LOAD) {
+  const bool target_ok = ins.value >= 0 && ins.value < size;
+  if (ins.op == static_cast<std::uint8_t>(Op::JA) && target_ok) {
+    c.op = kFastJA;
+  } else if (ins.op == static_cast<std::uint8_t>(Op::DJNZ) && target_ok) {
+    c.op = kFastDJNZ;
+  } else if (ins.op == static_cast<std::uint8_t>(Op::JC) && target_ok) {
+    const CondBits cond = ins.type <= 15 ? kConditions[ins.type] : CondBits{0, false};
+    c.op = kFastJC;
+    c.type = cond.mask;
+    c.motor = cond.invert ? 1 : 0;
+  } else if (ins.op == static_cast<std::uint8_t>(Op::CALC) && ins.type <= LOAD) {
     c.op = static_cast<std::uint8_t>((djnz_next ? kFusedCalc : kFastCalc) + ins.type);
   } else if (ins.op == static_cast<std::uint8_t>(Op::CALCV) && (ins.type <= LOAD || ins.type == COMP)) {
     c.op = static_cast<std::uint8_t>((djnz_next && ins.type != COMP ? kFusedCalcV : kFastCalcV) + ins.type);
