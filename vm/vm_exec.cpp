@@ -27,9 +27,13 @@ std::string never_ending_wait_reason(const Vm& vm) {
     return " can never end: motor " + std::to_string(vm.wait.motor) +
            "'s reference search runs on, but no switch on its way can end it and no timer, input or timeout is"
            " pending (the module would search until RFS STOP; give WAIT RFS a timeout, or run with --max-time)";
-  if (vm.wait.kind == 1)
+  if (vm.wait.kind == 1) {
     if (std::string why = vm.motion->move_problem(vm.wait.motor); !why.empty() && why.starts_with("the move cannot start"))
       return " can never end: motor " + std::to_string(vm.wait.motor) + "'s " + why.substr(4);
+    if (std::string why = vm.motion->stop_reason(vm.wait.motor); !why.empty())  // issue 41
+      return " can never end: motor " + std::to_string(vm.wait.motor) + " " + why +
+             ", and no timer, motion, input or timeout is pending";
+  }
   return " can never end: no timer, motion, input or timeout is pending";
 }
 

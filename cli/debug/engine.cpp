@@ -128,6 +128,7 @@ bool Engine::set_machine(const std::string& line, std::string& error) {
   options.motors = profile.motors;
   options.module = std::string(profile.name);
   options.profile = &profile;
+  options.from_start = false;  // the carriage is where the run has taken it
   std::vector<InputEvent> events;
   std::vector<FileDiag> diags;
   if (!parse_scenario(timed ? "at 0s " + line : line, "", events, diags, options))
