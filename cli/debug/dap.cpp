@@ -531,7 +531,7 @@ bool Dap::handle(const Value& req) {
         ins.set("presentationHint", "invalid");
       } else {
         // Targets by label and the constants the source named, as disassemble shows them.
-        ins.set("instruction", named_instruction(e.info(), vm.program[static_cast<std::size_t>(at)], static_cast<std::int32_t>(at), vm));
+        ins.set("instruction", named_instruction(e.info(), vm.program[static_cast<std::size_t>(at)], static_cast<std::int32_t>(at), e));
         std::string fn = e.info().function_of(static_cast<std::int32_t>(at));
         if (!fn.empty()) ins.set("symbol", fn);
         if (int l = line_of(static_cast<std::int32_t>(at))) {
