@@ -130,6 +130,7 @@ struct Options {
   std::string symbols, debug_commands;  // debug: --symbols, --debug-commands
   std::vector<std::string> source_dirs;
   bool no_patch = false, dap = false;
+  tmcl::SimTime reconnect = 5000 * tmcl::kUsPerMs;  // debug: how long a lost module may take to come back
 };
 
 int usage_error(const std::string& msg) {
@@ -302,6 +303,9 @@ tmcl::cli::Tool command_line(Options& o) {
       {"--no-patch", "", "breakpoints by stepping alone: program memory is never written (slow)", flag(o.no_patch), {}, {},
        false, "debug:"},
       {"--dap", "", "the Debug Adapter Protocol on standard input and output", flag(o.dap), {}, {}, false, "debug:"},
+      {"--reconnect", "DURATION", "a module that stops answering may come back this long (default 5s): then the "
+       "breakpoint patches are removed", duration("--reconnect", o.reconnect), Values::words(durations),
+       "a duration greater than 0 (e.g. 500ms, 2s)", false, "debug:"},
   };
   t.operands = [](const std::vector<std::string>& before, const std::vector<std::string>&) {
     if (before.empty()) return Values::words(port_words());
@@ -717,7 +721,9 @@ struct Session {
     fe.commands_file = o.debug_commands;
     fe.dap = o.dap;
     fe.setup.patch = !o.no_patch;
+    fe.setup.reconnect_ms = static_cast<int>(o.reconnect / tmcl::kUsPerMs);
     fe.setup.reconnect = [this](std::string& error) -> host::Client* {
+      (reopened ? *reopened : port).close();
       std::unique_ptr<host::Port> again = host::Port::open(o.port, o.baud, o.client.timeout_ms, error);
       if (!again) return nullptr;
       reopened = std::move(again);

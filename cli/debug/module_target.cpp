@@ -78,6 +78,7 @@ bool ModuleTarget::ask(const Instruction& ins, std::int32_t& value, std::string&
   const host::Result r = client_->request(ins, retry);
   if (!r.ok()) {
     error = r.error;
+    port_failed_ = r.fail == host::Fail::Port;
     return false;
   }
   if (r.reply.status != host::kStatusOk && r.reply.status != host::kStatusLoaded) {
@@ -188,7 +189,7 @@ bool ModuleTarget::attach(std::string& notes, std::string& error) {
       notes += "Restored address " + std::to_string(w.first) + " to " + format_instruction(w.second) + ": a breakpoint's " +
                format_instruction(self_jump(w.first)) + " that an earlier session left on the module.\n";
     }
-    if (s.mode == 1) notes += "The program was spinning there; it is stopped (128).\n";
+    if (s.mode == 1) notes += "The program was running; it was stopped (128) to put them back.\n";
     if (!read_status(s, error)) return false;
   }
   pc_ = s.pc;
@@ -293,18 +294,29 @@ bool ModuleTarget::unpatch(std::string& error) {
   return true;
 }
 
+// The module stopped answering, or the port went away: asked again every 200 ms until the
+// timeout (a port that failed is opened again first). True once it answers.
 bool ModuleTarget::reconnected(std::string& error) {
-  if (!setup_.reconnect) return false;
   const auto deadline = std::chrono::steady_clock::now() + std::chrono::milliseconds(setup_.reconnect_ms);
+  const bool was_lost = lost_;
+  lost_ = false;
   while (std::chrono::steady_clock::now() < deadline) {
     std::this_thread::sleep_for(std::chrono::milliseconds(200));
     std::string err;
-    if (host::Client* c = setup_.reconnect(err)) {
+    if (port_failed_) {
+      host::Client* c = setup_.reconnect ? setup_.reconnect(err) : nullptr;
+      if (!c) {
+        error = err;
+        continue;
+      }
       client_ = c;
-      return true;
+      port_failed_ = false;
     }
+    Status s;
+    if (read_status(s, err)) return true;
     error = err;
   }
+  lost_ = was_lost;
   return false;
 }
 

@@ -33,8 +33,8 @@ struct ModuleSetup {
   bool patch = true;         // false: --no-patch, breakpoints by stepping alone
   int poll_ms = 2;           // between two status reads (135) while the program runs freely
   int reconnect_ms = 5000;   // a lost connection: how long the port may take to come back
-  // Opens the port again after it was lost (null when it cannot be reopened); the client then
-  // talks over the new port.
+  // Opens the port again after it was lost (closing the old one; null with `error` when it cannot
+  // be opened now); the target then talks through the client returned.
   std::function<host::Client*(std::string& error)> reconnect;
 };
 
@@ -138,6 +138,7 @@ class ModuleTarget final : public Target {
   std::int32_t counted_pc_ = -1;  // the breakpoints at this pc have had this stop's hit
   bool worn_said_ = false;      // the EEPROM-wear note was given
   bool lost_ = false;           // the module stopped answering: nothing more is asked
+  bool port_failed_ = false;    // the last request failed on the port itself (not a silence)
 };
 
 // tmclctl PORT debug PROGRAM: the command line (or, with dap, the Debug Adapter Protocol) on a
