@@ -41,14 +41,33 @@ int debug_module(host::Client& client, const Profile& profile, ModuleFrontEnd fe
     std::fprintf(stderr, "tmclctl: error: %s\n", error.c_str());
     return 69;
   }
-  std::fputs(notes.c_str(), out);
-  std::fflush(out);
+  if (!fe.dap) {  // over DAP the notes go out as output events once the client asks (attach)
+    std::fputs(notes.c_str(), out);
+    std::fflush(out);
+  }
 
   g_quit = 0;
   g_module = &target;
   os::SavedSignal old_term, old_hup;
   os::catch_signal(SIGTERM, tmcl_debug_on_quit_signal, false, &old_term);
   os::catch_signal(SIGHUP, tmcl_debug_on_quit_signal, false, &old_hup);
+  if (fe.dap) {
+    DapSetup ds;
+    ds.quit = &g_quit;
+    ds.asm_options = asm_options;
+    ds.source_dirs = fe.source_dirs;
+    ds.attach_notes = notes;
+    const int status = run_dap(ds, target, in, out);
+    os::restore_signal(SIGTERM, old_term);
+    os::restore_signal(SIGHUP, old_hup);
+    g_module = nullptr;
+    std::string left;
+    if (!target.restore(left)) {
+      std::fprintf(stderr, "tmclctl: error: %s\n", left.c_str());
+      return 69;
+    }
+    return status;
+  }
   CliOptions co;
   co.commands_file = fe.commands_file;
   co.program_name = fe.program;

@@ -12,9 +12,16 @@ namespace {
 
 constexpr std::uint8_t code(Op o) { return static_cast<std::uint8_t>(o); }
 Instruction ctl(Op o, int type = 0, std::int32_t value = 0) { return {code(o), static_cast<std::uint8_t>(type), 0, value}; }
+// A run that stops this soon reads no other input meanwhile (Target::on_wait), as the VM's first
+// slice: a scripted DAP client's requests wait for the stop, so its session is the same every time.
+constexpr auto kQuiet = std::chrono::milliseconds(250);
 bool is_call(const Instruction& i) { return i.op == code(Op::CSUB) || i.op == code(Op::CALL); }
 
 }  // namespace
+
+void ModuleTarget::waiting() {
+  if (on_wait && std::chrono::steady_clock::now() - command_start_ >= kQuiet) on_wait();
+}
 
 Stop ModuleTarget::refused(const std::string& command) const {
   return Stop{StopKind::NotRunning, 0,
@@ -62,6 +69,7 @@ bool ModuleTarget::hit_at_pc(Stop& stop) {
 
 Stop ModuleTarget::hold(bool& ok) {
   ok = true;
+  command_start_ = std::chrono::steady_clock::now();
   if (mode_ != 1) return Stop{};
   std::int32_t ignored = 0;
   std::string error;
@@ -100,6 +108,7 @@ Stop ModuleTarget::step_one() {
   while (st.wait) {
     if (pause_.exchange(false)) return stopped_here(StopKind::Pause, std::exchange(pause_note_, {}));
     std::this_thread::sleep_for(std::chrono::milliseconds(setup_.poll_ms));
+    waiting();
     r = client_->request(ctl(Op::StepApplication), false);
     if (!r.ok() && r.fail != host::Fail::NoReply) return failed(r.error);
     if (!read_status(st, error)) return failed(error);
@@ -246,6 +255,7 @@ Stop ModuleTarget::free_run(const std::vector<std::int32_t>& marks, bool& paused
     }
     if (std::find(marks.begin(), marks.end(), st.pc) != marks.end()) break;
     std::this_thread::sleep_for(std::chrono::milliseconds(setup_.poll_ms));
+    waiting();
   }
   if (!ended && !ask(ctl(Op::StopApplication), ignored, error)) return failed(error);
   if (!unpatch(error)) {
@@ -282,6 +292,10 @@ Stop ModuleTarget::run(const std::vector<std::int32_t>& temps, int /*depth*/) {
   const bool stepping = watching() || !setup_.patch;
   for (;; first = false) {
     Stop stop;
+    if (!first) {
+      waiting();  // a breakpoint whose condition keeps failing: other input between its hits
+      if (pause_.exchange(false)) return stopped_here(StopKind::Pause, std::exchange(pause_note_, {}));
+    }
     if (!first && is_temp(pc_)) {
       if (hit_at_pc(stop)) return stop;
       return stopped_here(StopKind::Step);

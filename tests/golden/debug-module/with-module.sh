@@ -3,7 +3,8 @@
 #   with-module.sh TMCLRUN TMCLCTL tcp|pty [SERVER ARGS...] -- [TMCLCTL ARGS...] [-- TMCLCTL ARGS...]...
 # starts `tmclrun --serve` (a TCP port the system picks, or a pseudo-terminal) with the server's
 # arguments, then runs each tmclctl command in turn with PORT replaced by the server's port; the
-# last one reads this script's standard input. After each: "[tmclctl exit N]". The server's own
+# last one reads this script's standard input, another one a file named with a word "<FILE"
+# among its arguments (else nothing). After each: "[tmclctl exit N]". The server's own
 # notes (clients connecting) are dropped: they are the server's, pinned elsewhere.
 run=$1; ctl=$2; transport=$3; shift 3
 dir=$(mktemp -d "${TMPDIR:-/tmp}/tmcl-module-XXXXXX")
@@ -28,13 +29,18 @@ cmds=""
 while [ $# -gt 0 ]; do
   shift  # the "--"
   args=""
+  input=/dev/null
   while [ $# -gt 0 ] && [ "$1" != "--" ]; do
-    if [ "$1" = PORT ]; then args="$args $port"; else args="$args $1"; fi
+    case $1 in
+      PORT) args="$args $port" ;;
+      "<"*) input=${1#<} ;;
+      *) args="$args $1" ;;
+    esac
     shift
   done
-  if [ $# -gt 0 ]; then
+  if [ $# -gt 0 ] || [ "$input" != /dev/null ]; then
     # shellcheck disable=SC2086
-    "$ctl" --timeout 5s $args < /dev/null
+    "$ctl" --timeout 5s $args < "$input"
   else
     # shellcheck disable=SC2086
     "$ctl" --timeout 5s $args

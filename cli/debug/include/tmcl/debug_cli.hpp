@@ -79,8 +79,13 @@ struct DapSetup {
   Limits limits;                     // --max-time, --max-steps
   std::vector<InputEvent> inputs;    // --scenario
   std::optional<EepromImage> eeprom; // --eeprom (read at power-up)
+  std::string attach_notes;          // tmclctl PORT debug --dap: what attaching found, sent on `attach`
+  const volatile std::sig_atomic_t* quit = nullptr;  // SIGTERM, SIGHUP: end as on disconnect
 };
 int run_dap(const DapSetup& setup, std::FILE* in, std::FILE* out);
+// The same on a target attached already (tmclctl PORT debug --dap): `attach` or `launch` confirm
+// it; `setup` gives only the assembler's options.
+int run_dap(const DapSetup& setup, Target& target, std::FILE* in, std::FILE* out);
 
 // tmclrun's debugger options (its option table sets them, cli/tmclrun.cpp).
 struct FrontEnd {

@@ -121,7 +121,8 @@ class ModuleTarget final : public Target {
   Stop run(const std::vector<std::int32_t>& temps, int depth);
   Stop free_run(const std::vector<std::int32_t>& marks, bool& paused, bool& ended);
   Stop run_to_mark(std::int32_t mark);
-  bool hit_at_pc(Stop& stop);  // the breakpoints at pc, not yet counted for this stop
+  bool hit_at_pc(Stop& stop);
+  void waiting();  // on_wait, once the command has run a while (a quick stop reads no input meanwhile)  // the breakpoints at pc, not yet counted for this stop
 
   host::Client* client_;
   ModuleSetup setup_;
@@ -136,6 +137,7 @@ class ModuleTarget final : public Target {
   std::vector<std::int32_t> stack_;  // the CSUBs seen entered while stepping (callers' addresses)
   bool stack_known_ = true;     // false after a free run: frames above may exist
   std::int32_t counted_pc_ = -1;  // the breakpoints at this pc have had this stop's hit
+  std::chrono::steady_clock::time_point command_start_{};
   bool worn_said_ = false;      // the EEPROM-wear note was given
   bool lost_ = false;           // the module stopped answering: nothing more is asked
   bool port_failed_ = false;    // the last request failed on the port itself (not a silence)

@@ -159,6 +159,9 @@ class Target {
   virtual int add_watchpoint(const std::string& text, std::string& error);
   std::vector<Breakpoint>& breakpoints() { return breaks_; }
   std::vector<Watchpoint>& watchpoints() { return watches_; }
+  // Called while a module's program runs, between two status reads (a VM calls Engine::on_slice
+  // instead): a front end reads its other input here (DAP requests) and may pause.
+  std::function<void()> on_wait;
   // Where logpoints and the target's notes print (DAP output events, the CLI's standard output).
   std::function<void(const std::string&)> on_output;
   // A log message with {EXPR} replaced by the expression's value.
