@@ -289,6 +289,7 @@ bool Dap::launch(const Value& req, std::string& error) {
 // the program and a killed session's patches put back (said as output events).
 bool Dap::attach(const Value& req, std::string& error) {
   const Value& a = req["arguments"];
+  stop_on_entry_ = a["stopOnEntry"].as_bool();
   if (target_) {  // tmclctl PORT debug --dap: attached already
     if (!setup_.attach_notes.empty()) event("output", obj({{"category", "console"}, {"output", setup_.attach_notes}}));
     setup_.attach_notes.clear();

@@ -141,4 +141,31 @@ TEST(a_module_that_never_comes_back_is_named_with_the_addresses_still_patched) {
   CHECK(has(o.out, "Program memory is still patched at address 7 (a jump to itself each)"));
 }
 
+// tmclrun --dap attaches to a module by itself: `attach` with the port, a breakpoint, the stop,
+// a variable read over the host protocol, disconnect; the program memory is as loaded after it.
+std::string frame(const std::string& body) { return "Content-Length: " + std::to_string(body.size()) + "\r\n\r\n" + body; }
+
+TEST(tmclrun_dap_attaches_to_a_module) {
+  Server server(kRun, {"--serve", "tcp:127.0.0.1:0"});
+  const std::string prog = program_file();
+  CHECK_EQ(ctl({"-q", server.port(), "download", prog}).status, 0);
+  const std::string requests = write_temp(
+      "attach.requests",
+      frame(R"({"seq":1,"type":"request","command":"initialize","arguments":{"adapterID":"tmcl"}})") +
+          frame(R"({"seq":2,"type":"request","command":"attach","arguments":{"port":")" + server.port() + R"(","program":")" + prog +
+                R"("}})") +
+          frame(R"({"seq":3,"type":"request","command":"setFunctionBreakpoints","arguments":{"breakpoints":[{"name":"loop"}]}})") +
+          frame(R"({"seq":4,"type":"request","command":"configurationDone"})") +
+          frame(R"({"seq":5,"type":"request","command":"continue","arguments":{"threadId":1}})") +
+          frame(R"({"seq":6,"type":"request","command":"evaluate","arguments":{"expression":"v[1]","context":"watch"}})") +
+          frame(R"({"seq":7,"type":"request","command":"disconnect"})"));
+  Output o = hosttest::run({"/bin/sh", "-c", "'" + kRun + "' --dap < '" + requests + "'"});
+  show(o);
+  CHECK_EQ(o.status, 0);
+  CHECK(has(o.out, R"("command":"attach","body":{})"));
+  CHECK(has(o.out, R"("reason":"breakpoint")"));
+  CHECK(has(o.out, R"("command":"evaluate","body":{"result":"1")"));
+  CHECK(memory_is_program(server, prog));
+}
+
 }  // namespace module_test

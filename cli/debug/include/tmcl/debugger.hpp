@@ -1,4 +1,5 @@
-// The debugging engine: one engine, two front ends (the gdb-like command line of
+// The virtual machine as the debugger's target (tmcl/debug_target.hpp; the other is a module,
+// tmcl/debug_module.hpp); one engine, two front ends (the gdb-like command line of
 // `tmclrun --debug` and the Debug Adapter Protocol of `tmclrun --dap`), as lldb-dap shares
 // lldb's. It drives a Vm through run() with step and time limits, breakpoints as VM traps (free
 // on the fast path), watchpoints, and reverse execution by checkpoints of the whole machine (VM,
