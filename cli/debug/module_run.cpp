@@ -14,7 +14,7 @@ constexpr std::uint8_t code(Op o) { return static_cast<std::uint8_t>(o); }
 Instruction ctl(Op o, int type = 0, std::int32_t value = 0) { return {code(o), static_cast<std::uint8_t>(type), 0, value}; }
 // A run that stops this soon reads no other input meanwhile (Target::on_wait), as the VM's first
 // slice: a scripted DAP client's requests wait for the stop, so its session is the same every time.
-constexpr auto kQuiet = std::chrono::milliseconds(250);
+constexpr auto kQuiet = std::chrono::milliseconds(500);
 bool is_call(const Instruction& i) { return i.op == code(Op::CSUB) || i.op == code(Op::CALL); }
 
 }  // namespace
@@ -89,7 +89,9 @@ Stop ModuleTarget::step_one() {
   host::Result r = client_->request(ctl(Op::StepApplication), false);
   if (!r.ok() && r.fail != host::Fail::NoReply) return failed(r.error);
   Status st;
-  if (!read_status(st, error)) return failed(error);
+  // A firmware whose 130 answers only when a WAIT is over may answer nothing else meanwhile:
+  // the status is asked again until --reconnect (its late reply to 130 is then dropped).
+  if (!read_status(st, error) && (!reconnected(error) || !read_status(st, error))) return failed(error);
   if (!r.ok() && st.pc == at && !st.wait)
     return stopped_here(StopKind::Pause, "The module's reply to the step (130) was lost and the program is still at address " +
                                              std::to_string(at) + ": it was not sent again (it may run an instruction twice).");

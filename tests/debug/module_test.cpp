@@ -141,6 +141,28 @@ TEST(a_module_that_never_comes_back_is_named_with_the_addresses_still_patched) {
   CHECK(has(o.out, "Program memory is still patched at address 7 (a jump to itself each)"));
 }
 
+// A lost reply to a patch's store is not answered by storing again (that would write the jump
+// at the next address too): 132 points the module at the address first (errata H2). The reply
+// to the patch's JA store is dropped (the first JA stored is the download's); the session goes
+// on and the memory is as loaded afterwards.
+TEST(a_lost_reply_to_a_patch_store_is_not_stored_twice) {
+  Server server(kRun, {"--serve", "tcp:127.0.0.1:0", "--faults", "drop@cmd=JA#2"});
+  const std::string prog = program_file();
+  CHECK_EQ(ctl({"-q", server.port(), "download", prog}).status, 0);
+  const std::string cmds = commands("drop.cmds", "break loop\nrun\ncontinue\nprint v[1]\n");
+  Output o = ctl({"--timeout", "300ms", server.port(), "--raw", "debug", "--debug-commands", cmds, prog});
+  show(o);
+  CHECK_EQ(o.status, 0);
+  CHECK(has(o.out, "$1 = 1"));
+  // The JA store went out twice, with 132 (to address 1) between.
+  const std::string store = "> 01 16 00 00 00 00 00 01 18", point = "> 01 84 00 00 00 00 00 01 86";
+  const auto first = o.out.find(store);
+  CHECK(first != std::string::npos);
+  const auto again = o.out.find(point, first);
+  CHECK(again != std::string::npos && o.out.find(store, again) != std::string::npos);
+  CHECK(memory_is_program(server, prog));
+}
+
 // tmclrun --dap attaches to a module by itself: `attach` with the port, a breakpoint, the stop,
 // a variable read over the host protocol, disconnect; the program memory is as loaded after it.
 std::string frame(const std::string& body) { return "Content-Length: " + std::to_string(body.size()) + "\r\n\r\n" + body; }
