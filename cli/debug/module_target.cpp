@@ -110,12 +110,17 @@ bool ModuleTarget::read_registers(std::string& error) {
 
 // 134 does not name the address it answers, so a stale copy of an earlier reply cannot be told
 // from the right one (errata H1): a word that is not the one expected is read once more.
-bool ModuleTarget::read_word(std::int32_t address, Instruction& out, std::string& error) {
+bool ModuleTarget::read_word(std::int32_t address, Instruction& out, std::string& error, bool* past_end) {
   const Instruction read = ctl(Op::ReadProgramMemory, 0, address);
   host::Result r;
   for (int n = 0; n < 2; ++n) {
     r = client_->request(read);
     if (!r.ok()) return error = r.error, false;
+    if (past_end && r.reply.status == 4 && r.reply.op == read.op) {  // an address past the end of memory
+      *past_end = true;
+      out = Instruction{};
+      return true;
+    }
     if (r.reply.status != host::kStatusOk) {
       error = "the module answered " + std::to_string(r.reply.status) + " (" + host::status_text(r.reply.status) +
               ") to " + client_->describe(read);
@@ -146,8 +151,10 @@ bool ModuleTarget::attach(std::string& notes, std::string& error) {
   int others = 0;
   for (std::int32_t a = 0; memory <= 0 || a < memory; ++a) {
     Instruction w;
-    if (!read_word(a, w, error)) return false;
+    bool past_end = false;  // memory ends here (a module whose size the profile does not give)
+    if (!read_word(a, w, error, &past_end)) return false;
     const bool in_program = static_cast<std::size_t>(a) < prog.size();
+    if (past_end && !in_program) break;
     if (!in_program && w.op == 0) break;  // the module's end marker, where PROGRAM ends too
     const Instruction want = in_program ? prog[static_cast<std::size_t>(a)] : Instruction{};
     if (in_program && w == want) {

@@ -98,7 +98,8 @@ class ModuleTarget final : public Target {
   bool ask(const Instruction& ins, std::int32_t& value, std::string& error, bool retry = true);
   bool read_status(Status& s, std::string& error);
   bool read_registers(std::string& error);  // A and X (135 types 2, 3), before any direct read
-  bool read_word(std::int32_t address, Instruction& out, std::string& error);
+  // 134 at `address`; with `past_end`, status 4 (an address past the end of memory) is that.
+  bool read_word(std::int32_t address, Instruction& out, std::string& error, bool* past_end = nullptr);
   // Writes `words` at their addresses in one download session (132 per address, 133 at the end);
   // a store whose reply was lost is stored again only after 132 has set the pointer again.
   bool write(const std::vector<std::pair<std::int32_t, Instruction>>& words, std::string& error);
