@@ -843,6 +843,11 @@ bool Cli::command(const std::string& raw) {
     if (!need_running()) return true;
     std::string from = frame_line(e_.pc());
     if (e_.depth() == 0) return error("\"finish\" not meaningful in the outermost frame."), true;
+    if (!m_) {  // a module may not know the caller: then it refuses, and nothing ran
+      Stop s = e_.finish();
+      if (s.kind != StopKind::NotRunning) println("Run till exit from " + from);
+      return report(s), true;
+    }
     println("Run till exit from " + from);
     return report(e_.finish()), true;
   }
