@@ -11,6 +11,12 @@
 namespace tmcl::debug {
 namespace {
 
+#ifdef SIGHUP
+constexpr int kHangUp = SIGHUP;
+#else
+constexpr int kHangUp = SIGTERM;  // Windows has no SIGHUP: SIGTERM is caught twice, harmlessly
+#endif
+
 volatile std::sig_atomic_t g_quit = 0;
 Target* g_module = nullptr;
 extern "C" void tmcl_debug_on_quit_signal(int) {
@@ -50,7 +56,7 @@ int debug_module(host::Client& client, const Profile& profile, ModuleFrontEnd fe
   g_module = &target;
   os::SavedSignal old_term, old_hup;
   os::catch_signal(SIGTERM, tmcl_debug_on_quit_signal, false, &old_term);
-  os::catch_signal(SIGHUP, tmcl_debug_on_quit_signal, false, &old_hup);
+  os::catch_signal(kHangUp, tmcl_debug_on_quit_signal, false, &old_hup);
   if (fe.dap) {
     DapSetup ds;
     ds.quit = &g_quit;
@@ -58,8 +64,8 @@ int debug_module(host::Client& client, const Profile& profile, ModuleFrontEnd fe
     ds.source_dirs = fe.source_dirs;
     ds.attach_notes = notes;
     const int status = run_dap(ds, target, in, out);
+    os::restore_signal(kHangUp, old_hup);  // in reverse order (on Windows both are SIGTERM)
     os::restore_signal(SIGTERM, old_term);
-    os::restore_signal(SIGHUP, old_hup);
     g_module = nullptr;
     std::string left;
     if (!target.restore(left)) {
@@ -76,8 +82,8 @@ int debug_module(host::Client& client, const Profile& profile, ModuleFrontEnd fe
   int status = run_cli(target, co, in, out);
   std::string left;
   const bool restored = target.restore(left);
+  os::restore_signal(kHangUp, old_hup);
   os::restore_signal(SIGTERM, old_term);
-  os::restore_signal(SIGHUP, old_hup);
   g_module = nullptr;
   if (g_quit && restored) std::fprintf(out, "[session ended by a signal; program memory is as loaded]\n");
   std::fflush(out);
