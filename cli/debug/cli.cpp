@@ -388,6 +388,8 @@ void Cli::info_frame() {
     const Engine::Frame& up = frames[n + 1];
     println(up.interrupted ? " an interrupt handler, entered from frame " + std::to_string(n + 1)
                            : " a subroutine, called by frame " + std::to_string(n + 1) + " at " + frame_line(up.pc));
+  } else if (e_.frames_unknown_above()) {
+    println(" the outermost frame known: the frames above it are unknown (the module cannot read its call stack)");
   } else {
     println(" the outermost frame");
   }
