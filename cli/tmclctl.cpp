@@ -24,6 +24,7 @@
 #include "tmcl/analysis.hpp"
 #include "tmcl/asm/assembler.hpp"
 #include "tmcl/asm/disasm.hpp"
+#include "tmcl/debug_module.hpp"
 #include "tmcl/duration.hpp"
 #include "tmcl/fileio.hpp"
 #include "tmcl/host/client.hpp"
@@ -73,10 +74,13 @@ commands:
   scan                        find the modules on a bus: address, firmware, module type
   probe -o FILE.profile       read what a module has (firmware, parameters, memory) into a draft
                               profile for -t (profiles.md, "Your own module")
-  debug --probe               what the module's firmware does where a debugger on it depends on
-                              it: a report to paste into an issue (the program is put back)
   test FILE|DIR...            run test files (*.tmctest) on the module by the wall clock: a smoke
                               test on hardware (testing.md)
+  debug PROGRAM               the debugger of tmclrun --debug on the module: load, break, step,
+                              print, continue (debugger.md, "Debugging on a module"); --dap: the
+                              Debug Adapter Protocol on standard input and output
+  debug --probe               what the module's firmware does where a debugger on it depends on
+                              it: a report to paste into an issue (the program is put back)
 
 options:
 )";
@@ -127,6 +131,10 @@ struct Options {
   bool timeout_given = false;
   bool debug_probe = false;  // debug --probe
   const tmcl::Profile* profile = nullptr;
+  std::string symbols, debug_commands;  // debug: --symbols, --debug-commands
+  std::vector<std::string> source_dirs;
+  bool no_patch = false, dap = false;
+  tmcl::SimTime reconnect = 5000 * tmcl::kUsPerMs;  // debug: how long a lost module may take to come back
 };
 
 int usage_error(const std::string& msg) {
@@ -292,6 +300,18 @@ tmcl::cli::Tool command_line(Options& o) {
          return std::string();
        },
        {}, "a list such as 9600,115200", false, "scan:"},
+      {"--debug-commands", "FILE", "run the debugger's commands from FILE, then quit (like gdb -batch -x)", set(o.debug_commands),
+       Values::files({}), {}, false, "debug:"},
+      {"--symbols", "FILE", "labels and line table of a .bin PROGRAM (tmclasm -f symbols)", set(o.symbols),
+       Values::files({"sym"}), {}, false, "debug:"},
+      {"--source-dir", "DIR", "where the sources of a .bin PROGRAM are (repeatable)", tmcl::cli::append(o.source_dirs),
+       Values::dirs(), "a directory", false, "debug:"},
+      {"--no-patch", "", "breakpoints by stepping alone: program memory is never written (slow)", flag(o.no_patch), {}, {},
+       false, "debug:"},
+      {"--dap", "", "the Debug Adapter Protocol on standard input and output", flag(o.dap), {}, {}, false, "debug:"},
+      {"--reconnect", "DURATION", "a module that stops answering may come back this long (default 5s): then the "
+       "breakpoint patches are removed", duration("--reconnect", o.reconnect), Values::words(durations),
+       "a duration greater than 0 (e.g. 500ms, 2s)", false, "debug:"},
   };
   t.operands = [](const std::vector<std::string>& before, const std::vector<std::string>&) {
     if (before.empty()) return Values::words(port_words());
@@ -299,6 +319,7 @@ tmcl::cli::Tool command_line(Options& o) {
     const std::string& command = before[1];
     if (command == "download") return Values::files({"tmc", "bin", "dgm", "o", "a"});
     if (command == "test") return Values::files({"tmctest"});
+    if (command == "debug") return Values::files({"tmc", "bin", "dgm"});
     if ((command == "get" || command == "set" || command == "store" || command == "monitor") && before.size() == 2)
       return Values::words({"ap", "gp", "io"});
     return Values();
@@ -627,6 +648,10 @@ struct Session {
   int cmd_download() {
     std::vector<Instruction> program;
     if (int rc = load_program(program); rc >= 0) return rc;
+    // An image may be an upload of a module a killed debugging session left patched.
+    const std::string& first = o.args[0];
+    const std::string ext = first.size() > 4 ? first.substr(first.size() - 4) : "";
+    if (ext == ".bin" || ext == ".dgm") warn_patches(program);
     const bool tty = !o.quiet && ::isatty(2);
     const int memory = o.profile->program_memory;
     const int total = static_cast<int>(program.size());
@@ -690,6 +715,33 @@ struct Session {
     return kExitOk;
   }
 
+  // tmclctl PORT debug PROGRAM: the debugger on the module (cli/debug, debug_module.hpp). Ctrl-C
+  // pauses the program there instead of cancelling a request.
+  int cmd_debug() {
+    if (o.args.size() != 1) return usage_error("debug needs one PROGRAM (.tmc, or .bin with --symbols)");
+    tmcl::debug::ModuleFrontEnd fe;
+    fe.program = o.args[0];
+    fe.symbols = o.symbols;
+    fe.source_dirs = o.source_dirs;
+    fe.include_dirs = o.include_dirs;
+    fe.commands_file = o.debug_commands;
+    fe.dap = o.dap;
+    fe.setup.patch = !o.no_patch;
+    fe.setup.reconnect_ms = static_cast<int>(o.reconnect / tmcl::kUsPerMs);
+    fe.setup.reconnect = [this](std::string& error) -> host::Client* {
+      (reopened ? *reopened : port).close();
+      std::unique_ptr<host::Port> again = host::Port::open(o.port, o.baud, o.client.timeout_ms, error);
+      if (!again) return nullptr;
+      reopened = std::move(again);
+      reclient = std::make_unique<host::Client>(*reopened, o.client);
+      return reclient.get();
+    };
+    host::Port::set_cancel_flag(nullptr);
+    return tmcl::debug::debug_module(client, *o.profile, std::move(fe), stdin, stdout);
+  }
+  std::unique_ptr<host::Port> reopened = nullptr;  // debug: the port opened again after it was lost
+  std::unique_ptr<host::Client> reclient = nullptr;
+
   int cmd_upload() {
     if (o.output.empty()) return usage_error("upload needs -o FILE.bin");
     if (!o.args.empty()) return usage_error("upload takes no arguments besides -o FILE");
@@ -701,10 +753,22 @@ struct Session {
                    tr.outcome == host::Outcome::Cancelled ? "; nothing written" : "");
       return exit_for(tr.outcome);
     }
+    warn_patches(program);
     const std::vector<std::uint8_t> bin = tmcl::write_bin(program);
     if (!write_output(o.output, std::string(bin.begin(), bin.end()))) return kExitPort;
     if (!o.quiet) std::printf("read %zu instructions into %s\n", program.size(), o.output.c_str());
     return kExitOk;
+  }
+
+  // Jumps to themselves in program memory: what a debugger's breakpoint patch looks like, left
+  // by a `tmclctl PORT debug` session that was killed (kill -9) while the program ran.
+  void warn_patches(const std::vector<Instruction>& memory) {
+    for (std::int32_t a : tmcl::debug::self_jumps(memory))
+      std::fprintf(stderr,
+                   "tmclctl: warning: address %d holds a jump to itself (JA %d): an endless loop, or a debugger's breakpoint "
+                   "patch; if a `tmclctl PORT debug` session was killed, `tmclctl PORT debug PROGRAM` puts the "
+                   "instruction back\n",
+                   static_cast<int>(a), static_cast<int>(a));
   }
 
   int cmd_control(Op op) {
@@ -968,8 +1032,7 @@ int run(int argc, char** argv) {
   if ((!o.csv.empty() || !o.plot.empty()) && o.command != "monitor") return usage_error("--csv and --plot go with monitor");
   if (!o.junit.empty() && o.command != "test") return usage_error("--junit goes with test");
   if (o.debug_probe && o.command != "debug") return usage_error("--probe goes with debug");
-  if (o.command == "debug")
-    if (int rc = tmclctl_debug_usage(o.port, o.debug_probe, o.args); rc >= 0) return rc;
+  if (o.debug_probe && !o.args.empty()) return usage_error("debug --probe takes no arguments");
   if (o.command == "test" && o.args.empty()) return usage_error("test needs test files or folders (FILE.tmctest or DIR)");
 
   std::string err;
@@ -999,7 +1062,7 @@ int run(int argc, char** argv) {
   if (c == "reset") return s.cmd_control(Op::ResetApplication);
   if (c == "status") return s.cmd_status();
   if (c == "monitor") return s.cmd_monitor();
-  if (c == "debug") return tmclctl_debug_probe(s.client, *o.profile, o.client.module, &g_stop);
+  if (c == "debug") return o.debug_probe ? tmclctl_debug_probe(s.client, *o.profile, o.client.module, &g_stop) : s.cmd_debug();
   if (c == "test") {
     host::Fail failed = host::Fail::None;
     const int status = tmclctl_test(s.client, *o.profile, o.target_given ? o.target : std::string(o.profile->name), o.args,

@@ -42,19 +42,6 @@ std::string describe_module(host::Client& client, int module) {
 
 }  // namespace
 
-int tmclctl_debug_usage(const std::string& port, bool probe, const std::vector<std::string>& args) {
-  if (!probe) {
-    std::fprintf(stderr, "tmclctl: debug: the debugger on a module is not built yet (issue 39); `tmclctl %s debug "
-                         "--probe` reports what it would need of this module\n(see tmclctl --help)\n", port.c_str());
-    return 64;
-  }
-  if (!args.empty()) {
-    std::fprintf(stderr, "tmclctl: debug --probe takes no arguments\n(see tmclctl --help)\n");
-    return 64;
-  }
-  return -1;
-}
-
 int tmclctl_debug_probe(host::Client& client, const tmcl::Profile& profile, int module, volatile std::sig_atomic_t* stop) {
   host::DebugProbeOptions options;
   options.module = describe_module(client, module);

@@ -11,9 +11,6 @@
 #include "tmcl/host/client.hpp"
 #include "tmcl/profile.hpp"
 
-// `debug` before the port is opened: 64 after saying why when it is not `debug --probe` alone
-// (the debugger itself is not built here), else -1.
-int tmclctl_debug_usage(const std::string& port, bool probe, const std::vector<std::string>& args);
 // Runs the probe on the module behind `client` (module address `module`, profile `profile`, whose
 // program memory bounds the read past the end) and prints the report on standard output.
 // Returns the exit status: 0 done, 2 the module refused a command the probe needs, 69 no reply,

@@ -244,7 +244,10 @@ tmcl::cli::Tool command_line(Options& o) {
          o.limits.max_steps = n;
          return std::string();
        }},
-      {"--scenario", "FILE", "timed inputs, switches and encoder slip (tmclrun.md)", set(o.scenario), Values::files()},
+      {"--scenario", "FILE",
+       "the machine and its inputs (tmclrun.md): timed inputs, switches,\n"
+       "hard stops, loads (timed and at positions) and encoder slip",
+       set(o.scenario), Values::files()},
       {"--eeprom", "FILE", "load the EEPROM from FILE at start, save it there at exit", set(o.eeprom),
        Values::files({"eeprom"})},
       {"--eeprom-seal", "FILE", "after editing an EEPROM file by hand: check it, write a new checksum",
@@ -261,8 +264,11 @@ tmcl::cli::Tool command_line(Options& o) {
        flag(o.json)},
       {"--strict", "",
        "a run-time warning (full call stack, RSUB or RETI with nothing to\n"
-       "return to, a handler left without RETI) is a runtime fault (70)",
+       "return to, a handler left without RETI) is a runtime fault (70); a\n"
+       "note (an interrupt never raised, a parameter not simulated) is a\n"
+       "warning, and so a fault too",
        flag(o.strict)},
+      {"--list-targets", "", "list every target found and where it comes from, as tmclasm does", flag(o.list_targets)},
       {"--error-limit", "N", "show at most N errors of the source or scenario (default 20, 0 = all)",
        [&o](const std::string& v) {
          std::int64_t n = 0;
@@ -436,6 +442,11 @@ int parse_args(int argc, char** argv, Options& o) {
   const tmcl::cli::Result cl = tmcl::cli::parse(command_line(o), argc, argv);
   if (cl.status == tmcl::cli::Result::Status::Done) return kExitOk;
   if (cl.status == tmcl::cli::Result::Status::Error) return usage_error(cl.error);
+  if (o.list_targets) {  // the same list as tmclasm's (one reader: targets.hpp)
+    const std::string list = tmcl::format_target_list(tmcl::list_targets());
+    return std::fwrite(list.data(), 1, list.size(), stdout) == list.size() && std::fflush(stdout) == 0 ? kExitOk
+                                                                                                      : kExitIo;
+  }
   o.given = cl.given;
   o.inputs = cl.operands;
   if (cl.operands.size() > 1 && !o.testing)

@@ -31,6 +31,7 @@ struct Options {
   std::string eeprom_seal;
   bool trace = false, json = false;
   bool strict = false;  // a run-time warning (docs/tmclrun.md) is a runtime fault
+  bool list_targets = false;  // --list-targets: list the targets and run nothing
   std::string csv, plot;
   tmcl::SimTime plot_from = 0, plot_to = tmcl::kNever;  // --plot-from, --plot-to
   std::string log;  // --serve --trace: the request log (empty: standard error)

@@ -63,12 +63,20 @@ bool parse_position(const LineWord& x, AtWord at_word, std::int64_t& v) {
   return false;
 }
 
+// Where each motor's hard stops are, as the file places them: the line that placed one (0: none
+// yet) and its position, by motor * 2 + side.
+struct HardStops {
+  std::vector<int> line = std::vector<int>(256 * 2, 0);
+  std::vector<std::int64_t> at = std::vector<std::int64_t>(256 * 2, 0);
+};
+
 // `hardstop left|right MOTOR at POS`: a mechanical end the shaft cannot pass (below POS: left,
-// above: right). It may lie inside a switch's range (a switch that closes before the end).
-// `first_line[motor * 2 + side]`: the line that placed that hard stop (0: none yet).
+// above: right). It may lie inside a switch's range (a switch that closes before the end). The
+// carriage starts at position 0, so a left end lies at or below 0 and a right end at or above it,
+// and a motor's left end lies left of its right end (docs/tmclrun.md).
 template <class Error, class AtWord>
 void parse_hardstop(const std::vector<LineWord>& w, const ScenarioOptions& options, std::vector<InputEvent>& out,
-                    std::vector<int>& first_line, int line_no, Error error, AtWord at_word, const std::string& line) {
+                    HardStops& stops, int line_no, Error error, AtWord at_word, const std::string& line) {
   static const char* kShape = "expected 'hardstop left|right MOTOR at POSITION'";
   if (w.size() < 5) {
     error(static_cast<int>(line.find_last_not_of(" \t")) + 2, 1, std::string(kShape) + ": the line ends early");
@@ -91,12 +99,26 @@ void parse_hardstop(const std::vector<LineWord>& w, const ScenarioOptions& optio
     return;
   }
   if (!parse_position(w[4], at_word, p) || !ok) return;
-  int& first = first_line[static_cast<std::size_t>(motor * 2 + side)];
+  const auto k = static_cast<std::size_t>(motor * 2 + side);
+  int& first = stops.line[k];
   if (first != 0) {
     at_word(w[1], "hardstop " + w[1].text + " " + w[2].text + " is already placed at line " + std::to_string(first));
     return;
   }
+  const std::size_t other = k ^ 1;
+  if (stops.line[other] != 0 && (side == 0 ? p > stops.at[other] : p < stops.at[other])) {
+    at_word(w[4], std::string("the ") + (side == 0 ? "left" : "right") + " end lies " + (side == 0 ? "right" : "left") +
+                      " of the " + (side == 0 ? "right" : "left") + " end at " + std::to_string(stops.at[other]) +
+                      " (line " + std::to_string(stops.line[other]) + ")");
+    return;
+  }
+  if (options.from_start && (side == 0 ? p > 0 : p < 0)) {
+    at_word(w[4], std::string("the carriage starts at position 0, beyond this ") + (side == 0 ? "left" : "right") +
+                      " end (a " + (side == 0 ? "left end lies at or below 0" : "right end lies at or above 0") + ")");
+    return;
+  }
   first = line_no;
+  stops.at[k] = p;
   InputEvent ev;
   ev.kind = InputEvent::HardStop;
   ev.index = static_cast<int>(motor);
@@ -258,7 +280,7 @@ bool parse_scenario(const std::string& text, const std::string& file, std::vecto
                     std::vector<FileDiag>& diags, const ScenarioOptions& options) {
   const std::size_t errors_before = diags.size();
   std::vector<int> placed_at(256 * 3, 0);  // per motor and switch: the line that placed it
-  std::vector<int> stop_at(256 * 2, 0);    // per motor and side: the line that placed a hard stop
+  HardStops stop_at;                       // per motor and side: the hard stops placed
   int line_no = 0;
   for (std::size_t pos = 0; pos < text.size();) {
     std::size_t end = text.find('\n', pos);

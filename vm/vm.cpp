@@ -279,12 +279,16 @@ bool Vm::warn(RuntimeWarning::Kind kind, std::string message) {
 bool Vm::note_not_simulated(int n) {
   const std::string why = not_simulated_reason(*profile, motion->name(), n);
   if (why.empty()) return false;
-  for (const auto& nt : notes)
-    if (nt.message.rfind("interrupt " + std::to_string(n) + " ", 0) == 0) return false;  // once
+  const std::string once = "interrupt " + std::to_string(n) + " ";
   const InterruptVector* v = profile->vector(n);
-  std::string message = "interrupt " + std::to_string(n) + (v ? " (" + std::string(v->name) + ")" : std::string()) +
-                        " is enabled, but this run never raises it (" + vector_source_text(vector_kind(n)) +
-                        " is not simulated: " + why + ")";
+  return note_once(once, "interrupt " + std::to_string(n) + (v ? " (" + std::string(v->name) + ")" : std::string()) +
+                             " is enabled, but this run never raises it (" + vector_source_text(vector_kind(n)) +
+                             " is not simulated: " + why + ")");
+}
+
+bool Vm::note_once(std::string_view once, std::string message) {
+  for (const auto& nt : notes)
+    if (std::string_view(nt.message).substr(0, once.size()) == once) return false;
   if (strict) return warn(RuntimeWarning::NotSimulated, std::move(message));
   RuntimeWarning note{now - instr_time, pc, RuntimeWarning::NotSimulated, std::move(message), true};
   notes.push_back(note);
@@ -300,15 +304,9 @@ bool Vm::note_not_simulated_param(int bank, int number, std::string_view mnemoni
   if (!p || p->not_simulated.empty()) return false;
   const std::string what = param_text(bank < 0 ? "axis parameter" : "global parameter", number, p) +
                            (bank < 0 ? std::string() : " of bank " + std::to_string(bank));
-  for (const auto& nt : notes)
-    if (nt.message.rfind(what + " ", 0) == 0) return false;  // once per parameter, whatever the motor
-  std::string message = what + " is " + (read ? "read" : "written") + " (" + std::string(mnemonic) +
-                        "), but this run does not simulate it: " + std::string(p->not_simulated);
-  if (strict) return warn(RuntimeWarning::NotSimulated, std::move(message));
-  RuntimeWarning note{now - instr_time, pc, RuntimeWarning::NotSimulated, std::move(message), true};
-  notes.push_back(note);
-  last_warning = note;
-  return false;
+  return note_once(what + " ",  // once per parameter, whatever the motor
+                   what + " is " + (read ? "read" : "written") + " (" + std::string(mnemonic) +
+                       "), but this run does not simulate it: " + std::string(p->not_simulated));
 }
 
 bool Vm::check_handler_code() {
@@ -395,6 +393,13 @@ void Vm::handle_motion_event(const MotionEvent& ev) {
       break;
     case MotionEventKind::SwitchChanged: switch_source(ev.motor, ev.input, false, ev.active); break;
     case MotionEventKind::Stall: raise(15 + ev.motor); break;
+    case MotionEventKind::StepsLost:
+      if (ev.value == kStepsLostStallUnseen) {  // the program relies on a stall the module cannot see (E78)
+        const std::string m = "motor " + std::to_string(ev.motor);
+        (void)note_once(m + " ", m + " met a hard stop or a load with stop on stall (181) on, but in StealthChop (187 > 0, below "
+                                     "186) stallGuard2 measures nothing: no stall stops it, steps are lost (errata E78)");
+      }
+      break;
     default: break;
   }
 }

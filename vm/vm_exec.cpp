@@ -27,9 +27,13 @@ std::string never_ending_wait_reason(const Vm& vm) {
     return " can never end: motor " + std::to_string(vm.wait.motor) +
            "'s reference search runs on, but no switch on its way can end it and no timer, input or timeout is"
            " pending (the module would search until RFS STOP; give WAIT RFS a timeout, or run with --max-time)";
-  if (vm.wait.kind == 1)
+  if (vm.wait.kind == 1) {
     if (std::string why = vm.motion->move_problem(vm.wait.motor); !why.empty() && why.starts_with("the move cannot start"))
       return " can never end: motor " + std::to_string(vm.wait.motor) + "'s " + why.substr(4);
+    if (std::string why = vm.motion->stop_reason(vm.wait.motor); !why.empty())  // issue 41
+      return " can never end: motor " + std::to_string(vm.wait.motor) + " " + why +
+             ", and no timer, motion, input or timeout is pending";
+  }
   return " can never end: no timer, motion, input or timeout is pending";
 }
 
@@ -149,7 +153,10 @@ void Vm::Loop::unknown_instruction(Vm& vm, std::int32_t at) {
 }
 
 // One instruction through the table dispatch (every row of opcodes.def), registers in `vm`.
-inline void Vm::Loop::execute(Vm& vm, std::int32_t at) {
+// Never inlined: the semantics of every instruction (with every run-time check) would otherwise
+// grow run_fast() until the compiler stops inlining the fast path's own primitives (issue 42:
+// the run-time checks of 69203f1 made the CALC/DJNZ loop 1.6x slower that way).
+[[gnu::noinline]] void Vm::Loop::execute(Vm& vm, std::int32_t at) {
   bool known = false;
   if (vm.code_[static_cast<std::size_t>(at)].op != 0) ops::dispatch<false>(vm, vm.program[static_cast<std::size_t>(at)], known);
   if (!known) [[unlikely]] {
@@ -236,7 +243,6 @@ RunResult Vm::Loop::run_fast(Vm& vm, const Limits& lim) {
       continue;
     }
     const Instruction* const code = vm.code_.data();
-    const auto size = static_cast<std::uint32_t>(vm.program_size);
     const SimTime dt = vm.instr_time;
     SimTime base_now = vm.now;
     std::uint64_t base_steps = vm.steps;
@@ -251,16 +257,17 @@ RunResult Vm::Loop::run_fast(Vm& vm, const Limits& lim) {
       if constexpr (kCount) ++executed[pc];
       switch (ins.op) {
 // The ALU part of CALC t / CALCV t on `dst`, shared by the plain and the fused forms.
-#define TMCL_ALU(t, dst)          \
-  if constexpr (t == NOT)         \
-    dst = ~dst;                   \
-  else                            \
-    arith(t, dst, ins.value);     \
+#define TMCL_ALU(t, dst)             \
+  if constexpr (t == NOT)            \
+    dst = ~dst;                      \
+  else                               \
+    dst = arith_of<t>(dst, ins.value); \
   flags = flags_of(dst);
 // The DJNZ half of a fused form; when the budget ends between the two halves, the DJNZ runs on
-// its own after the check.
+// its own after the check. [[unlikely]]: the fused path one straight line (vm_bench's guard
+// measured it twice: without it the same instructions ran up to 1.5x slower).
 #define TMCL_FUSED_DJNZ()                                              \
-  if (left == 0) {                                                     \
+  if (left == 0) [[unlikely]] {                                        \
     ++pc;                                                              \
     continue;                                                          \
   }                                                                    \
@@ -316,29 +323,22 @@ RunResult Vm::Loop::run_fast(Vm& vm, const Limits& lim) {
           flags = compare_flags(acc, ins.value);
           ++pc;
           continue;
-        case static_cast<std::uint8_t>(Op::JA):
-          if (static_cast<std::uint32_t>(ins.value) < size) {
-            pc = ins.value;
-            continue;
-          }
-          break;
-        case static_cast<std::uint8_t>(Op::JC):
-          if (static_cast<std::uint32_t>(ins.value) < size) {
-            const bool jump = condition(flags, vm.errors, ins.type);
-            if constexpr (kCount) taken[pc] += jump;
-            pc = jump ? ins.value : pc + 1;
-            continue;
-          }
-          break;
-        case static_cast<std::uint8_t>(Op::DJNZ):
-          if (static_cast<std::uint32_t>(ins.value) < size) {
-            std::int32_t& v = vm.vars[ins.type];
-            v = wrap(static_cast<std::uint32_t>(v) - 1u);
-            if constexpr (kCount) taken[pc] += v != 0;
-            pc = v != 0 ? ins.value : pc + 1;
-            continue;
-          }
-          break;
+        case kFastJA:  // targets checked by decode_for_run: one outside the program faults the slow way
+          pc = ins.value;
+          continue;
+        case kFastJC: {
+          const bool jump = fast_condition(flags, vm.errors, ins);
+          if constexpr (kCount) taken[pc] += jump;
+          pc = jump ? ins.value : pc + 1;
+          continue;
+        }
+        case kFastDJNZ: {
+          std::int32_t& v = vm.vars[ins.type];
+          v = wrap(static_cast<std::uint32_t>(v) - 1u);
+          if constexpr (kCount) taken[pc] += v != 0;
+          pc = v != 0 ? ins.value : pc + 1;
+          continue;
+        }
         default: break;
       }
       // The slow way: registers back into the struct, table dispatch, registers out again.

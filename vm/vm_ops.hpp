@@ -71,25 +71,40 @@ using namespace kw::CalcVV;
 
 inline std::int32_t wrap(std::uint32_t v) { return static_cast<std::int32_t>(v); }
 
-// a <op> b for ADD..XOR and LOAD; NOT/SWAP/COMP are handled by the callers.
+// a <op> b for ADD..XOR and LOAD, the operation known at compile time: the run loop's fast path
+// (vm_exec.cpp) instantiates it per CALC type, so each case is one machine instruction or two that
+// no inlining decision of the compiler can move out of the loop (issue 42: an out-of-line
+// arith() with the accumulator spilled to memory made the CALC/DJNZ loop 1.6x slower).
+// NOT/SWAP/COMP are handled by the callers.
+template <int kOp>
+inline std::int32_t arith_of(std::int32_t a, std::int32_t b) {
+  const auto ua = static_cast<std::uint32_t>(a), ub = static_cast<std::uint32_t>(b);
+  if constexpr (kOp == ADD) return wrap(ua + ub);
+  else if constexpr (kOp == SUB) return wrap(ua - ub);
+  else if constexpr (kOp == MUL) return wrap(ua * ub);
+  else if constexpr (kOp == DIV) return b == 0 ? a : (a == std::numeric_limits<std::int32_t>::min() && b == -1) ? a : a / b;
+  else if constexpr (kOp == MOD) return b == 0 ? a : (b == -1) ? 0 : a % b;
+  else if constexpr (kOp == AND) return wrap(ua & ub);
+  else if constexpr (kOp == OR) return wrap(ua | ub);
+  else if constexpr (kOp == XOR) return wrap(ua ^ ub);
+  else if constexpr (kOp == LOAD) return b;
+  else return a;
+}
+// The same with the operation known at run time (the table dispatch).
 inline void arith(std::uint8_t op, std::int32_t& a, std::int32_t b) {
-  auto ua = static_cast<std::uint32_t>(a), ub = static_cast<std::uint32_t>(b);
   switch (op) {
-    case ADD: a = wrap(ua + ub); break;
-    case SUB: a = wrap(ua - ub); break;
-    case MUL: a = wrap(ua * ub); break;
-    case DIV:
-      if (b == 0) break;
-      a = (a == std::numeric_limits<std::int32_t>::min() && b == -1) ? a : a / b;
-      break;
-    case MOD:
-      if (b == 0) break;
-      a = (b == -1) ? 0 : a % b;
-      break;
-    case AND: a = wrap(ua & ub); break;
-    case OR: a = wrap(ua | ub); break;
-    case XOR: a = wrap(ua ^ ub); break;
-    case LOAD: a = b; break;
+#define TMCL_ARITH_CASE(t) \
+  case t: a = arith_of<t>(a, b); break;
+    TMCL_ARITH_CASE(ADD)
+    TMCL_ARITH_CASE(SUB)
+    TMCL_ARITH_CASE(MUL)
+    TMCL_ARITH_CASE(DIV)
+    TMCL_ARITH_CASE(MOD)
+    TMCL_ARITH_CASE(AND)
+    TMCL_ARITH_CASE(OR)
+    TMCL_ARITH_CASE(XOR)
+    TMCL_ARITH_CASE(LOAD)
+#undef TMCL_ARITH_CASE
     default: break;
   }
 }
@@ -145,12 +160,24 @@ inline bool condition(const Vm& vm, std::uint8_t cond) { return condition(vm.fla
 //   kFastCalcV + t    CALCV t        (t = ADD..LOAD, COMP)
 //   kFusedCalc + t    CALC t, then the DJNZ at the next address (a superinstruction)
 //   kFusedCalcV + t   CALCV t, then the DJNZ at the next address
+//   kFastJA, kFastDJNZ   JA, DJNZ whose target lies inside the program (one outside it keeps its
+//                        own opcode and faults through the table dispatch)
+//   kFastJC           JC whose target lies inside the program, its condition pre-decoded: type
+//                     the mask of kConditions, motor its invert
 // A fused form still counts two instructions and two instruction times, and the run loop splits
 // it when a check falls between the two, so fusion never changes what a program observes.
 inline constexpr std::uint8_t kFastCalc = 0xC0;
 inline constexpr std::uint8_t kFastCalcV = 0xD0;
 inline constexpr std::uint8_t kFusedCalc = 0xA0;
 inline constexpr std::uint8_t kFusedCalcV = 0xB0;
+inline constexpr std::uint8_t kFastJA = 0x90;
+inline constexpr std::uint8_t kFastJC = 0x91;
+inline constexpr std::uint8_t kFastDJNZ = 0x92;
+// The pre-decoded JC's condition (kFastJC): as condition(), from the mask and invert in the form.
+inline bool fast_condition(std::uint8_t flags, std::uint8_t errors, const Instruction& jc) {
+  const unsigned bits = flags | (static_cast<unsigned>(errors) << 4);
+  return ((bits & jc.type) != 0) != (jc.motor != 0);
+}
 
 // What the run loop executes at an address holding `ins`, followed by `next`, in a program of
 // `size` instructions: 0 when the profile lacks the command (or it is not a program
@@ -168,7 +195,17 @@ inline Instruction decode_for_run(const Instruction& ins, const Instruction& nex
   }
   const bool djnz_next = next.op == static_cast<std::uint8_t>(Op::DJNZ) && available(next) && next.value >= 0 &&
                          next.value < size;
-  if (ins.op == static_cast<std::uint8_t>(Op::CALC) && ins.type <= LOAD) {
+  const bool target_ok = ins.value >= 0 && ins.value < size;
+  if (ins.op == static_cast<std::uint8_t>(Op::JA) && target_ok) {
+    c.op = kFastJA;
+  } else if (ins.op == static_cast<std::uint8_t>(Op::DJNZ) && target_ok) {
+    c.op = kFastDJNZ;
+  } else if (ins.op == static_cast<std::uint8_t>(Op::JC) && target_ok) {
+    const CondBits cond = ins.type <= 15 ? kConditions[ins.type] : CondBits{0, false};
+    c.op = kFastJC;
+    c.type = cond.mask;
+    c.motor = cond.invert ? 1 : 0;
+  } else if (ins.op == static_cast<std::uint8_t>(Op::CALC) && ins.type <= LOAD) {
     c.op = static_cast<std::uint8_t>((djnz_next ? kFusedCalc : kFastCalc) + ins.type);
   } else if (ins.op == static_cast<std::uint8_t>(Op::CALCV) && (ins.type <= LOAD || ins.type == COMP)) {
     c.op = static_cast<std::uint8_t>((djnz_next && ins.type != COMP ? kFusedCalcV : kFastCalcV) + ins.type);

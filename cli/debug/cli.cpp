@@ -20,9 +20,9 @@
 namespace tmcl::debug {
 namespace {
 
-Engine* g_engine = nullptr;
-extern "C" void on_sigint(int) {
-  if (g_engine) g_engine->pause();
+Target* g_target = nullptr;
+extern "C" void tmcl_debug_on_sigint(int) {
+  if (g_target) g_target->pause();
 }
 
 }  // namespace
@@ -67,7 +67,7 @@ struct Display {
 
 class Cli {
  public:
-  Cli(Engine& e, std::FILE* out) : e_(e), out_(out) {
+  Cli(Target& e, std::FILE* out) : e_(e), m_(e.machine()), out_(out) {
     e_.on_output = [this](const std::string& s) { print(s); };
   }
 
@@ -93,15 +93,12 @@ class Cli {
     const ProgramInfo& info = e_.info();
     if (const std::string* text = info.source_text(address))
       return std::to_string(info.lines[static_cast<std::size_t>(address)].line) + "\t" + *text;
-    Vm& vm = e_.vm();
-    if (address >= 0 && address < vm.program_size)
-      return std::to_string(address) + "\t" + format_instruction(vm.program[static_cast<std::size_t>(address)]);
+    if (address >= 0 && address < e_.program_size()) return std::to_string(address) + "\t" + format_instruction(e_.instruction(address));
     return std::to_string(address) + "\t(outside the program)";
   }
   void where_now() {
-    Vm& vm = e_.vm();
-    std::int32_t at = vm.faulted() && vm.halt_pc >= 0 ? vm.halt_pc : vm.pc;
-    println(frame_line(at) + ", time " + format_time(vm.now));
+    const std::int32_t at = e_.pc();
+    println(frame_line(at) + e_.when());
     println(code_line(at));
   }
   void show_displays();
@@ -115,7 +112,7 @@ class Cli {
     Expr x;
     std::int64_t v = 0;
     std::string err;
-    if (!parse_expr(arg, e_.info(), x, err) || !eval_expr(x, e_.vm(), v, err) || v < 1) {
+    if (!parse_expr(arg, e_.info(), x, err) || !e_.eval(x, v, err) || v < 1) {
       error("expected a positive count, not '" + arg + "'");
       return false;
     }
@@ -142,10 +139,12 @@ class Cli {
   void info_interrupts();
   void info_timers();
   void info_motors();
+  void module_motors();
   std::string encoder_text(int motor);
   std::string stall_text(int motor);
 
-  Engine& e_;
+  Target& e_;
+  Engine* m_;  // the virtual machine's engine, for what only it has; nullptr on a module
   std::FILE* out_;
   int status_ = 0;
   std::vector<std::int64_t> values_;  // print's value history: $1 is values_[0]
@@ -157,7 +156,6 @@ class Cli {
 };
 
 void Cli::report(const Stop& s) {
-  Vm& vm = e_.vm();
   switch (s.kind) {
     case StopKind::Entry: break;
     case StopKind::Breakpoint:
@@ -182,7 +180,7 @@ void Cli::report(const Stop& s) {
     case StopKind::Step: break;
     case StopKind::Pause: println("\n" + (s.message.empty() ? std::string("Program paused.") : s.message)); break;
     case StopKind::Exited:
-      println("[program stopped: " + s.message + ", time " + format_time(vm.now) + "]");
+      println("[program stopped: " + s.message + e_.when() + "]");
       status_ = 0;
       list_next_ = -1;
       return;
@@ -211,7 +209,7 @@ void Cli::show_displays() {
   for (const auto& d : displays_) {
     std::int64_t v = 0;
     std::string err;
-    if (eval_expr(d.expr, e_.vm(), v, err))
+    if (e_.eval(d.expr, v, err))
       println(std::to_string(d.id) + ": " + d.text + " = " + std::to_string(v));
     else
       println(std::to_string(d.id) + ": " + d.text + " = <" + err + ">");
@@ -230,7 +228,7 @@ void Cli::cmd_break(const std::string& arg, bool temporary) {
   std::string err;
   if (loc.empty()) {
     if (!e_.running()) return error("No default breakpoint location: the program is not being run.");
-    address = e_.vm().pc;
+    address = e_.pc();
     loc = "*" + std::to_string(address);
   } else if (!e_.resolve(loc, address, err)) {
     return error(err);
@@ -277,12 +275,26 @@ void Cli::info_breakpoints() {
 }
 
 void Cli::info_registers() {
-  Vm& vm = e_.vm();
   char buf[256];
   auto row = [&](const char* name, std::int64_t v, const std::string& note) {
     std::snprintf(buf, sizeof buf, "%-8s %-12lld %s", name, static_cast<long long>(v), note.c_str());
     println(trim(buf));
   };
+  if (!m_) {  // a module: what 135 reads (docs/debugger.md, "Debugging on a module")
+    for (const char* r : {"A", "X"}) {
+      Expr x;
+      std::int64_t v = 0;
+      std::string err;
+      if (!parse_expr(r, e_.info(), x, err) || !e_.eval(x, v, err)) return error(err);
+      row(r, v, hex(v));
+    }
+    const std::int32_t pc = e_.pc();
+    row("pc", pc, frame_line(pc));
+    println("status   " + e_.status());
+    println("(sp, flags, errors: no command reads them from a module)");
+    return;
+  }
+  Vm& vm = m_->vm();
   row("A", vm.acc, hex(vm.acc));
   row("X", vm.x, hex(vm.x));
   row("pc", vm.pc, frame_line(vm.pc));
@@ -303,9 +315,9 @@ void Cli::info_registers() {
 std::string Cli::frame_text(const std::vector<Engine::Frame>& frames, std::size_t n) {
   const Engine::Frame& f = frames[n];
   std::string head = "#" + std::to_string(n) + "  ";
-  if (!f.interrupted) return head + frame_line(f.pc);
-  const auto& s = e_.vm().saved;
-  const InterruptVector* v = e_.vm().profile->vector(s.vector);
+  if (!f.interrupted || !m_) return head + frame_line(f.pc);
+  const auto& s = m_->vm().saved;
+  const InterruptVector* v = e_.profile().vector(s.vector);
   std::string name = v ? " " + std::string(v->name) : "";
   return head + "<interrupt " + std::to_string(s.vector) + name + "> saved A=" + std::to_string(s.acc) + " X=" + std::to_string(s.x) +
          " flags=" + flags_text(s.flags) + (s.wait.active ? " (in WAIT)" : "") + ", resumes " + frame_line(f.pc);
@@ -314,6 +326,9 @@ std::string Cli::frame_text(const std::vector<Engine::Frame>& frames, std::size_
 void Cli::cmd_backtrace() {
   auto frames = e_.frames();
   for (std::size_t n = 0; n < frames.size(); ++n) println(frame_text(frames, n));
+  if (e_.frames_unknown_above())
+    println("(frames above #" + std::to_string(frames.size() - 1) +
+            " unknown: the module cannot read its call stack, and the program ran freely since they were entered)");
 }
 
 std::int32_t Cli::selected_pc() {
@@ -332,7 +347,7 @@ void Cli::cmd_frame(const std::string& word, const std::string& arg) {
       Expr x;
       std::int64_t level = 0;
       std::string err;
-      if (!parse_expr(arg, e_.info(), x, err) || !eval_expr(x, e_.vm(), level, err)) return error(err);
+      if (!parse_expr(arg, e_.info(), x, err) || !e_.eval(x, level, err)) return error(err);
       if (level < 0 || static_cast<std::uint64_t>(level) >= frames.size()) return error("No frame at level " + arg + ".");
       frame_ = static_cast<std::size_t>(level);
     }
@@ -353,18 +368,19 @@ void Cli::cmd_frame(const std::string& word, const std::string& arg) {
 // info frame: where the selected frame is, how it was entered and where it goes back to.
 void Cli::info_frame() {
   if (!e_.running()) return error("No stack.");
-  Vm& vm = e_.vm();
   auto frames = e_.frames();
   const std::size_t n = std::min(frame_, frames.size() - 1);
   const Engine::Frame& f = frames[n];
   println("Stack level " + std::to_string(n) + ", " + frame_line(f.pc) + ":");
-  if (f.interrupted) {
+  if (f.interrupted && m_) {
+    const Vm& vm = m_->vm();
     const InterruptVector* v = vm.profile->vector(vm.saved.vector);
     println(" interrupted by interrupt " + std::to_string(vm.saved.vector) + (v ? " (" + std::string(v->name) + ")" : "") +
             (vm.saved.wait.active ? " in its WAIT" : " before this instruction") + "; RETI resumes here");
     println(" saved A=" + std::to_string(vm.saved.acc) + " X=" + std::to_string(vm.saved.x) + " flags=" + flags_text(vm.saved.flags));
   } else if (n == 0) {
-    println(" pc " + std::to_string(f.pc) + (vm.wait.active ? ", in its WAIT" : ", the instruction that runs next"));
+    const bool waiting = m_ ? m_->vm().wait.active : e_.status().find("in WAIT") != std::string::npos;
+    println(" pc " + std::to_string(f.pc) + (waiting ? ", in its WAIT" : ", the instruction that runs next"));
   } else {
     println(" pc " + std::to_string(f.pc) + ", the call; it returns to " + frame_line(f.pc + 1));
   }
@@ -372,6 +388,8 @@ void Cli::info_frame() {
     const Engine::Frame& up = frames[n + 1];
     println(up.interrupted ? " an interrupt handler, entered from frame " + std::to_string(n + 1)
                            : " a subroutine, called by frame " + std::to_string(n + 1) + " at " + frame_line(up.pc));
+  } else if (e_.frames_unknown_above()) {
+    println(" the outermost frame known: the frames above it are unknown (the module cannot read its call stack)");
   } else {
     println(" the outermost frame");
   }
@@ -379,7 +397,8 @@ void Cli::info_frame() {
 }
 
 void Cli::info_interrupts() {
-  Vm& vm = e_.vm();
+  if (!m_) return error("info interrupts: not on a module: no command reads a module's interrupt state");
+  Vm& vm = m_->vm();
   println(std::string("interrupts globally ") + (vm.global_enable ? "enabled" : "disabled") +
           (vm.in_handler ? ", in the handler of " + std::to_string(vm.saved.vector) : ""));
   bool any = false;
@@ -399,7 +418,8 @@ void Cli::info_interrupts() {
 }
 
 void Cli::info_timers() {
-  Vm& vm = e_.vm();
+  if (!m_) return error("info timers: not on a module: no command reads a module's timers");
+  Vm& vm = m_->vm();
   for (int n = 0; n < Vm::kTimers; ++n) {
     const Timer& t = vm.timers[static_cast<std::size_t>(n)];
     if (t.period_ms == 0)
@@ -412,7 +432,7 @@ void Cli::info_timers() {
 // ", encoder N (deviation D)" where the core models the module's encoder: 209 and its distance
 // from the position counter (axis parameter 1), which 212 bounds (docs/motion.md).
 std::string Cli::encoder_text(int m) {
-  Vm& vm = e_.vm();
+  Vm& vm = m_->vm();
   std::int32_t enc = 0, pos = 0;
   if (!vm.motion->models_encoder(*vm.profile) || vm.get_axis(m, 209, enc) != kStatusOk || vm.get_axis(m, 1, pos) != kStatusOk)
     return {};
@@ -424,7 +444,7 @@ std::string Cli::encoder_text(int m) {
 // profile lists it: 206 (0..1023, 0 at the stall), 180 (the current scale 0..31 of the run
 // current 6) and 208 bit 0 (stallGuard2 status) where the module has stallGuard2 (174).
 std::string Cli::stall_text(int m) {
-  Vm& vm = e_.vm();
+  Vm& vm = m_->vm();
   const Profile& p = *vm.profile;
   std::string s;
   std::int32_t v = 0;
@@ -435,7 +455,8 @@ std::string Cli::stall_text(int m) {
 }
 
 void Cli::info_motors() {
-  Vm& vm = e_.vm();
+  if (!m_) return module_motors();
+  Vm& vm = m_->vm();
   for (int m = 0; m < vm.profile->motors; ++m) {
     MotionSample s = vm.motion->sample_at(m, vm.now);
     std::int32_t target = 0;
@@ -465,6 +486,26 @@ void Cli::info_motors() {
                         : "(expressions read the module's own units: velocity M, ap(5, M) in " + units + ")");
 }
 
+// info motors on a module: what GAP reads, in the module's own units.
+void Cli::module_motors() {
+  for (int m = 0; m < e_.profile().motors; ++m) {
+    std::string line = "motor " + std::to_string(m) + ":";
+    const char* sep = " ";
+    for (auto [param, name] : {std::pair{1, "position"}, {3, "velocity"}, {0, "target"}, {8, "target reached"}}) {
+      if (!e_.profile().axis_param(param)) continue;
+      Expr x;
+      std::int64_t v = 0;
+      std::string err;
+      const std::string text = "ap(" + std::to_string(param) + ", " + std::to_string(m) + ")";
+      if (!parse_expr(text, e_.info(), x, err) || !e_.eval(x, v, err)) return error(err);
+      line += sep + std::string(name) + " " + std::to_string(v);
+      sep = ", ";
+    }
+    println(line);
+  }
+  println("(as GAP reads them, in the module's own units)");
+}
+
 void Cli::cmd_list(const std::string& arg) {
   const ProgramInfo& info = e_.info();
   int file = list_file_, center = 0;
@@ -478,7 +519,7 @@ void Cli::cmd_list(const std::string& arg) {
     center = info.lines[static_cast<std::size_t>(a)].line;
     list_next_ = std::max(1, center - 5);
   } else if (list_next_ < 0) {
-    std::int32_t a = e_.running() ? selected_pc() : e_.vm().pc;
+    std::int32_t a = e_.running() ? selected_pc() : e_.pc();
     if (static_cast<std::size_t>(a) >= info.lines.size() || info.lines[static_cast<std::size_t>(a)].file < 0)
       return cmd_disassemble("");
     file = info.lines[static_cast<std::size_t>(a)].file;
@@ -500,9 +541,9 @@ void Cli::cmd_list(const std::string& arg) {
 }
 
 void Cli::cmd_disassemble(const std::string& arg) {
-  Vm& vm = e_.vm();
   const ProgramInfo& info = e_.info();
-  std::int32_t from = 0, to = vm.program_size - 1;
+  const std::int32_t size = e_.program_size();
+  std::int32_t from = 0, to = size - 1;
   std::string err;
   if (auto comma = arg.find(','); comma != std::string::npos) {
     if (!e_.resolve(arg.substr(0, comma), from, err) || !e_.resolve(arg.substr(comma + 1), to, err)) return error(err);
@@ -510,7 +551,7 @@ void Cli::cmd_disassemble(const std::string& arg) {
     std::int32_t at = selected_pc();
     if (!arg.empty() && !e_.resolve(arg, at, err)) return error(err);
     // The "function" around `at`: from its label to the next label.
-    std::int64_t lo = 0, hi = vm.program_size;
+    std::int64_t lo = 0, hi = size;
     for (const auto& l : info.labels) {
       if (l.second <= at && l.second > lo) lo = l.second;
       if (l.second > at && l.second < hi) hi = l.second;
@@ -521,9 +562,9 @@ void Cli::cmd_disassemble(const std::string& arg) {
   std::string fn = info.function_of(from);
   println("Dump of program memory " + std::to_string(from) + ".." + std::to_string(to) + (fn.empty() ? "" : " (" + fn + ")") + ":");
   const std::int32_t mark = e_.running() ? selected_pc() : -1;
-  for (std::int32_t a = from; a <= to && a < vm.program_size; ++a) {
+  for (std::int32_t a = from; a <= to && a < size; ++a) {
     std::string f = info.function_of(a), place = info.place(a), numbers;
-    std::string text = named_instruction(info, vm.program[static_cast<std::size_t>(a)], a, vm, &numbers);
+    std::string text = named_instruction(info, e_.instruction(a), a, e_, &numbers);
     char buf[512];
     std::snprintf(buf, sizeof buf, "%s%5d %-16s %-32s %-16s", a == mark ? "=> " : "   ", a, f.empty() ? "" : ("<" + f + ">").c_str(),
                   text.c_str(), place.c_str());
@@ -543,17 +584,16 @@ void Cli::cmd_x(const std::string& fmt, const std::string& arg) {
       if (std::isdigit(static_cast<unsigned char>(c))) digits += c;
     if (!digits.empty() && digits.size() < 6) n = std::stoul(digits);
   }
-  Vm& vm = e_.vm();
-  std::int32_t at = e_.running() ? selected_pc() : vm.pc;
+  std::int32_t at = e_.running() ? selected_pc() : e_.pc();
   std::string err;
   if (!arg.empty() && !e_.resolve(arg[0] == '*' ? arg : "*" + arg, at, err)) return error(err);
   // x/Ni: instructions as gdb shows them, `=>` at pc; otherwise their bytes too.
   const bool insns = fmt.find('i') != std::string::npos;
-  const std::int32_t mark = e_.running() ? vm.pc : -1;
-  for (std::uint64_t i = 0; i < n && at < vm.program_size; ++i, ++at) {
-    const Instruction& ins = vm.program[static_cast<std::size_t>(at)];
+  const std::int32_t mark = e_.running() ? e_.pc() : -1;
+  for (std::uint64_t i = 0; i < n && at < e_.program_size(); ++i, ++at) {
+    const Instruction ins = e_.instruction(at);
     std::string f = e_.info().function_of(at), numbers;
-    std::string text = named_instruction(e_.info(), ins, at, vm, &numbers);
+    std::string text = named_instruction(e_.info(), ins, at, e_, &numbers);
     char buf[256];
     if (insns)
       std::snprintf(buf, sizeof buf, "%s%d%s:\t%s", at == mark ? "=> " : "   ", at, f.empty() ? "" : (" <" + f + ">").c_str(), text.c_str());
@@ -578,7 +618,7 @@ void Cli::cmd_print(const std::string& fmt, const std::string& arg) {
   } else if (!parse_expr(arg, e_.info(), x, err)) {
     return error(err);
   }
-  if (!eval_expr(x, e_.vm(), v, err)) return error(err);
+  if (!e_.eval(x, v, err)) return error(err);
   std::string text = fmt == "x" ? hex(v) : fmt == "t" ? "" : std::to_string(v);
   if (fmt == "t") {
     auto u = static_cast<std::uint32_t>(v);
@@ -634,6 +674,7 @@ bool Cli::expand_history(std::string& line) {
 // set var switch left|right|home MOTOR = VALUE: a stop or home switch, as a scenario line.
 bool Cli::set_switch(const std::string& arg) {
   static const char* kUsage = "usage: set var switch left|right|home MOTOR = VALUE";
+  if (!m_) return error("set var switch: not on a module: its switches are real ones"), false;
   const std::string which = arg.substr(0, arg.find_first_of(" \t"));
   const std::string rest = trim(arg.substr(which.size()));
   const auto eq = rest.find('=');
@@ -646,15 +687,15 @@ bool Cli::set_switch(const std::string& arg) {
   Expr m, v;
   std::string err;
   std::int64_t motor = 0, value = 0;
-  if (!parse_expr(trim(rest.substr(0, eq)), e_.info(), m, err) || !eval_expr(m, e_.vm(), motor, err) ||
-      !parse_expr(trim(rest.substr(eq + 1)), e_.info(), v, err) || !eval_expr(v, e_.vm(), value, err))
+  if (!parse_expr(trim(rest.substr(0, eq)), e_.info(), m, err) || !e_.eval(m, motor, err) ||
+      !parse_expr(trim(rest.substr(eq + 1)), e_.info(), v, err) || !e_.eval(v, value, err))
     return error(err), false;
-  const int motors = e_.vm().profile->motors;
+  const int motors = e_.profile().motors;
   if (motor < 0 || motor >= motors)
     return error("motor " + std::to_string(motor) + " is out of range (0.." + std::to_string(motors - 1) + ")"), false;
   ev.index = static_cast<int>(motor);
   ev.value = value != 0;
-  if (!e_.set_input(ev, err)) return error(err), false;
+  if (!m_->set_input(ev, err)) return error(err), false;
   return true;
 }
 
@@ -664,7 +705,8 @@ void Cli::cmd_set(const std::string& arg) {
   if (a.rfind("switch ", 0) == 0) return static_cast<void>(set_switch(trim(a.substr(7))));
   if (Engine::is_machine_line(a)) {  // set var hardstop ..., set var load ...: the scenario's lines
     std::string err;
-    if (!e_.set_machine(a, err)) error(err);
+    if (!m_) return error("set var " + a.substr(0, a.find(' ')) + ": not on a module: its stops and loads are real ones");
+    if (!m_->set_machine(a, err)) error(err);
     return;
   }
   auto eq = a.find('=');
@@ -674,7 +716,7 @@ void Cli::cmd_set(const std::string& arg) {
   std::int64_t v = 0;
   if (!parse_expr(trim(a.substr(0, eq)), e_.info(), lhs, err)) return error(err);
   if (!parse_expr(trim(a.substr(eq + 1)), e_.info(), rhs, err)) return error(err);
-  if (!eval_expr(rhs, e_.vm(), v, err)) return error(err);
+  if (!e_.eval(rhs, v, err)) return error(err);
   if (!e_.assign(lhs, v, err)) return error(err);
 }
 
@@ -698,8 +740,10 @@ void Cli::cmd_info(const std::string& arg) {
     return;
   }
   if (is({"checkpoints"})) {
-    return println(std::to_string(e_.checkpoint_count()) + " checkpoints, " + std::to_string(e_.checkpoint_memory() / 1024) +
-                   " KiB of at most " + std::to_string(e_.setup().checkpoint_bytes / 1024) + " KiB");
+    if (!m_) return error("info checkpoints: not on a module: the module keeps no history");
+    const Engine& e = *m_;
+    return println(std::to_string(e.checkpoint_count()) + " checkpoints, " + std::to_string(e.checkpoint_memory() / 1024) +
+                   " KiB of at most " + std::to_string(e.setup().checkpoint_bytes / 1024) + " KiB");
   }
   error("Undefined info command: \"" + what +
         "\".  Try breakpoints, registers, frame, stack, interrupts, timers, motors, display or checkpoints.");
@@ -777,7 +821,7 @@ bool Cli::command(const std::string& raw) {
     // continue N: ignore this breakpoint N-1 more times, as in gdb.
     if (!rest.empty() && parse_count(rest, n))
       for (auto& b : e_.breakpoints())
-        if (b.address == e_.vm().pc && b.enabled) {
+        if (b.address == e_.pc() && b.enabled) {
           e_.set_ignore(b.id, static_cast<int>(n - 1));
           println("Will ignore next " + std::to_string(n - 1) + " crossings of breakpoint " + std::to_string(b.id) + ".  Continuing.");
         }
@@ -799,8 +843,13 @@ bool Cli::command(const std::string& raw) {
   }
   if (is({"finish", "fin"})) {
     if (!need_running()) return true;
-    std::string from = frame_line(e_.vm().pc);
+    std::string from = frame_line(e_.pc());
     if (e_.depth() == 0) return error("\"finish\" not meaningful in the outermost frame."), true;
+    if (!m_) {  // a module may not know the caller: then it refuses, and nothing ran
+      Stop s = e_.finish();
+      if (s.kind != StopKind::NotRunning) println("Run till exit from " + from);
+      return report(s), true;
+    }
     println("Run till exit from " + from);
     return report(e_.finish()), true;
   }
@@ -808,13 +857,21 @@ bool Cli::command(const std::string& raw) {
     if (!need_running()) return true;
     if (rest.empty()) return report(word == "advance" ? Stop{StopKind::NotRunning, 0, "advance needs a duration or a location", 0, 0} : e_.next()), true;
     if (word == "advance")
-      if (auto d = parse_duration(rest)) return report(e_.advance(*d)), true;
+      if (auto d = parse_duration(rest))
+        return report(m_ ? m_->advance(*d) : e_.cannot("advance", "a module's time cannot be bounded from outside (until LOCATION, or Ctrl-C)")), true;
     std::int32_t a = 0;
     if (!e_.resolve(rest, a, err)) return error(err), true;
     return report(e_.until(a)), true;
   }
+  if (is({"load"})) {
+    if (!rest.empty()) return error("load takes no arguments: it downloads the program being debugged"), true;
+    if (!e_.load(err)) return error(err), true;
+    println("Loaded " + std::to_string(e_.info().program.size()) + " instructions, verified.");
+    return true;
+  }
   if (is({"jump", "j"})) {
     if (!need_running()) return true;
+    if (!m_) return error("jump: not on a module: no command moves its pc without running it"), true;
     std::int32_t a = 0;
     if (!e_.resolve(rest, a, err)) return error(err), true;
     e_.set_pc(a);
@@ -830,14 +887,23 @@ bool Cli::command(const std::string& raw) {
           "reverse-continue", "rc"})) {
     if (!parse_count(rest, n)) return true;
     Stop s;
+    if (!m_) {  // only the virtual machine keeps history
+      std::string why;
+      e_.can_reverse(why);
+      const std::string name = word == "rs" || word == "reverse-stepi" || word == "rsi" ? "reverse-step"
+                               : word == "rn" || word == "reverse-nexti" || word == "rni" ? "reverse-next"
+                               : word == "rc"                                          ? "reverse-continue"
+                                                                                       : word;
+      return error(e_.cannot(name, why).message), true;
+    }
     if (word == "reverse-finish") {
-      Vm& vm = e_.vm();
+      Vm& vm = m_->vm();
       const bool handler = vm.in_handler && vm.sp == vm.saved.stack_depth;
       const int vector = vm.saved.vector;
       s = e_.reverse_finish();
       if (s.kind == StopKind::Step)
         println(handler ? "Run back to before interrupt " + std::to_string(vector) + " was entered"
-                        : "Run back to call of " + frame_line(e_.vm().pc));
+                        : "Run back to call of " + frame_line(m_->vm().pc));
     } else if (word == "reverse-continue" || word == "rc") {
       s = e_.reverse_continue();
     } else if (word.find("next") != std::string::npos || word == "rn" || word == "rni") {
@@ -863,7 +929,7 @@ bool Cli::command(const std::string& raw) {
     ++next_display_;
     displays_.push_back(d);
     std::int64_t v = 0;
-    if (eval_expr(d.expr, e_.vm(), v, err)) println(std::to_string(d.id) + ": " + d.text + " = " + std::to_string(v));
+    if (e_.eval(d.expr, v, err)) println(std::to_string(d.id) + ": " + d.text + " = " + std::to_string(v));
     return true;
   }
   if (is({"undisplay"})) {
@@ -875,7 +941,7 @@ bool Cli::command(const std::string& raw) {
   if (is({"help", "h"})) {
     println("Breakpoints: break/b, tbreak, delete/d, disable, enable, condition, ignore, watch, info breakpoints");
     println("Running: run/r, start, continue/c [N], step/s [N], next/n [N], finish, until/u LOC, advance DURATION|LOC,");
-    println("         jump LOC, kill, quit/q");
+    println("         jump LOC, kill, quit/q; on a module: load");
     println("Reverse: reverse-step/rs [N], reverse-next/rn, reverse-finish, reverse-continue/rc");
     println("Looking: info registers|frame|interrupts|timers|motors|display|checkpoints, backtrace/bt, up, down,");
     println("         frame N, list/l, disassemble, x/N[i] ADDRESS, print/p[/x] EXPR, display EXPR, undisplay");
@@ -898,7 +964,7 @@ bool Cli::command(const std::string& raw) {
 std::vector<std::string> Cli::completions(const std::string& line, std::size_t start) const {
   static const char* kCommands[] = {
       "advance", "backtrace", "break", "condition", "continue", "delete", "disable", "disassemble", "display", "down",
-      "enable", "finish", "frame", "help", "ignore", "info", "jump", "kill", "list", "next", "nexti", "print", "quit",
+      "enable", "finish", "frame", "help", "ignore", "info", "jump", "kill", "list", "load", "next", "nexti", "print", "quit",
       "reverse-continue", "reverse-finish", "reverse-next", "reverse-step", "run", "set", "start", "step", "stepi",
       "tbreak", "undisplay", "until", "up", "watch", "where", "x"};
   static const char* kInfo[] = {"breakpoints", "checkpoints", "display", "frame", "interrupts", "motors", "registers", "stack",
@@ -961,10 +1027,10 @@ struct CommandLine::Impl {
   gdb::Cli cli;
   bool echo, repeat;
   std::string last;
-  Impl(Engine& e, std::FILE* out, bool echo_lines, bool repeat_empty) : cli(e, out), echo(echo_lines), repeat(repeat_empty) {}
+  Impl(Target& e, std::FILE* out, bool echo_lines, bool repeat_empty) : cli(e, out), echo(echo_lines), repeat(repeat_empty) {}
 };
 
-CommandLine::CommandLine(Engine& engine, std::FILE* out, bool echo, bool repeat)
+CommandLine::CommandLine(Target& engine, std::FILE* out, bool echo, bool repeat)
     : impl_(std::make_unique<Impl>(engine, out, echo, repeat)), out_(out) {}
 CommandLine::~CommandLine() = default;
 
@@ -998,7 +1064,7 @@ std::vector<std::string> CommandLine::completions(const std::string& line, std::
   return impl_->cli.completions(line, start);
 }
 
-int run_cli(Engine& engine, const CliOptions& options, std::FILE* in, std::FILE* out) {
+int run_cli(Target& engine, const CliOptions& options, std::FILE* in, std::FILE* out) {
   std::FILE* src = in;
   bool from_file = !options.commands_file.empty();
   std::vector<std::string> script;
@@ -1006,7 +1072,7 @@ int run_cli(Engine& engine, const CliOptions& options, std::FILE* in, std::FILE*
     std::vector<std::uint8_t> bytes;
     std::string err;
     if (!read_file(options.commands_file, bytes, err)) {
-      std::fprintf(stderr, "tmclrun: error: %s\n", err.c_str());
+      std::fprintf(stderr, "%s: error: %s\n", options.tool.c_str(), err.c_str());
       return 65;
     }
     std::string text(bytes.begin(), bytes.end());
@@ -1020,9 +1086,9 @@ int run_cli(Engine& engine, const CliOptions& options, std::FILE* in, std::FILE*
   if (tty && TerminalPrompt::usable(::fileno(src), ::fileno(out)))
     editor = std::make_unique<TerminalPrompt>(::fileno(src), ::fileno(out), "(tmdb) ",
                                               [&cli](const std::string& l, std::size_t at) { return cli.completions(l, at); });
-  g_engine = &engine;
+  g_target = &engine;
   os::SavedSignal old;
-  os::catch_signal(SIGINT, on_sigint, false, &old);
+  os::catch_signal(SIGINT, tmcl_debug_on_sigint, false, &old);
   // The note of an unbounded run, as a plain run gives it (docs/tmclrun.md): when neither
   // --max-time nor --max-steps bounds the program and standard error is a terminal, a command
   // that has run for 2 s of wall time says so once, whether the commands come from a terminal,
@@ -1030,15 +1096,16 @@ int run_cli(Engine& engine, const CliOptions& options, std::FILE* in, std::FILE*
   using Clock = std::chrono::steady_clock;
   Clock::time_point command_start = Clock::now();
   bool noted = false;
-  const Limits& bounds = engine.setup().limits;
-  if (bounds.until == kNever && bounds.max_steps == UINT64_MAX && ::isatty(2) && !engine.on_slice)
-    engine.on_slice = [&engine, &command_start, &noted] {
+  Engine* machine = engine.machine();
+  const Limits* bounds = machine ? &machine->setup().limits : nullptr;
+  if (bounds && bounds->until == kNever && bounds->max_steps == UINT64_MAX && ::isatty(2) && !machine->on_slice)
+    machine->on_slice = [machine, &command_start, &noted] {
       if (!noted && Clock::now() - command_start >= std::chrono::seconds(2)) {
         noted = true;
         std::fprintf(stderr,
                      "tmclrun: note: still running after 2 s, at simulated time %s (no --max-time or --max-steps): "
                      "--max-time DURATION bounds a run; Ctrl-C pauses it\n",
-                     format_time(engine.vm().now).c_str());
+                     format_time(machine->vm().now).c_str());
         std::fflush(stderr);
       }
       return kNever;
@@ -1068,11 +1135,13 @@ int run_cli(Engine& engine, const CliOptions& options, std::FILE* in, std::FILE*
     }
     command_start = Clock::now();
     noted = false;
+    if (options.quit && *options.quit) break;
     if (!cli.line(line)) break;
+    if (options.quit && *options.quit) break;  // SIGTERM, SIGHUP: the command was paused; the session ends
   }
-  engine.on_slice = nullptr;
+  if (machine) machine->on_slice = nullptr;
   os::restore_signal(SIGINT, old);
-  g_engine = nullptr;
+  g_target = nullptr;
   std::fflush(out);
   return cli.status();
 }

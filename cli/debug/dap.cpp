@@ -13,6 +13,7 @@
 #include <sstream>
 
 #include "tmcl/debug_cli.hpp"
+#include "tmcl/debug_module.hpp"
 #include "tmcl/duration.hpp"
 #include "tmcl/json.hpp"
 #include "tmcl/os_files.hpp"
@@ -27,6 +28,16 @@ using json::Value;
 class Dap {
  public:
   Dap(const DapSetup& setup, std::FILE* in, std::FILE* out) : setup_(setup), in_fd_(os::pollable_input(::fileno(in))), out_(out) {}
+  // tmclctl PORT debug --dap: the module is attached already; `attach` (or `launch`) only confirms.
+  Dap(const DapSetup& setup, Target& attached, std::FILE* in, std::FILE* out) : Dap(setup, in, out) { use(attached); }
+  ~Dap() {
+    if (target_) {  // a target attached from outside outlives the adapter
+      target_->on_output = nullptr;
+      target_->on_wait = nullptr;
+    }
+  }
+  Dap(const Dap&) = delete;
+  Dap& operator=(const Dap&) = delete;
 
   int serve() {
     for (;;) {
@@ -36,6 +47,7 @@ class Dap {
       if (!parse_request(body, req)) continue;
       if (!handle(req)) break;
     }
+    end_module();
     return exit_code_;
   }
 
@@ -58,6 +70,7 @@ class Dap {
     char buf[1 << 16];
     long n = os::read_some(in_fd_, buf, sizeof buf);
     if (n > 0) return inbuf_.append(buf, static_cast<std::size_t>(n)), true;
+    if (setup_.quit && *setup_.quit) n = 0;  // a signal ends the session as the client's going would
     if (n < 0 && errno == EINTR) return true;
     eof_ = true;  // end of input, or an error reading it: the client is gone
     return false;
@@ -107,6 +120,7 @@ class Dap {
 
   // Engine::on_slice while the program runs: the requests that came meanwhile.
   SimTime slice() {
+    if (setup_.quit && *setup_.quit) ending_ = disconnect_ = true;
     while (!ending_) {
       std::string body;
       Frame f = take_frame(body);
@@ -120,7 +134,7 @@ class Dap {
       // After a pause, the requests behind it are for the stopped program: they wait.
       if (parse_request(body, req) && handle_running(req)) break;
     }
-    if (ending_) engine_->pause();
+    if (ending_) target_->pause();
     return kNever;
   }
   bool handle_running(const Value& req);  // true: the program is to stop
@@ -176,7 +190,7 @@ class Dap {
   }
 
   Value source_of(std::int32_t address) const {
-    const ProgramInfo& info = engine_->info();
+    const ProgramInfo& info = target_->info();
     if (address < 0 || static_cast<std::size_t>(address) >= info.lines.size()) return Value();
     int f = info.lines[static_cast<std::size_t>(address)].file;
     if (f < 0) return Value();
@@ -186,12 +200,25 @@ class Dap {
     return obj({{"name", base}, {"path", name}});
   }
   int line_of(std::int32_t address) const {
-    const ProgramInfo& info = engine_->info();
+    const ProgramInfo& info = target_->info();
     if (address < 0 || static_cast<std::size_t>(address) >= info.lines.size()) return 0;
     return info.lines[static_cast<std::size_t>(address)].line;
   }
 
   bool launch(const Value& req, std::string& error);
+  bool attach(const Value& req, std::string& error);
+  void use(Target& t) {
+    target_ = &t;
+    t.on_output = [this](const std::string& text) { event("output", obj({{"category", "console"}, {"output", text}})); };
+    t.on_wait = [this] { slice(); };
+  }
+  // A module this adapter attached (tmclrun --dap, `attach`): its patches removed at the end.
+  void end_module() {
+    if (!module_) return;
+    std::string left;
+    if (!module_->restore(left)) std::fprintf(stderr, "tmclrun: error: %s\n", left.c_str());
+    module_.reset();
+  }
   bool after_run(const Stop& s);
   void set_breakpoints(const Value& req);
   Value variables(std::int64_t ref);
@@ -207,6 +234,11 @@ class Dap {
   std::int64_t seq_ = 0;
   int exit_code_ = 0;
   std::unique_ptr<Engine> engine_;
+  Target* target_ = nullptr;  // the engine, or a module
+  // A module attached by this adapter (tmclrun --dap): its port and client.
+  std::unique_ptr<host::Port> port_;
+  std::unique_ptr<host::Client> client_;
+  std::unique_ptr<ModuleTarget> module_;
   bool stop_on_entry_ = false;
   std::map<std::string, std::vector<int>> source_breaks_;  // source path -> breakpoint ids
   std::vector<int> function_breaks_, instruction_breaks_;
@@ -246,37 +278,77 @@ bool Dap::launch(const Value& req, std::string& error) {
     return error = messages.empty() ? "cannot load " + program : messages, false;
   if (!messages.empty()) event("output", obj({{"category", "stderr"}, {"output", messages}}));
   engine_ = std::make_unique<Engine>(std::move(s), std::move(info), std::move(core));
-  engine_->on_output = [this](const std::string& text) { event("output", obj({{"category", "console"}, {"output", text}})); };
+  use(*engine_);
   engine_->on_slice = [this] { return slice(); };
   stop_on_entry_ = a["stopOnEntry"].as_bool();
+  return true;
+}
+
+// attach {port, program, target?, baud?, symbols?, noPatch?}: the program on a module (serial
+// port or tcp:HOST:PORT), as tmclctl PORT debug; the module's program memory is compared with
+// the program and a killed session's patches put back (said as output events).
+bool Dap::attach(const Value& req, std::string& error) {
+  const Value& a = req["arguments"];
+  stop_on_entry_ = a["stopOnEntry"].as_bool();
+  if (target_) {  // tmclctl PORT debug --dap: attached already
+    if (!setup_.attach_notes.empty()) event("output", obj({{"category", "console"}, {"output", setup_.attach_notes}}));
+    setup_.attach_notes.clear();
+    return true;
+  }
+  const std::string port = a["port"].as_string(), program = a["program"].as_string();
+  if (port.empty() || program.empty())
+    return error = "attach needs \"port\" (a serial device or tcp:HOST:PORT) and \"program\" (.tmc, or .bin with symbols)", false;
+  std::string target = a["target"].as_string().empty() ? setup_.target : a["target"].as_string();
+  const TargetResult t = resolve_target(target);
+  if (!t.profile) return error = t.message(), false;
+  ProgramInfo info;
+  std::string messages;
+  if (!load_program_info(program, *t.profile, setup_.asm_options, a["symbols"].as_string(), info, messages, setup_.source_dirs))
+    return error = messages.empty() ? "cannot load " + program : messages, false;
+  if (!messages.empty()) event("output", obj({{"category", "stderr"}, {"output", messages}}));
+  const long baud = a.contains("baud") ? static_cast<long>(a["baud"].as_int()) : 9600;
+  port_ = host::Port::open(port, baud, 1000, error);
+  if (!port_) return false;
+  client_ = std::make_unique<host::Client>(*port_, host::ClientOptions{});
+  ModuleSetup ms;
+  ms.program_name = program;
+  ms.patch = !a["noPatch"].as_bool();
+  module_ = std::make_unique<ModuleTarget>(*client_, *t.profile, std::move(info), ms);
+  std::string notes;
+  if (!module_->attach(notes, error)) {
+    module_.reset();
+    return false;
+  }
+  use(*module_);
+  if (!notes.empty()) event("output", obj({{"category", "console"}, {"output", notes}}));
   return true;
 }
 
 void Dap::set_breakpoints(const Value& req) {
   const Value& a = req["arguments"];
   std::string path = a["source"]["path"].as_string();
-  for (int id : source_breaks_[path]) engine_->delete_point(id);
+  for (int id : source_breaks_[path]) target_->delete_point(id);
   source_breaks_[path].clear();
   Value out = Value::array();
   for (const auto& bp : a["breakpoints"].items()) {
     std::int64_t line = bp["line"].as_int();
     std::int32_t address = 0;
     std::string err;
-    if (!engine_->resolve(path + ":" + std::to_string(line), address, err) && !engine_->resolve(std::to_string(line), address, err)) {
+    if (!target_->resolve(path + ":" + std::to_string(line), address, err) && !target_->resolve(std::to_string(line), address, err)) {
       out.push(obj({{"verified", false}, {"line", line}, {"message", err}}));
       continue;
     }
-    int id = engine_->add_breakpoint(address, path + ":" + std::to_string(line), false);
+    int id = target_->add_breakpoint(address, path + ":" + std::to_string(line), false);
     source_breaks_[path].push_back(id);
     std::string cond = bp["condition"].as_string();
-    if (!cond.empty() && !engine_->set_condition(id, cond, err)) {
+    if (!cond.empty() && !target_->set_condition(id, cond, err)) {
       out.push(obj({{"id", id}, {"verified", false}, {"line", line}, {"message", err}}));
       continue;
     }
     // hitCondition: a number N stops at the Nth hit (gdb's ignore count N-1).
     std::string hit = bp["hitCondition"].as_string();
-    if (!hit.empty()) engine_->set_ignore(id, std::max(0, std::atoi(hit.c_str()) - 1));
-    for (auto& b : engine_->breakpoints())
+    if (!hit.empty()) target_->set_ignore(id, std::max(0, std::atoi(hit.c_str()) - 1));
+    for (auto& b : target_->breakpoints())
       if (b.id == id) b.log_message = bp["logMessage"].as_string();
     out.push(obj({{"id", id}, {"verified", true}, {"line", line_of(address)}, {"instructionReference", std::to_string(address)}}));
   }
@@ -284,13 +356,34 @@ void Dap::set_breakpoints(const Value& req) {
 }
 
 Value Dap::variables(std::int64_t ref) {
-  Vm& vm = engine_->vm();
   Value out = Value::array();
   auto add = [&](std::string name, std::int64_t v, const char* eval = nullptr) {
     Value item = obj({{"name", name}, {"value", std::to_string(v)}, {"variablesReference", 0}});
     if (eval) item.set("evaluateName", eval);
     out.push(std::move(item));
   };
+  if (!target_->machine()) {
+    // A module: what 135 and GGP/GAP read; a value that cannot be read says why.
+    auto read = [&](const std::string& text) {
+      Expr x;
+      std::int64_t v = 0;
+      std::string err;
+      if (parse_expr(text, target_->info(), x, err) && target_->eval(x, v, err)) return add(text, v, text.c_str());
+      out.push(obj({{"name", text}, {"value", err}, {"variablesReference", 0}}));
+    };
+    if (ref == 1) {
+      for (const char* r : {"A", "X", "pc"}) read(r);
+      out.push(obj({{"name", "status"}, {"value", target_->status()}, {"variablesReference", 0}}));
+    } else if (ref == 2) {
+      for (int n = 0; n < target_->profile().user_vars; ++n) read("v[" + std::to_string(n) + "]");
+    } else if (ref == 3) {
+      for (int m = 0; m < target_->profile().motors; ++m)
+        for (int p : {0, 1, 2, 3, 4, 5})
+          if (target_->profile().axis_param(p)) read("ap(" + std::to_string(p) + ", " + std::to_string(m) + ")");
+    }
+    return out;
+  }
+  Vm& vm = engine_->vm();
   if (ref == 1) {
     add("A", vm.acc, "A");
     add("X", vm.x, "X");
@@ -340,7 +433,7 @@ bool Dap::handle_running(const Value& req) {
   const std::string cmd = req["command"].as_string();
   if (cmd == "pause") {
     respond(req, true);  // the stopped event (reason "pause") follows when the program stops
-    engine_->pause();
+    target_->pause();
     return true;
   }
   if (cmd == "disconnect" || cmd == "terminate") {
@@ -367,7 +460,7 @@ bool Dap::after_run(const Stop& s) {
   }
   ending_ = false;
   if (disconnect_) return false;
-  engine_->kill();
+  target_->kill();
   event("terminated");
   return true;
 }
@@ -379,7 +472,7 @@ bool Dap::handle(const Value& req) {
   if (cmd == "initialize") {
     Value caps = obj({{"supportsConfigurationDoneRequest", true}, {"supportsFunctionBreakpoints", true},
                       {"supportsConditionalBreakpoints", true}, {"supportsHitConditionalBreakpoints", true},
-                      {"supportsLogPoints", true}, {"supportsStepBack", true}, {"supportsSetVariable", true},
+                      {"supportsLogPoints", true}, {"supportsStepBack", !target_ || target_->machine()}, {"supportsSetVariable", true},
                       {"supportsEvaluateForHovers", true}, {"supportsInstructionBreakpoints", true},
                       {"supportsDisassembleRequest", true}, {"supportsDataBreakpoints", true},
                       {"supportsGotoTargetsRequest", true}, {"supportsRestartRequest", true},
@@ -397,14 +490,20 @@ bool Dap::handle(const Value& req) {
     if (cmd == "terminate") event("terminated");
     return cmd != "disconnect";
   }
-  if (cmd == "launch") {
-    if (!launch(req, err)) return fail(req, err), true;
+  if (cmd == "launch" || cmd == "attach") {
+    if (module_ || (target_ && !target_->machine())) {  // a module: launch means attach
+      if (!attach(req, err)) return fail(req, err), true;
+    } else if (cmd == "attach") {
+      if (!attach(req, err)) return fail(req, err), true;
+    } else if (!launch(req, err)) {
+      return fail(req, err), true;
+    }
     respond(req, true);
     return true;
   }
-  if (!engine_) return fail(req, "'" + cmd + "' before launch"), true;
-  Engine& e = *engine_;
-  Vm& vm = e.vm();
+  if (!target_) return fail(req, "'" + cmd + "' before launch or attach"), true;
+  Target& e = *target_;
+  Engine* m = e.machine();
   if (cmd == "setBreakpoints") return set_breakpoints(req), true;
   if (cmd == "setFunctionBreakpoints" || cmd == "setInstructionBreakpoints") {
     auto& ids = cmd == "setFunctionBreakpoints" ? function_breaks_ : instruction_breaks_;
@@ -464,19 +563,22 @@ bool Dap::handle(const Value& req) {
       if (Value s = source_of(at); !s.is_null()) f.set("source", s);
       frames.push(std::move(f));
     };
-    for (const auto& f : e.frames()) frame(f.pc, f.interrupted ? "<interrupt " + std::to_string(vm.saved.vector) + ">" : "");
+    for (const auto& f : e.frames()) frame(f.pc, f.interrupted && m ? "<interrupt " + std::to_string(m->vm().saved.vector) + ">" : "");
+    if (e.frames_unknown_above()) frame(-1, "<frames above unknown: the module cannot read its call stack>");
     return respond(req, true, obj({{"stackFrames", frames}, {"totalFrames", static_cast<std::int64_t>(frames.size())}})), true;
   }
   if (cmd == "scopes") {
     Value scopes = Value::array();
     const char* names[] = {"Registers and flags", "User variables", "Motors", "Global parameters", "Timers and interrupts"};
-    for (int i = 0; i < 5; ++i) scopes.push(obj({{"name", names[i]}, {"variablesReference", i + 1}, {"expensive", false}}));
+    // On a module every value is a request: the client asks for the scopes it shows.
+    for (int i = 0; i < (m ? 5 : 3); ++i) scopes.push(obj({{"name", names[i]}, {"variablesReference", i + 1}, {"expensive", !m && i > 0}}));
     return respond(req, true, obj({{"scopes", scopes}})), true;
   }
   if (cmd == "variables") return respond(req, true, obj({{"variables", variables(a["variablesReference"].as_int())}})), true;
   if (cmd == "evaluate" && a["context"].as_string() == "repl" && Engine::is_machine_line(a["expression"].as_string())) {
     // In the debug console, a hard stop or a load as the CLI's `set var` takes it.
-    if (!e.set_machine(a["expression"].as_string(), err)) return fail(req, err), true;
+    if (!m) return fail(req, "set var: not on a module: its stops and loads are real ones"), true;
+    if (!m->set_machine(a["expression"].as_string(), err)) return fail(req, err), true;
     return respond(req, true, obj({{"result", "ok"}, {"variablesReference", 0}})), true;
   }
   if (cmd == "setVariable" || cmd == "evaluate") {
@@ -486,10 +588,10 @@ bool Dap::handle(const Value& req) {
     std::int64_t v = 0;
     if (!parse_expr(lhs, e.info(), x, err)) return fail(req, err), true;
     if (set) {
-      if (!parse_expr(a["value"].as_string(), e.info(), rhs, err) || !eval_expr(rhs, vm, v, err) || !e.assign(x, v, err))
+      if (!parse_expr(a["value"].as_string(), e.info(), rhs, err) || !e.eval(rhs, v, err) || !e.assign(x, v, err))
         return fail(req, err), true;
     }
-    if (!eval_expr(x, vm, v, err)) return fail(req, err), true;
+    if (!e.eval(x, v, err)) return fail(req, err), true;
     return respond(req, true, obj({{set ? "value" : "result", std::to_string(v)}, {"variablesReference", 0}})), true;
   }
   if (cmd == "pause") return respond(req, true), true;  // stopped already (a running program is paused in slice())
@@ -513,7 +615,8 @@ bool Dap::handle(const Value& req) {
   }
   if (cmd == "goto") {
     std::int64_t t = a["targetId"].as_int(-1);
-    if (t < 0 || t >= vm.program_size) return fail(req, "no goto target " + std::to_string(t)), true;
+    if (!m) return fail(req, "goto: not on a module: no command moves its pc without running it"), true;
+    if (t < 0 || t >= e.program_size()) return fail(req, "no goto target " + std::to_string(t)), true;
     e.set_pc(static_cast<std::int32_t>(t));
     respond(req, true);
     stopped(Stop{StopKind::Step, 0, "", 0, 0}, "goto");
@@ -526,12 +629,12 @@ bool Dap::handle(const Value& req) {
     for (std::int64_t i = 0; i < count && i < 100000; ++i) {
       std::int64_t at = start + i;
       Value ins = obj({{"address", std::to_string(at)}});
-      if (at < 0 || at >= vm.program_size) {
+      if (at < 0 || at >= e.program_size()) {
         ins.set("instruction", "");
         ins.set("presentationHint", "invalid");
       } else {
         // Targets by label and the constants the source named, as disassemble shows them.
-        ins.set("instruction", named_instruction(e.info(), vm.program[static_cast<std::size_t>(at)], static_cast<std::int32_t>(at), vm));
+        ins.set("instruction", named_instruction(e.info(), e.instruction(static_cast<std::int32_t>(at)), static_cast<std::int32_t>(at), e));
         std::string fn = e.info().function_of(static_cast<std::int32_t>(at));
         if (!fn.empty()) ins.set("symbol", fn);
         if (int l = line_of(static_cast<std::int32_t>(at))) {
@@ -550,5 +653,7 @@ bool Dap::handle(const Value& req) {
 }  // namespace
 
 int run_dap(const DapSetup& setup, std::FILE* in, std::FILE* out) { return Dap(setup, in, out).serve(); }
+
+int run_dap(const DapSetup& setup, Target& target, std::FILE* in, std::FILE* out) { return Dap(setup, target, in, out).serve(); }
 
 }  // namespace tmcl::debug

@@ -13,7 +13,7 @@
 
 namespace tmcl::debug {
 
-std::string named_instruction(const ProgramInfo& info, const Instruction& ins, std::int32_t address, Vm& vm,
+std::string named_instruction(const ProgramInfo& info, const Instruction& ins, std::int32_t address, Target& target,
                               std::string* numbers) {
   const OpInfo* op = op_info(ins.op);
   if (!op || op->control) return format_instruction(ins);
@@ -43,7 +43,7 @@ std::string named_instruction(const ProgramInfo& info, const Instruction& ins, s
       bool constant = parse_expr(text, info, e, err);
       for (const auto& n : e.nodes)
         constant = constant && (n.kind == Expr::Node::Num || n.kind == Expr::Node::Unary || n.kind == Expr::Node::Binary);
-      if (constant && eval_expr(e, vm, v, err) && (v == value || (spec.field != Field::Value && (v & 255) == value)))
+      if (constant && target.eval(e, v, err) && (v == value || (spec.field != Field::Value && (v & 255) == value)))
         name = text;
     }
     if (name.empty()) continue;

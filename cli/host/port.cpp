@@ -99,10 +99,14 @@ std::unique_ptr<Port> Port::open(const std::string& spec, long baud, int connect
   return std::unique_ptr<Port>(new Port(fd, spec, !tcp));
 }
 
-Port::~Port() {
+Port::~Port() { close(); }
+
+void Port::close() {
   if (fd_ < 0) return;
   if (serial_) os::serial::close(fd_);
   else os::close_socket(static_cast<int>(fd_));
+  fd_ = -1;
+  refusal_ = name_ + ": the port was closed";
 }
 
 bool Port::write_all(const std::uint8_t* data, std::size_t n, Clock::time_point deadline, std::string& error) {

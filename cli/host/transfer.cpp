@@ -31,6 +31,20 @@ TransferResult bad_status(const Client& c, const Instruction& ins, const Reply& 
 
 }  // namespace
 
+Result store(Client& client, std::int32_t address, const Instruction& ins) {
+  Result r;
+  // A lost store reply: set the pointer again and resend, as often as other requests are retried.
+  for (int attempt = 1;; ++attempt) {
+    r = client.request(ins, false);
+    if (r.ok() || r.fail != Fail::NoReply || attempt > client.options().retries) break;
+    // The store may or may not have happened: point the module at this address again.
+    const Instruction again{kDownload, 0, 0, address};
+    Result p = client.request(again);
+    if (!p.ok()) return p;
+  }
+  return r;
+}
+
 TransferResult download(Client& client, const std::vector<Instruction>& program, int from, int memory, const Progress& progress) {
   const int total = static_cast<int>(program.size());
   const Instruction enter{kDownload, 0, 0, from};
@@ -40,18 +54,7 @@ TransferResult download(Client& client, const std::vector<Instruction>& program,
   TransferResult result{Outcome::Ok, "", from};
   for (int i = from; i < total; ++i) {
     const Instruction& ins = program[static_cast<std::size_t>(i)];
-    // A lost store reply: set the pointer again and resend, as often as other requests are retried.
-    for (int attempt = 1;; ++attempt) {
-      r = client.request(ins, false);
-      if (r.ok() || r.fail != Fail::NoReply || attempt > client.options().retries) break;
-      // The store may or may not have happened: point the module at this address again.
-      const Instruction again{kDownload, 0, 0, i};
-      Result p = client.request(again);
-      if (!p.ok()) {
-        r = p;
-        break;
-      }
-    }
+    r = store(client, i, ins);
     if (!r.ok()) {
       result = failed(r, i);
       break;

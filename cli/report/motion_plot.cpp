@@ -124,6 +124,21 @@ void write_svg(std::ostream& out, const MotionRecorder& rec, const PlotOptions& 
     plot.panels.push_back(std::move(panel));
   }
   for (std::size_t m : shown) plot.line_names.push_back("motor " + std::to_string(m));
+  // The shaft where it parts from the counter (steps lost): one more line in the position panel,
+  // so that a lost-step run does not look as if the carriage went through the wall (issue 41).
+  for (std::size_t k = 0; k < shown.size(); ++k) {
+    bool apart = false;
+    for (std::size_t i = 0; i < rec.times().size() && !apart; ++i) apart = rec.samples()[i * motors + shown[k]].shaft.has_value();
+    if (!apart) continue;
+    std::vector<double> line(rec.times().size());
+    for (std::size_t i = 0; i < line.size(); ++i) {
+      const MotionSample& s = rec.samples()[i * motors + shown[k]];
+      line[i] = static_cast<double>(s.shaft.value_or(s.position));
+    }
+    plot.panels[0].lines.push_back(std::move(line));
+    for (std::size_t q = 1; q < plot.panels.size(); ++q) plot.panels[q].lines.emplace_back();  // no speed of its own
+    plot.line_names.push_back("motor " + std::to_string(shown[k]) + " shaft");
+  }
   write_svg(out, plot, options);
 }
 

@@ -324,15 +324,26 @@ void write_svg(std::ostream& out, const Plot& whole, const PlotOptions& opt) {
   for (std::size_t p = 0; p < plot.panels.size(); ++p) {
     const PlotPanel& panel = plot.panels[p];
     const int y0 = top + static_cast<int>(p) * (panel_h + gap);
-    // data range over all lines
+    // data range over all lines; in a window of time over the lines that change in it (a motor
+    // standing far away would squash the one that moves: issue 41), the others clipped to the panel
+    auto changes = [&](const std::vector<double>& ys) {
+      for (std::size_t i = 1; i < ys.size() && i < times.size(); ++i)
+        if (ys[i] != ys[0]) return true;
+      return false;
+    };
+    bool some_change = false, some_still = false;
+    for (const auto& ys : panel.lines) (changes(ys) ? some_change : some_still) = true;
+    const bool clip = window && some_change && some_still;
     double lo = 0, hi = 0;
     bool any = false;
-    for (const auto& ys : panel.lines)
+    for (const auto& ys : panel.lines) {
+      if (clip && !changes(ys)) continue;
       for (std::size_t i = 0; i < ys.size() && i < times.size(); ++i) {
         lo = any ? std::min(lo, ys[i]) : ys[i];
         hi = any ? std::max(hi, ys[i]) : ys[i];
         any = true;
       }
+    }
     if (panel.keep_zero) {
       lo = std::min(lo, 0.0);
       hi = std::max(hi, 0.0);
@@ -342,6 +353,9 @@ void write_svg(std::ostream& out, const Plot& whole, const PlotOptions& opt) {
 
     out << "<g>\n<rect x=\"" << left << "\" y=\"" << y0 << "\" width=\"" << plot_w << "\" height=\"" << panel_h
         << "\" fill=\"#fafbfc\" stroke=\"#c8ccd0\"/>\n";
+    if (clip)
+      out << "<clipPath id=\"panel" << p << "\"><rect x=\"" << left << "\" y=\"" << y0 << "\" width=\"" << plot_w
+          << "\" height=\"" << panel_h << "\"/></clipPath>\n";
     for (double v = ty.lo; v <= ty.hi + ty.step * 1e-6; v += ty.step) {
       double y = Y(v);
       bool zero = std::fabs(v) < ty.step * 1e-6;
@@ -371,6 +385,7 @@ void write_svg(std::ostream& out, const Plot& whole, const PlotOptions& opt) {
       Series s = decimate(tsec, panel.lines[m], tx.lo, tx.hi, plot_w);
       if (s.t.empty()) continue;
       out << "<polyline fill=\"none\" stroke=\"" << panel.colour << "\" stroke-width=\"2\" stroke-linejoin=\"round\"";
+      if (clip) out << " clip-path=\"url(#panel" << p << ")\"";
       if (m > 0) out << " stroke-dasharray=\"" << dashes[m % std::size(dashes)] << "\"";
       out << " points=\"";
       char buf[64];

@@ -163,6 +163,9 @@ TestResult run_test_live(const std::string& path, const RunOptions& options, Pro
     } else if (e.kind == Expectation::NeverFault || e.kind == Expectation::NoWarnings) {
       r.notes.push_back(path + ":" + std::to_string(e.line) + ": note: '" + e.text +
                         "' is not checked on a module (a module reports no faults or warnings)");
+    } else if (e.kind == Expectation::NoNotes) {
+      r.notes.push_back(path + ":" + std::to_string(e.line) + ": note: '" + e.text +
+                        "' is not checked on a module (a module simulates nothing: it has no notes)");
     } else if (e.kind == Expectation::Stall || e.kind == Expectation::NeverStall) {
       r.notes.push_back(path + ":" + std::to_string(e.line) + ": note: '" + e.text +
                         "' is not checked on a module (its host sees no stall event, only 208 when it asks)");

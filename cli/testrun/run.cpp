@@ -45,6 +45,12 @@ std::string program_place(const Program& p, const Vm& vm) {
   return s;
 }
 
+// A run's note as a test result shows it: "prog.tmc:12: note: MESSAGE (at 1.5s)".
+std::string note_text(const Program& p, const RuntimeWarning& n) {
+  const std::string place = p.info.place(n.pc);
+  return (place.empty() ? "address " + std::to_string(n.pc) : place) + ": note: " + n.message + " (at " + format_time(n.at) + ")";
+}
+
 bool is_literal(const std::string& text) {
   std::int64_t v = 0;
   return parse_int(text, INT64_MIN, INT64_MAX, v);
@@ -137,6 +143,14 @@ class Checker {
     if (res.halt != Halt::Fault) return;
     fail(e, "expected no fault, got one at " + format_time(vm_.now) + ": " + res.message, program_place(p_, vm_)).no_update =
         "a fault is not a value to rewrite";
+  }
+
+  // The run's notes: what it does not simulate though the program relies on it (docs/tmclrun.md).
+  void no_notes(const Expectation& e) {
+    if (vm_.notes.empty()) return;
+    std::string list;
+    for (const RuntimeWarning& n : vm_.notes) list += std::string(list.empty() ? "" : "\n") + note_text(p_, n);
+    fail(e, "expected no notes, got " + std::to_string(vm_.notes.size()), list).no_update = "a note is not a value to rewrite";
   }
 
   void no_warnings(const Expectation& e) {
@@ -281,12 +295,14 @@ TestResult run_test(const TestFile& t, std::shared_ptr<const Program> program, c
       case Expectation::Halted: check.halted(e, end, end_text(p, vm, res, end, max_time)); break;
       case Expectation::NeverFault: check.never_fault(e, res); break;
       case Expectation::NoWarnings: check.no_warnings(e); break;
+      case Expectation::NoNotes: check.no_notes(e); break;
       case Expectation::Stall: check.stall(e, stalls, end_text(p, vm, res, end, max_time)); break;
       case Expectation::NeverStall: check.never_stall(e, stalls); break;
     }
   }
   std::stable_sort(r.failures.begin(), r.failures.end(), [](const Failure& a, const Failure& b) { return a.line < b.line; });
   r.status = r.failures.empty() ? TestResult::Pass : TestResult::Fail;
+  for (const RuntimeWarning& n : vm.notes) r.notes.push_back(note_text(p, n));  // shown with the result, and in JUnit
   r.ended_at = vm.now;
   if (o.coverage) {
     r.executed = std::move(vm.executed);

@@ -191,7 +191,7 @@ class LineReader {
   }
 
   void expect(const std::string& line, const std::vector<LineWord>& w) {
-    if (w.size() < 2) return error(end_col(line), 1, "expected 'expect at TIME ...', 'expect at end ...', 'expect never fault' or 'expect no warnings'");
+    if (w.size() < 2) return error(end_col(line), 1, "expected 'expect at TIME ...', 'expect at end ...', 'expect never fault', 'expect no warnings' or 'expect no notes'");
     Expectation e;
     e.line = line_no_;
     e.col = w[1].col;
@@ -200,19 +200,23 @@ class LineReader {
     const std::string& form = w[1].text;
     if (form == "stall" || (form == "never" && w.size() > 2 && w[2].text == "stall")) return stall(line, w, std::move(e));
     if (form == "never" || form == "no") {
-      const char* want = form == "never" ? "fault" : "warnings";
+      // `no notes`: the run says nothing it does not simulate (docs/testing.md; issue 41).
+      const std::string want = form == "never" ? "fault" : w.size() >= 3 && w[2].text == "notes" ? "notes" : "warnings";
       if (w.size() < 3 || w[2].text != want) {
-        if (w.size() < 3) return error(end_col(line), 1, "expected '" + form + " " + want + "'");
-        return error_at(w[2], "expected '" + form + " " + want + "', found '" + w[2].text + "'" + hint_of(w[2].text, {want}));
+        const std::string expected = form == "never" ? "'never fault'" : "'no warnings' or 'no notes'";
+        if (w.size() < 3) return error(end_col(line), 1, "expected " + expected);
+        const std::vector<std::string_view> words =
+            form == "never" ? std::vector<std::string_view>{"fault"} : std::vector<std::string_view>{"warnings", "notes"};
+        return error_at(w[2], "expected " + expected + ", found '" + w[2].text + "'" + hint_of(w[2].text, words));
       }
       if (w.size() > 3) return error_at(w[3], "unexpected '" + w[3].text + "' after '" + form + " " + want + "'");
-      e.kind = form == "never" ? Expectation::NeverFault : Expectation::NoWarnings;
+      e.kind = form == "never" ? Expectation::NeverFault : want == "notes" ? Expectation::NoNotes : Expectation::NoWarnings;
       t_.expects.push_back(std::move(e));
       return;
     }
     if (form != "at") {
       std::vector<std::string_view> names(std::begin(kExpectForms), std::end(kExpectForms));
-      return error_at(w[1], "unknown expectation '" + form + "' (at TIME, at end, never fault, no warnings, stall MOTOR at TIME, never stall MOTOR)" + hint_of(form, names));
+      return error_at(w[1], "unknown expectation '" + form + "' (at TIME, at end, never fault, no warnings, no notes, stall MOTOR at TIME, never stall MOTOR)" + hint_of(form, names));
     }
     if (w.size() < 3) return error(end_col(line), 1, "'expect at' needs an instant (1.5s) or 'end'");
     int cond_col = 0;

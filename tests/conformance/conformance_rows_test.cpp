@@ -62,7 +62,52 @@ void check_stored(const tmcl::Profile& p, const Row& r, const tmcl::ParamInfo* i
                                             std::to_string(g.status) + "), not " + std::to_string(want));
 }
 
+// What a program can observe of the motors: every axis parameter but `skip` of every motor, read
+// (GAP) while motor 0 turns under a load of 60 % (where the core models loads) and after it
+// stopped, and the motion events on the way.
+std::vector<std::int64_t> observed(const tmcl::Profile& p, int skip, std::int32_t value) {
+  Module m(p);
+  if (skip >= 0) (void)m.vm.execute_direct(ins(5, skip, 0, value));
+  (void)m.core->set_load(0, 60);
+  const tmcl::ParamInfo* vmax = p.axis_param(4);
+  m.core->rotate(0, vmax && vmax->default_value > 0 ? vmax->default_value / 2 : 1000);
+  std::vector<std::int64_t> seen;
+  std::vector<tmcl::MotionEvent> events;
+  auto read_all = [&] {
+    for (int motor = 0; motor < p.motors; ++motor)
+      for (const tmcl::ParamInfo& q : p.axis_params)
+        if (q.number != skip && (q.access & tmcl::kRead)) seen.push_back(m.vm.execute_direct(ins(6, q.number, motor, 0)).value);
+  };
+  m.core->advance(1'000'000, events);
+  read_all();
+  m.core->stop(0);
+  m.core->advance(3'000'000, events);
+  read_all();
+  for (const auto& e : events) seen.insert(seen.end(), {e.at, static_cast<std::int64_t>(e.kind), e.position, e.value});
+  return seen;
+}
+
+// A `stored` row claims that no program observes the parameter (README, *Row format*): writing
+// it changes nothing the motors show a program. Issue 41: rows 6 and 140 said so while the run
+// current and the microstep resolution moved the load value and the actual current.
+void check_unobserved(const tmcl::Profile& p, const Row& r, const tmcl::ParamInfo* info) {
+  if (!info || !(info->access & tmcl::kWrite)) return;
+  const std::int32_t v = other_value(*info);
+  if (observed(p, info->number, v) != observed(p, info->number, info->default_value))
+    tmcl_test::fail(__FILE__, __LINE__, where(p, r) + ": a stored parameter, yet writing " + std::to_string(v) +
+                                            " changes what the motors show a program: the row must say how");
+}
+
 }  // namespace
+
+TEST(every_stored_row_changes_nothing_a_program_observes) {
+  for (const tmcl::Profile* p : conformance::modules()) {
+    const conformance::Table t = conformance::read_table(conformance::table_file(*p));
+    for (const auto& [sec, rows] : t.rows)
+      for (const Row& r : rows)
+        if (sec == Section::Axis && r.status == "stored") check_unobserved(*p, r, p->axis_param(std::stoi(r.key)));
+  }
+}
 
 TEST(every_stored_row_reads_back_what_was_written) {
   for (const tmcl::Profile* p : conformance::modules()) {

@@ -36,7 +36,7 @@ set(LAYERS
   "module|vm/module|module,vm,motion,isa,base"
   "asm|asm|asm,isa,base"
   "analysis|asm/analysis|analysis,asm,isa,base"
-  "debug|cli/debug|debug,module,vm,asm,motion,isa,base"
+  "debug|cli/debug|debug,module,host,vm,asm,motion,isa,base"
   "testrun|cli/testrun|testrun,analysis,vm,asm,motion,isa,base"
   "lsp|cli/lsp|lsp,testrun,analysis,vm,motion,asm,isa,base"
   "report|cli/report|report,vm,motion,isa,base"

@@ -71,6 +71,23 @@ struct SwitchBench : Bench {
   }
 };
 
+// A TMCM-1260 (pps) at 256 microsteps and current scale 16 (6 = 128), A2 = 1000000 pps²; with
+// `cruising` rotating at 51200 pps = 200 fullsteps/s (the stall and StealthChop tests).
+struct Axis1260 : SwitchBench {
+  explicit Axis1260(bool cruising = true) : SwitchBench("tmc5160", "tmcm-1260", 1) {
+    set(140, 8);
+    set(6, 128);
+    set(5, 1000000);
+    if (cruising) cruise();
+  }
+  void cruise() {
+    core->rotate(0, 51200);
+    CHECK(until(tmcl::MotionEventKind::VelocityReached));
+  }
+  void load(int percent) { CHECK(core->set_load(0, percent)); }
+  void wait(tmcl::SimTime d) { to(now + d); }
+};
+
 // From rest, accelerating with a up to v: the time to cover `dist` steps.
 inline double run_time(double dist, double v, double a) {
   if (dist <= v * v / (2 * a)) return std::sqrt(2 * dist / a);

@@ -213,3 +213,49 @@ TEST(stall_is_a_mark_of_its_own) {
   CHECK(s.find(">stall</text>") != std::string::npos);  // its legend entry
   CHECK(s.find("<title>0.423363 s: stall: load value 0, stopped (motor 0)</title>") != std::string::npos);
 }
+
+// A window of time scales each panel to the lines that change in it (issue 41): a motor standing
+// at 0 does not squash one moving near 100000; the standing line is clipped to the panel.
+TEST(svg_window_scales_to_the_moving_lines) {
+  tmcl::Plot p;
+  tmcl::PlotPanel panel{"position", "µsteps", "#1f77b4", "", false, {}};
+  panel.lines.assign(2, {});
+  for (int i = 0; i <= 100; ++i) {
+    p.times.push_back(i * 100'000);
+    panel.lines[0].push_back(0);
+    panel.lines[1].push_back(100000 + 10.0 * i);
+  }
+  p.panels.push_back(panel);
+  p.line_names = {"motor 0", "motor 1"};
+  tmcl::PlotOptions o;
+  o.from = 2'000'000;
+  o.to = 8'000'000;
+  std::ostringstream svg;
+  tmcl::write_svg(svg, p, o);
+  const std::string s = svg.str();
+  CHECK(s.find("text-anchor=\"end\">0</text>") == std::string::npos);  // no tick at 0: the axis spans 100200..100800
+  CHECK(s.find("text-anchor=\"end\">100.4k</text>") != std::string::npos);
+  CHECK_EQ(count(s, "clip-path=\"url(#panel0)\""), std::size_t{2});
+  std::ostringstream whole;  // without a window every line counts, as before
+  tmcl::write_svg(whole, p);
+  CHECK(whole.str().find("text-anchor=\"end\">0</text>") != std::string::npos);
+  CHECK(whole.str().find("clip-path") == std::string::npos);
+}
+
+// Steps lost at a hard stop (issue 41): the position panel draws the shaft where it parts from
+// the counter, one more line named in the legend; a run that loses none draws no such line.
+TEST(svg_draws_the_shaft_where_it_parts_from_the_counter) {
+  for (int wall = 0; wall < 2; ++wall) {
+    Runner r("tmc5160", "tmcm-1260", 20000);
+    if (wall) CHECK(r.b.core->place_hard_stop(0, tmcl::SwitchInput::StopRight, 20000));
+    r.mvp(60000);
+    r.wait_pos();
+    CHECK(r.rec.samples().back().shaft.has_value() == (wall != 0));
+    if (wall) CHECK_EQ(*r.rec.samples().back().shaft, 20000);  // the counter is at 60000
+    std::ostringstream svg;
+    tmcl::write_svg(svg, r.rec);
+    const std::string s = svg.str();
+    CHECK((s.find(">motor 0 shaft</text>") != std::string::npos) == (wall != 0));
+    CHECK_EQ(count(s, "<polyline"), std::size_t{wall ? 4u : 3u});
+  }
+}

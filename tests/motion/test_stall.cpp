@@ -11,22 +11,7 @@
 using tmcl::MotionEventKind;
 using tmcl::SwitchInput;
 
-namespace {
-
-// A TMCM-1260 (pps) rotating at 51200 pps = 200 fullsteps/s with 256 microsteps.
-struct Axis1260 : mt::SwitchBench {
-  Axis1260() : SwitchBench("tmc5160", "tmcm-1260", 1) {
-    set(140, 8);
-    set(6, 128);  // current scale 16
-    set(5, 1000000);
-    core->rotate(0, 51200);
-    CHECK(until(MotionEventKind::VelocityReached));
-  }
-  void load(int percent) { CHECK(core->set_load(0, percent)); }
-  void wait(tmcl::SimTime d) { to(now + d); }
-};
-
-}  // namespace
+using mt::Axis1260;  // rotating at 51200 pps = 200 fullsteps/s, 256 microsteps, scale 16
 
 TEST(load_value_falls_with_the_load_and_rises_with_174) {
   Axis1260 b;
@@ -57,6 +42,32 @@ TEST(load_value_falls_with_the_load_and_rises_with_174) {
   b.wait(20000);
   CHECK_EQ(b.get(206), std::max(0, at0 - 160));
   CHECK_EQ(b.get(208) & 1, at0 - 160 <= 0 ? 1 : 0);
+}
+
+// The run current (6) and the microstep resolution (140) are inputs of the load value a program
+// reads (conformance rows 6 and 140, issue 41): the current scale in N(f, cs), the fullstep rate
+// f = |v| / 2^140; and with them whether a load reads 0, a stall.
+TEST(load_value_follows_the_run_current_and_the_microstep_resolution) {
+  Axis1260 b;  // 6 = 128 (scale 16), 140 = 8: 51200 pps is 200 fullsteps/s
+  b.wait(20000);
+  CHECK_EQ(b.get(206), tmcl::stall::reading(200, 16, 0, 0));
+  b.set(6, 255);  // scale 31
+  b.wait(20000);
+  CHECK_EQ(b.get(206), tmcl::stall::reading(200, 31, 0, 0));
+  b.set(140, 6);  // 64 microsteps: 800 fullsteps/s
+  b.wait(20000);
+  CHECK_EQ(b.get(206), tmcl::stall::reading(800, 31, 0, 0));
+  CHECK(tmcl::stall::reading(800, 31, 0, 0) != tmcl::stall::reading(200, 31, 0, 0));
+  // 95 % with 174 = -2: the full current still reads above 0, a low one reads 0 (a stall).
+  b.set(140, 8);
+  b.set(174, -2);
+  b.load(95);
+  b.wait(20000);
+  CHECK(b.get(206) > 0);
+  b.set(6, 7);  // scale 0
+  b.wait(20000);
+  CHECK_EQ(b.get(206), 0);
+  CHECK_EQ(b.get(208) & 1, 1);
 }
 
 // A new load shows at the next measurement: the first microsecond at which the counter has passed

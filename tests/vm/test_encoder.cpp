@@ -50,3 +50,23 @@ TEST(unchecked_slip_on_a_core_without_encoder_faults) {
   CHECK(r.halt == Halt::Fault);
   CHECK_EQ(r.message, std::string("the motion core 'linear' models no encoder on tmc2300-eval to slip (scenario line 2)"));
 }
+
+// The PD60-1260 lost-step routine of issue 41 (1): 212 = 300, no stop on stall, a right hard stop
+// at 120000, MVP ABS 250000. The counter parts from the shaft at the end: the motor stops at the
+// first step beyond 212 (120301), 207 has its deviation bit, and the program's deviation handler
+// (vector 21) runs once.
+TEST(lost_steps_at_a_hard_stop_raise_the_deviation_interrupt_once) {
+  World w("tmc5160", *tmcl::find_profile("tmcm-1260"),
+          {I(Op::VECT, 21, 0, 10), I(Op::EI, 21), I(Op::EI, 255), I(Op::SAP, 212, 0, 300), I(Op::SAP, 181, 0, 0),
+           I(Op::SAP, 12, 0, 1), I(Op::MVP, 0, 0, 250000), I(Op::WAIT, 0, 0, 1000), I(Op::GAP, 207, 0),
+           I(Op::STOP), I(Op::GGP, 21, 2), I(Op::CALC, 0, 0, 1), I(Op::AGP, 21, 2), I(Op::RETI)},  // no CALCV here
+          "hardstop right 0 at 120000\n");
+  auto r = w.vm.run({100000, tmcl::kNever});
+  CHECK(r.halt == Halt::Stop);
+  CHECK_EQ(w.vm.vars[21], 1);
+  CHECK(w.vm.errors & tmcl::kErrDeviation);
+  CHECK_EQ(w.core->position(0), 120301);
+  CHECK_EQ(w.core->get_param(0, 209), 120000);
+  CHECK_EQ(w.vm.acc & 2, 2);  // 207 as the program read it: '2 deviation error'
+  CHECK_EQ(w.core->get_param(0, 3), 0);
+}

@@ -1,6 +1,8 @@
 // Control flow: JA, JC (every condition), CSUB/RSUB and the 8-entry stack, CALL, DJNZ, RST,
 // STOP, and the faults: jump outside the program, unknown opcode, running off the end,
 // a command the module does not have (docs/errata.md E4-E6, E11, E19-E21).
+#include <limits>
+
 #include "check.hpp"
 #include "machine.hpp"
 
@@ -173,10 +175,11 @@ TEST(push_pop_stack) {  // E12
 namespace {
 // Runs a program twice, once on the fast path and once traced (the table dispatch for every
 // instruction), and checks that both end in the same state at the same instant.
-void check_paths_agree(const std::vector<Instruction>& prog, tmcl::Limits lim, tmcl::SimTime instr) {
+void check_paths_agree(const std::vector<Instruction>& prog, tmcl::Limits lim, tmcl::SimTime instr, std::uint8_t errors = 0) {
   Machine fast(prog, test_profile(), instr), traced(prog, test_profile(), instr);
   NullTrace t;
   traced.vm.trace = &t;
+  fast.vm.errors = traced.vm.errors = errors;
   auto a = fast.vm.run(lim);
   auto b = traced.vm.run(lim);
   CHECK(a.halt == b.halt);
@@ -204,6 +207,49 @@ TEST(fast_path_and_fused_forms_are_unobservable) {
     for (std::uint64_t steps : {std::uint64_t{1}, std::uint64_t{6}, std::uint64_t{7}, std::uint64_t{1001}, std::uint64_t{12345}, UINT64_MAX})
       check_paths_agree(p, {steps, tmcl::kNever}, instr);
   check_paths_agree(p, {UINT64_MAX, 123'457}, 20);
+}
+
+// Every CALC and CALCV operation, plain (followed by STOP) and fused with a DJNZ, on the edge values
+// of E1 (division and modulo by zero and by -1, overflow), gives the table dispatch's result: the
+// fast path instantiates the ALU per operation (ops::arith_of), the table dispatch picks it at run
+// time (issue 42).
+TEST(every_calc_operation_agrees_on_fast_fused_and_traced_paths) {
+  const std::int32_t kMin = std::numeric_limits<std::int32_t>::min(), kMax = std::numeric_limits<std::int32_t>::max();
+  for (int t = 0; t <= 9; ++t)
+    for (std::int32_t a : {kMin, -7, 0, 7, kMax})
+      for (std::int32_t v : {kMin, -1, 0, 3, kMax}) {
+        // acc = a, v[1] = a; CALC t, v / DJNZ (fused, two rounds), CALCV t, v / DJNZ, CALC t, v / CALCV t, v alone.
+        std::vector<Instruction> p = {I(Op::CALC, 9, 0, a),  I(Op::SGP, 1, 2, a),   I(Op::SGP, 0, 2, 2),
+                                      I(Op::CALC, t, 0, v),  I(Op::DJNZ, 0, 0, 3),  I(Op::SGP, 0, 2, 2),
+                                      I(Op::CALCV, t, 1, v), I(Op::DJNZ, 0, 0, 6),  I(Op::CALC, t, 0, v),
+                                      I(Op::CALCV, t, 1, v), I(Op::STOP)};
+        check_paths_agree(p, {UINT64_MAX, tmcl::kNever}, 20);
+      }
+}
+
+// JA, JC and DJNZ run pre-decoded on the fast path (the target checked once, JC's condition as a
+// mask): every condition (the unknown ones too) on every flag and error flag, and targets outside
+// the program (a fault where the table dispatch faults), agree with the table dispatch (issue 42).
+TEST(pre_decoded_jumps_agree_with_the_table_dispatch) {
+  for (int cond : {0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 15, 16, 200})
+    for (int errors : {0, 1, 2, 4, 8, 15})
+      for (std::int32_t acc : {4, 5, 6})
+        for (std::int32_t target : {5, 99, -1}) {
+          check_paths_agree({I(Op::CALC, 9, 0, acc), I(Op::COMP, 0, 0, 5), I(Op::JC, cond, 0, target), I(Op::CALCX, 9),
+                             I(Op::STOP), I(Op::STOP)},
+                            {UINT64_MAX, tmcl::kNever}, 20, static_cast<std::uint8_t>(errors));
+          check_paths_agree({I(Op::SGP, 0, 2, acc - 4), I(Op::DJNZ, 0, 0, target), I(Op::JA, 0, 0, target), I(Op::STOP),
+                             I(Op::STOP), I(Op::STOP)},
+                            {UINT64_MAX, tmcl::kNever}, 20, static_cast<std::uint8_t>(errors));
+        }
+  Machine m({I(Op::CALC, 9, 0, 5), I(Op::COMP, 0, 0, 5), I(Op::JC, 0, 0, 99), I(Op::STOP)});
+  auto r = m.run();  // JC ZE holds: the jump outside faults at its address, as JA's (E19)
+  CHECK(r.halt == Halt::Fault);
+  CHECK(r.message.find("outside the program") != std::string::npos);
+  CHECK_EQ(m.vm.halt_pc, 2);
+  Machine d({I(Op::SGP, 0, 2, 2), I(Op::DJNZ, 0, 0, 99), I(Op::STOP)});
+  CHECK(d.run().halt == Halt::Fault);
+  CHECK_EQ(d.vm.halt_pc, 1);
 }
 
 // The life cycle belongs to the VM (control commands 128, 130, 131 and a debugger use these):

@@ -42,7 +42,12 @@ TEST(scenario_hardstop_and_load_errors) {
       {"hardstop left 0 near 5", "s.txt:1:17: error: expected 'hardstop left|right MOTOR at POSITION': 'at' expected here"},
       {"hardstop left 0", "s.txt:1:16: error: expected 'hardstop left|right MOTOR at POSITION': the line ends early"},
       {"hardstop left 0 at 5 6", "s.txt:1:22: error: unexpected '6' after the position"},
-      {"hardstop left 0 at 5\nhardstop left 0 at 9", "s.txt:2:10: error: hardstop left 0 is already placed at line 1"},
+      {"hardstop left 0 at -5\nhardstop left 0 at -9", "s.txt:2:10: error: hardstop left 0 is already placed at line 1"},
+      // Geometry (issue 41, 4): the carriage starts at 0, between its ends.
+      {"hardstop left 0 at 5", "s.txt:1:20: error: the carriage starts at position 0, beyond this left end (a left end lies at or below 0)"},
+      {"hardstop right 0 at -1", "s.txt:1:21: error: the carriage starts at position 0, beyond this right end (a right end lies at or above 0)"},
+      {"hardstop left 0 at -50\nhardstop right 0 at -100", "s.txt:2:21: error: the right end lies left of the left end at -50 (line 1)"},
+      {"hardstop right 0 at 50\nhardstop left 0 at 100", "s.txt:2:20: error: the left end lies right of the right end at 50 (line 1)"},
       {"at 1s load 0 = 50", "s.txt:1:16: error: bad load '50' (a percentage needs its '%': 50%)"},
       {"at 1s load 0 = -5%", "s.txt:1:16: error: bad load '-5%' (0%..1000%)"},
       {"at 1s load 0 = 1001%", "s.txt:1:16: error: bad load '1001%' (0%..1000%)"},
@@ -81,4 +86,53 @@ TEST(sg1_stall_raises_the_vector_of_its_motor) {
   CHECK_EQ(w.core->get_param(0, 207), 0);
   CHECK_EQ(w.core->get_param(2, 206), 7);
   CHECK(w.core->position(2) <= -3000 && w.core->position(2) >= -3000 - 16 - 1);
+}
+
+// A stall homing the TMCM-1260 runs in StealthChop (186 above the search speed, 187 > 0): the
+// module measures no stallGuard2 load there, so its stop on stall never comes (errata E78). The
+// run says so once, as a note; under --strict the note is a warning, and so a fault.
+TEST(stall_relied_on_in_stealthchop_is_a_note) {
+  for (int strict = 0; strict < 2; ++strict) {
+    World w("tmc5160", *tmcl::find_profile("tmcm-1260"),
+            {I(Op::SAP, 181, 0, 1), I(Op::SAP, 186, 0, 100000), I(Op::SAP, 187, 0, 5), I(Op::ROR, 0, 0, 51200),
+             I(Op::WAIT, 0, 0, 300), I(Op::STOP)},
+            "hardstop right 0 at 20000\n");
+    w.vm.strict = strict != 0;
+    auto r = w.vm.run({100000, tmcl::kNever});
+    if (strict) {
+      CHECK(r.halt == Halt::Fault);
+      CHECK(r.message.find("StealthChop") != std::string::npos);
+      continue;
+    }
+    CHECK(r.halt == Halt::Stop);
+    CHECK_EQ(w.vm.notes.size(), std::size_t{1});
+    CHECK_EQ(w.vm.notes[0].message,
+             std::string("motor 0 met a hard stop or a load with stop on stall (181) on, but in StealthChop (187 > 0, "
+                         "below 186) stallGuard2 measures nothing: no stall stops it, steps are lost (errata E78)"));
+    CHECK(w.core->get_param(0, 3) > 0);  // no stall stopped it
+  }
+}
+
+// A WAIT POS after the motor stopped by itself (issue 41, 4): the blocked run says why, with the
+// target kept: a stop on stall at a hard stop, an encoder deviation beyond 212.
+TEST(wait_pos_after_a_stop_on_stall_or_deviation_says_why) {
+  {
+    World w("tmc5160", *tmcl::find_profile("tmcm-1260"),
+            {I(Op::SAP, 140, 0, 8), I(Op::SAP, 181, 0, 1), I(Op::MVP, 0, 0, 250000), I(Op::WAIT, 1, 0, 0), I(Op::STOP)},
+            "hardstop right 0 at 120000\n");
+    auto r = w.vm.run({100000, tmcl::kNever});
+    CHECK(r.halt == Halt::Blocked);
+    const std::string at = std::to_string(w.core->position(0));
+    CHECK(r.message.find("can never end: motor 0 stopped on stall (stop on stall, 181) at position " + at +
+                         "; its target 250000 is kept, and no timer, motion, input or timeout is pending") != std::string::npos);
+  }
+  {
+    World w("tmc5160", *tmcl::find_profile("tmcm-1260"),
+            {I(Op::SAP, 212, 0, 300), I(Op::MVP, 0, 0, 250000), I(Op::WAIT, 1, 0, 0), I(Op::STOP)},
+            "hardstop right 0 at 120000\n");
+    auto r = w.vm.run({100000, tmcl::kNever});
+    CHECK(r.halt == Halt::Blocked);
+    CHECK(r.message.find("can never end: motor 0 stopped on an encoder deviation beyond 212 at position 120301; its "
+                         "target 250000 is kept") != std::string::npos);
+  }
 }

@@ -70,10 +70,10 @@ bool SwitchCore::cool_active(const Motor& m) const {
 }
 
 // coolStep regulates at `pps` (a measurement's speed): the driver measures (StallGuard4: in
-// StealthChop only, E73), 172 > 0 and the speed at or above 182 (the stepRocker's open firmware
+// StealthChop only, E73; stallGuard2: not in StealthChop, E78), 172 > 0 and the speed at or above 182 (the stepRocker's open firmware
 // switches it off below 182, "abs(Velocity) < ThresholdSpeed"; E72).
 bool SwitchCore::regulates(const Motor& m, double pps) const {
-  return measuring(m) && coolstep::enabled(cool_settings(m)) && pps + 1e-9 >= m.p[kCsThresholdSpeed] * vunit(m);
+  return measures_at(m, pps) && coolstep::enabled(cool_settings(m)) && pps + 1e-9 >= m.p[kCsThresholdSpeed] * vunit(m);
 }
 
 // The current scale the load value is measured with: the regulated one (equal to the run
@@ -156,7 +156,7 @@ void SwitchCore::cool_walk(const Motor& m, double s_lo, double s_hi, bool search
         const bool on = regulates(m, v);
         coolstep::State next = on ? w.st : rest;
         const int load = m.shaft.held ? 100 : load_at(m, shaft_pos(m, seg, t));
-        if (meas) {  // without a measurement (StallGuard4 outside StealthChop) 206 holds
+        if (meas && measures_at(m, v)) {  // without one (StallGuard4 outside StealthChop, stallGuard2 in it) 206 holds
           w.value = reading_at(m, v / F, on ? w.st.cs : rest.cs, load);
           w.measured = true;
         }

@@ -53,7 +53,10 @@ std::string_view switch_input_name(SwitchInput input) {
 
 std::string motion_event_text(const MotionEvent& ev) {
   if (ev.kind == MotionEventKind::Stall) return "stall: load value " + std::to_string(ev.value) + ", stopped";
-  if (ev.kind == MotionEventKind::StepsLost) return "steps lost: the shaft stands, the position counter runs on";
+  if (ev.kind == MotionEventKind::StepsLost)
+    return ev.value == kStepsLostStallUnseen
+               ? "steps lost: the shaft stands, the position counter runs on (StealthChop: stallGuard2 sees no stall)"
+               : "steps lost: the shaft stands, the position counter runs on";
   if (ev.kind == MotionEventKind::Rebased)
     return "position re-based: the reference point, " + std::to_string(ev.value) + " before, is 0 now";
   if (ev.kind == MotionEventKind::CurrentChanged) return "coolStep: actual current " + std::to_string(ev.value);

@@ -38,6 +38,8 @@ constexpr int kTmc5160Owned[] = {kApTargetPosition, kApActualPosition, kApTarget
                                  sw::kErrorFlags, sw::kEncoderPosition, sw::kEncoderPrescaler, sw::kMaxDeviation,
                                  // stallGuard2 (stall_core.cpp): run current, microsteps, filter, threshold, stop on stall, load value, driver flags
                                  6, 140, 173, 174, 181, 206, 208,
+                                 // StealthChop, in which stallGuard2 measures nothing: PWM threshold speed, PWM gradient
+                                 186, 187,
                                 // coolStep (coolstep_core.cpp): standby current, 168-172, actual current, threshold speed
                                 7, 168, 169, 170, 171, 172, 180, 182};
 

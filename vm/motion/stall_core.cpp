@@ -31,7 +31,8 @@ namespace {
 
 enum StallParam : int {
   kRunCurrent = 6,
-  kPwmGradient = 187,     // TMC2300: 0 turns StealthChop off, and with it StallGuard4 (E74)
+  kPwmThreshold = 186,    // TMC5160: StealthChop below this speed while 187 > 0 (E78)
+  kPwmGradient = 187,     // 0 turns StealthChop off: TMC2300: and with it StallGuard4 (E74); TMC5160: on stallGuard2 (E78)
   kMicrostepResolution = 140,
   kSgFilter = 173,
   kSgThreshold = 174,
@@ -57,6 +58,10 @@ void SwitchCore::reset_stall(const Profile& profile) {
   // 208 bit 0 is stallGuard2's status; a stop on stall sets `stall-flag` in 207 where the manual says.
   flags208_ = guard_ == stall::Guard::SG2 && (profile.any_parameter || profile.axis_param(kDriverFlags) != nullptr);
   stall_flag207_ = spec ? static_cast<std::int32_t>(spec->motion_constant("stall-flag", 0)) : 0;
+  // A stallGuard2 module whose profile has the PWM threshold speed 186 switches StealthChop by
+  // speed, and stallGuard2 measures nothing in StealthChop (TMC5160; errata E78).
+  stealth_by_speed_ = guard_ == stall::Guard::SG2 && spec && spec->axis_param(kPwmThreshold) != nullptr &&
+                      spec->axis_param(kPwmGradient) != nullptr;
   const ParamInfo* run = range_row(kRunCurrent);
   current_steps_ = run && run->max > 0 ? run->max + 1 : 256;
   reset_cool(profile);
@@ -93,6 +98,14 @@ bool SwitchCore::stops_on_stall(const Motor& m) const {
 // The driver measures: it has a load measurement, and StallGuard4 only in StealthChop (187 > 0).
 bool SwitchCore::measuring(const Motor& m) const {
   return sg_on_ && (guard_ != stall::Guard::SG4 || m.p[kPwmGradient] > 0);
+}
+
+// The speed (pps) below which the TMC5160 drives in StealthChop and stallGuard2 measures nothing:
+// 186 while 187 > 0 ("switched on when the actual velocity is below this value (and parameter
+// #187 is greater than zero)", PD57/60-1260 manual 186); 0 elsewhere (errata E78).
+double SwitchCore::stealth_below(const Motor& m) const {
+  if (!stealth_by_speed_ || m.p[kPwmGradient] <= 0) return 0;
+  return m.p[kPwmThreshold] * vunit(m);
 }
 
 // The reading at `f` fullsteps/s under `load` %, by the module's measurement (stall.hpp), with
@@ -133,7 +146,7 @@ bool SwitchCore::last_reading(const Motor& m, int& value) const {
   const auto& segs = m.rm.plan.segs;
   const double s_now = m.rm.secs(now_) + kTol, s_lo = m.rm.secs(m.sg.commit_us) + kTol;
   const double cbase = static_cast<double>(m.rm.base + m.rm.phys), F = fullstep(m);
-  const double vmin = stall::kMinFullstepRate * F;
+  const double vmin = std::max(stall::kMinFullstepRate * F, stealth_below(m));  // none in StealthChop (E78)
   for (std::size_t i = m.rm.plan.find(s_now - kTol) + 1; i-- > 0;) {
     const Segment& seg = segs[i];
     const double end = std::isinf(seg.dur) ? s_now : std::min(seg.t0 + seg.dur, s_now);
@@ -171,7 +184,7 @@ Builder SwitchCore::restart(Motor& m, double vscale) {
 void SwitchCore::stall_input(Motor& m, int param) {
   switch (param) {
     case kRunCurrent: case kMicrostepResolution: case kSgFilter: case kSgThreshold: case kStopOnStall:
-    case kPwmGradient: case kSg1Threshold:
+    case kPwmThreshold: case kPwmGradient: case kSg1Threshold:
       commit(m);
       break;
     default:
@@ -208,9 +221,10 @@ bool SwitchCore::set_load(int motor, int percent) {
   Motor& m = at(motor);
   commit(m);
   m.sg.load = percent;
-  if (m.sg.block == 2 && load_at(m, static_cast<double>(shaft_at(m))) < 100) {  // the load lets go
+  if (m.sg.block == 2 && percent < 100) {  // the load lets go (a range it stands in may hold it again)
     release_shaft(m);
     m.sg.block = 0;
+    shaft_changed(m, false);  // the deviation stop the hold had planned goes with it
   }
   return true;
 }
@@ -232,7 +246,9 @@ SimTime SwitchCore::next_event() const {
 
 // Where a segment moving from t1 (not held) meets what holds its shaft: a hard stop ahead, a zone
 // whose load reaches 100 % ahead, or a load of 100 % or more where it is. -1: nothing before t2.
-// `why`: the block it makes (seg.dir for a hard stop, 2 for a load).
+// `why`: the block it makes: 2 for a timed load of 100 % or more, which holds the shaft whichever
+// way the motor turns (a brake); seg.dir for a hard stop and for a range of positions, which
+// resist the shaft moving into them only: turning away lets it follow again (docs/motion.md).
 double SwitchCore::contact(const Motor& m, const Segment& seg, double t1, double t2, int& why) const {
   const double pos = shaft_pos(m, seg, t1), shift = static_cast<double>(m.rm.base + m.rm.phys + m.shaft.offset);
   const Segment s = from(seg, t1);
@@ -242,15 +258,19 @@ double SwitchCore::contact(const Motor& m, const Segment& seg, double t1, double
     if (dt < 0 || t1 + dt > t2) return;
     if (best < 0 || t1 + dt < best) best = t1 + dt, why = kind;
   };
-  if (load_at(m, pos) >= 100) {
+  if (m.sg.load >= 100) {
     why = 2;
+    return t1;
+  }
+  if (load_at(m, pos) >= 100 && load_at(m, pos + seg.dir) >= 100) {  // in a range, moving on into it
+    why = seg.dir;
     return t1;
   }
   const int side = seg.dir > 0 ? 1 : 0;
   if (m.sg.hard[side]) take(static_cast<double>(m.sg.hard_at[side]), seg.dir);
   for (const auto& z : m.sg.zones) {
     const double edge = seg.dir > 0 ? static_cast<double>(z.lo) : static_cast<double>(z.hi);
-    if (seg.dir * (edge - pos) > 0 && load_at(m, edge) >= 100) take(edge, 2);
+    if (seg.dir * (edge - pos) > 0 && load_at(m, edge) >= 100) take(edge, seg.dir);
   }
   return best;
 }
@@ -261,7 +281,7 @@ double SwitchCore::first_stall(const Motor& m, const Segment& seg, double t1, do
   const double F = fullstep(m), cbase = static_cast<double>(m.rm.base + m.rm.phys);
   if (!steady_enough(seg)) return -1;
   const double v181 = guard_ == stall::Guard::SG1 ? 0 : m.p[kStopOnStall] * vunit(m);  // stallGuard 1 has no 181
-  const double vlo = std::max(v181, stall::kMinFullstepRate * F);
+  const double vlo = std::max({v181, stall::kMinFullstepRate * F, stealth_below(m)});  // E78: none in StealthChop
   // Pieces of constant load: split at the zones' edges on the way (none held: the blocked rotor).
   std::vector<double> cuts{t1};
   if (!m.shaft.held) {
@@ -348,6 +368,7 @@ void SwitchCore::on_mech(Motor& m, std::vector<MotionEvent>& out) {
       Builder b = restart(m);
       m.sg.value = stall_reading(m, measure(m, f, load)), m.sg.measured = true;
       m.errors |= stall_flag207_;  // 207: "stopped due to motor stall" where the manual has it
+      m.halted_by = 1;
       b.stop_hard();
       b.finish_rest();
       m.rm.plan.events.clear();
@@ -364,17 +385,27 @@ void SwitchCore::on_mech(Motor& m, std::vector<MotionEvent>& out) {
       hold_shaft(m);
       m.sg.block = why == 0 ? seg.dir : why;
       m.sg.next_valid = false;
+      // The counter now parts from the shaft: the deviation stop (212) is planned where it passes
+      // 212, mid-plan as at a plan's start (switch_core.cpp, scan_deviation).
+      shaft_changed(m, false);
       // Steps are lost from here; said once, unless stop on stall stops the motor at the next
       // measurement (within a measurement period: stallGuard 1 waits for a constant speed).
       const bool stops_soon = next_mech(m) != kNever && m.sg.next_kind == kStall &&
                               static_cast<double>(std::abs(m.rm.xactual(m.sg.next_at) - m.rm.xactual(now_))) <= period(m) + 1;
-      if (!stops_soon)
-        out.push_back({now_, motor, MotionEventKind::StepsLost, ramp::wrap32(m.rm.xactual(now_))});
+      if (!stops_soon) {
+        MotionEvent ev{now_, motor, MotionEventKind::StepsLost, ramp::wrap32(m.rm.xactual(now_))};
+        // Stop on stall is on, yet StealthChop keeps stallGuard2 from measuring here (E78): the
+        // program relies on a stall the module cannot see (the VM notes it).
+        const double v = std::fabs(m.rm.state(now_).v);
+        if (stealth_below(m) > 0 && v < stealth_below(m) && m.p[kStopOnStall] > 0) ev.value = kStepsLostStallUnseen;
+        out.push_back(ev);
+      }
       break;
     }
     case kRelease:
       release_shaft(m);
       m.sg.block = 0;
+      shaft_changed(m, false);  // following again: the deviation changes as the counter moves
       break;
     default: break;
   }

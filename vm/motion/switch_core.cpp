@@ -33,6 +33,23 @@ void SwitchCore::reset(const Profile& profile, int motors) {
   reset_stall(profile);
 }
 
+std::string SwitchCore::stop_reason(int motor) const {
+  const Motor& m = motors_[static_cast<std::size_t>(motor)];
+  if (m.halted_by == 0 || !m.rm.at_rest(now_) || m.goal != Goal::Idle) return {};
+  return std::string(m.halted_by == 1 ? "stopped on stall (stop on stall, 181)" : "stopped on an encoder deviation beyond 212") +
+         " at position " + std::to_string(ramp::wrap32(m.rm.xactual(now_))) + "; its target " +
+         std::to_string(m.p[kApTargetPosition]) + " is kept";
+}
+
+MotionSample SwitchCore::sample_at(int motor, SimTime t) const {
+  MotionSample s = RampCore::sample_at(motor, t);
+  const Motor& m = motors_[static_cast<std::size_t>(motor)];
+  // The shaft as it stands now (a hold or a release is an event: samples never pass one).
+  const std::int64_t shaft = m.shaft.held ? m.shaft.held_at - m.rm.phys : s.position + m.shaft.offset;
+  if (shaft != s.position) s.shaft = shaft;
+  return s;
+}
+
 bool SwitchCore::models_encoder(const Profile& profile) const {
   const Profile* spec = profile.any_parameter ? find_profile(home_) : &profile;
   return spec && EncoderSpec::of(*spec).present;
@@ -48,7 +65,7 @@ void SwitchCore::advance(SimTime to, std::vector<MotionEvent>& out) {
   collect(
       to, out,
       [this](Motor& m, EventKind k) {
-        if (k == EventKind::Deviation) m.errors |= enc_spec_.deviation_flag, abort_search(m);
+        if (k == EventKind::Deviation) m.errors |= enc_spec_.deviation_flag, m.halted_by = 2, abort_search(m);
         if (k == EventKind::ReferenceDone) m.search.step = SearchStep::Off;
         if (k != EventKind::VelocityReached) m.goal = Goal::Idle, m.trip_t = ramp::kInf;
       },
@@ -152,6 +169,7 @@ void SwitchCore::move_absolute(int motor, std::int32_t target) {
   Motor& m = at(motor);
   m.p[kApTargetPosition] = target;
   m.errors = 0;  // "cleared with the next movement command" (TMCM-351 manual, 207)
+  m.halted_by = 0;
   set_goal(m, Goal::Position);
   replan(m, 1, true);
 }
@@ -160,6 +178,7 @@ void SwitchCore::rotate(int motor, std::int32_t velocity) {
   Motor& m = at(motor);
   m.vt = std::clamp(velocity, -max_speed(), max_speed());  // the chip's register holds no more
   m.errors = 0;
+  m.halted_by = 0;
   set_goal(m, Goal::Velocity);
   replan(m, 1, true);
 }
@@ -167,6 +186,7 @@ void SwitchCore::rotate(int motor, std::int32_t velocity) {
 void SwitchCore::stop(int motor) {
   Motor& m = at(motor);
   m.errors = 0;
+  m.halted_by = 0;
   if (m.goal == Goal::Idle && m.rm.at_rest(now_)) return;
   m.vt = 0;
   set_goal(m, Goal::Velocity);
@@ -178,6 +198,7 @@ std::int32_t SwitchCore::reference_search(int motor, RfsAction action) {
   switch (action) {
     case RfsAction::Start:
       m.errors = 0;
+      m.halted_by = 0;
       start_search(m);
       return 0;
     case RfsAction::Stop:
@@ -291,12 +312,16 @@ void SwitchCore::stop_at(Motor& m, double t, const Limits& lim) {
 }
 
 // The first step of the plan at which |XACTUAL - 209| exceeds 212: there the motor stops at once
-// with a deviation event (manuals: "the motor will be stopped"; docs/motion.md).
+// with a deviation event (manuals: "the motor will be stopped"; docs/motion.md). The shaft is
+// taken to stay as it is now (following, or held); each change of that (a contact, a release, a
+// load) re-plans, and with it this scan (stall_core.cpp). A shaft held at a hard stop or at a range
+// is released where the plan turns away from it: the scan ends there.
 void SwitchCore::scan_deviation(Motor& m) {
   if (!deviation_on(m)) return;
   const shaft::Deviation dev = deviation(m);
   for (const auto& seg : m.rm.plan.segs) {
     if (seg.dir == 0) continue;
+    if (m.shaft.held && m.sg.block == -seg.dir) return;
     const auto x = dev.trip(m.rm.base + ramp::step_of(seg.x0, seg.dir), seg.dir, m.p[kMaxDeviation]);
     if (!x) continue;
     const double dt = ramp::crossing(seg, static_cast<double>(*x - m.rm.base));

@@ -95,6 +95,8 @@ struct Motor {
   shaft::Shaft shaft;                 // the rotor, apart from the counter (shaft.hpp)
   shaft::Encoder enc;                 // axis parameter 209, counting the shaft
   std::int32_t errors = 0;            // axis parameter 207: cleared by a motion command
+  std::uint8_t halted_by = 0;         // the motor stopped by itself, its target kept: 1 a stall, 2 a deviation
+                                      // (stop_reason); cleared by a motion command as 207 is
   stall::Axis sg;                     // hard stops, loads and the load value (stall_core.cpp)
   coolstep::State cool;               // coolStep's regulation (coolstep_core.cpp)
 };
@@ -128,6 +130,9 @@ class SwitchCore : public ramp::RampCore<Motor> {
   // The shaft slips `counts` microsteps against the counter (scenario `slip`); the encoder sees it.
   void encoder_slip(int motor, std::int32_t counts) override;
   bool models_encoder(const Profile& profile) const override;
+  std::string stop_reason(int motor) const override;
+  // The sample with the shaft where it has parted from the counter (the plot draws it).
+  MotionSample sample_at(int motor, SimTime t) const override;
   // 205, stallGuard 1's threshold, is the core's only where the profile names that measurement
   // (`motion-constant stallguard 1`, stall_core.cpp); elsewhere the VM keeps it, if the module has it.
   bool owns(int param) const override {
@@ -250,6 +255,11 @@ class SwitchCore : public ramp::RampCore<Motor> {
   stall::Guard guard_ = stall::Guard::None;  // which measurement the module makes
   std::int32_t stall_flag207_ = 0;           // what a stop on stall sets in 207 (`stall-flag`)
   bool measuring(const Motor& m) const;
+  // StealthChop switched by speed (the TMC5160: 186, 187): stallGuard2 measures only at or above
+  // this speed (pps; 0: at every speed). Errata E78.
+  bool stealth_by_speed_ = false;
+  double stealth_below(const Motor& m) const;
+  bool measures_at(const Motor& m, double pps) const { return measuring(m) && pps + 1e-9 >= stealth_below(m); }
   int measure(const Motor& m, double f, int load) const;
   int reading_at(const Motor& m, double f, int cs, int load) const;
   double stall_below(const Motor& m, int load) const;

@@ -56,6 +56,9 @@ struct ScenarioOptions {
   // The module's profile: `input N` and `analog N` must name a digital input of bank 0 and an
   // input of bank 1 it lists, with a value in the port's range (errata E53). Null: ports 0..7.
   const Profile* profile = nullptr;
+  // The lines describe the machine at power-on, the carriage at position 0: a hard stop beyond it
+  // is an error. False: placed mid-run, wherever the carriage is (the debugger's `set var`).
+  bool from_start = true;
 };
 
 // Parses every line; returns false when any is bad, with `diags` holding every error in line order.

@@ -396,6 +396,9 @@ struct Vm {
   // not-simulated= (axis: bank -1): a note once per parameter per run, a warning under --strict;
   // true when --strict made it a fault.
   bool note_not_simulated_param(int bank, int number, std::string_view mnemonic, bool read);
+  // A note whose message starts with `once` has been given already: nothing; else `message` as a
+  // note (a warning under --strict; true when that made it a fault).
+  bool note_once(std::string_view once, std::string message);
   // Before the instruction at pc runs inside a handler: reports it when it is outside the
   // handler's code (handler_code); true when --strict made that a fault.
   bool check_handler_code();

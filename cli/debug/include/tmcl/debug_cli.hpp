@@ -2,6 +2,7 @@
 // and symbols, and the gdb-like command line of `tmclrun --debug` (docs/debugger.md).
 #pragma once
 
+#include <csignal>
 #include <cstdio>
 #include <functional>
 #include <string>
@@ -24,12 +25,16 @@ bool load_program_info(const std::string& path, const Profile& profile, AsmOptio
 struct CliOptions {
   std::string commands_file;  // --debug-commands FILE: run these, then quit (like gdb -batch -x)
   std::string program_name;   // for messages
+  std::string tool = "tmclrun";  // names the tool in its messages
+  // Set by a signal handler (SIGTERM, SIGHUP): the session ends after the command under way,
+  // which the handler paused.
+  const volatile std::sig_atomic_t* quit = nullptr;
 };
 
 // Runs the command line on `engine` until quit or the end of the commands. Commands come from
 // the file, else standard input (echoed with the prompt when it is not a terminal, so a
 // transcript reads like a session). Returns tmclrun's exit status for how the program ended.
-int run_cli(Engine& engine, const CliOptions& options, std::FILE* in, std::FILE* out);
+int run_cli(Target& engine, const CliOptions& options, std::FILE* in, std::FILE* out);
 
 // The command line fed one line at a time, for a front end with its own input loop
 // (tmclrun --serve --debug). Output goes to `out`, flushed after every call.
@@ -37,7 +42,7 @@ class CommandLine {
  public:
   // echo: print each line after "(tmdb) " (input that is not a terminal); repeat: an empty
   // line repeats the last command (gdb's Enter).
-  CommandLine(Engine& engine, std::FILE* out, bool echo, bool repeat);
+  CommandLine(Target& engine, std::FILE* out, bool echo, bool repeat);
   ~CommandLine();
   CommandLine(const CommandLine&) = delete;
   CommandLine& operator=(const CommandLine&) = delete;
@@ -74,8 +79,13 @@ struct DapSetup {
   Limits limits;                     // --max-time, --max-steps
   std::vector<InputEvent> inputs;    // --scenario
   std::optional<EepromImage> eeprom; // --eeprom (read at power-up)
+  std::string attach_notes;          // tmclctl PORT debug --dap: what attaching found, sent on `attach`
+  const volatile std::sig_atomic_t* quit = nullptr;  // SIGTERM, SIGHUP: end as on disconnect
 };
 int run_dap(const DapSetup& setup, std::FILE* in, std::FILE* out);
+// The same on a target attached already (tmclctl PORT debug --dap): `attach` or `launch` confirm
+// it; `setup` gives only the assembler's options.
+int run_dap(const DapSetup& setup, Target& target, std::FILE* in, std::FILE* out);
 
 // tmclrun's debugger options (its option table sets them, cli/tmclrun.cpp).
 struct FrontEnd {

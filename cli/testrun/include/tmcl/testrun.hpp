@@ -45,7 +45,7 @@ enum class End : std::uint8_t { Stop, Fault, MaxTime, Blocked };
 std::string_view end_name(End e);  // "stop", "fault", "max-time", "blocked"
 
 struct Expectation {
-  enum Kind : std::uint8_t { At, AtEnd, Halted, NeverFault, NoWarnings, Stall, NeverStall } kind = At;
+  enum Kind : std::uint8_t { At, AtEnd, Halted, NeverFault, NoWarnings, NoNotes, Stall, NeverStall } kind = At;
   int line = 0;          // in the test file
   int col = 0;           // of the word after `expect`
   SimTime at = 0;        // At, Stall: the instant

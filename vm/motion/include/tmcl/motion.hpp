@@ -39,11 +39,13 @@ enum class MotionEventKind : std::uint8_t {
   ReferenceDone,    // a reference search completed
   SwitchChanged,    // a switch placed at a position (place_switch) closed or opened
   Stall,            // stop on stall (axis parameter 181): the load value reached 0, motor stopped (interrupt 15+motor)
-  StepsLost,        // the shaft stands (a hard stop, a load of 100 % or more) while the counter runs on
+  StepsLost,        // the shaft stands (a hard stop, a load of 100 % or more) while the counter runs on;
+                    // `value` kStepsLostStallUnseen: stop on stall is on, but StealthChop hides the stall (E78)
   Rebased,          // a reference search made its reference point position 0: the register jumps
   CurrentChanged,   // coolStep changed the actual current (axis parameter 180) of a moving motor: `value`
 };
 std::string_view motion_event_name(MotionEventKind kind);
+inline constexpr std::int32_t kStepsLostStallUnseen = 1;  // MotionEvent::value of a StepsLost
 
 enum class SwitchInput : std::uint8_t { StopLeft, StopRight, Home };
 std::string_view switch_input_name(SwitchInput input);  // "left", "right", "home"
@@ -80,6 +82,9 @@ struct MotionSample {
   std::int64_t position;  // actual position (axis parameter 1, not wrapped to 32 bits)
   double velocity;        // pps
   double acceleration;    // pps²
+  // Where the shaft is, in the position's counts, where a core keeps it apart from the counter
+  // (steps lost at a hard stop, under a load, slipped: docs/motion.md, "Shaft and encoder").
+  std::optional<std::int64_t> shaft = std::nullopt;
 };
 
 class MotionCore {
@@ -117,6 +122,13 @@ class MotionCore {
   // Why the positioning just commanded cannot start, or which of its ramp settings the manual
   // forbids, naming the parameters (the VM's run-time warning `ramp-setting`); empty: none.
   virtual std::string move_problem(int motor) const {
+    (void)motor;
+    return {};
+  }
+  // Why the motor stands off its target though no command stopped it (a stop on stall, an encoder
+  // deviation beyond 212), with the target it keeps: "stopped on stall (181) at position P; its
+  // target T is kept"; empty: none (a WAIT POS that can never end says it).
+  virtual std::string stop_reason(int motor) const {
     (void)motor;
     return {};
   }

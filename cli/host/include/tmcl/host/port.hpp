@@ -39,6 +39,10 @@ class Port {
   // line is gone or the server refused us (busy), -2 when cancelled.
   long read_some(std::uint8_t* data, std::size_t n, Clock::time_point deadline, std::string& error);
 
+  // Gives the line up (a lost serial device's lock, a dead socket) so that it can be opened again;
+  // every later read and write fails.
+  void close();
+
   const std::string& name() const { return name_; }
   bool is_serial() const { return serial_; }
 

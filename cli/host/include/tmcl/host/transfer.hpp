@@ -26,6 +26,11 @@ struct TransferResult {
 // Called after each instruction with (done, total); total is 0 when unknown (upload).
 using Progress = std::function<void(int done, int total)>;
 
+// In download mode with the pointer at `address` (132 sent): stores `ins` there. A store whose
+// reply is lost is not simply sent again (it would be stored twice, at the next address): 132
+// sets the pointer back to `address` first, as often as the client retries. The reply's status
+// is the caller's to check (101: stored).
+Result store(Client& client, std::int32_t address, const Instruction& ins);
 // Stores program[from..] at addresses from.. and leaves download mode (also when cancelled or
 // failing, if the module still answers). `memory` is the module's program memory in instructions
 // (0: unknown): the end marker is sent only where it fits.

@@ -5,7 +5,7 @@ if exists('b:current_syntax')
   finish
 endif
 syntax match tmcltestDirective /^\s*\(program\|target\|motion\|instr-time\|max-time\|define\|skip\|at\|switch\|hardstop\|load\|expect\)\>/
-syntax keyword tmcltestWord at end never fault no warnings halted stop max-time blocked stall
+syntax keyword tmcltestWord at end never fault no warnings notes halted stop max-time blocked stall
 syntax keyword tmcltestWord input analog left right home slip load from to
 syntax keyword tmcltestValue acc a x pc sp flags errors time steps v ap gp in ain out position velocity
 syntax match tmcltestNumber /\<\d\+\(\.\d\+\)\=\(us\|ms\|s\|min\|h\)\=\>/
