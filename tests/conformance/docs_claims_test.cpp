@@ -23,8 +23,13 @@ struct Claim {
   std::vector<std::string> cores;  // the heading's backticked core names; empty: every module
 };
 
+// The cores of motion_cores.def (a heading that names one in backticks speaks of that core).
 const std::vector<std::string>& core_names() {
-  static const std::vector<std::string> names{"tmc429", "tmc5160", "tmc4361", "linear", "ideal"};
+  static const std::vector<std::string> names{
+#define TMCL_MOTION_CORE(NAME) #NAME,
+#include "tmcl/motion_cores.def"
+#undef TMCL_MOTION_CORE
+  };
   return names;
 }
 

@@ -70,6 +70,16 @@ class Tmc5240Core final : public sw::Tmc5160Family {
       : Tmc5160Family(kTmc5240Owned, "tmcm-1290", switch_config(),
                       {kA1, kV1, kDMax, kD1, kVStart, kVStop, "AMAX", "DMAX", kA2, kV2, kD2, kRampWait}) {}
 
+  // 40 is read-only here (which virtual stop the motor is at); a module whose row 40 is
+  // writable means another parameter by it (the TMCM-6214's position compare start): under such
+  // a profile the core leaves 40 to the VM, which stores it as the profile says.
+  void reset(const Profile& profile, int motors) override {
+    Tmc5160Family::reset(profile, motors);
+    const ParamInfo* row = profile.axis_param(kVirtualFlags);
+    flags_owned_ = !row || !(row->access & kWrite);
+  }
+  bool owns(int param) const override { return (param != kVirtualFlags || flags_owned_) && Tmc5160Family::owns(param); }
+
   std::int32_t get_param(int motor, int param) override {
     if (param != kVirtualFlags) return Tmc5160Family::get_param(motor, param);
     const sw::Motor& m = at(motor);
@@ -103,6 +113,9 @@ class Tmc5240Core final : public sw::Tmc5160Family {
       return stop_at(m, seg.t0 + dt, lim);
     }
   }
+
+ private:
+  bool flags_owned_ = true;
 };
 
 }  // namespace
