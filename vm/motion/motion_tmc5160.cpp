@@ -14,6 +14,8 @@
 #include "tmc5160_family.hpp"
 
 namespace tmcl {
+// Named, so that the two TMC5160-family cores' numbers (kA1, kD2, …) stay apart in a unity build.
+namespace tmc5160_core {
 namespace {
 
 // The TMCM-1260's numbers beyond the shared ones (PD57/60-1260 manual, chapter 4).
@@ -56,7 +58,8 @@ class Tmc5160Core final : public sw::Tmc5160Family {
 };
 
 }  // namespace
+}  // namespace tmc5160_core
 
-std::unique_ptr<MotionCore> make_tmc5160_motion_core() { return std::make_unique<Tmc5160Core>(); }
+std::unique_ptr<MotionCore> make_tmc5160_motion_core() { return std::make_unique<tmc5160_core::Tmc5160Core>(); }
 
 }  // namespace tmcl

@@ -17,6 +17,8 @@
 #include "tmc5160_family.hpp"
 
 namespace tmcl {
+// Named, so that the two TMC5160-family cores' numbers (kA1, kD2, …) stay apart in a unity build.
+namespace tmc5240_core {
 namespace {
 
 // The TMCM-1290's numbers beyond the shared ones (TMCM-1290 manual, table 16).
@@ -119,7 +121,8 @@ class Tmc5240Core final : public sw::Tmc5160Family {
 };
 
 }  // namespace
+}  // namespace tmc5240_core
 
-std::unique_ptr<MotionCore> make_tmc5240_motion_core() { return std::make_unique<Tmc5240Core>(); }
+std::unique_ptr<MotionCore> make_tmc5240_motion_core() { return std::make_unique<tmc5240_core::Tmc5240Core>(); }
 
 }  // namespace tmcl
