@@ -5,9 +5,12 @@
 
 #include <sys/wait.h>
 
+#include <chrono>
 #include <string>
+#include <thread>
 #include <vector>
 
+#include "check.hpp"
 #include "client.hpp"
 
 namespace srvtest {
@@ -69,5 +72,24 @@ inline int reap(Child& c) {
 inline Link connect_to(const std::string& announce) {
   return connect_loopback(std::stoi(announce.substr(announce.rfind(':') + 1)));
 }
+
+// What the host-side tests send most (a unity build puts their files in one unit: one copy here).
+inline constexpr auto kRor = static_cast<std::uint8_t>(tmcl::Op::ROR);
+inline constexpr auto kMst = static_cast<std::uint8_t>(tmcl::Op::MST);
+inline constexpr auto kMvp = static_cast<std::uint8_t>(tmcl::Op::MVP);
+inline constexpr auto kSap = static_cast<std::uint8_t>(tmcl::Op::SAP);
+inline constexpr auto kGap = static_cast<std::uint8_t>(tmcl::Op::GAP);
+
+// A request that must be answered with status 100, as a host library insists; its value. A
+// failure names the request and what came back.
+inline std::int32_t ask(Link& l, std::uint8_t op, std::uint8_t type, std::uint8_t motor, std::int32_t value) {
+  auto r = l.request(op, type, motor, value);
+  if (!r || (*r)[2] != 100)
+    ::tmcl_test::fail(__FILE__, __LINE__, "request " + std::to_string(op) + ", " + std::to_string(type) + ", " + std::to_string(motor) +
+                                              " answered " + (r ? "status " + std::to_string((*r)[2]) : std::string("nothing")));
+  return r ? value_of(*r) : 0;
+}
+
+inline void sleep_ms(int ms) { std::this_thread::sleep_for(std::chrono::milliseconds(ms)); }
 
 }  // namespace srvtest

@@ -12,25 +12,12 @@ using namespace srvtest;
 
 namespace {
 
-constexpr auto kRor = static_cast<std::uint8_t>(tmcl::Op::ROR);
-constexpr auto kSap = static_cast<std::uint8_t>(tmcl::Op::SAP);
-constexpr auto kGap = static_cast<std::uint8_t>(tmcl::Op::GAP);
-
 std::string scenario_file(const std::string& name, const std::string& text) {
   char dir[] = "/tmp/tmcl-stall-host-XXXXXX";
   const std::string path = std::string(::mkdtemp(dir) ? dir : "/tmp") + "/" + name;
   std::ofstream(path) << text;
   return path;
 }
-
-// A request that must succeed (status 100); its value.
-std::int32_t ask(Link& l, std::uint8_t op, std::uint8_t type, std::uint8_t motor, std::int32_t value) {
-  auto r = l.request(op, type, motor, value);
-  CHECK(r && (*r)[2] == 100);
-  return r ? value_of(*r) : 0;
-}
-
-void sleep_ms(int ms) { std::this_thread::sleep_for(std::chrono::milliseconds(ms)); }
 
 // tmclrun serving a TMCM-1110 over TCP with `scenario`, listening.
 Child serve_tmcm1110(const std::string& scenario) {

@@ -11,18 +11,19 @@ using tmcl::Op;
 
 namespace {
 
-Instruction make(Op op, int type, int motor, std::int32_t value) {
+Instruction instr(Op op, int type, int motor, std::int32_t value) {
   return Instruction{static_cast<std::uint8_t>(op), static_cast<std::uint8_t>(type), static_cast<std::uint8_t>(motor), value};
 }
 
+// (Named apart from test_protocol.cpp's Engine: a unity build puts both files in one unit.)
 // 0: CALC LOAD 4711; 1: WAIT TICKS 0, 10 (100 ms); 2: CALC ADD 1; 3: STOP.
-struct Engine {
+struct VariantEngine {
   std::unique_ptr<tmcl::MotionCore> core = tmcl::make_ideal_motion_core();
   tmcl::Vm vm{*tmcl::find_profile("usb-2-sd"), *core};
   tmcl::TmclModule module;
-  explicit Engine(tmcl::FirmwareVariants v = {}) : module(vm, options(v)) {
-    vm.load({make(Op::CALC, tmcl::kw::CalcA::LOAD, 0, 4711), make(Op::WAIT, tmcl::kw::Wait::TICKS, 0, 10),
-             make(Op::CALC, tmcl::kw::CalcA::ADD, 0, 1), make(Op::STOP, 0, 0, 0)});
+  explicit VariantEngine(tmcl::FirmwareVariants v = {}) : module(vm, options(v)) {
+    vm.load({instr(Op::CALC, tmcl::kw::CalcA::LOAD, 0, 4711), instr(Op::WAIT, tmcl::kw::Wait::TICKS, 0, 10),
+             instr(Op::CALC, tmcl::kw::CalcA::ADD, 0, 1), instr(Op::STOP, 0, 0, 0)});
   }
   static tmcl::ProtocolOptions options(tmcl::FirmwareVariants v) {
     tmcl::ProtocolOptions o;
@@ -51,7 +52,7 @@ tmcl::FirmwareVariants variant(bool tmcl::FirmwareVariants::*field) {
 }  // namespace
 
 TEST(step_during_wait_answers_at_once_by_default) {
-  Engine e;
+  VariantEngine e;
   e.feed(frame(1, kReset, 0, 0, 0));
   CHECK_EQ(hex(e.feed(frame(1, kStep, 0, 0, 0))), hex(reply_bytes(2, 1, 100, kStep, 0)));  // CALC
   CHECK_EQ(hex(e.feed(frame(1, kStep, 0, 0, 0))), hex(reply_bytes(2, 1, 100, kStep, 0)));  // enters the WAIT
@@ -69,7 +70,7 @@ TEST(step_during_wait_answers_at_once_by_default) {
 }
 
 TEST(step_waits_variant_answers_when_the_wait_is_over) {
-  Engine e(variant(&tmcl::FirmwareVariants::step_waits));
+  VariantEngine e(variant(&tmcl::FirmwareVariants::step_waits));
   e.feed(frame(1, kReset, 0, 0, 0));
   e.feed(frame(1, kStep, 0, 0, 0));
   const tmcl::SimTime t0 = e.vm.now;
@@ -89,7 +90,7 @@ TEST(step_waits_variant_answers_when_the_wait_is_over) {
 }
 
 TEST(step_waits_variant_answers_a_step_without_wait_at_once) {
-  Engine e(variant(&tmcl::FirmwareVariants::step_waits));
+  VariantEngine e(variant(&tmcl::FirmwareVariants::step_waits));
   e.feed(frame(1, kReset, 0, 0, 0));
   CHECK_EQ(hex(e.feed(frame(1, kStep, 0, 0, 0))), hex(reply_bytes(2, 1, 100, kStep, 0)));
   CHECK_EQ(e.vm.pc, 1);
@@ -97,7 +98,7 @@ TEST(step_waits_variant_answers_a_step_without_wait_at_once) {
 
 TEST(direct_read_leaves_a_by_default_and_loads_it_with_the_variant) {
   for (bool on : {false, true}) {
-    Engine e(on ? variant(&tmcl::FirmwareVariants::direct_read_sets_a) : tmcl::FirmwareVariants{});
+    VariantEngine e(on ? variant(&tmcl::FirmwareVariants::direct_read_sets_a) : tmcl::FirmwareVariants{});
     e.feed(frame(1, kReset, 0, 0, 0));
     e.feed(frame(1, kStep, 0, 0, 0));  // A = 4711
     e.feed(frame(1, 128, 0, 0, 0));
@@ -108,7 +109,7 @@ TEST(direct_read_leaves_a_by_default_and_loads_it_with_the_variant) {
 }
 
 TEST(direct_read_variant_leaves_a_running_program_alone) {
-  Engine e(variant(&tmcl::FirmwareVariants::direct_read_sets_a));
+  VariantEngine e(variant(&tmcl::FirmwareVariants::direct_read_sets_a));
   e.feed(frame(1, kReset, 0, 0, 0));
   e.feed(frame(1, 129, 0, 0, 0));
   e.module.advance(e.vm.now + 1000);  // in the WAIT, running
@@ -118,7 +119,7 @@ TEST(direct_read_variant_leaves_a_running_program_alone) {
 
 TEST(status_after_reset_is_3_by_default_and_0_with_the_variant) {
   for (bool on : {false, true}) {
-    Engine e(on ? variant(&tmcl::FirmwareVariants::reset_reports_stopped) : tmcl::FirmwareVariants{});
+    VariantEngine e(on ? variant(&tmcl::FirmwareVariants::reset_reports_stopped) : tmcl::FirmwareVariants{});
     e.feed(frame(1, kReset, 0, 0, 0));
     CHECK_EQ(value_of(e.feed(frame(1, kStatus, 0, 0, 0))) >> 24, on ? 0 : 3);
     CHECK_EQ(value_of(e.feed(frame(1, kGgp, 128, 0, 0))), on ? 0 : 3);
@@ -127,7 +128,7 @@ TEST(status_after_reset_is_3_by_default_and_0_with_the_variant) {
 
 TEST(read_past_memory_is_status_4_by_default_and_opcode_0_with_the_variant) {
   for (bool on : {false, true}) {
-    Engine e(on ? variant(&tmcl::FirmwareVariants::read_past_memory_zero) : tmcl::FirmwareVariants{});
+    VariantEngine e(on ? variant(&tmcl::FirmwareVariants::read_past_memory_zero) : tmcl::FirmwareVariants{});
     const int memory = e.vm.profile->program_memory;  // 577 on the USB-2-SD
     CHECK_EQ(memory, 577);
     const Bytes past = e.feed(frame(1, kRead, 0, 0, memory));

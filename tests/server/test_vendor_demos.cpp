@@ -16,23 +16,6 @@ using namespace srvtest;
 
 namespace {
 
-constexpr auto kRor = static_cast<std::uint8_t>(tmcl::Op::ROR);
-constexpr auto kMst = static_cast<std::uint8_t>(tmcl::Op::MST);
-constexpr auto kMvp = static_cast<std::uint8_t>(tmcl::Op::MVP);
-constexpr auto kSap = static_cast<std::uint8_t>(tmcl::Op::SAP);
-constexpr auto kGap = static_cast<std::uint8_t>(tmcl::Op::GAP);
-
-// A request the script makes: it must be answered with status 100; its value.
-std::int32_t ask(Link& l, std::uint8_t op, std::uint8_t type, std::uint8_t motor, std::int32_t value) {
-  auto r = l.request(op, type, motor, value);
-  if (!r || (*r)[2] != 100)
-    ::tmcl_test::fail(__FILE__, __LINE__, "request " + std::to_string(op) + ", " + std::to_string(type) + ", " + std::to_string(motor) +
-                                              " answered " + (r ? "status " + std::to_string((*r)[2]) : std::string("nothing")));
-  return r ? value_of(*r) : 0;
-}
-
-void sleep_ms(int ms) { std::this_thread::sleep_for(std::chrono::milliseconds(ms)); }
-
 // The script's loop: "while not all three reached: print target and actual position of each".
 void poll_until_reached(Link& l) {
   for (int round = 0; round < 2000; ++round) {
