@@ -240,6 +240,8 @@ class Dap {
   std::unique_ptr<host::Client> client_;
   std::unique_ptr<ModuleTarget> module_;
   bool stop_on_entry_ = false;
+  bool attached_ = false;  // `attach` on a module: configurationDone takes the program as it is
+  ModuleTarget* module_target() { return module_ ? module_.get() : dynamic_cast<ModuleTarget*>(target_); }
   std::map<std::string, std::vector<int>> source_breaks_;  // source path -> breakpoint ids
   std::vector<int> function_breaks_, instruction_breaks_;
 };
@@ -498,6 +500,8 @@ bool Dap::handle(const Value& req) {
     } else if (!launch(req, err)) {
       return fail(req, err), true;
     }
+    // Only `attach` takes a module as it is; `launch` resets and runs it at configurationDone.
+    attached_ = cmd == "attach" && module_target();
     respond(req, true);
     return true;
   }
@@ -544,6 +548,15 @@ bool Dap::handle(const Value& req) {
       out.push(id ? obj({{"id", id}, {"verified", true}}) : obj({{"verified", false}, {"message", err}}));
     }
     return respond(req, true, obj({{"breakpoints", out}})), true;
+  }
+  if (cmd == "configurationDone" && attached_) {
+    // The program as it is on the module: stopped where it is with stopOnEntry, else left as it
+    // was (a running program runs on: the attach notes said where; `pause` stops it).
+    respond(req, true);
+    const std::optional<Stop> s = module_target()->attached(stop_on_entry_);
+    if (!s) return true;
+    if (s->kind == StopKind::Entry) return stopped(*s), true;
+    return after_run(*s);
   }
   if (cmd == "configurationDone" || cmd == "restart") {
     respond(req, true);
@@ -594,7 +607,11 @@ bool Dap::handle(const Value& req) {
     if (!e.eval(x, v, err)) return fail(req, err), true;
     return respond(req, true, obj({{set ? "value" : "result", std::to_string(v)}, {"variablesReference", 0}})), true;
   }
-  if (cmd == "pause") return respond(req, true), true;  // stopped already (a running program is paused in slice())
+  if (cmd == "pause") {
+    // A module left running at attach runs with no command under way: stopped (128) where it is.
+    if (ModuleTarget* mt = module_target(); mt && mt->running_by_itself()) return respond(req, true), after_run(mt->halt());
+    return respond(req, true), true;  // stopped already (a running program is paused in slice())
+  }
   if (cmd == "continue" || cmd == "next" || cmd == "stepIn" || cmd == "stepOut" || cmd == "stepBack" || cmd == "reverseContinue") {
     if (cmd == "continue") respond(req, true, obj({{"allThreadsContinued", true}}));
     else respond(req, true);

@@ -80,6 +80,32 @@ Stop ModuleTarget::hold(bool& ok) {
   return s;
 }
 
+Stop ModuleTarget::halt() {
+  bool ok = true;
+  Stop s = hold(ok);
+  if (!ok) return s;
+  return Stop{StopKind::Pause, 0, "", 0, 0};
+}
+
+std::optional<Stop> ModuleTarget::attached(bool stop) {
+  if (mode_ == 1 && !stop) return std::nullopt;
+  const bool was_running = mode_ == 1;
+  if (was_running) {
+    Stop s = halt();
+    if (s.kind != StopKind::Pause) return s;
+  }
+  Stop s{StopKind::Entry, 0, "", 0, 0};
+  const std::string at = "address " + std::to_string(pc_);
+  if (was_running) {
+    s.message = "Stopped the program where it was running on the module (128), at " + at + ".";
+  } else if (running_) {
+    s.message = "The program on the module is held at " + at + " (" + status() + "), as it was.";
+  } else {
+    s.message = "The program is not running on the module (" + status() + ", at " + at + "): `restart` runs it from address 0.";
+  }
+  return s;
+}
+
 Stop ModuleTarget::step_one() {
   const std::int32_t at = pc_;
   const Instruction ins = instruction(at);

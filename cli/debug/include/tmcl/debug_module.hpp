@@ -20,6 +20,7 @@
 #include <chrono>
 #include <functional>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -53,6 +54,14 @@ class ModuleTarget final : public Target {
   // Removes every patch and verifies it (134). False with `message` naming the addresses still
   // patched when the module could not be reached (also after waiting for a lost port).
   bool restore(std::string& message);
+  // DAP `attach`: the program as it is on the module, nothing reset. With `stop`, a running
+  // program is stopped (128) where it is; the stop (Entry) says where and in what state. Without,
+  // a running program is left running (nullopt); a stopped one is reported where it stopped.
+  std::optional<Stop> attached(bool stop);
+  // A program running on the module while no command runs it (attached running): stopped (128)
+  // where it is. False when it is not running that way.
+  bool running_by_itself() const { return mode_ == 1; }
+  Stop halt();
   bool loaded() const { return differs_.empty(); }
   bool lost() const { return lost_; }  // the module stopped answering
   const std::string& difference() const { return differs_; }
