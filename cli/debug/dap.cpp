@@ -576,7 +576,7 @@ bool Dap::handle(const Value& req) {
       if (Value s = source_of(at); !s.is_null()) f.set("source", s);
       frames.push(std::move(f));
     };
-    for (const auto& f : e.frames()) frame(f.pc, f.interrupted && m ? "<interrupt " + std::to_string(m->vm().saved.vector) + ">" : "");
+    for (const auto& f : e.frames()) frame(f.pc, f.interrupted ? "<interrupt " + std::to_string(m ? m->vm().saved.vector : f.vector) + ">" : "");
     if (e.frames_unknown_above()) frame(-1, "<frames above unknown: the module cannot read its call stack>");
     return respond(req, true, obj({{"stackFrames", frames}, {"totalFrames", static_cast<std::int64_t>(frames.size())}})), true;
   }
