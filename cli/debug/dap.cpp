@@ -28,7 +28,8 @@ using json::Value;
 class Dap {
  public:
   Dap(const DapSetup& setup, std::FILE* in, std::FILE* out) : setup_(setup), in_fd_(os::pollable_input(::fileno(in))), out_(out) {}
-  // tmclctl PORT debug --dap: the module is attached already; `attach` (or `launch`) only confirms.
+  // tmclctl PORT debug --dap: the module is attached already; `attach` confirms it (taking the
+  // program as it is), `launch` too (then configurationDone resets and runs it, as `run`).
   Dap(const DapSetup& setup, Target& attached, std::FILE* in, std::FILE* out) : Dap(setup, in, out) { use(attached); }
   ~Dap() {
     if (target_) {  // a target attached from outside outlives the adapter
