@@ -7,6 +7,7 @@
 // error response until it stops. Every request it does not support gets an error response.
 // docs/debugger.md, "Debug Adapter Protocol".
 
+#include <algorithm>
 #include <cerrno>
 #include <cstring>
 #include <map>
@@ -221,6 +222,16 @@ class Dap {
     module_.reset();
   }
   bool after_run(const Stop& s);
+  // A module left running by itself at attach: its breakpoints are written by running it on as
+  // `continue` does (128, the patches, 129 from where it was), never by a reset. (While a
+  // command runs the program, the module's mode is the debugger's stop, so this does nothing.)
+  bool run_on() {
+    ModuleTarget* mt = module_target();
+    if (!configured_ || !mt || !mt->running_by_itself() || !mt->running()) return true;
+    const auto& points = mt->breakpoints();
+    if (std::none_of(points.begin(), points.end(), [](const Breakpoint& b) { return b.enabled; })) return true;
+    return after_run(mt->cont());
+  }
   void set_breakpoints(const Value& req);
   Value variables(std::int64_t ref);
   bool handle(const Value& req);
@@ -242,6 +253,7 @@ class Dap {
   std::unique_ptr<ModuleTarget> module_;
   bool stop_on_entry_ = false;
   bool attached_ = false;  // `attach` on a module: configurationDone takes the program as it is
+  bool configured_ = false;  // configurationDone came: breakpoints set now apply at once
   ModuleTarget* module_target() { return module_ ? module_.get() : dynamic_cast<ModuleTarget*>(target_); }
   std::map<std::string, std::vector<int>> source_breaks_;  // source path -> breakpoint ids
   std::vector<int> function_breaks_, instruction_breaks_;
@@ -509,7 +521,7 @@ bool Dap::handle(const Value& req) {
   if (!target_) return fail(req, "'" + cmd + "' before launch or attach"), true;
   Target& e = *target_;
   Engine* m = e.machine();
-  if (cmd == "setBreakpoints") return set_breakpoints(req), true;
+  if (cmd == "setBreakpoints") return set_breakpoints(req), run_on();
   if (cmd == "setFunctionBreakpoints" || cmd == "setInstructionBreakpoints") {
     auto& ids = cmd == "setFunctionBreakpoints" ? function_breaks_ : instruction_breaks_;
     for (int id : ids) e.delete_point(id);
@@ -530,7 +542,7 @@ bool Dap::handle(const Value& req) {
       if (int l = line_of(address)) b.set("line", l);
       out.push(std::move(b));
     }
-    return respond(req, true, obj({{"breakpoints", out}})), true;
+    return respond(req, true, obj({{"breakpoints", out}})), run_on();
   }
   if (cmd == "setExceptionBreakpoints") return respond(req, true, obj({{"breakpoints", Value::array()}})), true;
   if (cmd == "dataBreakpointInfo") {
@@ -554,8 +566,9 @@ bool Dap::handle(const Value& req) {
     // The program as it is on the module: stopped where it is with stopOnEntry, else left as it
     // was (a running program runs on: the attach notes said where; `pause` stops it).
     respond(req, true);
+    configured_ = true;
     const std::optional<Stop> s = module_target()->attached(stop_on_entry_);
-    if (!s) return true;
+    if (!s) return run_on();
     if (s->kind == StopKind::Entry) return stopped(*s), true;
     return after_run(*s);
   }
