@@ -315,7 +315,11 @@ void Cli::info_registers() {
 std::string Cli::frame_text(const std::vector<Engine::Frame>& frames, std::size_t n) {
   const Engine::Frame& f = frames[n];
   std::string head = "#" + std::to_string(n) + "  ";
-  if (!f.interrupted || !m_) return head + frame_line(f.pc);
+  if (!f.interrupted) return head + frame_line(f.pc);
+  if (!m_) {  // a module: what the interrupt saved is not read (no command reads it)
+    const InterruptVector* v = e_.profile().vector(f.vector);
+    return head + "<interrupt " + std::to_string(f.vector) + (v ? " " + std::string(v->name) : "") + "> resumes " + frame_line(f.pc);
+  }
   const auto& s = m_->vm().saved;
   const InterruptVector* v = e_.profile().vector(s.vector);
   std::string name = v ? " " + std::string(v->name) : "";
@@ -378,6 +382,10 @@ void Cli::info_frame() {
     println(" interrupted by interrupt " + std::to_string(vm.saved.vector) + (v ? " (" + std::string(v->name) + ")" : "") +
             (vm.saved.wait.active ? " in its WAIT" : " before this instruction") + "; RETI resumes here");
     println(" saved A=" + std::to_string(vm.saved.acc) + " X=" + std::to_string(vm.saved.x) + " flags=" + flags_text(vm.saved.flags));
+  } else if (f.interrupted) {  // a module: the handler was seen entered by a step
+    const InterruptVector* v = e_.profile().vector(f.vector);
+    println(" interrupted by interrupt " + std::to_string(f.vector) + (v ? " (" + std::string(v->name) + ")" : "") +
+            " before this instruction; RETI resumes here");  // entered by a step, before this instruction ran
   } else if (n == 0) {
     const bool waiting = m_ ? m_->vm().wait.active : e_.status().find("in WAIT") != std::string::npos;
     println(" pc " + std::to_string(f.pc) + (waiting ? ", in its WAIT" : ", the instruction that runs next"));

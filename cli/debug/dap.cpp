@@ -7,6 +7,7 @@
 // error response until it stops. Every request it does not support gets an error response.
 // docs/debugger.md, "Debug Adapter Protocol".
 
+#include <algorithm>
 #include <cerrno>
 #include <cstring>
 #include <map>
@@ -28,7 +29,8 @@ using json::Value;
 class Dap {
  public:
   Dap(const DapSetup& setup, std::FILE* in, std::FILE* out) : setup_(setup), in_fd_(os::pollable_input(::fileno(in))), out_(out) {}
-  // tmclctl PORT debug --dap: the module is attached already; `attach` (or `launch`) only confirms.
+  // tmclctl PORT debug --dap: the module is attached already; `attach` confirms it (taking the
+  // program as it is), `launch` too (then configurationDone resets and runs it, as `run`).
   Dap(const DapSetup& setup, Target& attached, std::FILE* in, std::FILE* out) : Dap(setup, in, out) { use(attached); }
   ~Dap() {
     if (target_) {  // a target attached from outside outlives the adapter
@@ -220,6 +222,16 @@ class Dap {
     module_.reset();
   }
   bool after_run(const Stop& s);
+  // A module left running by itself at attach: its breakpoints are written by running it on as
+  // `continue` does (128, the patches, 129 from where it was), never by a reset. (While a
+  // command runs the program, the module's mode is the debugger's stop, so this does nothing.)
+  bool run_on() {
+    ModuleTarget* mt = module_target();
+    if (!configured_ || !mt || !mt->running_by_itself() || !mt->running()) return true;
+    const auto& points = mt->breakpoints();
+    if (std::none_of(points.begin(), points.end(), [](const Breakpoint& b) { return b.enabled; })) return true;
+    return after_run(mt->cont());
+  }
   void set_breakpoints(const Value& req);
   Value variables(std::int64_t ref);
   bool handle(const Value& req);
@@ -240,6 +252,9 @@ class Dap {
   std::unique_ptr<host::Client> client_;
   std::unique_ptr<ModuleTarget> module_;
   bool stop_on_entry_ = false;
+  bool attached_ = false;  // `attach` on a module: configurationDone takes the program as it is
+  bool configured_ = false;  // configurationDone came: breakpoints set now apply at once
+  ModuleTarget* module_target() { return module_ ? module_.get() : dynamic_cast<ModuleTarget*>(target_); }
   std::map<std::string, std::vector<int>> source_breaks_;  // source path -> breakpoint ids
   std::vector<int> function_breaks_, instruction_breaks_;
 };
@@ -498,13 +513,15 @@ bool Dap::handle(const Value& req) {
     } else if (!launch(req, err)) {
       return fail(req, err), true;
     }
+    // Only `attach` takes a module as it is; `launch` resets and runs it at configurationDone.
+    attached_ = cmd == "attach" && module_target();
     respond(req, true);
     return true;
   }
   if (!target_) return fail(req, "'" + cmd + "' before launch or attach"), true;
   Target& e = *target_;
   Engine* m = e.machine();
-  if (cmd == "setBreakpoints") return set_breakpoints(req), true;
+  if (cmd == "setBreakpoints") return set_breakpoints(req), run_on();
   if (cmd == "setFunctionBreakpoints" || cmd == "setInstructionBreakpoints") {
     auto& ids = cmd == "setFunctionBreakpoints" ? function_breaks_ : instruction_breaks_;
     for (int id : ids) e.delete_point(id);
@@ -525,7 +542,7 @@ bool Dap::handle(const Value& req) {
       if (int l = line_of(address)) b.set("line", l);
       out.push(std::move(b));
     }
-    return respond(req, true, obj({{"breakpoints", out}})), true;
+    return respond(req, true, obj({{"breakpoints", out}})), run_on();
   }
   if (cmd == "setExceptionBreakpoints") return respond(req, true, obj({{"breakpoints", Value::array()}})), true;
   if (cmd == "dataBreakpointInfo") {
@@ -545,6 +562,16 @@ bool Dap::handle(const Value& req) {
     }
     return respond(req, true, obj({{"breakpoints", out}})), true;
   }
+  if (cmd == "configurationDone" && attached_) {
+    // The program as it is on the module: stopped where it is with stopOnEntry, else left as it
+    // was (a running program runs on: the attach notes said where; `pause` stops it).
+    respond(req, true);
+    configured_ = true;
+    const std::optional<Stop> s = module_target()->attached(stop_on_entry_);
+    if (!s) return run_on();
+    if (s->kind == StopKind::Entry) return stopped(*s), true;
+    return after_run(*s);
+  }
   if (cmd == "configurationDone" || cmd == "restart") {
     respond(req, true);
     return after_run(e.start(stop_on_entry_));
@@ -563,7 +590,7 @@ bool Dap::handle(const Value& req) {
       if (Value s = source_of(at); !s.is_null()) f.set("source", s);
       frames.push(std::move(f));
     };
-    for (const auto& f : e.frames()) frame(f.pc, f.interrupted && m ? "<interrupt " + std::to_string(m->vm().saved.vector) + ">" : "");
+    for (const auto& f : e.frames()) frame(f.pc, f.interrupted ? "<interrupt " + std::to_string(m ? m->vm().saved.vector : f.vector) + ">" : "");
     if (e.frames_unknown_above()) frame(-1, "<frames above unknown: the module cannot read its call stack>");
     return respond(req, true, obj({{"stackFrames", frames}, {"totalFrames", static_cast<std::int64_t>(frames.size())}})), true;
   }
@@ -594,7 +621,11 @@ bool Dap::handle(const Value& req) {
     if (!e.eval(x, v, err)) return fail(req, err), true;
     return respond(req, true, obj({{set ? "value" : "result", std::to_string(v)}, {"variablesReference", 0}})), true;
   }
-  if (cmd == "pause") return respond(req, true), true;  // stopped already (a running program is paused in slice())
+  if (cmd == "pause") {
+    // A module left running at attach runs with no command under way: stopped (128) where it is.
+    if (ModuleTarget* mt = module_target(); mt && mt->running_by_itself()) return respond(req, true), after_run(mt->halt());
+    return respond(req, true), true;  // stopped already (a running program is paused in slice())
+  }
   if (cmd == "continue" || cmd == "next" || cmd == "stepIn" || cmd == "stepOut" || cmd == "stepBack" || cmd == "reverseContinue") {
     if (cmd == "continue") respond(req, true, obj({{"allThreadsContinued", true}}));
     else respond(req, true);

@@ -76,7 +76,34 @@ Stop ModuleTarget::hold(bool& ok) {
   if (!ask(ctl(Op::StopApplication), ignored, error)) return ok = false, failed(error);
   Stop s = stopped_here(StopKind::Step);
   ok = s.kind == StopKind::Step;
+  stack_.clear();  // it ran freely: the frames it is in are not known
   stack_known_ = false;
+  return s;
+}
+
+Stop ModuleTarget::halt() {
+  bool ok = true;
+  Stop s = hold(ok);
+  if (!ok) return s;
+  return Stop{StopKind::Pause, 0, "", 0, 0};
+}
+
+std::optional<Stop> ModuleTarget::attached(bool stop) {
+  if (mode_ == 1 && !stop) return std::nullopt;
+  const bool was_running = mode_ == 1;
+  if (was_running) {
+    Stop s = halt();
+    if (s.kind != StopKind::Pause) return s;
+  }
+  Stop s{StopKind::Entry, 0, "", 0, 0};
+  const std::string at = "address " + std::to_string(pc_);
+  if (was_running) {
+    s.message = "Stopped the program where it was running on the module (128), at " + at + ".";
+  } else if (running_) {
+    s.message = "The program on the module is held at " + at + " (" + status() + "), as it was.";
+  } else {
+    s.message = "The program is not running on the module (" + status() + ", at " + at + "): `restart` runs it from address 0.";
+  }
   return s;
 }
 
@@ -116,8 +143,7 @@ Stop ModuleTarget::step_one() {
     if (!read_status(st, error)) return failed(error);
   }
   // The frames seen entered and left while stepping.
-  if (is_call(ins) && st.pc == ins.value && st.pc != at + 1) stack_.push_back(at);
-  if (ins.op == code(Op::RSUB) && !stack_.empty() && st.pc == stack_.back() + 1) stack_.pop_back();
+  if (st.mode != 0) track(at, ins, st.pc);
   const bool ended = st.mode == 0;
   Stop s = stopped_here(StopKind::Step);
   if (s.kind != StopKind::Step) return s;
@@ -130,6 +156,79 @@ Stop ModuleTarget::step_one() {
                 0, 0};
   }
   return s;
+}
+
+std::vector<std::int32_t> ModuleTarget::destinations(std::int32_t at, const Instruction& ins) const {
+  switch (static_cast<Op>(ins.op)) {
+    case Op::JA:
+    case Op::CSUB:
+    case Op::RST: return {ins.value};
+    case Op::JC:
+    case Op::CALL:
+    case Op::DJNZ: return {ins.value, at + 1};
+    case Op::WAIT: return {at, at + 1};  // its own address while it waits
+    case Op::RSUB:
+      if (!stack_.empty() && !stack_.back().interrupted) return {stack_.back().pc + 1};
+      return {};
+    case Op::RETI:
+      if (!stack_.empty() && stack_.back().interrupted) return {stack_.back().pc};
+      return {};
+    default: return {at + 1};
+  }
+}
+
+void ModuleTarget::track(std::int32_t at, const Instruction& ins, std::int32_t to) {
+  last_delta_ = 0;
+  const std::vector<std::int32_t> goes = destinations(at, ins);
+  // What the instruction itself did, had it gone to `where`.
+  auto effect = [&](std::int32_t where) {
+    switch (static_cast<Op>(ins.op)) {
+      case Op::CSUB:
+      case Op::CALL:
+        if (where == ins.value && where != at + 1) stack_.push_back({at, false, -1}), last_delta_ = 1;
+        break;
+      case Op::RSUB:
+        if (!stack_.empty() && !stack_.back().interrupted) stack_.pop_back();
+        last_delta_ = -1;
+        break;
+      case Op::RETI:  // a handler this session saw entered; one entered while running freely balances itself
+        if (!stack_.empty() && stack_.back().interrupted) stack_.pop_back(), last_delta_ = -1;
+        break;
+      case Op::RST:
+        stack_.clear();
+        stack_known_ = true;
+        last_delta_ = -(1 << 20);  // every frame left
+        break;
+      default: break;
+    }
+  };
+  if (goes.empty() || std::find(goes.begin(), goes.end(), to) != goes.end()) return effect(to);
+  // Not where the instruction goes: an interrupt was entered (errata D7). At a handler's first
+  // instruction: after the instruction, which went to its only destination, where RETI resumes;
+  // one instruction into a handler: before it, so RETI resumes at it.
+  std::vector<std::pair<int, std::int32_t>> handlers;  // the vectors the program's VECTs name
+  for (std::int32_t a = 0; a < program_size(); ++a)
+    if (const Instruction& v = memory_[static_cast<std::size_t>(a)]; v.op == code(Op::VECT)) handlers.emplace_back(v.type, v.value);
+  for (const auto& [vector, handler] : handlers)
+    if (to == handler && goes.size() == 1) {
+      effect(goes[0]);
+      stack_.push_back({goes[0], true, vector});
+      last_delta_ += 1;
+      return;
+    }
+  for (const auto& [vector, handler] : handlers) {
+    if (handler < 0 || handler >= program_size()) continue;
+    const std::vector<std::int32_t> next = destinations(handler, memory_[static_cast<std::size_t>(handler)]);
+    if (std::find(next.begin(), next.end(), to) != next.end() && to != handler) {
+      stack_.push_back({at, true, vector});
+      last_delta_ = 1;
+      return;
+    }
+  }
+  // Somewhere else: what happened is not told (a conditional jump interrupted, a handler not
+  // named by a VECT). The frames above are unknown from here.
+  stack_.clear();
+  stack_known_ = false;
 }
 
 Stop ModuleTarget::start(bool stop_at_entry) {
@@ -185,15 +284,9 @@ Stop ModuleTarget::next() {
   bool ok = true;
   if (Stop h = hold(ok); !ok) return h;
   if (!is_call(instruction(pc_)) || waiting_) return step(1);
-  // Over the call: to the instruction after it, in this frame.
-  const std::vector<std::int32_t> saved = stack_;
-  const bool known = stack_known_;
-  Stop s = run({pc_ + 1}, depth());
-  if (s.kind == StopKind::Step) {
-    stack_ = saved;
-    stack_known_ = known;
-  }
-  return s;
+  // Over the call: to the instruction after it, in this frame (a recursive call returns there
+  // from deeper frames first: the depth is counted).
+  return run({pc_ + 1}, 0);
 }
 
 Stop ModuleTarget::finish() {
@@ -204,27 +297,22 @@ Stop ModuleTarget::finish() {
     return cannot("finish", "the caller is unknown: no command reads the module's call stack, and the program ran freely "
                             "since this frame was entered");
   }
-  std::vector<std::int32_t> saved = stack_;
-  const bool known = stack_known_;
-  Stop s = run({saved.back() + 1}, depth() - 1);
-  if (s.kind == StopKind::Step) {
-    saved.pop_back();
-    stack_ = saved;
-    stack_known_ = known;
-  }
-  return s;
+  // To where the frame returns (after its call, or where the interrupted code resumes), one
+  // frame out.
+  const Frame& top = stack_.back();
+  return run({top.interrupted ? top.pc : top.pc + 1}, -1);
 }
 
 Stop ModuleTarget::until(std::int32_t address) {
   if (!loaded()) return refused("until");
   if (!running_) return Stop{StopKind::NotRunning, 0, "The program is not being run.", 0, 0};
-  return run({address}, depth());
+  return run({address}, 0);
 }
 
 // The program runs (129) with jumps to themselves at `marks` until it spins at one, stops by
 // itself (`ended`) or a pause comes (`paused`); then it is stopped (128) and every patch removed.
 // A Step stop when that went well.
-Stop ModuleTarget::free_run(const std::vector<std::int32_t>& marks, bool& paused, bool& ended) {
+Stop ModuleTarget::free_run(const std::vector<std::int32_t>& marks, bool tracking, bool& paused, bool& ended) {
   std::string error;
   if (!patch(marks, error)) {
     std::string ignored;
@@ -233,7 +321,10 @@ Stop ModuleTarget::free_run(const std::vector<std::int32_t>& marks, bool& paused
   }
   std::int32_t ignored = 0;
   counted_pc_ = -1;
-  stack_known_ = false;
+  if (!tracking) {  // the frames it enters and leaves meanwhile are not seen
+    stack_.clear();
+    stack_known_ = false;
+  }
   if (!ask(ctl(Op::RunApplication), ignored, error)) return failed(error);
   // Runs until the pc reaches a patch (the program spins there), the program stops, or a pause.
   Status st;
@@ -270,9 +361,8 @@ Stop ModuleTarget::free_run(const std::vector<std::int32_t>& marks, bool& paused
 // Runs to the instruction after a WAIT in progress at pc (a jump to itself there).
 Stop ModuleTarget::run_to_mark(std::int32_t mark) {
   bool paused = false, ended = false;
-  const bool known = stack_known_;  // the WAIT's own frame: no call was made
-  if (Stop f = free_run({mark}, paused, ended); f.kind != StopKind::Step) return f;
-  stack_known_ = known;
+  // The WAIT's own frame: no call was made (a handler that ran meanwhile returned by itself).
+  if (Stop f = free_run({mark}, true, paused, ended); f.kind != StopKind::Step) return f;
   if (paused) return stopped_here(StopKind::Pause, std::exchange(pause_note_, {}));
   Stop s = stopped_here(StopKind::Step);
   if (s.kind == StopKind::Step && ended) {
@@ -282,13 +372,22 @@ Stop ModuleTarget::run_to_mark(std::int32_t mark) {
   return s;
 }
 
-Stop ModuleTarget::run(const std::vector<std::int32_t>& temps, int /*depth*/) {
+Stop ModuleTarget::run(const std::vector<std::int32_t>& temps, int goal) {
   bool ok = true;
   if (Stop h = hold(ok); !ok) return h;
   auto is_temp = [&](std::int32_t a) { return std::find(temps.begin(), temps.end(), a) != temps.end(); };
   auto has_break = [&](std::int32_t a) {
     return std::any_of(breaks_.begin(), breaks_.end(), [&](const Breakpoint& b) { return b.enabled && b.address == a; });
   };
+  // With a place to reach, the depth counts: the instructions that change it are marks too.
+  const bool tracking = !temps.empty();
+  std::vector<std::int32_t> depth_marks;
+  if (tracking)
+    for (std::int32_t a = 0; a < program_size(); ++a)
+      if (const Op op = static_cast<Op>(instruction(a).op); op == Op::CSUB || op == Op::CALL || op == Op::RSUB || op == Op::RETI || op == Op::RST)
+        depth_marks.push_back(a);
+  auto changes_depth = [&](std::int32_t a) { return std::find(depth_marks.begin(), depth_marks.end(), a) != depth_marks.end(); };
+  int rel = 0;  // frames deeper than at the start
   bool first = true;
   // Watchpoints, and breakpoints without patches: one instruction at a time.
   const bool stepping = watching() || !setup_.patch;
@@ -298,24 +397,28 @@ Stop ModuleTarget::run(const std::vector<std::int32_t>& temps, int /*depth*/) {
       waiting();  // a breakpoint whose condition keeps failing: other input between its hits
       if (pause_.exchange(false)) return stopped_here(StopKind::Pause, std::exchange(pause_note_, {}));
     }
-    if (!first && is_temp(pc_)) {
+    if (!first && is_temp(pc_) && rel <= goal) {
       if (hit_at_pc(stop)) return stop;
       return stopped_here(StopKind::Step);
     }
     if (hit_at_pc(stop)) return stop;  // this execution's hit, unless this stop counted it
-    if (stepping || has_break(pc_) || (first && is_temp(pc_)) || waiting_) {
-      // Over the instruction at pc (a breakpoint's, or one a WAIT holds) before patching.
+    if (stepping || has_break(pc_) || is_temp(pc_) || changes_depth(pc_) || waiting_) {
+      // Over the instruction at pc (a breakpoint's, a mark's, or one a WAIT holds) before patching.
       if (pause_.exchange(false)) return stopped_here(StopKind::Pause, std::exchange(pause_note_, {}));
       Stop s = step_one();
       if (s.kind != StopKind::Step) return s;
+      rel += last_delta_;
       if (watching() && watch_changed(stop)) return stop;
       continue;
     }
     std::vector<std::int32_t> marks = temps;
+    marks.insert(marks.end(), depth_marks.begin(), depth_marks.end());
     for (const auto& b : breaks_)
       if (b.enabled) marks.push_back(b.address);
+    std::sort(marks.begin(), marks.end());
+    marks.erase(std::unique(marks.begin(), marks.end()), marks.end());
     bool paused = false, ended = false;
-    if (Stop f = free_run(marks, paused, ended); f.kind != StopKind::Step) return f;
+    if (Stop f = free_run(marks, tracking, paused, ended); f.kind != StopKind::Step) return f;
     if (paused) return stopped_here(StopKind::Pause, std::exchange(pause_note_, {}));
     Stop s = stopped_here(StopKind::Step);
     if (s.kind != StopKind::Step) return s;

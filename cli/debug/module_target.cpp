@@ -394,7 +394,7 @@ int ModuleTarget::depth() const { return static_cast<int>(stack_.size()) + (stac
 
 std::vector<Target::Frame> ModuleTarget::frames() {
   std::vector<Frame> out{{pc_, false}};
-  for (auto i = stack_.rbegin(); i != stack_.rend(); ++i) out.push_back({*i, false});
+  for (auto i = stack_.rbegin(); i != stack_.rend(); ++i) out.push_back(*i);
   return out;
 }
 

@@ -163,8 +163,8 @@ TEST(a_lost_reply_to_a_patch_store_is_not_stored_twice) {
   CHECK(memory_is_program(server, prog));
 }
 
-// tmclrun --dap attaches to a module by itself: `attach` with the port, a breakpoint, the stop,
-// a variable read over the host protocol, disconnect; the program memory is as loaded after it.
+// tmclrun --dap attaches to a module by itself: `attach` with the port (the module as it is),
+// a breakpoint, `restart` running the program to it and `continue` once more, a variable read over the host protocol, disconnect; the program memory is as loaded after it.
 std::string frame(const std::string& body) { return "Content-Length: " + std::to_string(body.size()) + "\r\n\r\n" + body; }
 
 TEST(tmclrun_dap_attaches_to_a_module) {
@@ -178,13 +178,16 @@ TEST(tmclrun_dap_attaches_to_a_module) {
                 R"("}})") +
           frame(R"({"seq":3,"type":"request","command":"setFunctionBreakpoints","arguments":{"breakpoints":[{"name":"loop"}]}})") +
           frame(R"({"seq":4,"type":"request","command":"configurationDone"})") +
-          frame(R"({"seq":5,"type":"request","command":"continue","arguments":{"threadId":1}})") +
-          frame(R"({"seq":6,"type":"request","command":"evaluate","arguments":{"expression":"v[1]","context":"watch"}})") +
-          frame(R"({"seq":7,"type":"request","command":"disconnect"})"));
+          frame(R"({"seq":5,"type":"request","command":"restart"})") +
+          frame(R"({"seq":6,"type":"request","command":"continue","arguments":{"threadId":1}})") +
+          frame(R"({"seq":7,"type":"request","command":"evaluate","arguments":{"expression":"v[1]","context":"watch"}})") +
+          frame(R"({"seq":8,"type":"request","command":"disconnect"})"));
   Output o = hosttest::run({"/bin/sh", "-c", "'" + kRun + "' --dap < '" + requests + "'"});
   show(o);
   CHECK_EQ(o.status, 0);
   CHECK(has(o.out, R"("command":"attach","body":{})"));
+  // An attach resets nothing: the downloaded program is not running, and is said so; restart runs it.
+  CHECK(has(o.out, R"("reason":"entry")") && has(o.out, "The program is not running on the module"));
   CHECK(has(o.out, R"("reason":"breakpoint")"));
   CHECK(has(o.out, R"("command":"evaluate","body":{"result":"1")"));
   CHECK(memory_is_program(server, prog));

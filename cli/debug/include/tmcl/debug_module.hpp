@@ -20,6 +20,7 @@
 #include <chrono>
 #include <functional>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -53,6 +54,14 @@ class ModuleTarget final : public Target {
   // Removes every patch and verifies it (134). False with `message` naming the addresses still
   // patched when the module could not be reached (also after waiting for a lost port).
   bool restore(std::string& message);
+  // DAP `attach`: the program as it is on the module, nothing reset. With `stop`, a running
+  // program is stopped (128) where it is; the stop (Entry) says where and in what state. Without,
+  // a running program is left running (nullopt); a stopped one is reported where it stopped.
+  std::optional<Stop> attached(bool stop);
+  // A program running on the module while no command runs it (attached running): stopped (128)
+  // where it is. False when it is not running that way.
+  bool running_by_itself() const { return mode_ == 1; }
+  Stop halt();
   bool loaded() const { return differs_.empty(); }
   bool lost() const { return lost_; }  // the module stopped answering
   const std::string& difference() const { return differs_; }
@@ -116,11 +125,21 @@ class ModuleTarget final : public Target {
   // One instruction (130), a WAIT with its wait: 135 is read until the wait flag is clear, with
   // 130 again for a firmware whose 130 returns at once during a WAIT.
   Stop step_one();
-  // Runs freely until a breakpoint stops it, an address in `temps` is reached (at most `depth`
-  // deep when the depth is known), the program stops or a pause; with watchpoints (or without
-  // patches) instruction by instruction.
-  Stop run(const std::vector<std::int32_t>& temps, int depth);
-  Stop free_run(const std::vector<std::int32_t>& marks, bool& paused, bool& ended);
+  // After one instruction at `at` took the program to `to`: the frames entered and left (a call,
+  // a return, an interrupt handler entered when `to` is not where the instruction goes), and
+  // last_delta_.
+  void track(std::int32_t at, const Instruction& ins, std::int32_t to);
+  // Where the instruction at `at` goes (empty: it cannot be told, a return whose caller is unknown).
+  std::vector<std::int32_t> destinations(std::int32_t at, const Instruction& ins) const;
+  // Runs freely until a breakpoint stops it, an address in `temps` is reached at most `goal`
+  // frames deeper than now (0: this frame or an outer one; -1: an outer one), the program stops
+  // or a pause; with watchpoints (or without patches) instruction by instruction. With temps,
+  // the depth is counted from here: every CSUB, CALL, RSUB, RETI and RST is patched too and
+  // stepped over (130), as the frames are kept while stepping.
+  Stop run(const std::vector<std::int32_t>& temps, int goal);
+  // `tracking`: every instruction that changes the depth is among the marks and stepped over, so
+  // the frames stay known; else they are forgotten (only the frame at the stop is known).
+  Stop free_run(const std::vector<std::int32_t>& marks, bool tracking, bool& paused, bool& ended);
   Stop run_to_mark(std::int32_t mark);
   bool hit_at_pc(Stop& stop);
   void waiting();  // on_wait, once the command has run a while (a quick stop reads no input meanwhile)  // the breakpoints at pc, not yet counted for this stop
@@ -135,8 +154,11 @@ class ModuleTarget final : public Target {
   std::uint32_t mode_ = 0;
   bool regs_valid_ = false;     // A and X read at this stop
   std::int32_t acc_ = 0, x_ = 0;
-  std::vector<std::int32_t> stack_;  // the CSUBs seen entered while stepping (callers' addresses)
+  // The frames seen entered while stepping, outermost first: a call's address, or an interrupt
+  // handler's entry (the address the interrupted code resumes at, with the vector).
+  std::vector<Frame> stack_;
   bool stack_known_ = true;     // false after a free run: frames above may exist
+  int last_delta_ = 0;          // how the last step changed the depth (+1 entered, -1 left)
   std::int32_t counted_pc_ = -1;  // the breakpoints at this pc have had this stop's hit
   std::chrono::steady_clock::time_point command_start_{};
   bool worn_said_ = false;      // the EEPROM-wear note was given

@@ -103,6 +103,7 @@ class Target {
   struct Frame {
     std::int32_t pc = 0;
     bool interrupted = false;
+    int vector = -1;  // interrupted: the interrupt's number
   };
   virtual std::vector<Frame> frames() = 0;
   virtual bool frames_unknown_above() const { return false; }
