@@ -5,13 +5,14 @@
 #include <thread>
 #include <utility>
 
+#include "module_commands.hpp"
 #include "tmcl/debug_module.hpp"
 
 namespace tmcl::debug {
 namespace {
 
-constexpr std::uint8_t code(Op o) { return static_cast<std::uint8_t>(o); }
-Instruction ctl(Op o, int type = 0, std::int32_t value = 0) { return {code(o), static_cast<std::uint8_t>(type), 0, value}; }
+using module_cmd::code;
+using module_cmd::ctl;
 // A run that stops this soon reads no other input meanwhile (Target::on_wait), as the VM's first
 // slice: a scripted DAP client's requests wait for the stop, so its session is the same every time.
 constexpr auto kQuiet = std::chrono::milliseconds(500);

@@ -4,6 +4,7 @@
 #include <thread>
 
 #include "tmcl/asm/disasm.hpp"
+#include "module_commands.hpp"
 #include "tmcl/debug_module.hpp"
 #include "tmcl/host/commands.hpp"
 #include "tmcl/host/transfer.hpp"
@@ -11,8 +12,8 @@
 namespace tmcl::debug {
 namespace {
 
-constexpr std::uint8_t code(Op o) { return static_cast<std::uint8_t>(o); }
-Instruction ctl(Op o, int type = 0, std::int32_t value = 0) { return {code(o), static_cast<std::uint8_t>(type), 0, value}; }
+using module_cmd::code;
+using module_cmd::ctl;
 Instruction self_jump(std::int32_t address) { return {code(Op::JA), 0, 0, address}; }
 
 std::string addresses_text(const std::vector<std::pair<std::int32_t, Instruction>>& words) {
