@@ -19,8 +19,9 @@ namespace {
 
 // The TMCM-1290 with plain settings: no EightPoint phases (V1 = 0), no start or stop speed, no
 // ramp wait, hard stops, AMAX = DMAX = 51200 pps².
-struct Drive : mt::SwitchBench {
-  explicit Drive(const char* profile = "tmcm-1290") : SwitchBench("tmc5240", profile, 1) {
+// (Named apart from test_tmc5160.cpp's Drive: a unity build puts both files in one unit.)
+struct Drive5240 : mt::SwitchBench {
+  explicit Drive5240(const char* profile = "tmcm-1290") : SwitchBench("tmc5240", profile, 1) {
     for (auto [param, value] : {std::pair{4, 51200}, {5, 51200}, {16, 0}, {17, 51200}, {19, 0}, {20, 0}, {21, 0},
                                 {26, 0}, {35, 0}, {41, 0}, {12, 0}, {13, 0}})
       set(param, value);
@@ -36,7 +37,7 @@ struct Drive : mt::SwitchBench {
 // The ramp of the closed-form tests: three bands each way, VSTART 1000, VSTOP 2000.
 constexpr double vs = 1000, a1 = 100000, v1 = 10000, a2 = 40000, v2 = 30000, amax = 20000, vmax = 60000, dmax = 25000,
                  d2 = 50000, d1 = 80000, ve = 2000;
-void standard(Drive& b) { b.eightpoint(1000, 100000, 10000, 40000, 30000, 20000, 60000, 25000, 50000, 80000, 2000); }
+void standard(Drive5240& b) { b.eightpoint(1000, 100000, 10000, 40000, 30000, 20000, 60000, 25000, 50000, 80000, 2000); }
 
 // Time and distance of the accelerating and decelerating legs up to speed v (closed form).
 double t_up(double v) {
@@ -80,7 +81,7 @@ TEST(tmc5240_is_the_tmcm1290s_core_with_its_rows_and_ranges) {
 
 // Section 1.3: every band of a long move, and the move's time to the microsecond.
 TEST(tmc5240_eightpoint_move_times_match_the_closed_form) {
-  Drive b;
+  Drive5240 b;
   standard(b);
   const double dist = 400000;
   const double total = t_up(vmax) + (dist - s_up(vmax) - s_down(vmax)) / vmax + t_down(vmax);
@@ -109,7 +110,7 @@ TEST(tmc5240_short_moves_peak_in_the_band_the_closed_form_says) {
     std::int32_t target;
   };
   for (const Band& band : {Band{v1, v2, a2, d2, 15000}, Band{v2, vmax, amax, dmax, -60000}}) {
-    Drive b;
+    Drive5240 b;
     standard(b);
     const double dist = std::abs(band.target);
     const double vp = std::sqrt(band.lo * band.lo + (dist - s_up(band.lo) - s_down(band.lo)) / (1 / (2 * band.a) + 1 / (2 * band.d)));
@@ -126,20 +127,20 @@ TEST(tmc5240_short_moves_peak_in_the_band_the_closed_form_says) {
 TEST(tmc5240_phases_whose_speed_is_zero_are_skipped) {
   const double dist = 300000;
   {
-    Drive b;
+    Drive5240 b;
     b.eightpoint(1000, 100000, 10000, 117, 0, 20000, 60000, 25000, 117, 80000, 2000);
     const double sa = (v1 * v1 - vs * vs) / (2 * a1) + (vmax * vmax - v1 * v1) / (2 * amax);
     const double sd = (vmax * vmax - v1 * v1) / (2 * dmax) + (v1 * v1 - ve * ve) / (2 * d1);
     const double total = (v1 - vs) / a1 + (vmax - v1) / amax + (dist - sa - sd) / vmax + (vmax - v1) / dmax + (v1 - ve) / d1;
     b.core->move_absolute(0, 300000);
     CHECK_EQ(b.next(), us(total));
-    Drive c;  // V2 below V1: the same
+    Drive5240 c;  // V2 below V1: the same
     c.eightpoint(1000, 100000, 10000, 117, 5000, 20000, 60000, 25000, 117, 80000, 2000);
     c.core->move_absolute(0, 300000);
     CHECK_EQ(c.next(), us(total));
   }
   {
-    Drive b;
+    Drive5240 b;
     b.eightpoint(1000, 117, 0, 117, 30000, 20000, 60000, 25000, 117, 117, 2000);
     const double sa = (vmax * vmax - vs * vs) / (2 * amax), sd = (vmax * vmax - ve * ve) / (2 * dmax);
     const double total = (vmax - vs) / amax + (dist - sa - sd) / vmax + (vmax - ve) / dmax;
@@ -152,7 +153,7 @@ TEST(tmc5240_phases_whose_speed_is_zero_are_skipped) {
 // 7.6's note: velocity mode ramps with AMAX (5) alone, from and to standstill; a reversal waits
 // the ramp wait time (21, 32 µs units) at standstill.
 TEST(tmc5240_velocity_mode_uses_amax_and_waits_at_a_reversal) {
-  Drive b;
+  Drive5240 b;
   standard(b);
   b.set(21, 3125);  // 0.1 s
   b.core->rotate(0, 40000);
@@ -171,7 +172,7 @@ TEST(tmc5240_velocity_mode_uses_amax_and_waits_at_a_reversal) {
 // The ramp wait holds a new move until the motor has rested 21 since its last stop; a motor that
 // has rested longer starts at once.
 TEST(tmc5240_ramp_wait_time_holds_the_next_move) {
-  Drive b;
+  Drive5240 b;
   b.set(21, 15625);  // 0.5 s
   const double t1 = mt::move_time(10000, 51200, 51200);
   b.core->move_absolute(0, 10000);
@@ -186,7 +187,7 @@ TEST(tmc5240_ramp_wait_time_holds_the_next_move) {
   b.core->move_absolute(0, 10000);
   CHECK_EQ(b.next(), t + us(t1));
   // A target behind a moving motor: it stops, waits, comes back.
-  Drive c;
+  Drive5240 c;
   c.set(21, 3125);  // 0.1 s
   c.core->rotate(0, 51200);
   c.to(2000000);  // at 51200 pps since 1 s: at 76800
@@ -200,7 +201,7 @@ TEST(tmc5240_ramp_wait_time_holds_the_next_move) {
 // the ramp beyond it with 26 = 1), 40 says which one it is at, motion away from it is free.
 TEST(tmc5240_virtual_stops_stop_the_motor) {
   {
-    Drive b;
+    Drive5240 b;
     b.set(39, 30000);
     b.set(41, 2);
     b.core->move_absolute(0, 50000);
@@ -218,7 +219,7 @@ TEST(tmc5240_virtual_stops_stop_the_motor) {
     CHECK_EQ(b.get(40), 0);
   }
   {  // soft: stops with DMAX beyond the left stop; the left stop alone is enabled
-    Drive b;
+    Drive5240 b;
     b.set(26, 1);
     b.set(38, -20000);
     b.set(39, 100);
@@ -229,7 +230,7 @@ TEST(tmc5240_virtual_stops_stop_the_motor) {
     CHECK_EQ(b.get(40), 1);
   }
   {  // disabled (41 = 0): the motor passes
-    Drive b;
+    Drive5240 b;
     b.set(39, 30000);
     b.core->move_absolute(0, 50000);
     CHECK(b.until(MotionEventKind::TargetReached));
@@ -243,7 +244,7 @@ TEST(tmc5240_virtual_stops_stop_the_motor) {
 // search runs on at the search speed until RFS STOP.
 TEST(tmc5240_rfs_modes_7_to_10) {
   for (auto [mode, dir] : {std::pair{7, -1}, {8, 1}}) {
-    Drive b;
+    Drive5240 b;
     b.set(193, mode);
     b.set(194, 20000);
     b.set(195, 2000);
@@ -253,7 +254,7 @@ TEST(tmc5240_rfs_modes_7_to_10) {
     CHECK_EQ(b.core->position(0), 0);
   }
   for (auto [mode, dir] : {std::pair{9, 1}, {10, -1}}) {
-    Drive b;
+    Drive5240 b;
     b.set(193, mode);
     b.set(194, 20000);
     b.core->reference_search(0, tmcl::RfsAction::Start);
