@@ -62,12 +62,24 @@ std::string event_text(const RecordedMark& m) {
   return kind + ": " + m.label;
 }
 
+// "hard stop left -20000": a scenario's hard stop, in the position count the scenario gives.
+std::string hard_stop_text(const RecordedHardStop& h) {
+  return "hard stop " + std::string(switch_input_name(h.side)) + " " + std::to_string(h.position);
+}
+
+bool is_shown(const MotionRecorder& rec, int motor) {
+  const auto motors = rec.shown_motors();
+  return std::find(motors.begin(), motors.end(), motor) != motors.end();
+}
+
 }  // namespace
 
 void write_csv(std::ostream& out, const MotionRecorder& rec, std::string_view units_note) {
   out << "# time in s, position in microsteps, velocity in pps, acceleration in pps^2; sample period "
       << seconds(rec.period()) << " s\n";
   if (!units_note.empty()) out << "# " << units_note << '\n';
+  for (const auto& h : rec.hard_stops())
+    if (is_shown(rec, h.motor)) out << "# " << hard_stop_text(h) << " (motor " << h.motor << ")\n";
   out << "time_s,motor,position,velocity_pps,acceleration_pps2,event\n";
   const auto& times = rec.times();
   const auto& marks = rec.marks();
@@ -114,7 +126,7 @@ void write_svg(std::ostream& out, const MotionRecorder& rec, const PlotOptions& 
   const char* const title[3] = {"position", "velocity", "acceleration"};
   const char* const unit[3] = {"µsteps", "pps", "pps²"};
   for (int q = 0; q < 3; ++q) {
-    PlotPanel panel{title[q], unit[q], std::string(plot_colour(static_cast<std::size_t>(q))), "", q > 0, {}};
+    PlotPanel panel{title[q], unit[q], std::string(plot_colour(static_cast<std::size_t>(q))), "", q > 0, {}, {}};
     panel.lines.assign(shown.size(), std::vector<double>(rec.times().size()));
     for (std::size_t i = 0; i < rec.times().size(); ++i)
       for (std::size_t k = 0; k < shown.size(); ++k) {
@@ -139,6 +151,12 @@ void write_svg(std::ostream& out, const MotionRecorder& rec, const PlotOptions& 
     for (std::size_t q = 1; q < plot.panels.size(); ++q) plot.panels[q].lines.emplace_back();  // no speed of its own
     plot.line_names.push_back("motor " + std::to_string(shown[k]) + " shaft");
   }
+  // The scenario's hard stops: a line each on the position panel, named after the motor when
+  // the plot shows more than one.
+  for (const auto& h : rec.hard_stops())
+    if (is_shown(rec, h.motor))
+      plot.panels[0].levels.push_back({static_cast<double>(h.position),
+                                       (shown.size() > 1 ? "motor " + std::to_string(h.motor) + " " : std::string()) + hard_stop_text(h)});
   write_svg(out, plot, options);
 }
 

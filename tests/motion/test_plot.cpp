@@ -59,7 +59,7 @@ tmcl::Plot busy_plot() {
   tmcl::Plot p;
   for (tmcl::SimTime t = 0; t <= 21'900'000; t += 100'000) p.times.push_back(t);
   for (const char* q : {"position", "velocity", "acceleration"}) {
-    tmcl::PlotPanel panel{q, "unit", std::string(tmcl::plot_colour(p.panels.size())), "", false, {}};
+    tmcl::PlotPanel panel{q, "unit", std::string(tmcl::plot_colour(p.panels.size())), "", false, {}, {}};
     for (int m = 0; m < 6; ++m) {
       std::vector<double> line;
       for (std::size_t i = 0; i < p.times.size(); ++i) line.push_back(static_cast<double>(i * static_cast<std::size_t>(m + 1)));
@@ -218,7 +218,7 @@ TEST(stall_is_a_mark_of_its_own) {
 // at 0 does not squash one moving near 100000; the standing line is clipped to the panel.
 TEST(svg_window_scales_to_the_moving_lines) {
   tmcl::Plot p;
-  tmcl::PlotPanel panel{"position", "µsteps", "#1f77b4", "", false, {}};
+  tmcl::PlotPanel panel{"position", "µsteps", "#1f77b4", "", false, {}, {}};
   panel.lines.assign(2, {});
   for (int i = 0; i <= 100; ++i) {
     p.times.push_back(i * 100'000);
@@ -257,5 +257,30 @@ TEST(svg_draws_the_shaft_where_it_parts_from_the_counter) {
     const std::string s = svg.str();
     CHECK((s.find(">motor 0 shaft</text>") != std::string::npos) == (wall != 0));
     CHECK_EQ(count(s, "<polyline"), std::size_t{wall ? 4u : 3u});
+  }
+}
+
+// A scenario's hard stop is a line on the motor's position panel, labelled with its side and
+// position, and a comment line in the CSV (issue 41); a run without one draws none.
+TEST(svg_draws_the_hard_stops_as_lines) {
+  for (int wall = 0; wall < 2; ++wall) {
+    auto core = tmcl::make_motion_core("tmc5160");
+    core->reset(*tmcl::find_profile("tmcm-1260"), 1);
+    tmcl::MotionRecorder rec(1, 20000);
+    tmcl::RecordingCore rc(*core, rec);
+    if (wall) CHECK(rc.place_hard_stop(0, tmcl::SwitchInput::StopLeft, -20000));
+    rc.move_absolute(0, 60000);
+    std::vector<tmcl::MotionEvent> ev;
+    for (int i = 0; i < 20 && !rc.target_reached(0); ++i) rc.advance(rc.next_event(), ev);
+    rc.finish(rc.next_event() == tmcl::kNever ? 2000000 : rc.next_event());
+    std::ostringstream csv, svg;
+    tmcl::write_csv(csv, rec);
+    tmcl::write_svg(svg, rec);
+    const std::string c = csv.str(), s = svg.str();
+    CHECK((c.find("\n# hard stop left -20000 (motor 0)\n") != std::string::npos) == (wall != 0));
+    CHECK((s.find("text-anchor=\"end\">hard stop left -20000</text>") != std::string::npos) == (wall != 0));
+    CHECK_EQ(count(s, "stroke=\"#8c564b\""), std::size_t{wall ? 1u : 0u});
+    // the wall is inside the position axis: its tick labels reach below -20000
+    CHECK((s.find("text-anchor=\"end\">-20k</text>") != std::string::npos) == (wall != 0));
   }
 }

@@ -41,7 +41,9 @@ class RecordingCore final : public MotionCore {
     return inner_.place_switch(motor, input, lo, hi);
   }
   bool place_hard_stop(int motor, SwitchInput side, std::int64_t position) override {
-    return inner_.place_hard_stop(motor, side, position);
+    const bool ok = inner_.place_hard_stop(motor, side, position);
+    if (ok) rec_.hard_stop(motor, side, position);  // drawn as a line on the position panel
+    return ok;
   }
   bool set_load(int motor, int percent) override { return inner_.set_load(motor, percent); }
   bool place_load(int motor, std::int64_t lo, std::int64_t hi, int percent) override {

@@ -28,6 +28,13 @@ struct RecordedMark {
   std::optional<std::int64_t> position;
 };
 
+// A horizontal line across a panel at a fixed value, labelled at its right end: a hard stop on
+// the position panel ("hard stop left -20000").
+struct PlotLevel {
+  double value;
+  std::string label;
+};
+
 struct PlotPanel {
   std::string title;       // "position": legend and axis title
   std::string unit;        // "µsteps", shown as "position [µsteps]"; empty: no unit shown
@@ -37,6 +44,7 @@ struct PlotPanel {
   // lines[k][i]: line k at times[i]. Line k > 0 is dashed; with more than one line the legend
   // names them by Plot::line_names.
   std::vector<std::vector<double>> lines;
+  std::vector<PlotLevel> levels;  // inside the value axis, unless a zoomed panel scales to what moves
 };
 
 struct Plot {
