@@ -33,6 +33,7 @@ void MotionRecorder::motion_event(const MotionEvent& ev) {
   Mark k = ev.kind == MotionEventKind::TargetReached ? Mark::TargetReached
            : ev.kind == MotionEventKind::Rebased      ? Mark::Rebased
            : ev.kind == MotionEventKind::Stall        ? Mark::Stall
+           : ev.kind == MotionEventKind::Contact      ? Mark::Contact
            : ev.kind != MotionEventKind::SwitchChanged ? Mark::Other
            : ev.input == SwitchInput::Home           ? Mark::HomeSwitch
                                                      : Mark::StopSwitch;
@@ -57,7 +58,7 @@ std::string event_text(const RecordedMark& m) {
   std::string kind(mark_name(m.kind));
   if (m.label.empty() || m.label == kind) return kind;
   if (m.kind == Mark::Other || m.kind == Mark::StopSwitch || m.kind == Mark::HomeSwitch || m.kind == Mark::Rebased ||
-      m.kind == Mark::Stall)
+      m.kind == Mark::Stall || m.kind == Mark::Contact)
     return m.label;  // "left switch closed", "position re-based: ..."
   return kind + ": " + m.label;
 }

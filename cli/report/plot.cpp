@@ -25,6 +25,7 @@ std::string_view mark_name(Mark m) {
     case Mark::HomeSwitch: return "home switch";
     case Mark::Rebased: return "position re-based";
     case Mark::Stall: return "stall";
+    case Mark::Contact: return "contact";
     case Mark::Other: return "event";
   }
   return "event";
@@ -147,6 +148,7 @@ MarkStyle mark_style(Mark m) {
     case Mark::HomeSwitch: return {"#2e7d32", "M0,-6 L5,-1 L5,4 L-5,4 L-5,-1 Z"};  // a house, green
     case Mark::Rebased: return {"#1565c0", "M-5,-6 L5,-6 L-5,4 L5,4 Z"};            // an hourglass: the count jumps
     case Mark::Stall: return {"#c2185b", "M-2,-6 L2,-6 L5,-3 L5,1 L2,4 L-2,4 L-5,1 L-5,-3 Z"};  // an octagon: a stop sign
+    case Mark::Contact: return {"#8c564b", "M-6,-5 L0,-1 L-6,3 Z M2,-6 L5,-6 L5,4 L2,4 Z"};  // a wedge against a wall, the hard stop's brown
     case Mark::Other: return {"#0a8a8a", "M-4.5,-1 a4.5,4.5 0 1,0 9,0 a4.5,4.5 0 1,0 -9,0"};  // circle
   }
   return {"#000000", ""};

@@ -284,3 +284,38 @@ TEST(svg_draws_the_hard_stops_as_lines) {
     CHECK((s.find("text-anchor=\"end\">-20k</text>") != std::string::npos) == (wall != 0));
   }
 }
+
+// The moment of contact is an event of its own (issue 41): once, when the shaft meets a load of
+// 100 % or more (here a load range) or a hard stop, before the steps lost it leads to; a CSV row,
+// a trace text, and a mark with its own glyph and legend entry.
+TEST(contact_is_a_mark_of_its_own) {
+  for (int wall = 0; wall < 2; ++wall) {
+    auto core = tmcl::make_motion_core("tmc5160");
+    core->reset(*tmcl::find_profile("tmcm-1260"), 1);
+    tmcl::MotionRecorder rec(1, 20000);
+    tmcl::RecordingCore rc(*core, rec);
+    if (wall) CHECK(rc.place_hard_stop(0, tmcl::SwitchInput::StopRight, 20000));
+    else CHECK(rc.place_load(0, 20000, 30000, 150));
+    rc.move_absolute(0, 60000);
+    std::vector<tmcl::MotionEvent> ev;
+    for (int i = 0; i < 20 && !rc.target_reached(0); ++i) rc.advance(rc.next_event(), ev);
+    std::size_t contacts = 0, contact_at = ev.size(), lost_at = ev.size();
+    for (std::size_t i = 0; i < ev.size(); ++i) {
+      if (ev[i].kind == tmcl::MotionEventKind::Contact) ++contacts, contact_at = i;
+      if (ev[i].kind == tmcl::MotionEventKind::StepsLost) lost_at = i;
+    }
+    CHECK_EQ(contacts, std::size_t{1});
+    CHECK(contact_at < lost_at && lost_at < ev.size());
+    CHECK_EQ(ev[contact_at].position, 20000);
+    const char* text = wall ? "contact: the shaft meets the right hard stop" : "contact: the shaft meets a load of 150 %";
+    CHECK_EQ(tmcl::motion_event_text(ev[contact_at]), std::string(text));
+    std::ostringstream csv, svg;
+    tmcl::write_csv(csv, rec);
+    tmcl::write_svg(svg, rec);
+    const std::string c = csv.str(), s = svg.str();
+    CHECK(c.find(",0,20000,,," + std::string(text) + "\n") != std::string::npos);
+    CHECK(s.find("d=\"M-6,-5 L0,-1 L-6,3 Z M2,-6 L5,-6 L5,4 L2,4 Z\" fill=\"#8c564b\"><title>") != std::string::npos);
+    CHECK(s.find(">contact</text>") != std::string::npos);  // its legend entry
+    CHECK(s.find(": " + std::string(text) + " (motor 0)</title>") != std::string::npos);
+  }
+}

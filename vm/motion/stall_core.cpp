@@ -385,6 +385,13 @@ void SwitchCore::on_mech(Motor& m, std::vector<MotionEvent>& out) {
       hold_shaft(m);
       m.sg.block = why == 0 ? seg.dir : why;
       m.sg.next_valid = false;
+      {  // the contact, always (issue 41): what the shaft met, before what follows from it
+        MotionEvent ev{now_, motor, MotionEventKind::Contact, ramp::wrap32(m.rm.xactual(now_))};
+        const int load = load_at(m, static_cast<double>(m.shaft.held_at));
+        if (load >= 100) ev.value = load;  // a timed load or a load range
+        else ev.input = seg.dir > 0 ? SwitchInput::StopRight : SwitchInput::StopLeft;
+        out.push_back(ev);
+      }
       // The counter now parts from the shaft: the deviation stop (212) is planned where it passes
       // 212, mid-plan as at a plan's start (switch_core.cpp, scan_deviation).
       shaft_changed(m, false);

@@ -17,7 +17,7 @@
 
 namespace tmcl {
 
-enum class Mark : std::uint8_t { MoveIssued, TargetReached, Interrupt, StopSwitch, HomeSwitch, Rebased, Stall, Other };
+enum class Mark : std::uint8_t { MoveIssued, TargetReached, Interrupt, StopSwitch, HomeSwitch, Rebased, Stall, Contact, Other };
 std::string_view mark_name(Mark m);
 
 struct RecordedMark {

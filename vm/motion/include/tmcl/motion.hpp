@@ -43,6 +43,8 @@ enum class MotionEventKind : std::uint8_t {
                     // `value` kStepsLostStallUnseen: stop on stall is on, but StealthChop hides the stall (E78)
   Rebased,          // a reference search made its reference point position 0: the register jumps
   CurrentChanged,   // coolStep changed the actual current (axis parameter 180) of a moving motor: `value`
+  Contact,          // the shaft meets a hard stop (`input`: its side) or a load of 100 % or more (`value`:
+                    // the load in %, 0 for a hard stop) and stands: the instant the shaft is held
 };
 std::string_view motion_event_name(MotionEventKind kind);
 inline constexpr std::int32_t kStepsLostStallUnseen = 1;  // MotionEvent::value of a StepsLost
