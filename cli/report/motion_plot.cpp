@@ -14,7 +14,10 @@ MotionRecorder::MotionRecorder(int motors, SimTime period) : motors_(motors), pe
 void MotionRecorder::sample_until(const MotionCore& core, SimTime to) {
   for (; next_ <= to; next_ += period_) {
     times_.push_back(next_);
-    for (int m = 0; m < motors_; ++m) samples_.push_back(core.sample_at(m, next_));
+    for (int m = 0; m < motors_; ++m) {
+      samples_.push_back(core.sample_at(m, next_));
+      for (int p : params_) param_samples_.push_back(core.sample_param(m, p, next_));
+    }
   }
 }
 
@@ -38,6 +41,14 @@ void MotionRecorder::motion_event(const MotionEvent& ev) {
            : ev.input == SwitchInput::Home           ? Mark::HomeSwitch
                                                      : Mark::StopSwitch;
   mark(ev.at, ev.motor, k, motion_event_text(ev), ev.position);
+}
+
+std::string_view plot_series_name(int param) {
+  switch (param) {
+    case 206: return "load value";
+    case 180: return "actual current";
+    default: return {};
+  }
 }
 
 namespace {
@@ -137,6 +148,25 @@ void write_svg(std::ostream& out, const MotionRecorder& rec, const PlotOptions& 
     plot.panels.push_back(std::move(panel));
   }
   for (std::size_t m : shown) plot.line_names.push_back("motor " + std::to_string(m));
+  // The sampled parameters (--plot-series): a panel each, one line per motor shown (none where
+  // the core cannot say the value), in the parameter's raw units.
+  const std::size_t np = rec.sampled_params().size();
+  for (std::size_t k = 0; k < np; ++k) {
+    const int param = rec.sampled_params()[k];
+    const std::string name = std::string(plot_series_name(param)) + " (" + std::to_string(param) + ")";
+    PlotPanel panel{name, "", std::string(plot_colour(3 + k)), "", true, {}, {}};
+    for (std::size_t m : shown) {
+      std::vector<double> line;
+      for (std::size_t i = 0; i < rec.times().size(); ++i) {
+        const auto& v = rec.param_samples()[(i * motors + m) * np + k];
+        if (!v) break;
+        line.push_back(static_cast<double>(*v));
+      }
+      if (line.size() < rec.times().size()) line.clear();  // a core that cannot say it
+      panel.lines.push_back(std::move(line));
+    }
+    plot.panels.push_back(std::move(panel));
+  }
   // The shaft where it parts from the counter (steps lost): one more line in the position panel,
   // so that a lost-step run does not look as if the carriage went through the wall (issue 41).
   for (std::size_t k = 0; k < shown.size(); ++k) {

@@ -46,6 +46,14 @@ class MotionRecorder {
   void motion_event(const MotionEvent& ev);
   void hard_stop(int motor, SwitchInput side, std::int64_t position) { hard_stops_.push_back({motor, side, position}); }
 
+  // Axis parameters sampled with the motion, each drawn as a panel of its own (tmclrun
+  // --plot-series 206,180): call before the first sample. plot_series_name names those it can.
+  void sample_params(std::vector<int> params) { params_ = std::move(params); }
+  const std::vector<int>& sampled_params() const { return params_; }
+  // param_samples()[(i * motors() + m) * sampled_params().size() + k]: parameter k of motor m at
+  // times()[i], empty where the core cannot say it (MotionCore::sample_param).
+  const std::vector<std::optional<std::int32_t>>& param_samples() const { return param_samples_; }
+
   // Which motors write_csv and write_svg show, in order (tmclrun: shown_motors, vm_output.hpp);
   // every recorded one until it is called.
   void show_motors(std::vector<int> motors) { shown_ = std::move(motors); }
@@ -67,6 +75,8 @@ class MotionRecorder {
   std::vector<MotionSample> samples_;
   std::vector<RecordedMark> marks_;
   std::vector<RecordedHardStop> hard_stops_;
+  std::vector<int> params_;
+  std::vector<std::optional<std::int32_t>> param_samples_;
   std::optional<std::vector<int>> shown_;
 };
 
@@ -77,8 +87,13 @@ class MotionRecorder {
 // comment line per hard stop of a shown motor ("# hard stop left -20000 (motor 0)").
 void write_csv(std::ostream& out, const MotionRecorder& rec, std::string_view units_note = {});
 
+// The axis parameters a plot can draw as a series (--plot-series) and their names: 206 "load
+// value", 180 "actual current"; empty for any other.
+std::string_view plot_series_name(int param);
+
 // The SVG of plot.hpp: three stacked panels (position, velocity, acceleration) over a shared
-// time axis, one colour per quantity, one dash pattern per motor, event markers and a legend.
+// time axis, one colour per quantity, one dash pattern per motor, event markers and a legend;
+// then one panel per sampled parameter (sample_params).
 void write_svg(std::ostream& out, const MotionRecorder& rec, const PlotOptions& options = {});
 
 }  // namespace tmcl

@@ -37,6 +37,9 @@ class RecordingCore final : public MotionCore {
   bool target_reached(int motor) const override { return inner_.target_reached(motor); }
   bool reference_done(int motor) const override { return inner_.reference_done(motor); }
   MotionSample sample_at(int motor, SimTime t) const override { return inner_.sample_at(motor, t); }
+  std::optional<std::int32_t> sample_param(int motor, int param, SimTime t) const override {
+    return inner_.sample_param(motor, param, t);
+  }
   bool place_switch(int motor, SwitchInput input, std::int64_t lo, std::int64_t hi) override {
     return inner_.place_switch(motor, input, lo, hi);
   }

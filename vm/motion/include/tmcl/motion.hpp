@@ -189,6 +189,13 @@ class MotionCore {
     (void)t;
     return {position(motor), 0.0, 0.0};
   }
+  // What GAP of axis parameter `param` would read at instant t (the last advance() <= t <= the
+  // next event), where the core can say it without advancing: the plot's optional series
+  // (tmclrun --plot-series). The default: nothing (the plot leaves the line out).
+  virtual std::optional<std::int32_t> sample_param(int motor, int param, SimTime t) const {
+    (void)motor, (void)param, (void)t;
+    return std::nullopt;
+  }
 
   // For cores whose parameters are in a chip's units (tmc429): the physical value that the raw
   // value of a velocity or acceleration parameter stands for on `motor` now (parameter 2 for the
