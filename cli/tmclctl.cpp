@@ -839,7 +839,7 @@ struct Session {
     // --plot: the rows as time series, one panel per parameter (cli/report's plot).
     tmcl::Plot plot;
     for (std::size_t i = 0; i < params.size(); ++i)
-      plot.panels.push_back({names[i], "", std::string(tmcl::plot_colour(i)), short_names[i], false, {{}}});
+      plot.panels.push_back({names[i], "", std::string(tmcl::plot_colour(i)), short_names[i], false, {{}}, {}});
     if (table) {
       std::printf("%10s", "time (s)");
       for (const auto& name : short_names) std::printf(" %14s", name.c_str());

@@ -180,6 +180,23 @@ std::string address_value(const char* opt, const std::string& v, std::optional<s
   return {};
 }
 
+// --plot-series PARAMS (206,180): the axis parameters the plot can draw (plot_series_name), each
+// once, appended in order: "" when they parsed.
+std::string plot_series_value(const std::string& v, std::vector<int>& out) {
+  std::size_t at = 0;
+  do {
+    const std::size_t comma = std::min(v.find(',', at), v.size());
+    const std::string word = v.substr(at, comma - at);
+    char* end = nullptr;
+    const long n = std::strtol(word.c_str(), &end, 10);
+    if (word.empty() || *end || tmcl::plot_series_name(static_cast<int>(n)).empty() || n != static_cast<int>(n))
+      return "--plot-series draws axis parameters 206 (load value) and 180 (actual current), not '" + word + "'";
+    if (std::find(out.begin(), out.end(), n) == out.end()) out.push_back(static_cast<int>(n));
+    at = comma + 1;
+  } while (at <= v.size());
+  return {};
+}
+
 // The options, each declared once: --help, the errors, the man-page check and bash completion
 // follow from this table (tmcl/options.hpp).
 // --variant: the names and meanings of the virtual module's firmware variants, from their table.
@@ -362,6 +379,11 @@ tmcl::cli::Tool command_line(Options& o) {
        duration("--plot-from", o.plot_from), Values::words(durations)},
       {"--plot-to", "DURATION", "with --plot: draw up to this simulated instant (default: the end)",
        duration("--plot-to", o.plot_to), Values::words(durations)},
+      {"--plot-series", "PARAMS",
+       "with --plot: draw axis parameters too, a panel each, as a program\n"
+       "reads them: 206 the load value, 180 the actual current, or 206,180",
+       [&o](const std::string& v) { return plot_series_value(v, o.plot_series); }, Values::words(std::vector<std::string>{"206", "180", "206,180"}),
+       "206, 180 or both (206,180)"},
       {"--debug", "",
        "debug PROGRAM with gdb's commands (debugger.md), read from\n"
        "standard input: a terminal, or a pipe or file for scripts; with\n"
@@ -457,6 +479,7 @@ int parse_args(int argc, char** argv, Options& o) {
   if (!o.log.empty() && (!o.serving || !o.trace)) return usage_error("--log FILE goes with --serve --trace");
   if ((o.plot_from != 0 || o.plot_to != tmcl::kNever) && o.plot.empty())
     return usage_error("--plot-from and --plot-to go with --plot FILE.svg");
+  if (!o.plot_series.empty() && o.plot.empty()) return usage_error("--plot-series goes with --plot FILE.svg");
   if (o.plot_to <= o.plot_from) return usage_error("--plot-to must be later than --plot-from");
   if (!o.eeprom_seal.empty()) {
     if (have_program || o.serving || !o.eeprom.empty())
@@ -667,6 +690,7 @@ int run(int argc, char** argv) {
   // --csv/--plot: the VM drives a recording decorator around the real core.
   bool recording = !o.csv.empty() || !o.plot.empty();
   tmcl::MotionRecorder recorder(profile->motors, o.sample);
+  recorder.sample_params(o.plot_series);
   tmcl::RecordingCore recording_core(*core, recorder);
   tmcl::Vm vm(*profile, recording ? static_cast<tmcl::MotionCore&>(recording_core) : *core);
   tmcl::TextTrace trace(o.json ? stderr : stdout, &sources, &names);

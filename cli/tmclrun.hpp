@@ -34,6 +34,7 @@ struct Options {
   bool list_targets = false;  // --list-targets: list the targets and run nothing
   std::string csv, plot;
   tmcl::SimTime plot_from = 0, plot_to = tmcl::kNever;  // --plot-from, --plot-to
+  std::vector<int> plot_series;                           // --plot-series 206,180
   std::string log;  // --serve --trace: the request log (empty: standard error)
   tmcl::SimTime sample = 10 * tmcl::kUsPerMs;
   tmcl::AsmOptions asm_opts;

@@ -14,7 +14,10 @@ MotionRecorder::MotionRecorder(int motors, SimTime period) : motors_(motors), pe
 void MotionRecorder::sample_until(const MotionCore& core, SimTime to) {
   for (; next_ <= to; next_ += period_) {
     times_.push_back(next_);
-    for (int m = 0; m < motors_; ++m) samples_.push_back(core.sample_at(m, next_));
+    for (int m = 0; m < motors_; ++m) {
+      samples_.push_back(core.sample_at(m, next_));
+      for (int p : params_) param_samples_.push_back(core.sample_param(m, p, next_));
+    }
   }
 }
 
@@ -33,10 +36,19 @@ void MotionRecorder::motion_event(const MotionEvent& ev) {
   Mark k = ev.kind == MotionEventKind::TargetReached ? Mark::TargetReached
            : ev.kind == MotionEventKind::Rebased      ? Mark::Rebased
            : ev.kind == MotionEventKind::Stall        ? Mark::Stall
+           : ev.kind == MotionEventKind::Contact      ? Mark::Contact
            : ev.kind != MotionEventKind::SwitchChanged ? Mark::Other
            : ev.input == SwitchInput::Home           ? Mark::HomeSwitch
                                                      : Mark::StopSwitch;
   mark(ev.at, ev.motor, k, motion_event_text(ev), ev.position);
+}
+
+std::string_view plot_series_name(int param) {
+  switch (param) {
+    case 206: return "load value";
+    case 180: return "actual current";
+    default: return {};
+  }
 }
 
 namespace {
@@ -57,9 +69,19 @@ std::string event_text(const RecordedMark& m) {
   std::string kind(mark_name(m.kind));
   if (m.label.empty() || m.label == kind) return kind;
   if (m.kind == Mark::Other || m.kind == Mark::StopSwitch || m.kind == Mark::HomeSwitch || m.kind == Mark::Rebased ||
-      m.kind == Mark::Stall)
+      m.kind == Mark::Stall || m.kind == Mark::Contact)
     return m.label;  // "left switch closed", "position re-based: ..."
   return kind + ": " + m.label;
+}
+
+// "hard stop left -20000": a scenario's hard stop, in the position count the scenario gives.
+std::string hard_stop_text(const RecordedHardStop& h) {
+  return "hard stop " + std::string(switch_input_name(h.side)) + " " + std::to_string(h.position);
+}
+
+bool is_shown(const MotionRecorder& rec, int motor) {
+  const auto motors = rec.shown_motors();
+  return std::find(motors.begin(), motors.end(), motor) != motors.end();
 }
 
 }  // namespace
@@ -68,6 +90,8 @@ void write_csv(std::ostream& out, const MotionRecorder& rec, std::string_view un
   out << "# time in s, position in microsteps, velocity in pps, acceleration in pps^2; sample period "
       << seconds(rec.period()) << " s\n";
   if (!units_note.empty()) out << "# " << units_note << '\n';
+  for (const auto& h : rec.hard_stops())
+    if (is_shown(rec, h.motor)) out << "# " << hard_stop_text(h) << " (motor " << h.motor << ")\n";
   out << "time_s,motor,position,velocity_pps,acceleration_pps2,event\n";
   const auto& times = rec.times();
   const auto& marks = rec.marks();
@@ -114,7 +138,7 @@ void write_svg(std::ostream& out, const MotionRecorder& rec, const PlotOptions& 
   const char* const title[3] = {"position", "velocity", "acceleration"};
   const char* const unit[3] = {"µsteps", "pps", "pps²"};
   for (int q = 0; q < 3; ++q) {
-    PlotPanel panel{title[q], unit[q], std::string(plot_colour(static_cast<std::size_t>(q))), "", q > 0, {}};
+    PlotPanel panel{title[q], unit[q], std::string(plot_colour(static_cast<std::size_t>(q))), "", q > 0, {}, {}};
     panel.lines.assign(shown.size(), std::vector<double>(rec.times().size()));
     for (std::size_t i = 0; i < rec.times().size(); ++i)
       for (std::size_t k = 0; k < shown.size(); ++k) {
@@ -124,6 +148,25 @@ void write_svg(std::ostream& out, const MotionRecorder& rec, const PlotOptions& 
     plot.panels.push_back(std::move(panel));
   }
   for (std::size_t m : shown) plot.line_names.push_back("motor " + std::to_string(m));
+  // The sampled parameters (--plot-series): a panel each, one line per motor shown (none where
+  // the core cannot say the value), in the parameter's raw units.
+  const std::size_t np = rec.sampled_params().size();
+  for (std::size_t k = 0; k < np; ++k) {
+    const int param = rec.sampled_params()[k];
+    const std::string name = std::string(plot_series_name(param)) + " (" + std::to_string(param) + ")";
+    PlotPanel panel{name, "", std::string(plot_colour(3 + k)), "", true, {}, {}};
+    for (std::size_t m : shown) {
+      std::vector<double> line;
+      for (std::size_t i = 0; i < rec.times().size(); ++i) {
+        const auto& v = rec.param_samples()[(i * motors + m) * np + k];
+        if (!v) break;
+        line.push_back(static_cast<double>(*v));
+      }
+      if (line.size() < rec.times().size()) line.clear();  // a core that cannot say it
+      panel.lines.push_back(std::move(line));
+    }
+    plot.panels.push_back(std::move(panel));
+  }
   // The shaft where it parts from the counter (steps lost): one more line in the position panel,
   // so that a lost-step run does not look as if the carriage went through the wall (issue 41).
   for (std::size_t k = 0; k < shown.size(); ++k) {
@@ -139,6 +182,12 @@ void write_svg(std::ostream& out, const MotionRecorder& rec, const PlotOptions& 
     for (std::size_t q = 1; q < plot.panels.size(); ++q) plot.panels[q].lines.emplace_back();  // no speed of its own
     plot.line_names.push_back("motor " + std::to_string(shown[k]) + " shaft");
   }
+  // The scenario's hard stops: a line each on the position panel, named after the motor when
+  // the plot shows more than one.
+  for (const auto& h : rec.hard_stops())
+    if (is_shown(rec, h.motor))
+      plot.panels[0].levels.push_back({static_cast<double>(h.position),
+                                       (shown.size() > 1 ? "motor " + std::to_string(h.motor) + " " : std::string()) + hard_stop_text(h)});
   write_svg(out, plot, options);
 }
 

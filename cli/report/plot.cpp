@@ -25,6 +25,7 @@ std::string_view mark_name(Mark m) {
     case Mark::HomeSwitch: return "home switch";
     case Mark::Rebased: return "position re-based";
     case Mark::Stall: return "stall";
+    case Mark::Contact: return "contact";
     case Mark::Other: return "event";
   }
   return "event";
@@ -147,6 +148,7 @@ MarkStyle mark_style(Mark m) {
     case Mark::HomeSwitch: return {"#2e7d32", "M0,-6 L5,-1 L5,4 L-5,4 L-5,-1 Z"};  // a house, green
     case Mark::Rebased: return {"#1565c0", "M-5,-6 L5,-6 L-5,4 L5,4 Z"};            // an hourglass: the count jumps
     case Mark::Stall: return {"#c2185b", "M-2,-6 L2,-6 L5,-3 L5,1 L2,4 L-2,4 L-5,1 L-5,-3 Z"};  // an octagon: a stop sign
+    case Mark::Contact: return {"#8c564b", "M-6,-5 L0,-1 L-6,3 Z M2,-6 L5,-6 L5,4 L2,4 Z"};  // a wedge against a wall, the hard stop's brown
     case Mark::Other: return {"#0a8a8a", "M-4.5,-1 a4.5,4.5 0 1,0 9,0 a4.5,4.5 0 1,0 -9,0"};  // circle
   }
   return {"#000000", ""};
@@ -233,7 +235,7 @@ void write_svg(std::ostream& out, const Plot& whole, const PlotOptions& opt) {
   if (lines > 1)
     for (std::size_t m = 0; m < lines; ++m) {
       const std::string name = m < plot.line_names.size() ? plot.line_names[m] : "line " + std::to_string(m);
-      legend.push_back({90, [name, dash = dashes[m % std::size(dashes)]](std::ostream& o, double x, double y) {
+      legend.push_back({std::max(90.0, 28 + 6.8 * static_cast<double>(name.size()) + 14), [name, dash = dashes[m % std::size(dashes)]](std::ostream& o, double x, double y) {
                           o << "<line x1=\"" << x << "\" y1=\"" << y - 4 << "\" x2=\"" << x + 22 << "\" y2=\"" << y - 4
                             << "\" stroke=\"#444\" stroke-width=\"2\" stroke-dasharray=\"" << dash << "\"/>";
                           o << "<text x=\"" << x + 28 << "\" y=\"" << y << "\" font-size=\"13\" fill=\"#333\">" << xml_text(name) << "</text>\n";
@@ -344,6 +346,14 @@ void write_svg(std::ostream& out, const Plot& whole, const PlotOptions& opt) {
         any = true;
       }
     }
+    // levels (a hard stop) inside the axis, so that the wall shows where the shaft meets it;
+    // not in a zoomed panel that scales to what moves (one far away would squash it)
+    if (!clip)
+      for (const auto& lv : panel.levels) {
+        lo = any ? std::min(lo, lv.value) : lv.value;
+        hi = any ? std::max(hi, lv.value) : lv.value;
+        any = true;
+      }
     if (panel.keep_zero) {
       lo = std::min(lo, 0.0);
       hi = std::max(hi, 0.0);
@@ -379,6 +389,16 @@ void write_svg(std::ostream& out, const Plot& whole, const PlotOptions& opt) {
       double x = X(static_cast<double>(m.at) * 1e-6);
       out << "<line x1=\"" << x << "\" y1=\"" << y0 << "\" x2=\"" << x << "\" y2=\"" << y0 + panel_h << "\" stroke=\""
           << mark_style(m.kind).colour << "\" stroke-opacity=\"0.45\" stroke-dasharray=\"3,3\"/>\n";
+    }
+    // levels: a broad pale brown band across the panel (a wall; the shaft's line, which stands at
+    // it, stays visible on top), labelled above its right end (below it at the panel's top)
+    for (const auto& lv : panel.levels) {
+      const double y = Y(lv.value);
+      if (y < y0 - 0.5 || y > y0 + panel_h + 0.5) continue;  // outside a zoomed panel
+      out << "<line x1=\"" << left << "\" y1=\"" << y << "\" x2=\"" << left + plot_w << "\" y2=\"" << y
+          << "\" stroke=\"#8c564b\" stroke-opacity=\"0.35\" stroke-width=\"5\"/>";
+      out << "<text x=\"" << left + plot_w - 4 << "\" y=\"" << (y - 4 < y0 + 12 ? y + 13 : y - 4)
+          << "\" font-size=\"12\" fill=\"#8c564b\" text-anchor=\"end\">" << xml_text(lv.label) << "</text>\n";
     }
     // series
     for (std::size_t m = 0; m < panel.lines.size(); ++m) {

@@ -2,6 +2,8 @@
 // CSVs of the manuals' example programs are golden cases (tests/golden/motion/, motion_csv.cpp).
 #include <cstdlib>
 #include <fstream>
+#include <memory>
+#include <set>
 #include <sstream>
 #include <string>
 
@@ -59,7 +61,7 @@ tmcl::Plot busy_plot() {
   tmcl::Plot p;
   for (tmcl::SimTime t = 0; t <= 21'900'000; t += 100'000) p.times.push_back(t);
   for (const char* q : {"position", "velocity", "acceleration"}) {
-    tmcl::PlotPanel panel{q, "unit", std::string(tmcl::plot_colour(p.panels.size())), "", false, {}};
+    tmcl::PlotPanel panel{q, "unit", std::string(tmcl::plot_colour(p.panels.size())), "", false, {}, {}};
     for (int m = 0; m < 6; ++m) {
       std::vector<double> line;
       for (std::size_t i = 0; i < p.times.size(); ++i) line.push_back(static_cast<double>(i * static_cast<std::size_t>(m + 1)));
@@ -218,7 +220,7 @@ TEST(stall_is_a_mark_of_its_own) {
 // at 0 does not squash one moving near 100000; the standing line is clipped to the panel.
 TEST(svg_window_scales_to_the_moving_lines) {
   tmcl::Plot p;
-  tmcl::PlotPanel panel{"position", "µsteps", "#1f77b4", "", false, {}};
+  tmcl::PlotPanel panel{"position", "µsteps", "#1f77b4", "", false, {}, {}};
   panel.lines.assign(2, {});
   for (int i = 0; i <= 100; ++i) {
     p.times.push_back(i * 100'000);
@@ -258,4 +260,116 @@ TEST(svg_draws_the_shaft_where_it_parts_from_the_counter) {
     CHECK((s.find(">motor 0 shaft</text>") != std::string::npos) == (wall != 0));
     CHECK_EQ(count(s, "<polyline"), std::size_t{wall ? 4u : 3u});
   }
+}
+
+// A PD60-1260 (tmc5160) recorded every 20 ms through the recording decorator, as tmclrun records.
+struct Recorded1260 {
+  std::unique_ptr<tmcl::MotionCore> core = [] {
+    auto c = tmcl::make_motion_core("tmc5160");
+    c->reset(*tmcl::find_profile("tmcm-1260"), 1);
+    return c;
+  }();
+  tmcl::MotionRecorder rec{1, 20000};
+  tmcl::RecordingCore rc{*core, rec};
+  std::vector<tmcl::MotionEvent> ev;
+  void move_to(std::int32_t target) {
+    rc.move_absolute(0, target);
+    for (int i = 0; i < 20 && !rc.target_reached(0); ++i) rc.advance(rc.next_event(), ev);
+  }
+};
+
+// A scenario's hard stop is a line on the motor's position panel, labelled with its side and
+// position, and a comment line in the CSV (issue 41); a run without one draws none.
+TEST(svg_draws_the_hard_stops_as_lines) {
+  for (int wall = 0; wall < 2; ++wall) {
+    Recorded1260 r;
+    auto& rec = r.rec;
+    if (wall) CHECK(r.rc.place_hard_stop(0, tmcl::SwitchInput::StopLeft, -20000));
+    r.move_to(60000);
+    std::ostringstream csv, svg;
+    tmcl::write_csv(csv, rec);
+    tmcl::write_svg(svg, rec);
+    const std::string c = csv.str(), s = svg.str();
+    CHECK((c.find("\n# hard stop left -20000 (motor 0)\n") != std::string::npos) == (wall != 0));
+    CHECK((s.find("text-anchor=\"end\">hard stop left -20000</text>") != std::string::npos) == (wall != 0));
+    CHECK_EQ(count(s, "stroke=\"#8c564b\""), std::size_t{wall ? 1u : 0u});
+    // the wall is inside the position axis: its tick labels reach below -20000
+    CHECK((s.find("text-anchor=\"end\">-20k</text>") != std::string::npos) == (wall != 0));
+  }
+}
+
+// The moment of contact is an event of its own (issue 41): once, when the shaft meets a load of
+// 100 % or more (here a load range) or a hard stop, before the steps lost it leads to; a CSV row,
+// a trace text, and a mark with its own glyph and legend entry.
+TEST(contact_is_a_mark_of_its_own) {
+  for (int wall = 0; wall < 2; ++wall) {
+    Recorded1260 r;
+    auto& rec = r.rec;
+    const auto& ev = r.ev;
+    if (wall) CHECK(r.rc.place_hard_stop(0, tmcl::SwitchInput::StopRight, 20000));
+    else CHECK(r.rc.place_load(0, 20000, 30000, 150));
+    r.move_to(60000);
+    std::size_t contacts = 0, contact_at = ev.size(), lost_at = ev.size();
+    for (std::size_t i = 0; i < ev.size(); ++i) {
+      if (ev[i].kind == tmcl::MotionEventKind::Contact) ++contacts, contact_at = i;
+      if (ev[i].kind == tmcl::MotionEventKind::StepsLost) lost_at = i;
+    }
+    CHECK_EQ(contacts, std::size_t{1});
+    CHECK(contact_at < lost_at && lost_at < ev.size());
+    CHECK_EQ(ev[contact_at].position, 20000);
+    const char* text = wall ? "contact: the shaft meets the right hard stop" : "contact: the shaft meets a load of 150 %";
+    CHECK_EQ(tmcl::motion_event_text(ev[contact_at]), std::string(text));
+    std::ostringstream csv, svg;
+    tmcl::write_csv(csv, rec);
+    tmcl::write_svg(svg, rec);
+    const std::string c = csv.str(), s = svg.str();
+    CHECK(c.find(",0,20000,,," + std::string(text) + "\n") != std::string::npos);
+    CHECK(s.find("d=\"M-6,-5 L0,-1 L-6,3 Z M2,-6 L5,-6 L5,4 L2,4 Z\" fill=\"#8c564b\"><title>") != std::string::npos);
+    CHECK(s.find(">contact</text>") != std::string::npos);  // its legend entry
+    CHECK(s.find(": " + std::string(text) + " (motor 0)</title>") != std::string::npos);
+  }
+}
+
+// --plot-series (issue 41): the load value (206) and the actual current (180) sampled with the
+// motion, as a program would read them at each sample instant (closed form, before the core
+// advances there), each a panel of its own; a core that cannot say them leaves the line out.
+TEST(plot_series_samples_what_a_program_reads) {
+  auto core = tmcl::make_motion_core("tmc5160");
+  core->reset(*tmcl::find_profile("tmcm-1260"), 1);
+  tmcl::MotionRecorder rec(1, 10000);
+  rec.sample_params({206, 180});
+  tmcl::RecordingCore rc(*core, rec);
+  CHECK(rc.set_param(0, 140, 8) == tmcl::ParamWrite::Ok);
+  CHECK(rc.set_param(0, 6, 128) == tmcl::ParamWrite::Ok);
+  CHECK(rc.set_param(0, 172, 1) == tmcl::ParamWrite::Ok);  // coolStep on: 180 moves
+  rc.rotate(0, 51200);
+  std::vector<tmcl::MotionEvent> ev;
+  std::set<std::int32_t> loads, currents;
+  for (tmcl::SimTime t = 10000; t <= 1000000; t += 10000) {
+    while (rc.next_event() < t) rc.advance(rc.next_event(), ev);  // as the VM: through every event
+    rc.advance(t, ev);  // samples up to t first, then moves there
+    const std::size_t i = rec.times().size() - 1;
+    CHECK_EQ(rec.times()[i], t);
+    // (a sample comes before an event at its own instant, as the CSV's rows: 800 ms here)
+    const bool event_now = !ev.empty() && ev.back().at == t;
+    if (!event_now) CHECK_EQ(*rec.param_samples()[i * 2 + 0], rc.get_param(0, 206));
+    if (!event_now) CHECK_EQ(*rec.param_samples()[i * 2 + 1], rc.get_param(0, 180));
+    loads.insert(rc.get_param(0, 206));
+    currents.insert(rc.get_param(0, 180));
+  }
+  CHECK(loads.size() > 2 && currents.size() > 2);  // both change on the way
+  std::ostringstream svg;
+  tmcl::write_svg(svg, rec);
+  const std::string s = svg.str();
+  CHECK(s.find(">load value (206)</text>") != std::string::npos);
+  CHECK(s.find(">actual current (180)</text>") != std::string::npos);
+  CHECK_EQ(count(s, "<polyline"), std::size_t{5});
+  // a core that models neither leaves its lines out, the panels stay
+  Runner r("tmc4361", "usb-2-sd", 20000);
+  r.rec.sample_params({206});
+  mt::usb2sd_main_loop(r);
+  std::ostringstream plain;
+  tmcl::write_svg(plain, r.rec);
+  CHECK(plain.str().find(">load value (206)</text>") != std::string::npos);
+  CHECK_EQ(count(plain.str(), "<polyline"), std::size_t{3});
 }

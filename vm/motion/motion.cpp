@@ -38,6 +38,7 @@ std::string_view motion_event_name(MotionEventKind kind) {
     case MotionEventKind::StepsLost: return "steps lost";
     case MotionEventKind::Rebased: return "position re-based";
     case MotionEventKind::CurrentChanged: return "coolStep current";
+    case MotionEventKind::Contact: return "contact";
   }
   return "?";
 }
@@ -60,6 +61,9 @@ std::string motion_event_text(const MotionEvent& ev) {
   if (ev.kind == MotionEventKind::Rebased)
     return "position re-based: the reference point, " + std::to_string(ev.value) + " before, is 0 now";
   if (ev.kind == MotionEventKind::CurrentChanged) return "coolStep: actual current " + std::to_string(ev.value);
+  if (ev.kind == MotionEventKind::Contact)
+    return ev.value > 0 ? "contact: the shaft meets a load of " + std::to_string(ev.value) + " %"
+                        : "contact: the shaft meets the " + std::string(switch_input_name(ev.input)) + " hard stop";
   if (ev.kind != MotionEventKind::SwitchChanged) return std::string(motion_event_name(ev.kind));
   return std::string(switch_input_name(ev.input)) + " switch " + (ev.active ? "closed" : "opened");
 }

@@ -63,6 +63,13 @@ class LinearCore final : public sw::SwitchCore {
     }
     return SwitchCore::get_param(motor, param);
   }
+  std::optional<std::int32_t> sample_param(int motor, int param, SimTime t) const override {
+    if (param == kApSmartEnergyActualCurrent && !has_coolstep()) {
+      const sw::Motor& m = motors_[static_cast<std::size_t>(motor)];
+      return m.rm.at_rest(t) ? m.p[kApStandbyCurrent] : m.p[kApRunCurrent];
+    }
+    return SwitchCore::sample_param(motor, param, t);
+  }
 
   std::int32_t reference_search(int motor, RfsAction action) override {
     if (action != RfsAction::Start) return 0;

@@ -141,10 +141,10 @@ int SwitchCore::stall_reading(const Motor& m, int value) const {
 
 // ---------------------------------------------------------------- reading the load value
 
-bool SwitchCore::last_reading(const Motor& m, int& value) const {
+bool SwitchCore::last_reading(const Motor& m, int& value, SimTime at) const {
   if (!measuring(m)) return false;
   const auto& segs = m.rm.plan.segs;
-  const double s_now = m.rm.secs(now_) + kTol, s_lo = m.rm.secs(m.sg.commit_us) + kTol;
+  const double s_now = m.rm.secs(at) + kTol, s_lo = m.rm.secs(m.sg.commit_us) + kTol;
   const double cbase = static_cast<double>(m.rm.base + m.rm.phys), F = fullstep(m);
   const double vmin = std::max(stall::kMinFullstepRate * F, stealth_below(m));  // none in StealthChop (E78)
   for (std::size_t i = m.rm.plan.find(s_now - kTol) + 1; i-- > 0;) {
@@ -169,7 +169,7 @@ void SwitchCore::commit(Motor& m) {
     cool_walk(m, m.rm.secs(m.sg.commit_us) + kTol, m.rm.secs(now_) + kTol, false, w);
     m.cool = w.st;
     if (w.measured) m.sg.value = w.value, m.sg.measured = true;
-  } else if (int v = 0; last_reading(m, v)) {
+  } else if (int v = 0; last_reading(m, v, now_)) {
     m.sg.value = v, m.sg.measured = true;
   }
   m.sg.commit_us = now_;
@@ -193,10 +193,10 @@ void SwitchCore::stall_input(Motor& m, int param) {
   }
 }
 
-bool SwitchCore::stall_param(const Motor& m, int param, std::int32_t& value) const {
+bool SwitchCore::stall_param(const Motor& m, int param, std::int32_t& value, SimTime at) const {
   if (!sg_on_ || (param != kLoadValue && param != kDriverFlags)) return false;
   int v = m.sg.value;
-  const bool measured = last_reading(m, v) || m.sg.measured;
+  const bool measured = last_reading(m, v, at) || m.sg.measured;
   if (param == kLoadValue) {
     value = measured ? v : m.p[kLoadValue];
     return true;
@@ -385,6 +385,13 @@ void SwitchCore::on_mech(Motor& m, std::vector<MotionEvent>& out) {
       hold_shaft(m);
       m.sg.block = why == 0 ? seg.dir : why;
       m.sg.next_valid = false;
+      {  // the contact, always (issue 41): what the shaft met, before what follows from it
+        MotionEvent ev{now_, motor, MotionEventKind::Contact, ramp::wrap32(m.rm.xactual(now_))};
+        const int load = load_at(m, static_cast<double>(m.shaft.held_at));
+        if (load >= 100) ev.value = load;  // a timed load or a load range
+        else ev.input = seg.dir > 0 ? SwitchInput::StopRight : SwitchInput::StopLeft;
+        out.push_back(ev);
+      }
       // The counter now parts from the shaft: the deviation stop (212) is planned where it passes
       // 212, mid-plan as at a plan's start (switch_core.cpp, scan_deviation).
       shaft_changed(m, false);

@@ -50,6 +50,17 @@ MotionSample SwitchCore::sample_at(int motor, SimTime t) const {
   return s;
 }
 
+// The load value (206) and the actual current (180) as get_param would read them at t: the
+// reading is the last measurement before t on the plan that holds until the next event, and
+// coolStep's current changes only at events (CurrentChanged).
+std::optional<std::int32_t> SwitchCore::sample_param(int motor, int param, SimTime t) const {
+  if (param != 206 && param != 180) return std::nullopt;  // load value, actual current
+  const Motor& m = motors_[static_cast<std::size_t>(motor)];
+  if (std::int32_t v = 0; stall_param(m, param, v, t)) return v;
+  if (param == 180 && cool_on_) return actual_current(m);
+  return m.p[static_cast<std::size_t>(param)];
+}
+
 bool SwitchCore::models_encoder(const Profile& profile) const {
   const Profile* spec = profile.any_parameter ? find_profile(home_) : &profile;
   return spec && EncoderSpec::of(*spec).present;
@@ -139,7 +150,7 @@ ParamWrite SwitchCore::set_other(Motor& m, int param, std::int32_t value) {
 std::int32_t SwitchCore::get_param(int motor, int param) {
   Motor& m = at(motor);
   const ramp::State s = m.rm.state(now_);
-  if (std::int32_t v = 0; stall_param(m, param, v)) return v;
+  if (std::int32_t v = 0; stall_param(m, param, v, now_)) return v;
   if (param == 180 && cool_on_) return actual_current(m);  // coolstep_core.cpp
   switch (param) {
     case kApActualPosition: return ramp::wrap32(m.rm.xactual(now_));

@@ -133,6 +133,7 @@ class SwitchCore : public ramp::RampCore<Motor> {
   std::string stop_reason(int motor) const override;
   // The sample with the shaft where it has parted from the counter (the plot draws it).
   MotionSample sample_at(int motor, SimTime t) const override;
+  std::optional<std::int32_t> sample_param(int motor, int param, SimTime t) const override;
   // 205, stallGuard 1's threshold, is the core's only where the profile names that measurement
   // (`motion-constant stallguard 1`, stall_core.cpp); elsewhere the VM keeps it, if the module has it.
   bool owns(int param) const override {
@@ -203,7 +204,8 @@ class SwitchCore : public ramp::RampCore<Motor> {
   // Before a write of `param`: a parameter the load value depends on brings it up to now.
   void stall_input(Motor& m, int param);
   // 206 and 208 as read; false when `param` is neither (or the module has no stallGuard2).
-  bool stall_param(const Motor& m, int param, std::int32_t& value) const;
+  // 206 and 208 as read at `at` (now_ or, for a sample, an instant before the next event).
+  bool stall_param(const Motor& m, int param, std::int32_t& value, SimTime at) const;
   void set_goal(Motor& m, Goal goal) {
     abort_search(m);
     m.goal = goal;
@@ -242,7 +244,7 @@ class SwitchCore : public ramp::RampCore<Motor> {
   SimTime next_mech(const Motor& m) const;
   void on_mech(Motor& m, std::vector<MotionEvent>& out);
   void commit(Motor& m);
-  bool last_reading(const Motor& m, int& value) const;
+  bool last_reading(const Motor& m, int& value, SimTime at) const;
   int current_scale(const Motor& m) const;
   double fullstep(const Motor& m) const;
   double period(const Motor& m) const;

@@ -25,6 +25,14 @@
 
 namespace tmcl {
 
+// A scenario's hard stop (RecordingCore::place_hard_stop): a line on the motor's position panel
+// and a comment line in the CSV.
+struct RecordedHardStop {
+  int motor;
+  SwitchInput side;
+  std::int64_t position;
+};
+
 class MotionRecorder {
  public:
   // period > 0: one sample of every motor at 0, period, 2*period, ...
@@ -36,6 +44,15 @@ class MotionRecorder {
   void mark(SimTime at, int motor, Mark kind, std::string label, std::optional<std::int64_t> position = {});
   // A core's event: target reached becomes a TargetReached mark, the others Other marks.
   void motion_event(const MotionEvent& ev);
+  void hard_stop(int motor, SwitchInput side, std::int64_t position) { hard_stops_.push_back({motor, side, position}); }
+
+  // Axis parameters sampled with the motion, each drawn as a panel of its own (tmclrun
+  // --plot-series 206,180): call before the first sample. plot_series_name names those it can.
+  void sample_params(std::vector<int> params) { params_ = std::move(params); }
+  const std::vector<int>& sampled_params() const { return params_; }
+  // param_samples()[(i * motors() + m) * sampled_params().size() + k]: parameter k of motor m at
+  // times()[i], empty where the core cannot say it (MotionCore::sample_param).
+  const std::vector<std::optional<std::int32_t>>& param_samples() const { return param_samples_; }
 
   // Which motors write_csv and write_svg show, in order (tmclrun: shown_motors, vm_output.hpp);
   // every recorded one until it is called.
@@ -48,6 +65,7 @@ class MotionRecorder {
   // samples()[i * motors() + m]: motor m at times()[i].
   const std::vector<MotionSample>& samples() const { return samples_; }
   const std::vector<RecordedMark>& marks() const { return marks_; }
+  const std::vector<RecordedHardStop>& hard_stops() const { return hard_stops_; }
 
  private:
   int motors_;
@@ -56,17 +74,26 @@ class MotionRecorder {
   std::vector<SimTime> times_;
   std::vector<MotionSample> samples_;
   std::vector<RecordedMark> marks_;
+  std::vector<RecordedHardStop> hard_stops_;
+  std::vector<int> params_;
+  std::vector<std::optional<std::int32_t>> param_samples_;
   std::optional<std::vector<int>> shown_;
 };
 
 // CSV: a comment line, a header, then rows in time order; sample rows have an empty event column,
 // event rows an empty velocity and acceleration. Stable text (fixed decimals) for golden files.
 // `units_note` (MotionCore::units_note: a core in chip units) follows as comment lines (tmclrun
-// passes the units at power-on and, one line each, from when on each change held).
+// passes the units at power-on and, one line each, from when on each change held), then one
+// comment line per hard stop of a shown motor ("# hard stop left -20000 (motor 0)").
 void write_csv(std::ostream& out, const MotionRecorder& rec, std::string_view units_note = {});
 
+// The axis parameters a plot can draw as a series (--plot-series) and their names: 206 "load
+// value", 180 "actual current"; empty for any other.
+std::string_view plot_series_name(int param);
+
 // The SVG of plot.hpp: three stacked panels (position, velocity, acceleration) over a shared
-// time axis, one colour per quantity, one dash pattern per motor, event markers and a legend.
+// time axis, one colour per quantity, one dash pattern per motor, event markers and a legend;
+// then one panel per sampled parameter (sample_params).
 void write_svg(std::ostream& out, const MotionRecorder& rec, const PlotOptions& options = {});
 
 }  // namespace tmcl

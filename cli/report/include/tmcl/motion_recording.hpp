@@ -37,11 +37,16 @@ class RecordingCore final : public MotionCore {
   bool target_reached(int motor) const override { return inner_.target_reached(motor); }
   bool reference_done(int motor) const override { return inner_.reference_done(motor); }
   MotionSample sample_at(int motor, SimTime t) const override { return inner_.sample_at(motor, t); }
+  std::optional<std::int32_t> sample_param(int motor, int param, SimTime t) const override {
+    return inner_.sample_param(motor, param, t);
+  }
   bool place_switch(int motor, SwitchInput input, std::int64_t lo, std::int64_t hi) override {
     return inner_.place_switch(motor, input, lo, hi);
   }
   bool place_hard_stop(int motor, SwitchInput side, std::int64_t position) override {
-    return inner_.place_hard_stop(motor, side, position);
+    const bool ok = inner_.place_hard_stop(motor, side, position);
+    if (ok) rec_.hard_stop(motor, side, position);  // drawn as a line on the position panel
+    return ok;
   }
   bool set_load(int motor, int percent) override { return inner_.set_load(motor, percent); }
   bool place_load(int motor, std::int64_t lo, std::int64_t hi, int percent) override {

@@ -17,7 +17,7 @@
 
 namespace tmcl {
 
-enum class Mark : std::uint8_t { MoveIssued, TargetReached, Interrupt, StopSwitch, HomeSwitch, Rebased, Stall, Other };
+enum class Mark : std::uint8_t { MoveIssued, TargetReached, Interrupt, StopSwitch, HomeSwitch, Rebased, Stall, Contact, Other };
 std::string_view mark_name(Mark m);
 
 struct RecordedMark {
@@ -26,6 +26,13 @@ struct RecordedMark {
   Mark kind;
   std::string label;
   std::optional<std::int64_t> position;
+};
+
+// A horizontal line across a panel at a fixed value, labelled at its right end: a hard stop on
+// the position panel ("hard stop left -20000").
+struct PlotLevel {
+  double value;
+  std::string label;
 };
 
 struct PlotPanel {
@@ -37,6 +44,7 @@ struct PlotPanel {
   // lines[k][i]: line k at times[i]. Line k > 0 is dashed; with more than one line the legend
   // names them by Plot::line_names.
   std::vector<std::vector<double>> lines;
+  std::vector<PlotLevel> levels;  // inside the value axis, unless a zoomed panel scales to what moves
 };
 
 struct Plot {

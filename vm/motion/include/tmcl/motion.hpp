@@ -43,6 +43,8 @@ enum class MotionEventKind : std::uint8_t {
                     // `value` kStepsLostStallUnseen: stop on stall is on, but StealthChop hides the stall (E78)
   Rebased,          // a reference search made its reference point position 0: the register jumps
   CurrentChanged,   // coolStep changed the actual current (axis parameter 180) of a moving motor: `value`
+  Contact,          // the shaft meets a hard stop (`input`: its side) or a load of 100 % or more (`value`:
+                    // the load in %, 0 for a hard stop) and stands: the instant the shaft is held
 };
 std::string_view motion_event_name(MotionEventKind kind);
 inline constexpr std::int32_t kStepsLostStallUnseen = 1;  // MotionEvent::value of a StepsLost
@@ -186,6 +188,13 @@ class MotionCore {
   virtual MotionSample sample_at(int motor, SimTime t) const {
     (void)t;
     return {position(motor), 0.0, 0.0};
+  }
+  // What GAP of axis parameter `param` would read at instant t (the last advance() <= t <= the
+  // next event), where the core can say it without advancing: the plot's optional series
+  // (tmclrun --plot-series). The default: nothing (the plot leaves the line out).
+  virtual std::optional<std::int32_t> sample_param(int motor, int param, SimTime t) const {
+    (void)motor, (void)param, (void)t;
+    return std::nullopt;
   }
 
   // For cores whose parameters are in a chip's units (tmc429): the physical value that the raw
