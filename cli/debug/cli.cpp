@@ -820,7 +820,7 @@ bool Cli::command(const std::string& raw) {
   }
   if (is({"run", "r", "start"})) {
     Stop s = e_.start(word == "start");
-    if (word == "start") println("Program started at " + frame_line(0) + ".");
+    if (word == "start" && s.kind != StopKind::NotRunning) println("Program started at " + frame_line(0) + ".");
     report(s);
     return true;
   }
