@@ -219,6 +219,7 @@ class Dap {
     if (!module_) return;
     std::string left;
     if (!module_->restore(left)) std::fprintf(stderr, "tmclrun: error: %s\n", left.c_str());
+    if (target_ == module_.get()) target_ = nullptr;  // gone: the destructor must not touch it
     module_.reset();
   }
   bool after_run(const Stop& s);
