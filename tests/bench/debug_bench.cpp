@@ -17,6 +17,7 @@
 
 #include "spawn.hpp"
 #include "tmcl/debugger.hpp"
+#include "programs.hpp"
 #include "tmcl/motion.hpp"
 #include "tmcl/vm.hpp"
 
@@ -25,10 +26,7 @@ namespace {
 using Clock = std::chrono::steady_clock;
 using tmcl::Instruction;
 using tmcl::Op;
-
-Instruction I(Op op, int type = 0, int motor = 0, std::int32_t value = 0) {
-  return Instruction{static_cast<std::uint8_t>(op), static_cast<std::uint8_t>(type), static_cast<std::uint8_t>(motor), value};
-}
+using tmcl::bench::I;
 
 // iterations of CALC ADD, 1 / DJNZ 0; timer 0 every second; ten instructions after STOP that
 // never run (where the breakpoints go) and a handler that counts in v[1].

@@ -11,7 +11,16 @@
 #include <string>
 #include <vector>
 
+#include "tmcl/codec.hpp"
+#include "tmcl/isa.hpp"
+
 namespace tmcl::bench {
+
+// One instruction of a program given as a list (vm_bench, debug_bench: the assembler is not on
+// their measured path).
+inline Instruction I(Op op, int type = 0, int motor = 0, std::int32_t value = 0) {
+  return Instruction{static_cast<std::uint8_t>(op), static_cast<std::uint8_t>(type), static_cast<std::uint8_t>(motor), value};
+}
 
 inline std::string tmcl_program(int lines, int speed_range = 5000, const char* base_mask = "0xFF") {
   std::string s;

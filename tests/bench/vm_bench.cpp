@@ -25,6 +25,7 @@
 
 #include <unistd.h>
 
+#include "programs.hpp"
 #include "tmcl/motion.hpp"
 #include "tmcl/vm.hpp"
 
@@ -33,10 +34,7 @@ namespace {
 using Clock = std::chrono::steady_clock;
 using tmcl::Instruction;
 using tmcl::Op;
-
-Instruction I(Op op, int type = 0, int motor = 0, std::int32_t value = 0) {
-  return Instruction{static_cast<std::uint8_t>(op), static_cast<std::uint8_t>(type), static_cast<std::uint8_t>(motor), value};
-}
+using tmcl::bench::I;
 
 struct Measured {
   double seconds;      // wall
