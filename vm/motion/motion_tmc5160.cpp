@@ -18,18 +18,11 @@ namespace tmcl {
 namespace tmc5160_core {
 namespace {
 
-// The TMCM-1260's numbers beyond the shared ones (PD57/60-1260 manual, chapter 4).
+// The TMCM-1260's number beyond the family's (PD57/60-1260 manual, chapter 4).
 enum Tmc5160Param : int {
-  kA1 = 15,
-  kV1 = 16,
   kD2 = 17,                // "maximum deceleration"
-  kD1 = 18,
-  kVStart = 19,
-  kVStop = 20,
-  kLimitSoftStop = 26,     // 1: a limit switch stops with the ramp, 0: at once
-  kRelativeOption = 127,   // MVP REL from 0: the last target, 1: the actual position
-  kLastReference = 197,
 };
+using sw::kA1, sw::kV1, sw::kD1, sw::kVStart, sw::kVStop, sw::kLimitSoftStop, sw::kRelativeOption, sw::kLastReference;
 
 constexpr int kTmc5160Owned[] = {kApTargetPosition, kApActualPosition, kApTargetSpeed, kApActualSpeed,
                                  kApMaxPositioningSpeed, kApMaxAcceleration, kApPositionReached,

@@ -21,16 +21,10 @@ namespace tmcl {
 namespace tmc5240_core {
 namespace {
 
-// The TMCM-1290's numbers beyond the shared ones (TMCM-1290 manual, table 16).
+// The TMCM-1290's numbers beyond the family's (TMCM-1290 manual, table 16).
 enum Tmc5240Param : int {
-  kA1 = 15,
-  kV1 = 16,
   kDMax = 17,              // "maximum deceleration"
-  kD1 = 18,
-  kVStart = 19,
-  kVStop = 20,
   kRampWait = 21,          // "ramp wait time", 0.000032 s
-  kLimitSoftStop = 26,     // 1: a limit switch (and a virtual stop) stops with the ramp, 0: at once
   kA2 = 34,
   kV2 = 35,
   kD2 = 36,
@@ -38,9 +32,8 @@ enum Tmc5240Param : int {
   kVirtualRight = 39,
   kVirtualFlags = 40,      // 0 none, 1 at the left, 2 at the right virtual stop
   kVirtualEnable = 41,     // bit 0 left, bit 1 right
-  kRelativeOption = 127,
-  kLastReference = 197,
 };
+using sw::kA1, sw::kV1, sw::kD1, sw::kVStart, sw::kVStop, sw::kLimitSoftStop, sw::kRelativeOption, sw::kLastReference;
 
 constexpr int kTmc5240Owned[] = {kApTargetPosition, kApActualPosition, kApTargetSpeed, kApActualSpeed,
                                  kApMaxPositioningSpeed, kApMaxAcceleration, kApPositionReached,

@@ -22,6 +22,20 @@
 
 namespace tmcl::sw {
 
+// The numbers both modules' manuals give the family's ramp (PD57/60-1260 chapter 4, TMCM-1290
+// table 16); 17, the deceleration down to V1, is each core's own name (D2 on the TMCM-1260,
+// DMAX on the TMCM-1290).
+enum Tmc5160FamilyParam : int {
+  kA1 = 15,
+  kV1 = 16,
+  kD1 = 18,
+  kVStart = 19,
+  kVStop = 20,
+  kLimitSoftStop = 26,     // 1: a limit switch (and a virtual stop) stops with the ramp, 0: at once
+  kRelativeOption = 127,   // MVP REL from 0: the last target, 1: the actual position
+  kLastReference = 197,
+};
+
 // A chip's ramp parameters: their numbers, and the names the module's manual gives AMAX and DMAX
 // (the TMCM-1260 calls them A2 and D2). a2/v2/d2 = 0: no middle band (SixPoint);
 // zero_wait = 0: the ramp wait time is not modelled.
