@@ -28,11 +28,13 @@ using json::Value;
 
 class Dap {
  public:
-  Dap(const DapSetup& setup, std::FILE* in, std::FILE* out) : setup_(setup), in_fd_(os::pollable_input(::fileno(in))), out_(out) {}
+  Dap(const DapSetup& setup, std::FILE* in, std::FILE* out)
+      : setup_(setup), file_fd_(::fileno(in)), in_fd_(os::pollable_input(file_fd_)), out_(out) {}
   // tmclctl PORT debug --dap: the module is attached already; `attach` confirms it (taking the
   // program as it is), `launch` too (then configurationDone resets and runs it, as `run`).
   Dap(const DapSetup& setup, Target& attached, std::FILE* in, std::FILE* out) : Dap(setup, in, out) { use(attached); }
   ~Dap() {
+    os::release_pollable_input(in_fd_, file_fd_);
     if (target_) {  // a target attached from outside outlives the adapter
       target_->on_output = nullptr;
       target_->on_wait = nullptr;
@@ -238,7 +240,8 @@ class Dap {
   bool handle(const Value& req);
 
   DapSetup setup_;
-  int in_fd_;
+  int file_fd_;  // the input as given
+  int in_fd_;    // what os::poll waits on for it (pollable_input)
   std::string inbuf_;
   bool eof_ = false;
   std::FILE* out_;

@@ -90,6 +90,9 @@ class Served {
     };
     e_.on_slice = [this] { return slice(); };
   }
+  ~Served() { os::release_pollable_input(poll_fd_, in_fd_); }
+  Served(const Served&) = delete;
+  Served& operator=(const Served&) = delete;
 
   int run() {
     loop_ = std::make_unique<ServeLoop>(e_.vm(), opt_);

@@ -41,6 +41,8 @@ void wake(int fd, char byte) { [[maybe_unused]] ssize_t n = ::write(fd, &byte, 1
 
 int pollable_input(int fd) { return fd; }
 
+void release_pollable_input(int, int) {}  // the descriptor itself: the caller's to close
+
 std::string error_text(int err) { return std::strerror(err); }
 
 std::string resolve_error_text(int rc) { return ::gai_strerror(rc); }

@@ -125,23 +125,41 @@ bool wake_pair(int fds[2]) {
 void wake(int fd, char byte) { ::send(static_cast<SOCKET>(fd), &byte, 1, 0); }
 
 int pollable_input(int fd) {
+  // The thread reads a duplicate of fd, its own: the caller may close fd while the thread still
+  // reads (a DAP session ends before the thread has seen the end of its file), and the C library
+  // gives that number to the next file opened, whose input the thread would then take.
+  const int own = ::_dup(fd);
+  if (own < 0) return -1;
   int pair[2];
-  if (!wake_pair(pair)) return -1;
+  if (!wake_pair(pair)) {
+    ::_close(own);
+    return -1;
+  }
   u_long off = 0;  // both ends block: the thread waits for the reader, the reader for input,
   ::ioctlsocket(static_cast<SOCKET>(pair[1]), FIONBIO, &off);  // as they do on a POSIX stdin
   ::ioctlsocket(static_cast<SOCKET>(pair[0]), FIONBIO, &off);
-  std::thread([fd, out = pair[1]] {
+  std::thread([own, out = pair[1]] {
     char buf[65536];
-    for (int n; (n = ::_read(fd, buf, sizeof buf)) > 0;) {
+    bool reader_gone = false;
+    for (int n; !reader_gone && (n = ::_read(own, buf, sizeof buf)) > 0;) {
       for (int done = 0; done < n;) {
         const int w = ::send(static_cast<SOCKET>(out), buf + done, n - done, 0);
-        if (w <= 0) return;  // the reader is gone
+        if (w <= 0) {
+          reader_gone = true;
+          break;
+        }
         done += w;
       }
     }
+    ::_close(own);
     ::shutdown(static_cast<SOCKET>(out), SD_SEND);  // end of input: the reader sees it as such
+    close_socket(out);
   }).detach();
   return pair[0];
+}
+
+void release_pollable_input(int polled, int fd) {
+  if (polled >= 0 && polled != fd) close_socket(polled);  // the thread's next send fails: it ends
 }
 
 std::string error_text(int err) {

@@ -220,6 +220,7 @@ struct ServeLoop::Impl {
         spin(o.spin_us) {}
   ~Impl() {
     for (const Refused& r : refused) os::close_socket(r.fd);
+    if (opt.transport == Transport::Stdio) os::release_pollable_input(in_fd, opt.in_fd);
   }
   Impl(const Impl&) = delete;
   Impl& operator=(const Impl&) = delete;

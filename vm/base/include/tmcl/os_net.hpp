@@ -64,8 +64,12 @@ bool wake_pair(int fds[2]);
 void wake(int fd, char byte);
 // What os::poll can wait on for input arriving on file descriptor `fd` (standard input): the
 // descriptor itself on POSIX; on Windows a socket that a thread fills with what it reads from
-// `fd`, closed at its end of input. -1 with errno set.
+// a duplicate of `fd` (the caller may close `fd` at any time), closed at its end of input. -1 with
+// errno set.
 int pollable_input(int fd);
+// Done with what pollable_input(fd) made: closes the socket on Windows (its thread ends at its
+// next send); nothing on POSIX, where it is `fd` itself.
+void release_pollable_input(int polled, int fd);
 // strerror(): on Windows also the names its C library has no text for (ECONNREFUSED, ...), in
 // glibc's words.
 std::string error_text(int err);
