@@ -3,6 +3,7 @@
 // success, reasons, values) as a client would see them; and checks that the stepping rules'
 // DAP golden transcripts stop where their command-line twins stop.
 #include "check.hpp"
+#include "os_test.hpp"
 
 #include <cstdio>
 #include <cstdlib>
@@ -54,8 +55,10 @@ struct Session {
 Session parse_session(const std::string& all);
 
 Session run(const std::vector<std::string>& requests) {
-  std::FILE* in = std::tmpfile();
-  std::FILE* out = std::tmpfile();
+  std::FILE* in = tmcl_test::scratch_file();
+  std::FILE* out = tmcl_test::scratch_file();
+  CHECK(in && out);
+  if (!in || !out) return {};
   int seq = 0;
   for (const auto& r : requests) {
     std::string body = "{\"seq\":" + std::to_string(++seq) + ",\"type\":\"request\"," + r + "}";
@@ -318,7 +321,9 @@ std::vector<Place> cli_places(const std::string& path, const std::vector<std::st
   setup.core_name = std::string(profile.default_motion);
   debug::ProgramInfo copy = info;
   debug::Engine engine(setup, std::move(copy), make_motion_core(setup.core_name));
-  std::FILE* out = std::tmpfile();
+  std::FILE* out = tmcl_test::scratch_file();
+  CHECK(out != nullptr);
+  if (!out) return {};
   debug::CommandLine cli(engine, out, false, false);
   std::vector<Place> places;
   auto value = [&](const std::string& expr) {

@@ -3,6 +3,7 @@
 // state one run gives); reverse steps return to the exact earlier state; checkpoint memory stays
 // within its bound.
 #include "check.hpp"
+#include "os_test.hpp"
 
 #include <map>
 
@@ -367,7 +368,9 @@ TEST(set_var_hardstop_and_load_at_the_prompt) {
   s.core_name = std::string(profile->default_motion);
   Engine e(s, assemble_info("SAP 140, 0, 4\nSAP 181, 0, 200\nROL 0, 400\nloop: WAIT TICKS, 0, 10\nJA loop\n", *profile),
            make_motion_core(s.core_name));
-  std::FILE* out = std::tmpfile();
+  std::FILE* out = tmcl_test::scratch_file();
+  CHECK(out != nullptr);
+  if (!out) return;
   CommandLine cli(e, out, false, false);
   auto offers = [&](const std::string& line) {
     std::string all;
@@ -421,7 +424,9 @@ TEST(a_change_by_hand_keeps_the_scenarios_earlier_lines_for_the_next_run) {
   s.inputs = {load};
   Engine e(s, assemble_info("SAP 140, 0, 4\nROL 0, 400\nloop: WAIT TICKS, 0, 10\nJA loop\n", *profile),
            make_motion_core(s.core_name));
-  std::FILE* out = std::tmpfile();
+  std::FILE* out = tmcl_test::scratch_file();
+  CHECK(out != nullptr);
+  if (!out) return;
   CommandLine cli(e, out, false, false);
   auto load_value = [&] {
     std::int32_t v = 0;

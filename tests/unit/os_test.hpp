@@ -1,12 +1,15 @@
 // What the unit tests need of the operating system, written once so that it is the same on Linux
 // and on Windows (the cross build runs the unit tests under Wine, tests/windows/run.sh):
-// a fresh scratch folder, setting and clearing environment variables, a stream whose text the
-// test reads back, and a pipe (in place of POSIX's mkdtemp, setenv, open_memstream and pipe).
+// a fresh scratch folder, setting and clearing environment variables, a temporary file, a stream
+// whose text the test reads back, and a pipe (in place of POSIX's mkdtemp, setenv, tmpfile,
+// open_memstream and pipe).
 #pragma once
 
 #ifdef _WIN32
 #include <fcntl.h>
 #include <io.h>
+#include <process.h>
+#include <sys/stat.h>
 #else
 #include <unistd.h>
 #endif
@@ -86,10 +89,32 @@ inline void close_fd(int fd) {
 #endif
 }
 
+// A temporary file open for reading and writing, removed when closed; nullptr when none could
+// be made. std::tmpfile() on POSIX. Under Wine, tmpfile() (a name in the drive's root, opened
+// without O_EXCL) fails with EACCES now and then while other processes make temporary files too,
+// as ctest -j2 runs them (a DAP test session then got no input, or crashed on a null FILE*: CI's
+// Windows step): here a name of this process's own in the current folder, created exclusively.
+inline std::FILE* scratch_file() {
+#ifdef _WIN32
+  static unsigned counter = 0;
+  for (int attempt = 0; attempt < 100; ++attempt) {
+    const std::string name = "tmcl-scratch-" + std::to_string(::_getpid()) + "-" + std::to_string(counter++) + ".tmp";
+    const int fd = ::_open(name.c_str(), _O_CREAT | _O_EXCL | _O_RDWR | _O_BINARY | _O_TEMPORARY, _S_IREAD | _S_IWRITE);
+    if (fd < 0) continue;
+    if (std::FILE* f = ::_fdopen(fd, "w+b")) return f;
+    ::_close(fd);
+    return nullptr;
+  }
+  return nullptr;
+#else
+  return std::tmpfile();
+#endif
+}
+
 // A stream to hand to code that writes to a FILE*, and the text written to it: text() closes it.
 class CapturedFile {
  public:
-  CapturedFile() : file_(std::tmpfile()) {}
+  CapturedFile() : file_(scratch_file()) {}
   CapturedFile(const CapturedFile&) = delete;
   CapturedFile& operator=(const CapturedFile&) = delete;
   ~CapturedFile() {

@@ -8,6 +8,7 @@
 #include <thread>
 
 #include "check.hpp"
+#include "os_test.hpp"
 #include "machine.hpp"
 #include "tmcl/vm_output.hpp"
 
@@ -130,8 +131,8 @@ TEST(stop_request_in_a_wait_and_after_stop) {
 }
 
 TEST(an_interrupted_traced_run_goes_on_as_if_uninterrupted) {
-  std::FILE* plain = std::tmpfile();
-  std::FILE* cut = std::tmpfile();
+  std::FILE* plain = tmcl_test::scratch_file();
+  std::FILE* cut = tmcl_test::scratch_file();
   CHECK(plain && cut);
   if (!plain || !cut) return;
   tmcl::Limits lim;
