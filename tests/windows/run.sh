@@ -103,6 +103,13 @@ fi
 grep -o 'NOT-ON-WINDOWS: [^"]*' "$win/Testing/Temporary/LastTest.log" 2>/dev/null | sort -u | sed 's/^NOT-ON-WINDOWS: /SKIP /'
 if [[ "$u_fail" != 0 ]]; then
   grep -E '\*\*\*(Failed|Timeout|Exception)' "$win/unit.log"
+  # What each failed test printed in the failed run, before the rerun below replaces the log: a
+  # failure that the rerun does not repeat is still shown (CI once showed only a passing rerun).
+  for t in $(sed -n 's/^[0-9]*:\(.*\)$/\1/p' "$win/Testing/Temporary/LastTestsFailed.log" 2>/dev/null); do
+    echo "== windows: what $t printed in the failed run (its last 60 lines):"
+    awk -v t="$t" '$0 ~ ("Testing: " t "$") {on = 1} on {print} on && /^<end of output>/ {exit}' \
+      "$win/Testing/Temporary/LastTest.log" | tail -60
+  done
   (cd "$win" && ctest --rerun-failed --output-on-failure) 2>&1 | tail -60
 fi
 passed=$((passed + u_total - u_fail - u_skip)) failed=$((failed + u_fail)) skipped=$((skipped + u_skip))
