@@ -10,7 +10,8 @@
 //  - machine instructions per TMCL instruction, counted by callgrind when valgrind is installed:
 //    exact on a loaded machine, so its noise is only what a different compiler makes of the loop;
 //  - the dispatch time divided by the time of a reference interpreter of the same loop run in the
-//    same process, interleaved (median of kPairs): the machine's speed cancels out.
+//    same process, interleaved (the best of 7 each): the machine's speed cancels out. A process's
+//    layout moves it too, so a ratio over its noise is measured again in fresh processes.
 // After a change that makes the loop faster, the benchmark says "better than recorded": record the
 // new figure here (and in docs/performance.md) so that the guard holds the gain.
 #include <algorithm>
@@ -48,10 +49,13 @@ struct Measured {
 // loop 64-byte aligned: vm/CMakeLists.txt). The noise: callgrind counts are exact, but a compiler
 // update may move a loop by an instruction (3 %). The in-process ratios read, in 3 runs under load
 // 10: fused 0.823 to 0.838 (0ab73b9 in the same minutes: 0.881 to 0.889), plain 1.242 to 1.274
-// (0ab73b9: 1.411 to 1.485); 10 % is past their noise. The times depend on how the loop is laid
-// out, which the instruction counts do not see: the fix without the fused pair's [[unlikely]] ran
-// the same instructions with the fused loop at 1.12 to 1.32 (docs/performance.md, "Dispatch side
-// by side").
+// (0ab73b9: 1.411 to 1.485). On the idle machine later the same day they spread further, by
+// process and by the minute, with the callgrind counts unchanged: fused 0.80 to 0.96, plain 1.22
+// to 1.48 (docs/performance.md, "The dispatch guard"). So a ratio over its record by more than
+// 10 % is measured again in fresh processes, and its noise is 20 %: the CPU rows catch a layout
+// that costs a fifth or more (the regression of issue 42 cost 53 %; the pre-decoded jumps without
+// the fused pair's [[unlikely]] ran the fused loop at 1.12 to 1.32), the callgrind rows any change
+// in the instructions run.
 struct Recorded {
   const char* what;
   double figure;  // the recorded value; larger is worse
@@ -61,10 +65,10 @@ constexpr Recorded kFusedInstructions{"callgrind: machine instructions per TMCL 
 constexpr Recorded kPlainInstructions{"callgrind: machine instructions per TMCL instruction, CALC ADD/COMP/JC loop", 25.02, 0.03};
 constexpr Recorded kFusedRatio{
     "CPU ns per TMCL instruction of the CALC ADD/DJNZ loop / CPU ns per instruction of a reference interpreter of it (same process)",
-    0.83, 0.10};
+    0.83, 0.20};
 constexpr Recorded kPlainRatio{
     "CPU ns per TMCL instruction of the CALC ADD/COMP/JC loop / CPU ns per instruction of the reference interpreter (same process)",
-    1.26, 0.10};
+    1.26, 0.20};
 
 Measured run(const std::vector<Instruction>& prog, tmcl::SimTime instr_time) {
   auto core = tmcl::make_ideal_motion_core();
@@ -159,15 +163,20 @@ std::string goal_of(const Recorded& r) {
   return buf;
 }
 
+// This benchmark's own executable, to run it again ("" when /proc does not say).
+std::string self_path() {
+  char self[4096];
+  const ssize_t n = readlink("/proc/self/exe", self, sizeof self - 1);
+  return n > 0 ? std::string(self, static_cast<std::size_t>(n)) : std::string();
+}
+
 // Machine instructions per TMCL instruction of `program` (fused or plain, 10^6 iterations), counted
 // by callgrind inside Vm::run only: this benchmark runs itself under valgrind with --probe. 0 when
 // valgrind is not installed or the count could not be read.
 double callgrind_per_instruction(const char* program) {
   if (std::system("command -v valgrind >/dev/null 2>&1") != 0) return 0;
-  char self[4096];
-  ssize_t n = readlink("/proc/self/exe", self, sizeof self - 1);
-  if (n <= 0) return 0;
-  self[n] = 0;
+  const std::string self = self_path();
+  if (self.empty()) return 0;
   const std::string cmd = std::string("valgrind --tool=callgrind --callgrind-out-file=/dev/null --collect-atstart=no "
                                       "'--toggle-collect=tmcl::Vm::run(*' '") +
                           self + "' --probe " + program + " 2>&1";
@@ -183,8 +192,12 @@ double callgrind_per_instruction(const char* program) {
   return collected > 0 && steps > 0 ? collected / steps : 0;
 }
 
-// 4. The guard: the dispatch loops against their recorded figures; false on a regression.
-bool guard() {
+// The guard's CPU ratios in this process: each loop's CPU ns per TMCL instruction over the reference
+// interpreter's, and the reference's own ns.
+struct Ratios {
+  double fused, plain, ref_ns;
+};
+Ratios cpu_ratios() {
   // CPU time of the process, not wall time: on the shared machine a run is often descheduled, and
   // the minimum of kPairs interleaved runs of each is the speed of the loops, not of the load.
   constexpr int kPairs = 7;
@@ -199,9 +212,37 @@ bool guard() {
     plain_min = std::min(plain_min, q.cpu_seconds * 1e9 / static_cast<double>(q.steps));
     ref_min = std::min(ref_min, static_cast<double>(c2 - c1) / CLOCKS_PER_SEC * 1e9 / static_cast<double>(ref_steps));
   }
-  for (const auto& [rec, vm_min] : {std::pair{kFusedRatio, fused_min}, std::pair{kPlainRatio, plain_min}})
-    std::printf("vm guard: %s, best of %d interleaved runs each (%.3f / %.3f ns)\t%s\t%s\n", rec.what, kPairs, vm_min, ref_min,
-                goal_of(rec).c_str(), judge(rec, vm_min / ref_min).c_str());
+  return {fused_min / ref_min, plain_min / ref_min, ref_min};
+}
+
+// cpu_ratios() measured again in a fresh process (this benchmark with --guard-cpu); false when it
+// could not be run.
+bool cpu_ratios_in_fresh_process(Ratios& out) {
+  const std::string self = self_path();
+  if (self.empty()) return false;
+  std::FILE* p = popen(("'" + self + "' --guard-cpu").c_str(), "r");
+  if (!p) return false;
+  const bool ok = std::fscanf(p, "ratios %lf %lf %lf", &out.fused, &out.plain, &out.ref_ns) == 3;
+  return pclose(p) == 0 && ok;
+}
+
+// 4. The guard: the dispatch loops against their recorded figures; false on a regression.
+bool guard() {
+  // A process moves the ratios (see the recorded figures): a ratio over its record by more than
+  // 10 % is measured again in up to two fresh processes and the best taken. A real regression is
+  // slow in every process; a process that happened to be slow is not.
+  Ratios best = cpu_ratios();
+  int processes = 1;
+  auto over = [](const Recorded& r, double v) { return v > r.figure * 1.10; };
+  while (processes < 3 && (over(kFusedRatio, best.fused) || over(kPlainRatio, best.plain))) {
+    Ratios again;
+    if (!cpu_ratios_in_fresh_process(again)) break;
+    ++processes;
+    best = {std::min(best.fused, again.fused), std::min(best.plain, again.plain), best.ref_ns};
+  }
+  for (const auto& [rec, ratio] : {std::pair{kFusedRatio, best.fused}, std::pair{kPlainRatio, best.plain}})
+    std::printf("vm guard: %s, best of 7 interleaved runs each in %d process%s (the reference %.3f ns in the first)\t%s\t%s\n", rec.what,
+                processes, processes == 1 ? "" : "es", best.ref_ns, goal_of(rec).c_str(), judge(rec, ratio).c_str());
   for (const auto& [rec, program] : {std::pair{kFusedInstructions, "fused"}, std::pair{kPlainInstructions, "plain"}}) {
     if (double per = callgrind_per_instruction(program); per > 0)
       std::printf("vm guard: %s\t%s\t%s\n", rec.what, goal_of(rec).c_str(), judge(rec, per).c_str());
@@ -224,6 +265,12 @@ int main(int argc, char** argv) {
   }
   // The guard alone (a few seconds, and the callgrind runs): before committing a change to the VM.
   if (argc == 2 && std::strcmp(argv[1], "--guard") == 0) return guard() ? 0 : 1;
+  // The guard's CPU ratios measured again in a fresh process (guard()).
+  if (argc == 2 && std::strcmp(argv[1], "--guard-cpu") == 0) {
+    const Ratios r = cpu_ratios();
+    std::printf("ratios %.6f %.6f %.6f\n", r.fused, r.plain, r.ref_ns);
+    return 0;
+  }
 
   // 1. Dispatch: 10^8 iterations of CALC ADD, 1 / DJNZ; timer 0 every second with its
   //    interrupt enabled (fires ~4000 times over the 4000 simulated seconds).
