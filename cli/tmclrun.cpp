@@ -380,8 +380,9 @@ tmcl::cli::Tool command_line(Options& o) {
       {"--plot-to", "DURATION", "with --plot: draw up to this simulated instant (default: the end)",
        duration("--plot-to", o.plot_to), Values::words(durations)},
       {"--plot-series", "PARAMS",
-       "with --plot: draw axis parameters too, a panel each, as a program\n"
-       "reads them: 206 the load value, 180 the actual current, or 206,180",
+       "with --plot or --csv: record axis parameters too, as a program reads\n"
+       "them (a panel, a column each): 206 the load value, 180 the actual\n"
+       "current, or 206,180",
        [&o](const std::string& v) { return plot_series_value(v, o.plot_series); }, Values::words(std::vector<std::string>{"206", "180", "206,180"}),
        "206, 180 or both (206,180)"},
       {"--debug", "",
@@ -479,7 +480,8 @@ int parse_args(int argc, char** argv, Options& o) {
   if (!o.log.empty() && (!o.serving || !o.trace)) return usage_error("--log FILE goes with --serve --trace");
   if ((o.plot_from != 0 || o.plot_to != tmcl::kNever) && o.plot.empty())
     return usage_error("--plot-from and --plot-to go with --plot FILE.svg");
-  if (!o.plot_series.empty() && o.plot.empty()) return usage_error("--plot-series goes with --plot FILE.svg");
+  if (!o.plot_series.empty() && o.plot.empty() && o.csv.empty())
+    return usage_error("--plot-series goes with --plot FILE.svg or --csv FILE");
   if (o.plot_to <= o.plot_from) return usage_error("--plot-to must be later than --plot-from");
   if (!o.eeprom_seal.empty()) {
     if (have_program || o.serving || !o.eeprom.empty())

@@ -86,44 +86,67 @@ bool is_shown(const MotionRecorder& rec, int motor) {
 
 }  // namespace
 
+namespace {
+// "load_value_206": a sampled parameter's CSV column, its plot name in words and its number.
+std::string series_column(int param) {
+  std::string name(plot_series_name(param));
+  if (name.empty()) name = "parameter";
+  std::replace(name.begin(), name.end(), ' ', '_');
+  return name + "_" + std::to_string(param);
+}
+}  // namespace
+
 void write_csv(std::ostream& out, const MotionRecorder& rec, std::string_view units_note) {
   out << "# time in s, position in microsteps, velocity in pps, acceleration in pps^2; sample period "
       << seconds(rec.period()) << " s\n";
   if (!units_note.empty()) out << "# " << units_note << '\n';
   for (const auto& h : rec.hard_stops())
     if (is_shown(rec, h.motor)) out << "# " << hard_stop_text(h) << " (motor " << h.motor << ")\n";
-  out << "time_s,motor,position,velocity_pps,acceleration_pps2,event\n";
   const auto& times = rec.times();
+  const auto motors = static_cast<std::size_t>(rec.motors());
+  const auto shown = rec.shown_motors();
+  // After `event`, so that the first six columns are the same in every file: the shaft when it
+  // parted from the counter in the run (steps lost), and the parameters sampled with the motion.
+  bool shaft_column = false;
+  for (std::size_t i = 0; i < times.size() && !shaft_column; ++i)
+    for (int m : shown)
+      if (static_cast<std::size_t>(m) < motors && rec.samples()[i * motors + static_cast<std::size_t>(m)].shaft) shaft_column = true;
+  const auto& params = rec.sampled_params();
+  out << "time_s,motor,position,velocity_pps,acceleration_pps2,event";
+  if (shaft_column) out << ",shaft_position";
+  for (int p : params) out << ',' << series_column(p);
+  out << '\n';
+  const std::string no_extras(static_cast<std::size_t>(shaft_column) + params.size(), ',');
   const auto& marks = rec.marks();
   std::vector<std::size_t> order(marks.size());
   for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
   std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return marks[a].at < marks[b].at; });
+  auto mark_row = [&](const RecordedMark& m) {
+    out << seconds(m.at) << ',' << (m.motor >= 0 ? std::to_string(m.motor) : std::string()) << ','
+        << (m.position ? std::to_string(*m.position) : std::string()) << ",,," << csv_field(event_text(m)) << no_extras
+        << '\n';
+  };
   std::size_t k = 0;
-  const auto motors = static_cast<std::size_t>(rec.motors());
   for (std::size_t i = 0; i <= times.size(); ++i) {
     // events at an instant come after that instant's samples
     SimTime limit = i < times.size() ? times[i] : std::numeric_limits<SimTime>::max();
-    for (; k < order.size() && marks[order[k]].at < limit; ++k) {
-      const RecordedMark& m = marks[order[k]];
-      out << seconds(m.at) << ',' << (m.motor >= 0 ? std::to_string(m.motor) : std::string()) << ','
-          << (m.position ? std::to_string(*m.position) : std::string()) << ",,,"
-          << csv_field(event_text(m)) << '\n';
-    }
+    for (; k < order.size() && marks[order[k]].at < limit; ++k) mark_row(marks[order[k]]);
     if (i == times.size()) break;
-    for (int shown : rec.shown_motors()) {
-      const auto m = static_cast<std::size_t>(shown);
+    for (int m_shown : shown) {
+      const auto m = static_cast<std::size_t>(m_shown);
       if (m >= motors) continue;
       const MotionSample& s = rec.samples()[i * motors + m];
       out << seconds(times[i]) << ',' << m << ',' << s.position << ',' << fixed(s.velocity, 3) << ','
-          << fixed(s.acceleration, 3) << ",\n";
+          << fixed(s.acceleration, 3) << ',';
+      if (shaft_column) out << ',' << s.shaft.value_or(s.position);
+      for (std::size_t p = 0; p < params.size(); ++p) {
+        out << ',';
+        if (const auto& v = rec.param_samples()[(i * motors + m) * params.size() + p]) out << *v;
+      }
+      out << '\n';
     }
     // marks exactly at this sample instant
-    for (; k < order.size() && marks[order[k]].at == times[i]; ++k) {
-      const RecordedMark& m = marks[order[k]];
-      out << seconds(m.at) << ',' << (m.motor >= 0 ? std::to_string(m.motor) : std::string()) << ','
-          << (m.position ? std::to_string(*m.position) : std::string()) << ",,,"
-          << csv_field(event_text(m)) << '\n';
-    }
+    for (; k < order.size() && marks[order[k]].at == times[i]; ++k) mark_row(marks[order[k]]);
   }
 }
 

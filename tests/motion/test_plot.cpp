@@ -259,6 +259,12 @@ TEST(svg_draws_the_shaft_where_it_parts_from_the_counter) {
     const std::string s = svg.str();
     CHECK((s.find(">motor 0 shaft</text>") != std::string::npos) == (wall != 0));
     CHECK_EQ(count(s, "<polyline"), std::size_t{wall ? 4u : 3u});
+    // the CSV: a shaft column after the event in a run that lost steps, none otherwise
+    std::ostringstream csv;
+    tmcl::write_csv(csv, r.rec);
+    const std::string c = csv.str();
+    CHECK((c.find("acceleration_pps2,event,shaft_position\n") != std::string::npos) == (wall != 0));
+    if (wall) CHECK(c.find(",20000\n") != std::string::npos);  // the shaft stands at the wall
   }
 }
 
@@ -323,7 +329,7 @@ TEST(contact_is_a_mark_of_its_own) {
     tmcl::write_csv(csv, rec);
     tmcl::write_svg(svg, rec);
     const std::string c = csv.str(), s = svg.str();
-    CHECK(c.find(",0,20000,,," + std::string(text) + "\n") != std::string::npos);
+    CHECK(c.find(",0,20000,,," + std::string(text) + ",\n") != std::string::npos);  // then the empty shaft column
     CHECK(s.find("d=\"M-6,-5 L0,-1 L-6,3 Z M2,-6 L5,-6 L5,4 L2,4 Z\" fill=\"#8c564b\"><title>") != std::string::npos);
     CHECK(s.find(">contact</text>") != std::string::npos);  // its legend entry
     CHECK(s.find(": " + std::string(text) + " (motor 0)</title>") != std::string::npos);
@@ -364,6 +370,22 @@ TEST(plot_series_samples_what_a_program_reads) {
   CHECK(s.find(">load value (206)</text>") != std::string::npos);
   CHECK(s.find(">actual current (180)</text>") != std::string::npos);
   CHECK_EQ(count(s, "<polyline"), std::size_t{5});
+  // in the CSV a column each after the event, the same samples; event rows leave them empty
+  std::ostringstream csv;
+  tmcl::write_csv(csv, rec);
+  const std::string c = csv.str();
+  CHECK(c.find("\ntime_s,motor,position,velocity_pps,acceleration_pps2,event,load_value_206,actual_current_180\n") !=
+        std::string::npos);
+  const std::string last_sample = "1.000000,0," + std::to_string(rec.samples().back().position) + ",";
+  const std::size_t at = c.find(last_sample);
+  CHECK(at != std::string::npos);
+  if (at != std::string::npos) {
+    const std::string row = c.substr(at, c.find('\n', at) - at);
+    const std::string tail = "," + std::to_string(*rec.param_samples()[rec.param_samples().size() - 2]) + "," +
+                             std::to_string(*rec.param_samples().back());
+    CHECK_EQ(row.substr(row.size() - tail.size()), tail);
+  }
+  CHECK(c.find(",,,move issued: rotate at 51200 pps,,\n") != std::string::npos);
   // a core that models neither leaves its lines out, the panels stay
   Runner r("tmc4361", "usb-2-sd", 20000);
   r.rec.sample_params({206});
