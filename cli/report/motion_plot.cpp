@@ -41,6 +41,7 @@ void MotionRecorder::motion_event(const MotionEvent& ev) {
            : ev.input == SwitchInput::Home           ? Mark::HomeSwitch
                                                      : Mark::StopSwitch;
   mark(ev.at, ev.motor, k, motion_event_text(ev), ev.position);
+  if (ev.kind == MotionEventKind::Rebased) rebase(ev.at, ev.motor, -std::int64_t{ev.value});  // the reference point is 0 now
 }
 
 std::string_view plot_series_name(int param) {
@@ -100,8 +101,15 @@ void write_csv(std::ostream& out, const MotionRecorder& rec, std::string_view un
   out << "# time in s, position in microsteps, velocity in pps, acceleration in pps^2; sample period "
       << seconds(rec.period()) << " s\n";
   if (!units_note.empty()) out << "# " << units_note << '\n';
-  for (const auto& h : rec.hard_stops())
-    if (is_shown(rec, h.motor)) out << "# " << hard_stop_text(h) << " (motor " << h.motor << ")\n";
+  for (const auto& h : rec.hard_stops()) {
+    if (!is_shown(rec, h.motor)) continue;
+    out << "# " << hard_stop_text(h) << " (motor " << h.motor << ")\n";
+    std::int64_t at = h.position;
+    for (const auto& r : rec.rebases())
+      if (r.motor == h.motor)
+        out << "# " << hard_stop_text(h) << " (motor " << h.motor << ") at " << (at += r.delta) << " from " << seconds(r.at)
+            << " s, the position count re-based\n";
+  }
   const auto& times = rec.times();
   const auto motors = static_cast<std::size_t>(rec.motors());
   const auto shown = rec.shown_motors();
@@ -206,11 +214,16 @@ void write_svg(std::ostream& out, const MotionRecorder& rec, const PlotOptions& 
     plot.line_names.push_back("motor " + std::to_string(shown[k]) + " shaft");
   }
   // The scenario's hard stops: a line each on the position panel, named after the motor when
-  // the plot shows more than one.
-  for (const auto& h : rec.hard_stops())
-    if (is_shown(rec, h.motor))
-      plot.panels[0].levels.push_back({static_cast<double>(h.position),
-                                       (shown.size() > 1 ? "motor " + std::to_string(h.motor) + " " : std::string()) + hard_stop_text(h)});
+  // the plot shows more than one, where the wall is in the motor's count at each instant.
+  for (const auto& h : rec.hard_stops()) {
+    if (!is_shown(rec, h.motor)) continue;
+    PlotLevel level{static_cast<double>(h.position),
+                    (shown.size() > 1 ? "motor " + std::to_string(h.motor) + " " : std::string()) + hard_stop_text(h)};
+    std::int64_t at = h.position;
+    for (const auto& r : rec.rebases())
+      if (r.motor == h.motor) level.moves.emplace_back(r.at, static_cast<double>(at += r.delta));
+    plot.panels[0].levels.push_back(std::move(level));
+  }
   write_svg(out, plot, options);
 }
 

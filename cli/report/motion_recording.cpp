@@ -40,7 +40,10 @@ std::string RecordingCore::motor_units(int motor) const {
 }
 
 ParamWrite RecordingCore::set_param(int motor, int param, std::int32_t value) {
+  const std::int32_t before = param == kApActualPosition ? inner_.position(motor) : 0;
   const ParamWrite r = inner_.set_param(motor, param, value);
+  // SAP 1 re-bases the motor's count: the walls stay where they are, at other counts now.
+  if (param == kApActualPosition && r == ParamWrite::Ok) rec_.rebase(now_, motor, std::int64_t{inner_.position(motor)} - before);
   if (units_.empty()) return r;  // a core in pps
   if (std::string note = inner_.units_note(); note != units_.back().second) {
     // A mark (a CSV row) for each motor whose units changed, with its own units: the row's motor

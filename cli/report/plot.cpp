@@ -353,6 +353,10 @@ void write_svg(std::ostream& out, const Plot& whole, const PlotOptions& opt) {
         lo = any ? std::min(lo, lv.value) : lv.value;
         hi = any ? std::max(hi, lv.value) : lv.value;
         any = true;
+        for (const auto& [at, v] : lv.moves) {
+          lo = std::min(lo, v);
+          hi = std::max(hi, v);
+        }
       }
     if (panel.keep_zero) {
       lo = std::min(lo, 0.0);
@@ -393,10 +397,27 @@ void write_svg(std::ostream& out, const Plot& whole, const PlotOptions& opt) {
     // levels: a broad pale brown band across the panel (a wall; the shaft's line, which stands at
     // it, stays visible on top), labelled above its right end (below it at the panel's top)
     for (const auto& lv : panel.levels) {
-      const double y = Y(lv.value);
-      if (y < y0 - 0.5 || y > y0 + panel_h + 0.5) continue;  // outside a zoomed panel
-      out << "<line x1=\"" << left << "\" y1=\"" << y << "\" x2=\"" << left + plot_w << "\" y2=\"" << y
-          << "\" stroke=\"#8c564b\" stroke-opacity=\"0.35\" stroke-width=\"5\"/>";
+      // One segment per stretch of time the level holds a value (one across the panel unless the
+      // count was re-based), the label above the last.
+      double value = lv.value, from = tx.lo;
+      std::optional<double> label_y;
+      auto segment = [&](double to) {
+        const double x1 = X(std::max(from, tx.lo)), x2 = X(std::min(to, tx.hi));
+        const double y = Y(value);
+        if (x2 <= x1 || y < y0 - 0.5 || y > y0 + panel_h + 0.5) return;  // outside the window or a zoomed panel
+        out << "<line x1=\"" << x1 << "\" y1=\"" << y << "\" x2=\"" << x2 << "\" y2=\"" << y
+            << "\" stroke=\"#8c564b\" stroke-opacity=\"0.35\" stroke-width=\"5\"/>";
+        label_y = y;
+      };
+      for (const auto& [at, v] : lv.moves) {
+        const double t = static_cast<double>(at) * 1e-6;
+        segment(t);
+        value = v;
+        from = t;
+      }
+      segment(tx.hi);
+      if (!label_y) continue;
+      const double y = *label_y;
       out << "<text x=\"" << left + plot_w - 4 << "\" y=\"" << (y - 4 < y0 + 12 ? y + 13 : y - 4)
           << "\" font-size=\"12\" fill=\"#8c564b\" text-anchor=\"end\">" << xml_text(lv.label) << "</text>\n";
     }

@@ -284,6 +284,35 @@ struct Recorded1260 {
   }
 };
 
+// SAP 1 and a reference search re-base the count, not the wall: the hard stop's line moves with
+// the count from that instant on (one segment before, one after), and the CSV says where the wall
+// is in the new count; a run without a re-base draws one segment.
+TEST(a_re_based_count_moves_the_hard_stop_line) {
+  for (int rebase = 0; rebase < 2; ++rebase) {
+    Recorded1260 r;
+    CHECK(r.rc.place_hard_stop(0, tmcl::SwitchInput::StopLeft, -20000));
+    r.move_to(10000);
+    if (rebase) CHECK(r.rc.set_param(0, tmcl::kApActualPosition, 0) == tmcl::ParamWrite::Ok);
+    r.move_to(5000);
+    std::ostringstream csv, svg;
+    tmcl::write_csv(csv, r.rec);
+    tmcl::write_svg(svg, r.rec);
+    CHECK_EQ(r.rec.rebases().size(), std::size_t(rebase));
+    CHECK((csv.str().find("\n# hard stop left -20000 (motor 0) at -30000 from ") != std::string::npos) == (rebase != 0));
+    CHECK_EQ(count(svg.str(), "stroke=\"#8c564b\" stroke-opacity"), std::size_t(rebase ? 2 : 1));
+    CHECK((svg.str().find("text-anchor=\"end\">-30k</text>") != std::string::npos) == (rebase != 0));  // the axis takes it
+  }
+  // a reference search's re-base: its reference point, -20000 in the old count, is 0 now
+  tmcl::MotionRecorder rec(1, 10000);
+  tmcl::MotionEvent ev{};
+  ev.at = 5000;
+  ev.kind = tmcl::MotionEventKind::Rebased;
+  ev.value = -20000;
+  rec.motion_event(ev);
+  CHECK_EQ(rec.rebases().size(), std::size_t{1});
+  if (!rec.rebases().empty()) CHECK_EQ(rec.rebases()[0].delta, std::int64_t{20000});
+}
+
 // A scenario's hard stop is a line on the motor's position panel, labelled with its side and
 // position, and a comment line in the CSV (issue 41); a run without one draws none.
 TEST(svg_draws_the_hard_stops_as_lines) {

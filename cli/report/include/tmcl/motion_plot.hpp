@@ -32,6 +32,13 @@ struct RecordedHardStop {
   SwitchInput side;
   std::int64_t position;
 };
+// A re-base of a motor's position count (a reference search's, SAP 1): from `at` on every position
+// in that count is `delta` more than before. The walls stay; their lines follow the count.
+struct RecordedRebase {
+  SimTime at;
+  int motor;
+  std::int64_t delta;
+};
 
 class MotionRecorder {
  public:
@@ -45,6 +52,11 @@ class MotionRecorder {
   // A core's event: target reached becomes a TargetReached mark, the others Other marks.
   void motion_event(const MotionEvent& ev);
   void hard_stop(int motor, SwitchInput side, std::int64_t position) { hard_stops_.push_back({motor, side, position}); }
+  // The motor's count re-based at `at` (motion_event does it for a reference search's; the
+  // recording core for SAP 1).
+  void rebase(SimTime at, int motor, std::int64_t delta) {
+    if (delta != 0) rebases_.push_back({at, motor, delta});
+  }
 
   // Axis parameters sampled with the motion, each drawn as a panel of its own (tmclrun
   // --plot-series 206,180): call before the first sample. plot_series_name names those it can.
@@ -66,6 +78,7 @@ class MotionRecorder {
   const std::vector<MotionSample>& samples() const { return samples_; }
   const std::vector<RecordedMark>& marks() const { return marks_; }
   const std::vector<RecordedHardStop>& hard_stops() const { return hard_stops_; }
+  const std::vector<RecordedRebase>& rebases() const { return rebases_; }
 
  private:
   int motors_;
@@ -75,6 +88,7 @@ class MotionRecorder {
   std::vector<MotionSample> samples_;
   std::vector<RecordedMark> marks_;
   std::vector<RecordedHardStop> hard_stops_;
+  std::vector<RecordedRebase> rebases_;
   std::vector<int> params_;
   std::vector<std::optional<std::int32_t>> param_samples_;
   std::optional<std::vector<int>> shown_;
@@ -84,7 +98,9 @@ class MotionRecorder {
 // event rows an empty velocity and acceleration. Stable text (fixed decimals) for golden files.
 // `units_note` (MotionCore::units_note: a core in chip units) follows as comment lines (tmclrun
 // passes the units at power-on and, one line each, from when on each change held), then one
-// comment line per hard stop of a shown motor ("# hard stop left -20000 (motor 0)").
+// comment line per hard stop of a shown motor ("# hard stop left -20000 (motor 0)"), and one per
+// re-base of that motor's count after it ("# hard stop left -20000 (motor 0) at 0 from 1.094612 s,
+// the position count re-based").
 void write_csv(std::ostream& out, const MotionRecorder& rec, std::string_view units_note = {});
 
 // The axis parameters a plot can draw as a series (--plot-series) and their names: 206 "load

@@ -11,6 +11,7 @@
 #include <ostream>
 #include <string>
 #include <string_view>
+#include <utility>
 #include <vector>
 
 #include "tmcl/sim_time.hpp"
@@ -29,10 +30,13 @@ struct RecordedMark {
 };
 
 // A horizontal line across a panel at a fixed value, labelled at its right end: a hard stop on
-// the position panel ("hard stop left -20000").
+// the position panel ("hard stop left -20000"). Where the panel's count is re-based (a reference
+// search, SAP 1) the wall stands still and its value in the count moves: from each instant of
+// `moves` on the line is at that value instead, a segment each.
 struct PlotLevel {
   double value;
   std::string label;
+  std::vector<std::pair<SimTime, double>> moves = {};  // in time order
 };
 
 struct PlotPanel {
