@@ -189,6 +189,26 @@ TEST(edge_cases) {
   }
 }
 
+// A control byte anywhere, a comment included, makes the full assembler take the file for binary
+// data ("is not TMCL source"): the fast path, which skips a comment unread, gives up on it too
+// (fuzz_asm found a NUL in a comment that only the fast path accepted). White space does not.
+TEST(binary_bytes_in_comments_send_the_file_to_the_full_assembler) {
+  for (const char byte : {'\0', '\x01', '\x08', '\x0E', '\x19', '\x1F', '\x7F'}) {
+    const std::string text = std::string("// a comment with a ") + byte + " byte\nSTOP\n";
+    bool accepted = true;
+    CHECK(agrees(text, nullptr, accepted));
+    CHECK(!accepted);
+    Input in;
+    in.memory.files[in.path] = text;
+    const tmcl::AsmResult r = full(in, nullptr);
+    CHECK(!r.ok());
+    CHECK(r.diags.render(r.sources).find("is not TMCL source") != std::string::npos);
+  }
+  bool accepted = false;
+  CHECK(agrees("// tab\there, form feed\f, vertical tab\v\r\nSTOP\r\n", nullptr, accepted));
+  CHECK(accepted);
+}
+
 TEST(includes) {
   struct Case {
     std::vector<std::pair<std::string, std::string>> files;  // the first is main.tmc
