@@ -133,7 +133,8 @@ g_skip=$(grep -c '^SKIP ' "$win/golden.log")
 if [[ -n "$g_fail" && "$g_fail" != 0 ]]; then
   for c in $(sed -n 's/^FAIL \([^ ]*\) (expected.*/\1/p' "$win/golden.log" | sort -u); do
     if (cd "$src" && "$linux/tests/golden_runner" "${tools[@]}" --emulator "$(command -v wine)" "$c") >"$win/again.log" 2>&1; then
-      echo "== windows: $c failed once under Wine and passed when run again"
+      echo "== windows: $c failed once under Wine and passed when run again; what differed the first time:"
+      awk -v c="FAIL $c " 'index($0, c) == 1 {on = 1; next} on && /^(FAIL|SKIP|ok) / {exit} on {print}' "$win/golden.log" | head -40
       g_fail=$((g_fail - 1)) g_pass=$((g_pass + 1))
     fi
   done
