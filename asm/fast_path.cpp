@@ -20,6 +20,7 @@
 #include "syntax.hpp"
 #include "tmcl/fileio.hpp"
 #include "tmcl/os_files.hpp"
+#include "tmcl/program_image.hpp"
 #include "tmcl/targets.hpp"
 
 namespace tmcl::detail {
@@ -388,26 +389,12 @@ class FastAssembler {
   std::array<const OpInfo*, 256> ops_{};  // op_info(), without its lookup on every instruction
 };
 
-// A byte for which the full assembler takes the file for binary data (describe_binary,
-// program_image.hpp): a control byte other than white space, or DEL, anywhere, comments
-// included, where the fast path would skip a comment unread. One pass without branches, which
-// the compiler vectorizes (fuzz_asm found a NUL in a comment that only the fast path accepted).
-bool has_binary_byte(const std::string& text) {
-  const auto* p = reinterpret_cast<const unsigned char*>(text.data());
-  unsigned char bad = 0;
-  for (std::size_t i = 0, n = text.size(); i < n; ++i) {
-    const unsigned char c = p[i];
-    // below TAB, between CR and space (14..31: the subtraction wraps the rest above 17), DEL
-    bad |= static_cast<unsigned char>((c < 9) | (static_cast<unsigned char>(c - 14) < 18) | (c == 127));
-  }
-  return bad != 0;
-}
-
 }  // namespace
 
 bool fast_assemble(const std::string& path, const AsmOptions& options, FileReader& reader, std::string& text,
                    AsmResult& out) {
-  if (options.relocatable || text.size() > kMaxFileBytes || has_binary_byte(text)) return false;
+  // A control byte even in a comment: the full assembler says the file is binary data.
+  if (options.relocatable || text.size() > kMaxFileBytes || has_binary_control_byte(text)) return false;
   // The target the first line names (`// tmcl-target: NAME`) unless -t names one; one that cannot
   // be used is the full assembler's to report, at its place.
   const Profile* named = options.profile;

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <limits>
+#include <utility>
 
 #include "plot_text.hpp"
 
@@ -80,6 +81,15 @@ std::string hard_stop_text(const RecordedHardStop& h) {
   return "hard stop " + std::string(switch_input_name(h.side)) + " " + std::to_string(h.position);
 }
 
+// Where a hard stop is in its motor's count after each re-base of that count: (from when, where).
+std::vector<std::pair<SimTime, std::int64_t>> wall_moves(const MotionRecorder& rec, const RecordedHardStop& h) {
+  std::vector<std::pair<SimTime, std::int64_t>> moves;
+  std::int64_t at = h.position;
+  for (const auto& r : rec.rebases())
+    if (r.motor == h.motor) moves.emplace_back(r.at, at += r.delta);
+  return moves;
+}
+
 bool is_shown(const MotionRecorder& rec, int motor) {
   const auto motors = rec.shown_motors();
   return std::find(motors.begin(), motors.end(), motor) != motors.end();
@@ -104,11 +114,9 @@ void write_csv(std::ostream& out, const MotionRecorder& rec, std::string_view un
   for (const auto& h : rec.hard_stops()) {
     if (!is_shown(rec, h.motor)) continue;
     out << "# " << hard_stop_text(h) << " (motor " << h.motor << ")\n";
-    std::int64_t at = h.position;
-    for (const auto& r : rec.rebases())
-      if (r.motor == h.motor)
-        out << "# " << hard_stop_text(h) << " (motor " << h.motor << ") at " << (at += r.delta) << " from " << seconds(r.at)
-            << " s, the position count re-based\n";
+    for (const auto& [from, at] : wall_moves(rec, h))
+      out << "# " << hard_stop_text(h) << " (motor " << h.motor << ") at " << at << " from " << seconds(from)
+          << " s, the position count re-based\n";
   }
   const auto& times = rec.times();
   const auto motors = static_cast<std::size_t>(rec.motors());
@@ -219,9 +227,7 @@ void write_svg(std::ostream& out, const MotionRecorder& rec, const PlotOptions& 
     if (!is_shown(rec, h.motor)) continue;
     PlotLevel level{static_cast<double>(h.position),
                     (shown.size() > 1 ? "motor " + std::to_string(h.motor) + " " : std::string()) + hard_stop_text(h)};
-    std::int64_t at = h.position;
-    for (const auto& r : rec.rebases())
-      if (r.motor == h.motor) level.moves.emplace_back(r.at, static_cast<double>(at += r.delta));
+    for (const auto& [from, at] : wall_moves(rec, h)) level.moves.emplace_back(from, static_cast<double>(at));
     plot.panels[0].levels.push_back(std::move(level));
   }
   write_svg(out, plot, options);

@@ -120,6 +120,13 @@ bool read_program_image(const std::string& name, const std::vector<std::uint8_t>
   return ok;
 }
 
+bool has_binary_control_byte(const std::string& text) {
+  const auto* p = reinterpret_cast<const unsigned char*>(text.data());
+  unsigned char any = 0;
+  for (std::size_t i = 0, n = text.size(); i < n; ++i) any |= static_cast<unsigned char>(binary_control_byte(p[i]));
+  return any != 0;
+}
+
 std::string describe_binary(const std::string& text) {
   const auto* p = reinterpret_cast<const std::uint8_t*>(text.data());
   const std::size_t n = text.size();
@@ -148,7 +155,7 @@ std::string describe_binary(const std::string& text) {
       comment = false;
       continue;
     }
-    if ((c < 0x20 && c != '\t' && c != '\r' && c != '\v' && c != '\f') || c == 0x7F) {
+    if (binary_control_byte(c)) {
       char msg[96];
       std::snprintf(msg, sizeof msg, "binary data (a control byte 0x%02X at offset %zu)", c, i);
       return msg;

@@ -45,5 +45,14 @@ bool read_program_image(const std::string& name, const std::vector<std::uint8_t>
 // byte at offset 3)", a control byte, or 8 and more bytes of invalid UTF-8 outside comments.
 // Empty when `text` may be source (a few stray non-ASCII bytes get the lexer's own errors).
 std::string describe_binary(const std::string& text);
+// The control bytes that make describe_binary() call a text binary data: below TAB, between CR
+// and space (the subtraction wraps the others above 17), DEL. Arithmetic, so that a loop over a
+// text vectorizes.
+constexpr bool binary_control_byte(unsigned char c) {
+  return (c < 9) | (static_cast<unsigned char>(c - 14) < 18) | (c == 127);
+}
+// Whether `text` holds such a byte anywhere, comments included: one vectorized pass (the
+// assembler's fast path, which skips comments unread, asks it before it takes a file).
+bool has_binary_control_byte(const std::string& text);
 
 }  // namespace tmcl
